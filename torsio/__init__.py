@@ -1,0 +1,42 @@
+"""torsio: torsional dynamics of oil-well drill-strings with lumped-parameter models.
+
+>>> import torsio
+>>> model = torsio.StrategyA().discretize(torsio.ritto2017_string())
+>>> round(float(torsio.modal_analysis(model).frequencies_hz[0]), 4)
+0.1344
+"""
+
+from torsio.components import (
+    LWD,
+    MWD,
+    STEEL,
+    BHASection,
+    Bit,
+    DrillCollar,
+    DrillPipe,
+    HeavyWeightDrillPipe,
+    Material,
+    Section,
+    Stabilizer,
+)
+from torsio.config import Config, builtin_config, load_config, parse_config
+from torsio.continuum import ContinuumModes, continuum_modes
+from torsio.discretize import ConsistentMass, MixedMass, StrategyA, StrategyB, StrategyC
+from torsio.drillstring import DrillString
+from torsio.errors import ConfigError, PluginError, SolverError, TorsioError
+from torsio.examples import ritto2017_config, ritto2017_string
+from torsio.hookspecs import hookimpl
+from torsio.laws import BitRockLaw, Parameter, TuckerWang
+from torsio.lumped import LumpedModel
+from torsio.modal import ModalResults, modal_analysis
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "LWD", "MWD", "STEEL", "BHASection", "Bit", "BitRockLaw", "Config", "ConfigError",
+    "ConsistentMass", "ContinuumModes", "DrillCollar", "DrillPipe", "DrillString",
+    "HeavyWeightDrillPipe", "LumpedModel", "Material", "MixedMass", "ModalResults", "Parameter",
+    "PluginError", "Section", "SolverError", "Stabilizer", "StrategyA", "StrategyB",
+    "StrategyC", "TorsioError", "TuckerWang", "builtin_config", "continuum_modes", "hookimpl",
+    "load_config", "modal_analysis", "parse_config", "ritto2017_config", "ritto2017_string",
+]

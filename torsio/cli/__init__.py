@@ -1,0 +1,61 @@
+"""The ``torsio`` command line.
+
+Each command lives in its own module of this package with a ``register(subparsers)``
+function. ``--json`` prints one JSON object on stdout and nothing else. Errors go
+to stderr, name the offending key or value, and exit with status 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import warnings
+from collections.abc import Sequence
+
+from torsio.errors import TorsioError
+
+COMMANDS = ("report", "modes", "simulate", "map", "laws")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser with every command registered."""
+    import importlib
+
+    from torsio import __version__
+
+    parser = argparse.ArgumentParser(
+        prog="torsio",
+        description="Torsional dynamics of drill-strings: modes, stick-slip, severity maps.")
+    parser.add_argument("--version", action="version", version=f"torsio {__version__}")
+    subparsers = parser.add_subparsers(dest="command", metavar="COMMAND")
+    subparsers.required = True
+    for name in COMMANDS:
+        try:
+            module = importlib.import_module(f"torsio.cli.{name}")
+        except ModuleNotFoundError as exc:
+            if exc.name == f"torsio.cli.{name}":
+                continue  # command not available in this build
+            raise
+        module.register(subparsers)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``torsio`` console script; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("default")
+            status = args.run(args)
+    except TorsioError as exc:
+        print(f"torsio {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print(f"torsio {args.command}: interrupted", file=sys.stderr)
+        return 130
+    return int(status or 0)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,219 @@
+"""Physical components of a drill-string: material, pipe sections, BHA components, bit.
+
+All components are immutable value objects validated on construction, in SI units.
+A section is a uniform hollow shaft; its torsional properties follow from its
+geometry and material:
+
+* polar moment of area ``J = pi/32 (od^4 - id^4)``  [m^4]
+* mass moment of inertia ``rho J L``                [kg m^2]
+* torsional stiffness ``G J / L``                    [N m/rad]
+
+Examples
+--------
+>>> steel = Material(shear_modulus=85.3e9, density=7800.0)
+>>> dp = DrillPipe(od=0.140, id=0.119, length=4733.6, material=steel)
+>>> round(dp.stiffness, 2)
+324.87
+>>> round(dp.inertia, 2)
+665.61
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, ClassVar
+
+import attrs
+
+from torsio.errors import ConfigError
+
+
+def _positive_finite(instance: Any, attribute: attrs.Attribute[Any], value: float) -> None:
+    if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
+        name = type(instance).__name__
+        raise ConfigError(attribute.name, f"{name}.{attribute.name} must be a positive finite "
+                          f"number, got {value!r}")
+
+
+def _non_negative_finite(instance: Any, attribute: attrs.Attribute[Any], value: float) -> None:
+    if not (isinstance(value, int | float) and math.isfinite(value) and value >= 0):
+        name = type(instance).__name__
+        raise ConfigError(attribute.name, f"{name}.{attribute.name} must be a non-negative "
+                          f"finite number, got {value!r}")
+
+
+@attrs.frozen
+class Material:
+    """Elastic material of a section.
+
+    Parameters
+    ----------
+    shear_modulus : float
+        Shear modulus G [Pa].
+    density : float
+        Density rho [kg/m^3].
+
+    Examples
+    --------
+    >>> Material(shear_modulus=85.3e9, density=7800.0).wave_speed
+    3306.9...
+    """
+
+    shear_modulus: float = attrs.field(converter=float, validator=_positive_finite)
+    density: float = attrs.field(converter=float, validator=_positive_finite)
+
+    @property
+    def wave_speed(self) -> float:
+        """Torsional wave speed sqrt(G/rho) [m/s]."""
+        return math.sqrt(self.shear_modulus / self.density)
+
+
+STEEL = Material(shear_modulus=85.3e9, density=7800.0)
+"""The steel of the paper's examples (G = 85.3 GPa, rho = 7800 kg/m^3)."""
+
+
+def _check_inner_diameter(instance: Section, attribute: attrs.Attribute[Any], value: float) -> None:
+    _non_negative_finite(instance, attribute, value)
+    if value >= instance.od:
+        raise ConfigError(
+            "id", f"inner diameter {value!r} m must be smaller than the outer diameter "
+            f"{instance.od!r} m of {instance.describe()}")
+
+
+@attrs.frozen
+class Section:
+    """A uniform hollow shaft: the common base of every drill-string component.
+
+    Use the subclasses (:class:`DrillPipe`, :class:`HeavyWeightDrillPipe`,
+    :class:`DrillCollar`, :class:`MWD`, :class:`LWD`, :class:`Stabilizer`,
+    :class:`BHASection`, :class:`Bit`); ``kind`` names each in configuration files.
+
+    Parameters
+    ----------
+    od, id : float
+        Outer and inner diameter [m]; ``0 <= id < od``.
+    length : float
+        Length along the string [m].
+    material : Material
+        Defaults to :data:`STEEL`.
+    name : str
+        Free text shown in reports.
+    bha : bool | None
+        Whether the section belongs to the bottom-hole assembly. ``None`` takes
+        the kind's default (drill pipe: no; heavy-weight pipe and below: yes).
+    """
+
+    kind: ClassVar[str] = "section"
+    default_bha: ClassVar[bool] = True
+
+    od: float = attrs.field(converter=float, validator=_positive_finite)
+    id: float = attrs.field(converter=float, validator=_check_inner_diameter)
+    length: float = attrs.field(converter=float, validator=_positive_finite)
+    material: Material = attrs.field(default=STEEL,
+                                     validator=attrs.validators.instance_of(Material))
+    name: str = attrs.field(default="", converter=str)
+    bha: bool | None = attrs.field(
+        default=None, validator=attrs.validators.optional(attrs.validators.instance_of(bool)))
+
+    def describe(self) -> str:
+        """Name of the section for messages: its name, else its kind."""
+        return repr(self.name) if self.name else f"a {self.kind} section"
+
+    @property
+    def in_bha(self) -> bool:
+        """Whether the section belongs to the BHA (explicit override, else the kind's default)."""
+        return self.default_bha if self.bha is None else self.bha
+
+    @property
+    def polar_moment(self) -> float:
+        """Polar moment of area J = pi/32 (od^4 - id^4) [m^4]."""
+        return math.pi / 32.0 * (self.od**4 - self.id**4)
+
+    @property
+    def inertia(self) -> float:
+        """Mass moment of inertia about the axis, rho J L [kg m^2]."""
+        return self.material.density * self.polar_moment * self.length
+
+    @property
+    def stiffness(self) -> float:
+        """Torsional stiffness G J / L [N m/rad]."""
+        return self.material.shear_modulus * self.polar_moment / self.length
+
+    @property
+    def wave_travel_time(self) -> float:
+        """Time a torsional wave takes to cross the section, L / sqrt(G/rho) [s]."""
+        return self.length / self.material.wave_speed
+
+
+@attrs.frozen
+class DrillPipe(Section):
+    """Drill pipe: the long slender upper part of the string (not BHA by default)."""
+
+    kind: ClassVar[str] = "drill_pipe"
+    default_bha: ClassVar[bool] = False
+
+
+@attrs.frozen
+class HeavyWeightDrillPipe(Section):
+    """Heavy-weight drill pipe (HWDP): part of the BHA by default ("BHA 1" in the paper)."""
+
+    kind: ClassVar[str] = "hwdp"
+
+
+@attrs.frozen
+class DrillCollar(Section):
+    """Drill collar: thick-walled BHA pipe that provides the weight on bit."""
+
+    kind: ClassVar[str] = "drill_collar"
+
+
+@attrs.frozen
+class MWD(Section):
+    """Measurement-while-drilling tool (BHA)."""
+
+    kind: ClassVar[str] = "mwd"
+
+
+@attrs.frozen
+class LWD(Section):
+    """Logging-while-drilling tool (BHA)."""
+
+    kind: ClassVar[str] = "lwd"
+
+
+@attrs.frozen
+class Stabilizer(Section):
+    """Stabilizer (BHA). Torsionally a short shaft of its body diameters."""
+
+    kind: ClassVar[str] = "stabilizer"
+
+
+@attrs.frozen
+class BHASection(Section):
+    """Generic BHA section, e.g. "drill collars, MWD and LWD tools" lumped together."""
+
+    kind: ClassVar[str] = "bha"
+
+
+@attrs.frozen
+class Bit(Section):
+    """The drill bit: rigid, always last, part of the BHA.
+
+    The bit is not a spring: its inertia rho J L is lumped into the last degree
+    of freedom. Its radius (default od/2) is the R_bit of the bit-rock law.
+    """
+
+    kind: ClassVar[str] = "bit"
+
+    @property
+    def radius(self) -> float:
+        """Bit radius R_bit = od/2 [m]."""
+        return self.od / 2.0
+
+
+SECTION_KINDS: dict[str, type[Section]] = {
+    cls.kind: cls
+    for cls in (DrillPipe, HeavyWeightDrillPipe, DrillCollar, MWD, LWD, Stabilizer, BHASection,
+                Bit)
+}
+"""Section class of each ``kind`` accepted in configuration files."""

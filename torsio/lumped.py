@@ -1,0 +1,218 @@
+"""The lumped-parameter model: inertia and stiffness matrices of a chain fixed at the top.
+
+Degrees of freedom are the rotation angles of the nodes below the surface; node 0
+(the top drive) is prescribed and is not a degree of freedom. The last degree of
+freedom carries the bit.
+
+Examples
+--------
+A two-inertia chain built from its parameters:
+
+>>> model = LumpedModel.from_chain(inertias=[2.0, 1.0], stiffnesses=[100.0, 50.0])
+>>> model.stiffness
+array([[150., -50.],
+       [-50.,  50.]])
+>>> model.equivalent_stiffness  # Eq. 9: 1 / (1/100 + 1/50)
+33.33...
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import attrs
+import numpy as np
+
+from torsio.errors import ConfigError
+
+
+def _as_matrix(value: Any) -> np.ndarray:
+    matrix = np.array(value, dtype=float)
+    matrix.setflags(write=False)
+    return matrix
+
+
+def _as_vector(value: Any) -> np.ndarray:
+    vector = np.array(value, dtype=float).reshape(-1)
+    vector.setflags(write=False)
+    return vector
+
+
+def _check_chain_values(key: str, values: np.ndarray, allow_zero: bool) -> None:
+    bad = ~np.isfinite(values) | ((values < 0) if allow_zero else (values <= 0))
+    if bad.any():
+        i = int(np.argmax(bad))
+        expected = "non-negative" if allow_zero else "positive"
+        raise ConfigError(f"{key}[{i}]", f"expected a {expected} finite value, got {values[i]!r}")
+
+
+def chain_matrix(springs: np.ndarray) -> np.ndarray:
+    """Matrix of a chain of springs (or dampers) whose first one is tied to the fixed top.
+
+    ``springs[i]`` joins node ``i`` and node ``i+1`` (node 0 is the top), so the
+    result is tridiagonal with ``k_i + k_(i+1)`` on the diagonal.
+
+    >>> chain_matrix(np.array([3.0, 2.0]))
+    array([[ 5., -2.],
+           [-2.,  2.]])
+    """
+    springs = np.asarray(springs, dtype=float)
+    n = springs.size
+    matrix = np.zeros((n, n))
+    idx = np.arange(n)
+    matrix[idx, idx] = springs
+    matrix[idx[:-1], idx[:-1]] += springs[1:]
+    matrix[idx[:-1], idx[1:]] = -springs[1:]
+    matrix[idx[1:], idx[:-1]] = -springs[1:]
+    return matrix
+
+
+@attrs.frozen
+class LumpedModel:
+    """Inertia and stiffness matrices of a torsional chain fixed at the top.
+
+    Parameters
+    ----------
+    inertia : ndarray, shape (n, n)
+        Inertia matrix [I] [kg m^2] (diagonal for lumped mass, tridiagonal for
+        consistent mass).
+    stiffness : ndarray, shape (n, n)
+        Stiffness matrix [K] [N m/rad]. ``[K] @ 1`` is the coupling of each node
+        to the prescribed top (``k_1`` on the first node for a chain).
+    node_depths : ndarray, shape (n,)
+        Measured depth of each degree of freedom [m] (for abstract models, any
+        increasing coordinate).
+    strategy : str
+        Name of the discretizer that built the model.
+    damping : ndarray or None
+        Damping matrix [C] [N m s/rad] when the model carries its own (e.g. a
+        published lumped model); a System's Rayleigh damping replaces it.
+    top_damping : ndarray or None
+        Coupling of each node to the top through dampers [N m s/rad]
+        (``c_1`` on the first node), used with ``damping``.
+    details : dict
+        What the discretizer chose (elements per section, ...), for reports.
+    """
+
+    inertia: np.ndarray = attrs.field(converter=_as_matrix)
+    stiffness: np.ndarray = attrs.field(converter=_as_matrix)
+    node_depths: np.ndarray = attrs.field(converter=_as_vector)
+    strategy: str = "custom"
+    damping: np.ndarray | None = attrs.field(
+        default=None, converter=attrs.converters.optional(_as_matrix))
+    top_damping: np.ndarray | None = attrs.field(
+        default=None, converter=attrs.converters.optional(_as_vector))
+    details: dict[str, Any] = attrs.field(factory=dict, eq=False)
+
+    def __attrs_post_init__(self) -> None:
+        n = self.inertia.shape[0]
+        for key, matrix in (("inertia", self.inertia), ("stiffness", self.stiffness)):
+            if matrix.shape != (n, n) or n == 0:
+                raise ConfigError(key, f"expected a non-empty square matrix of size {n}, got "
+                                       f"shape {matrix.shape}")
+            if not np.all(np.isfinite(matrix)):
+                raise ConfigError(key, "matrix has non-finite entries")
+            if not np.allclose(matrix, matrix.T, rtol=1e-12, atol=0.0):
+                raise ConfigError(key, "matrix must be symmetric")
+            try:
+                np.linalg.cholesky(matrix)
+            except np.linalg.LinAlgError:
+                raise ConfigError(key, "matrix must be positive definite (is every node tied "
+                                       "to the top through springs, every inertia > 0?)") from None
+        if self.node_depths.shape != (n,):
+            raise ConfigError("node_depths", f"expected {n} depths, got {self.node_depths.size}")
+        if self.damping is not None:
+            if self.damping.shape != (n, n) or not np.allclose(self.damping, self.damping.T):
+                raise ConfigError("damping", f"expected a symmetric {n}x{n} matrix")
+            if self.top_damping is None or self.top_damping.shape != (n,):
+                raise ConfigError("top_damping", f"expected {n} values with a damping matrix")
+
+    # --- constructors ---------------------------------------------------------------------
+    @classmethod
+    def from_chain(
+        cls,
+        inertias: Sequence[float],
+        stiffnesses: Sequence[float],
+        dampings: Sequence[float] | None = None,
+        drag: Sequence[float] | None = None,
+        node_depths: Sequence[float] | None = None,
+        strategy: str = "custom",
+    ) -> LumpedModel:
+        """A chain of inertias joined by springs (and dampers), the first tied to the top.
+
+        Parameters
+        ----------
+        inertias : sequence of float
+            I_1..I_n [kg m^2]; the last carries the bit.
+        stiffnesses : sequence of float
+            k_1..k_n [N m/rad]; ``k_i`` joins node i-1 and node i (node 0 the top).
+        dampings : sequence of float, optional
+            c_1..c_n [N m s/rad], dampers in parallel with the springs.
+        drag : sequence of float, optional
+            Damping of each inertia to the (still) borehole [N m s/rad].
+        node_depths : sequence of float, optional
+            Depth of each node [m]; defaults to 1, 2, ..., n.
+
+        Examples
+        --------
+        The 4-DOF model of Navarro-Lopez and Cortes (2007): rotary table, two pipe
+        inertias and the BHA (their Table 1 values):
+
+        >>> m = LumpedModel.from_chain(
+        ...     inertias=[930.0, 2782.25, 750.0, 471.9698],
+        ...     stiffnesses=[1.0e12, 698.063, 1080.0, 907.48],
+        ...     dampings=[0.0, 139.6126, 190.0, 181.49], drag=[425.0, 0.0, 0.0, 50.0])
+        >>> m.dofs
+        4
+        """
+        inertia_values = np.asarray(inertias, dtype=float).reshape(-1)
+        spring_values = np.asarray(stiffnesses, dtype=float).reshape(-1)
+        n = inertia_values.size
+        if spring_values.size != n:
+            raise ConfigError("stiffnesses", f"expected {n} values (one per inertia), got "
+                                             f"{spring_values.size}")
+        _check_chain_values("inertias", inertia_values, allow_zero=False)
+        _check_chain_values("stiffnesses", spring_values, allow_zero=False)
+        depths = np.arange(1.0, n + 1) if node_depths is None else node_depths
+        damping = top_damping = None
+        if dampings is not None or drag is not None:
+            c = np.zeros(n) if dampings is None else np.asarray(dampings, float).reshape(-1)
+            d = np.zeros(n) if drag is None else np.asarray(drag, float).reshape(-1)
+            for key, values in (("dampings", c), ("drag", d)):
+                if values.size != n:
+                    raise ConfigError(key, f"expected {n} values, got {values.size}")
+                _check_chain_values(key, values, allow_zero=True)
+            damping = chain_matrix(c) + np.diag(d)
+            top_damping = np.zeros(n)
+            top_damping[0] = c[0]
+        return cls(np.diag(inertia_values), chain_matrix(spring_values), depths,
+                   strategy=strategy, damping=damping, top_damping=top_damping)
+
+    # --- derived quantities ---------------------------------------------------------------
+    @property
+    def dofs(self) -> int:
+        """Number of degrees of freedom."""
+        return int(self.inertia.shape[0])
+
+    @property
+    def top_stiffness(self) -> np.ndarray:
+        """Coupling of each node to the prescribed top, ``[K] @ 1`` [N m/rad] (k_1 e_1 for a chain)."""
+        return self.stiffness.sum(axis=1)
+
+    @property
+    def equivalent_stiffness(self) -> float:
+        """k_eq = 1 / [K^-1]_(N,N) (Eq. 9) [N m/rad]: the static stiffness seen at the bit."""
+        unit_bit_torque = np.zeros(self.dofs)
+        unit_bit_torque[-1] = 1.0
+        return float(1.0 / np.linalg.solve(self.stiffness, unit_bit_torque)[-1])
+
+    @property
+    def total_inertia(self) -> float:
+        """Sum of all inertia, ``1^T [I] 1`` [kg m^2]."""
+        return float(self.inertia.sum())
+
+    @property
+    def has_lumped_mass(self) -> bool:
+        """Whether [I] is diagonal."""
+        return bool(np.count_nonzero(self.inertia - np.diag(np.diag(self.inertia))) == 0)

@@ -1,0 +1,105 @@
+"""Units at the edge: parse ``"5.5 in"``, ``"100 kN"``, ``"120 rpm"`` into SI floats.
+
+Inside torsio every quantity is a plain float in SI units (m, kg, s, N, Pa, rad).
+Strings with units are accepted only where input enters (configuration files,
+command line), and are converted here with `pint`. A bare number is taken as SI.
+
+Examples
+--------
+>>> to_si("5.5 in", "length", key="od")
+0.1397
+>>> to_si("100 kN", "force", key="wob")
+100000.0
+>>> round(to_si("120 rpm", "angular_speed", key="rpm"), 6)
+12.566371
+>>> to_si(7800, "density", key="density")
+7800.0
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+from typing import Any
+
+from torsio.errors import ConfigError
+
+#: SI unit of each physical dimension torsio accepts, as pint understands it.
+SI_UNITS: dict[str, str] = {
+    "length": "m",
+    "force": "N",
+    "pressure": "Pa",
+    "density": "kg/m**3",
+    "angular_speed": "rad/s",
+    "time": "s",
+    "inverse_time": "1/s",
+    "torque": "N*m",
+    "inertia": "kg*m**2",
+    "stiffness": "N*m/rad",
+    "dimensionless": "",
+}
+
+RPM_TO_RAD_S = math.pi / 30.0
+"""Multiply a speed in rev/min by this to get rad/s."""
+
+
+@lru_cache(maxsize=1)
+def _registry() -> Any:
+    import pint  # imported lazily: only strings with units need it
+
+    return pint.UnitRegistry()
+
+
+def to_si(value: Any, dimension: str, *, key: str) -> float:
+    """Convert a number or a string with units to a float in SI units.
+
+    Parameters
+    ----------
+    value : float | int | str
+        A bare number (taken as SI) or a string such as ``"85.3 GPa"``.
+    dimension : str
+        One of :data:`SI_UNITS`.
+    key : str
+        Name of the input, used in the error message.
+
+    Raises
+    ------
+    ConfigError
+        If the value is neither a finite number nor a parsable quantity of the
+        expected dimension.
+    """
+    if isinstance(value, bool):
+        raise ConfigError(key, f"expected a number or a quantity with units, got {value!r}")
+    if isinstance(value, int | float):
+        result = float(value)
+    elif isinstance(value, str):
+        result = _parse(value, dimension, key)
+    else:
+        raise ConfigError(
+            key, f"expected a number or a string with units, got {type(value).__name__} {value!r}"
+        )
+    if not math.isfinite(result):
+        raise ConfigError(key, f"expected a finite value, got {value!r}")
+    return result
+
+
+def _parse(text: str, dimension: str, key: str) -> float:
+    import pint
+
+    ureg = _registry()
+    target = SI_UNITS[dimension]
+    try:
+        quantity = ureg.Quantity(text.strip())
+    except (pint.errors.PintError, ValueError, TypeError, AttributeError, SyntaxError) as exc:
+        raise ConfigError(key, f"cannot read {text!r} as a quantity ({exc})") from None
+    if not isinstance(quantity, ureg.Quantity):  # a bare number in a string
+        return float(quantity)
+    if quantity.dimensionless and target not in ("", "rad/s", "1/s"):
+        if str(quantity.units) == "dimensionless":
+            return float(quantity.magnitude)
+    try:
+        return float(quantity.to(target).magnitude)
+    except pint.errors.DimensionalityError:
+        raise ConfigError(
+            key, f"{text!r} is not a {dimension.replace('_', ' ')} (expected units like {target})"
+        ) from None
