@@ -15,7 +15,7 @@ Examples
 >>> round(law.a1, 4), round(law.a2, 4), round(law.a3, 4)  # the same law in rad/s
 (1.9099, 8.4989, 5.4713)
 >>> round(float(law.torque(10.0, 100e3, 0.108)), 1)
-2710.4
+2756.9
 """
 
 from __future__ import annotations
