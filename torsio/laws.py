@@ -107,6 +107,13 @@ class BitRockLaw:
         """Torque on bit [N m] at bit speed [rad/s], weight on bit [N], bit radius [m]."""
         raise NotImplementedError
 
+    def slope(self, speed: Any, wob: Any, radius: Any) -> np.ndarray:
+        """d torque / d speed [N m s/rad]; a central difference unless a law overrides it."""
+        w = np.asarray(speed, dtype=float)
+        step = 1e-6 * np.maximum(1.0, np.abs(w))
+        return (self.torque(w + step, wob, radius) - self.torque(w - step, wob, radius)) / (
+            2.0 * step)
+
     def values(self) -> dict[str, float]:
         """The parameters in the rad/s reading."""
         return {key: float(getattr(self, key)) for key in self.parameters}
@@ -165,6 +172,14 @@ class TuckerWang(BitRockLaw):
         w = np.asarray(speed, dtype=float)
         return np.asarray(wob) * np.asarray(radius) * self.a0 * (
             np.tanh(self.a1 * w) + self.a2 * w / (1.0 + self.a3 * w * w))
+
+    def slope(self, speed: Any, wob: Any, radius: Any) -> np.ndarray:
+        """d torque / d speed [N m s/rad], analytic."""
+        w = np.asarray(speed, dtype=float)
+        denominator = 1.0 + self.a3 * w * w
+        return np.asarray(wob) * np.asarray(radius) * self.a0 * (
+            self.a1 / np.cosh(self.a1 * w) ** 2
+            + self.a2 * (1.0 - self.a3 * w * w) / denominator**2)
 
 
 class ConstantTorque(BitRockLaw):

@@ -1,0 +1,66 @@
+"""Stick-slip severity S_SS (paper Eq. 12) and the steady-state window it is read over.
+
+    S_SS = (max theta_bit' - min theta_bit') / (2 Omega)
+
+over a steady-state window at the end of a run started from rest. S_SS = 0 for
+steady rotation; S_SS >= 1 means the bit stops (sticks); the paper calls
+S_SS > 0.8 severe.
+
+Default run length and window (the paper states neither): the run lasts
+``DEFAULT_DURATION_PERIODS`` periods of the first natural mode and S_SS is read
+over the last ``DEFAULT_WINDOW_PERIODS``. A stick-slip cycle lasts about one to
+two such periods, so the window holds about 7 to 15 cycles, and the first 25
+periods (about 185 s for the Ritto et al. 2017 string, T1 = 7.4 s) let the
+start-up transient die out (modal damping ratio >= 0.2 there).
+
+Examples
+--------
+>>> import numpy as np
+>>> t = np.linspace(0.0, 10.0, 1001)
+>>> severity(10.0 + 5.0 * np.sin(t), omega=10.0)
+0.49999...
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from torsio.errors import ConfigError
+
+DEFAULT_DURATION_PERIODS = 40.0
+"""Default run length, in periods 2 pi / omega_1 of the first natural mode."""
+
+DEFAULT_WINDOW_PERIODS = 15.0
+"""Default steady-state window at the end of a run, in periods of the first mode."""
+
+SEVERE_THRESHOLD = 0.8
+"""S_SS above which the paper calls the vibration severe."""
+
+
+def severity(bit_speed: np.ndarray, omega: float) -> float:
+    """S_SS of bit speeds [rad/s] sampled over the steady window, at surface speed omega [rad/s]."""
+    if not (math.isfinite(omega) and omega > 0):
+        raise ConfigError("rpm", f"S_SS divides by the surface speed; expected a positive speed, "
+                                 f"got {omega!r} rad/s")
+    speeds = np.asarray(bit_speed, dtype=float)
+    if speeds.size == 0:
+        raise ConfigError("steady_window", "no samples in the steady-state window")
+    return float((speeds.max() - speeds.min()) / (2.0 * omega))
+
+
+def default_times(first_frequency_rad: float) -> tuple[float, float]:
+    """Default (run duration, steady window) [s] for a first natural frequency [rad/s]."""
+    period = 2.0 * math.pi / first_frequency_rad
+    return DEFAULT_DURATION_PERIODS * period, DEFAULT_WINDOW_PERIODS * period
+
+
+def check_window(duration: float, steady_window: float) -> None:
+    """A clear error unless 0 < steady_window <= duration."""
+    for key, value in (("duration", duration), ("steady_window", steady_window)):
+        if not (math.isfinite(value) and value > 0):
+            raise ConfigError(f"simulation.{key}", f"expected a positive time in s, got {value!r}")
+    if steady_window > duration:
+        raise ConfigError("simulation.steady_window", f"the steady window ({steady_window:g} s) "
+                          f"is longer than the run ({duration:g} s)")
