@@ -165,6 +165,11 @@ class _ElementDiscretizer(Discretizer):
         if self.rigid_bha:
             return dp
         bha_sections = string.bha_sections
+        if not bha_sections:
+            if self.bha_elements is not None:
+                raise ConfigError("bha_elements", "the string has no flexible BHA section "
+                                                  "(only the rigid bit) to split")
+            return dp
         bha_total = self.bha_elements if self.bha_elements is not None else len(bha_sections)
         return dp + split_count(bha_total, bha_sections, "bha_elements")
 
@@ -218,8 +223,9 @@ def element_inertia_matrix(element_inertias: np.ndarray, consistent: bool | floa
         coupling = weight * m[1:] / 6.0
         matrix[idx, idx + 1] = coupling
         matrix[idx + 1, idx] = coupling
-        matrix[idx, idx] -= 2.0 * coupling
-        matrix[-1, -1] -= weight * m[-1] / 6.0
+        # each element end keeps m/3 instead of the lumped m/2 (less weight * m/6)
+        matrix[np.diag_indices(m.size)] -= weight * m / 6.0
+        matrix[idx, idx] -= coupling
     return matrix
 
 
@@ -256,9 +262,11 @@ class ConsistentMass(_ElementDiscretizer):
 class MixedMass(_ElementDiscretizer):
     """Finite elements with the average of the lumped and consistent mass matrices.
 
-    Not in the paper: the second-order errors of lumped and consistent mass
-    cancel, so frequencies converge at fourth order in the element length
-    (rho J L/12 [[5, 1], [1, 5]] per element).
+    Not in the paper: rho J L/12 [[5, 1], [1, 5]] per element. In a uniform
+    shaft the second-order dispersion errors of lumped and consistent mass cancel
+    (omega_h = omega (1 - (kh)^4/480)); the bit and section junctions leave an
+    O(h^2) term with a small constant, so the observed order falls from 4 to 2
+    as elements shrink, the error staying 20-100 times below lumped mass.
     """
 
     name = "mixed"
