@@ -93,7 +93,7 @@ def test_mode_shape_is_zero_at_top_and_normalized(ritto):
     shape = modes.shape(2, depths)
     assert shape[0] == 0.0
     assert np.max(np.abs(shape)) == pytest.approx(1.0)
-    assert shape[np.argmax(np.abs(shape))] == pytest.approx(1.0)
+    assert shape[1] > 0
 
 
 def test_mode_shape_satisfies_the_bit_boundary_condition():

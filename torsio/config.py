@@ -207,11 +207,16 @@ def _material(value: Any, key: str, default: Material) -> Material:
     if value is None:
         return default
     table = _table(value, key, MATERIAL_KEYS)
-    return Material(
-        shear_modulus=to_si(table.get("shear_modulus", default.shear_modulus), "pressure",
-                            key=f"{key}.shear_modulus"),
-        density=to_si(table.get("density", default.density), "density", key=f"{key}.density"),
-    )
+    try:
+        return Material(
+            shear_modulus=to_si(table.get("shear_modulus", default.shear_modulus), "pressure",
+                                key=f"{key}.shear_modulus"),
+            density=to_si(table.get("density", default.density), "density",
+                          key=f"{key}.density"),
+        )
+    except ConfigError as exc:
+        full_key = exc.key if exc.key.startswith(key) else f"{key}.{exc.key}"
+        raise ConfigError(full_key, exc.message) from None
 
 
 def _section(raw: Any, key: str, default_material: Material) -> Section:
@@ -220,7 +225,7 @@ def _section(raw: Any, key: str, default_material: Material) -> Section:
         if required not in table:
             raise ConfigError(f"{key}.{required}", "missing required key")
     kind = table["kind"]
-    if kind not in SECTION_KINDS:
+    if not isinstance(kind, str) or kind not in SECTION_KINDS:
         raise ConfigError(f"{key}.kind", f"unknown section kind {kind!r}; expected one of "
                                          f"{', '.join(SECTION_KINDS)}")
     bha = table.get("bha")

@@ -141,8 +141,9 @@ class ContinuumModes:
         """Rotation amplitude of mode ``mode`` (1-based) at ``depths`` [m].
 
         Depths below the last flexible section (in the rigid bit, or the rigid
-        BHA) take the value at its bottom. Normalized like the lumped modes: the
-        sample of largest magnitude is +1 (see :func:`torsio.modal.normalize_shape`).
+        BHA) take the value at its bottom. Normalized like the lumped modes over the
+        given samples: peak magnitude 1, positive near the surface
+        (:func:`torsio.modal.normalize_shape`).
         """
         from torsio.modal import normalize_shape
 

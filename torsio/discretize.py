@@ -46,6 +46,10 @@ from torsio.errors import ConfigError
 from torsio.lumped import LumpedModel, chain_matrix
 
 
+MAX_DOFS = 5000
+"""Largest model a discretizer builds (dense n x n matrices: 200 MB each at the limit)."""
+
+
 def split_count(total: int, sections: Sequence[Section], key: str) -> list[int]:
     """Split ``total`` elements over ``sections`` in proportion to wave travel time.
 
@@ -178,6 +182,10 @@ class _ElementDiscretizer(Discretizer):
             _require_drill_pipe(string, self.name)
         sections = string.drill_pipe_sections if self.rigid_bha else string.flexible_sections
         counts = self.element_counts(string)
+        if sum(counts) > MAX_DOFS:
+            raise ConfigError("discretization", f"{sum(counts)} elements (degrees of freedom) "
+                              f"exceed the limit of {MAX_DOFS}: the model's matrices are dense "
+                              f"({sum(counts) ** 2 * 8 / 1e9:.1f} GB each)")
         springs, inertias, depths = [], [], []
         top = 0.0
         for section, count in zip(sections, counts, strict=True):

@@ -102,8 +102,14 @@ class TwistEquations:
 
     @property
     def jacobian_bands(self) -> tuple[int, int] | None:
-        """(lower, upper) bandwidth of the Jacobian, or None when it is full."""
-        return (3, 2) if self.lumped_mass else None
+        """(lower, upper) bandwidth of the Jacobian, or None when it is full.
+
+        Never wider than the matrix itself (a 1-DOF model has a 2 x 2 Jacobian).
+        """
+        if not self.lumped_mass:
+            return None
+        size = 2 * self.dofs
+        return (min(3, size - 1), min(2, size - 1))
 
     def jacobian(self, t: float, y: np.ndarray) -> scipy.sparse.csc_matrix:
         """d(dy/dt)/dy as a sparse matrix (banded for lumped mass)."""

@@ -1,8 +1,8 @@
 """Modal analysis of a lumped model: [K] phi = omega^2 [I] phi.
 
-Mode shapes are normalized so that the component of largest magnitude is +1
-(a shape reads as a fraction of its peak rotation; the sign is fixed so results
-are reproducible). Mass-normalized shapes (phi^T [I] phi = 1) are also kept.
+Mode shapes are normalized to a peak magnitude of 1, with the node nearest the
+surface positive (a shape reads as a fraction of its peak rotation; the sign is
+fixed so results are reproducible and comparable with the continuum). Mass-normalized shapes (phi^T [I] phi = 1) are also kept.
 
 Examples
 --------
@@ -30,15 +30,24 @@ from torsio.lumped import LumpedModel
 
 
 def normalize_shape(shape: np.ndarray) -> np.ndarray:
-    """Scale a shape (or each column of an array of shapes) so its largest-magnitude entry is +1.
+    """Scale a shape (or each column of an array of shapes) to peak magnitude 1, positive at
+    the first non-zero entry (the node nearest the surface).
 
-    >>> normalize_shape(np.array([0.5, -2.0, 1.0]))
-    array([-0.25,  1.  , -0.5 ])
+    The sign convention is robust for high modes, whose peaks of either sign are nearly
+    equal: a mode shape leaves the fixed top with a non-zero slope, so its first node below
+    the surface is never zero.
+
+    >>> normalize_shape(np.array([0.0, -0.5, 2.0, 1.0]))
+    array([-0.  ,  0.25, -1.  , -0.5 ])
     """
     shape = np.asarray(shape, dtype=float)
     flat = shape.reshape(shape.shape[0], -1)
-    peaks = flat[np.argmax(np.abs(flat), axis=0), np.arange(flat.shape[1])]
-    return (flat / peaks).reshape(shape.shape)
+    peaks = np.max(np.abs(flat), axis=0)
+    scale = np.where(peaks > 0, peaks, 1.0)
+    nonzero = np.abs(flat) > 1e-12 * scale
+    first = flat[np.argmax(nonzero, axis=0), np.arange(flat.shape[1])]
+    signs = np.where(first < 0, -1.0, 1.0)
+    return (flat * (signs / scale)).reshape(shape.shape)
 
 
 @attrs.frozen
@@ -51,7 +60,7 @@ class ModalResults:
     frequencies_rad : ndarray, shape (m,)
         Natural frequencies [rad/s], ascending.
     mode_shapes : ndarray, shape (dofs, m)
-        Column j is mode j+1, largest-magnitude entry +1.
+        Column j is mode j+1: peak magnitude 1, positive at the node nearest the surface.
     mass_normalized_shapes : ndarray, shape (dofs, m)
         The same modes with phi^T [I] phi = 1 [kg^-1/2 m^-1].
     string : DrillString or None

@@ -90,8 +90,9 @@ def _parse(text: str, dimension: str, key: str) -> float:
     target = SI_UNITS[dimension]
     try:
         quantity = ureg.Quantity(text.strip())
-    except (pint.errors.PintError, ValueError, TypeError, AttributeError, SyntaxError) as exc:
-        raise ConfigError(key, f"cannot read {text!r} as a quantity ({exc})") from None
+    except Exception as exc:  # pint's parser raises many types on arbitrary text
+        raise ConfigError(key, f"cannot read {text!r} as a quantity "
+                               f"({type(exc).__name__}: {exc})") from None
     if not isinstance(quantity, ureg.Quantity):  # a bare number in a string
         return float(quantity)
     if quantity.dimensionless and target not in ("", "rad/s", "1/s"):
@@ -99,7 +100,7 @@ def _parse(text: str, dimension: str, key: str) -> float:
             return float(quantity.magnitude)
     try:
         return float(quantity.to(target).magnitude)
-    except pint.errors.DimensionalityError:
+    except (pint.errors.DimensionalityError, TypeError, ValueError):
         raise ConfigError(
             key, f"{text!r} is not a {dimension.replace('_', ' ')} (expected units like {target})"
         ) from None
