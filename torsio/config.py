@@ -111,7 +111,7 @@ class Config:
 
     name: str
     string: DrillString
-    bit_rock: BitRockConfig
+    bit_rock: BitRockConfig | None
     damping: DampingConfig
     discretization: DiscretizationConfig
     operation: OperationConfig
@@ -133,7 +133,16 @@ class Config:
     @property
     def bit_radius(self) -> float:
         """R_bit [m]: ``bit_rock.radius``, else half the bit's outer diameter."""
-        return self.string.bit.radius if self.bit_rock.radius is None else self.bit_rock.radius
+        if self.bit_rock is None or self.bit_rock.radius is None:
+            return self.string.bit.radius
+        return self.bit_rock.radius
+
+    def bit_law(self) -> Any:
+        """The configured bit-rock law; a clear error if the file has no ``[bit_rock]`` table."""
+        if self.bit_rock is None:
+            raise ConfigError("bit_rock", "the configuration has no [bit_rock] table; dynamic "
+                                          "analyses need a bit-rock law (see `torsio laws`)")
+        return self.bit_rock.build()
 
 
 def load_config(path: str | Path) -> Config:
@@ -176,7 +185,7 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
     return Config(
         name=name,
         string=string,
-        bit_rock=_bit_rock(table.get("bit_rock", {})),
+        bit_rock=_bit_rock(table["bit_rock"]) if "bit_rock" in table else None,
         damping=_damping(table.get("damping", {})),
         discretization=_discretization(table.get("discretization", {})),
         operation=_operation(table.get("operation", {})),

@@ -101,7 +101,7 @@ class System:
         damping = (RayleighDamping.from_modal_ratios(model, d.ratios, d.modes)
                    if d.ratios is not None else RayleighDamping(d.alpha or 0.0, d.beta or 0.0))
         op = config.operation
-        return cls(model=model, law=config.bit_rock.build(), bit_radius=config.bit_radius,
+        return cls(model=model, law=config.bit_law(), bit_radius=config.bit_radius,
                    damping=damping, wob=op.wob if op.wob is not None else 0.0,
                    rpm=op.rpm if op.rpm is not None else 60.0, string=config.string)
 
