@@ -182,12 +182,19 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
     sections = [_section(raw, f"section[{i}]", default_material)
                 for i, raw in enumerate(raw_sections)]
     string = DrillString(sections, name=name)
+    discretization = _discretization(table.get("discretization", {}))
+    discretizer = discretization.build()
+    if hasattr(discretizer, "element_counts"):
+        try:
+            discretizer.element_counts(string)
+        except ConfigError as exc:
+            raise ConfigError(f"discretization.{exc.key}", exc.message) from None
     return Config(
         name=name,
         string=string,
         bit_rock=_bit_rock(table["bit_rock"]) if "bit_rock" in table else None,
         damping=_damping(table.get("damping", {})),
-        discretization=_discretization(table.get("discretization", {})),
+        discretization=discretization,
         operation=_operation(table.get("operation", {})),
         simulation=_simulation(table.get("simulation", {})),
         source=source,

@@ -48,7 +48,7 @@ class RayleighDamping:
     beta: float = attrs.field(default=0.0, converter=float, validator=_non_negative)
 
     def matrix(self, model: LumpedModel) -> np.ndarray:
-        """[C] [N m s/rad]."""
+        """[C], in N m s/rad."""
         return self.alpha * model.inertia + self.beta * model.stiffness
 
     def top_coupling(self, model: LumpedModel) -> np.ndarray:
@@ -88,7 +88,7 @@ class ModelDamping:
     """The damping a LumpedModel carries itself (e.g. a published lumped model's dampers)."""
 
     def matrix(self, model: LumpedModel) -> np.ndarray:
-        """[C] [N m s/rad]."""
+        """[C], in N m s/rad."""
         if model.damping is None:
             raise ConfigError("damping", "the model carries no damping; give Rayleigh damping")
         return np.asarray(model.damping)

@@ -198,8 +198,12 @@ class _ElementDiscretizer(Discretizer):
         stiffness = chain_matrix(np.array(springs))
         inertia = element_inertia_matrix(np.array(inertias), consistent=self.consistent_mass)
         inertia[-1, -1] += tip
-        names = [s.name or s.kind for s in sections]
-        elements: dict[str, Any] = dict(zip(names, counts, strict=True))
+        elements: dict[str, Any] = {}
+        for section, count in zip(sections, counts, strict=True):
+            name = base = section.name or section.kind
+            while name in elements:  # two sections of one name: number the later ones
+                name = f"{base} #{sum(k.startswith(base) for k in elements) + 1}"
+            elements[name] = count
         if self.rigid_bha:
             elements["BHA"] = "rigid"
         return LumpedModel(inertia, stiffness, depths, strategy=self.name,

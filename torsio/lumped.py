@@ -75,10 +75,10 @@ class LumpedModel:
     Parameters
     ----------
     inertia : ndarray, shape (n, n)
-        Inertia matrix [I] [kg m^2] (diagonal for lumped mass, tridiagonal for
+        Inertia matrix [I], in kg m^2 (diagonal for lumped mass, tridiagonal for
         consistent mass).
     stiffness : ndarray, shape (n, n)
-        Stiffness matrix [K] [N m/rad]. ``[K] @ 1`` is the coupling of each node
+        Stiffness matrix [K], in N m/rad. ``[K] @ 1`` is the coupling of each node
         to the prescribed top (``k_1`` on the first node for a chain).
     node_depths : ndarray, shape (n,)
         Measured depth of each degree of freedom [m] (for abstract models, any
@@ -86,7 +86,7 @@ class LumpedModel:
     strategy : str
         Name of the discretizer that built the model.
     damping : ndarray or None
-        Damping matrix [C] [N m s/rad] when the model carries its own (e.g. a
+        Damping matrix [C], in N m s/rad when the model carries its own (e.g. a
         published lumped model); a System's Rayleigh damping replaces it.
     top_damping : ndarray or None
         Coupling of each node to the top through dampers [N m s/rad]

@@ -157,11 +157,17 @@ class ModalComparison:
         }
 
 
+def _is_tridiagonal(matrix: np.ndarray) -> bool:
+    return bool(np.count_nonzero(np.triu(matrix, 2)) == 0)
+
+
 def modal_analysis(model: LumpedModel, count: int | None = None,
                    string: DrillString | None = None) -> ModalResults:
     """Solve [K] phi = omega^2 [I] phi for the lowest ``count`` modes (all by default).
 
-    Uses ``scipy.linalg.eigh`` on the symmetric-definite pencil. ``string`` (the
+    Lumped (diagonal) inertia with a chain stiffness is solved as the tridiagonal
+    matrix D^-1/2 [K] D^-1/2 (``scipy.linalg.eigh_tridiagonal``); any other model with
+    ``scipy.linalg.eigh`` on the symmetric-definite pencil. ``string`` (the
     drill-string the model was built from) enables :meth:`ModalResults.compare`.
     """
     n = model.dofs
@@ -170,8 +176,17 @@ def modal_analysis(model: LumpedModel, count: int | None = None,
     if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count:
         raise ConfigError("count", f"expected a whole number of modes >= 1, got {count!r}")
     count = min(count, n)
-    eigenvalues, vectors = scipy.linalg.eigh(model.stiffness, model.inertia,
-                                             subset_by_index=(0, count - 1))
+    if model.has_lumped_mass and _is_tridiagonal(model.stiffness):
+        # D^-1/2 [K] D^-1/2 is tridiagonal: O(n^2) and no dense BLAS
+        scale = 1.0 / np.sqrt(np.diag(model.inertia))
+        diagonal = np.diag(model.stiffness) * scale**2
+        off_diagonal = np.diag(model.stiffness, 1) * scale[:-1] * scale[1:]
+        eigenvalues, vectors = scipy.linalg.eigh_tridiagonal(
+            diagonal, off_diagonal, select="i", select_range=(0, count - 1))
+        vectors = vectors * scale[:, None]
+    else:
+        eigenvalues, vectors = scipy.linalg.eigh(model.stiffness, model.inertia,
+                                                 subset_by_index=(0, count - 1))
     if np.any(eigenvalues <= 0):
         raise ConfigError("stiffness", "non-positive eigenvalue: the model is not fixed at the "
                                        "top or not positive definite")

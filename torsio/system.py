@@ -122,7 +122,7 @@ class System:
 
     @property
     def damping_matrix(self) -> np.ndarray:
-        """[C] [N m s/rad]."""
+        """[C], in N m s/rad."""
         return self.damping.matrix(self.model)
 
     @property

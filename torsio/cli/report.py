@@ -4,21 +4,43 @@ from __future__ import annotations
 
 import argparse
 
-from torsio.cli.common import add_config_argument, load
+from torsio.cli.common import (
+    add_config_argument,
+    add_discretization_arguments,
+    discretization_overrides,
+    load,
+    print_json,
+)
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add the ``report`` command to the ``torsio`` parser."""
     parser = subparsers.add_parser(
-        "report", help="report on a configuration (default: the built-in example)",
-        description="The string, its discretization and its modes against the continuum.")
+        "report",
+        help="report on a configuration (default: the built-in example)",
+        description="The string, its discretization, its first modes against the exact "
+        "continuum, their damping ratios and the operating point.",
+    )
     add_config_argument(parser)
+    add_discretization_arguments(parser)
+    parser.add_argument(
+        "--modes", type=int, default=5, metavar="N", help="number of modes shown (default: 5)"
+    )
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    from rich.console import Console
+    """Print the report (rich, or JSON with ``--json``)."""
+    from torsio.errors import ConfigError
+    from torsio.report import render, report_data
 
-    from torsio.report import render
-
-    render(load(args), Console())
+    if args.modes < 1:
+        raise ConfigError("--modes", f"expected a whole number of modes >= 1, got {args.modes}")
+    config = load(args)
+    options = {**discretization_overrides(args), "modes": args.modes}
+    if args.json:
+        print_json(report_data(config, **options))
+    else:
+        render(config, **options)
     return 0
