@@ -168,7 +168,7 @@ def main(argv: list[str] | None = None) -> None:
     ax_f.set_title("(a) modes 15 and 25: B (lumped), consistent and mixed mass", fontsize="medium")
     ax_e.axhline(1.0, color="0.3", linewidth=0.8, linestyle="-.", label="1 %")
     ax_e.legend(fontsize="x-small", ncol=2, loc="lower left")
-    ax_e.set_title("(a) relative error against the exact continuum", fontsize="medium")
+    ax_e.set_title("(a, cont.) relative error against the exact continuum", fontsize="medium")
 
     model = StrategyB(dp_elements=PAPER_DP, bha_elements=PAPER_BHA).discretize(string)
     plot_mode_shapes(modal_analysis(model, max(MODES), string=string), (25,), ax=ax_s)
