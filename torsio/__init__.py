@@ -21,14 +21,22 @@ from torsio.components import (
 )
 from torsio.config import Config, builtin_config, load_config, parse_config
 from torsio.continuum import ContinuumModes, continuum_modes
+from torsio.dimensionless import (
+    DimensionlessGroups,
+    dimensional_system,
+    dimensionless_groups,
+    dimensionless_system,
+)
 from torsio.discretize import ConsistentMass, MixedMass, StrategyA, StrategyB, StrategyC
 from torsio.drillstring import DrillString
+from torsio.energy import EnergyBalance, energy_balance
 from torsio.errors import ConfigError, PluginError, SolverError, TorsioError
 from torsio.examples import ritto2017_config, ritto2017_string
 from torsio.hookspecs import hookimpl
 from torsio.laws import BitRockLaw, Parameter, TuckerWang
 from torsio.lumped import LumpedModel
 from torsio.modal import ModalResults, modal_analysis
+from torsio.transient import SimulationOptions, TransientResults, simulate, simulate_config
 
 __version__ = "0.1.0"
 
@@ -39,4 +47,7 @@ __all__ = [
     "PluginError", "Section", "SolverError", "Stabilizer", "StrategyA", "StrategyB",
     "StrategyC", "TorsioError", "TuckerWang", "builtin_config", "continuum_modes", "hookimpl",
     "load_config", "modal_analysis", "parse_config", "ritto2017_config", "ritto2017_string",
+    "SimulationOptions", "TransientResults", "simulate", "simulate_config",
+    "EnergyBalance", "energy_balance",
+    "DimensionlessGroups", "dimensional_system", "dimensionless_groups", "dimensionless_system",
 ]

@@ -88,7 +88,8 @@ class BitRockLaw:
         self.given: dict[str, float] = {}
         scale = SPEED_UNITS[speed_unit]
         for key, spec in self.parameters.items():
-            value = values.get(key, spec.default)
+            stated = key in values  # a default is in the rad/s reading, never converted
+            value = values[key] if stated else spec.default
             if value is None:
                 raise ConfigError(f"bit_rock.{key}", f"law {self.name!r} needs parameter "
                                   f"{key!r} ({spec.description}, {spec.unit})")
@@ -100,8 +101,9 @@ class BitRockLaw:
                 bound = ">" if spec.strict else ">="
                 raise ConfigError(f"bit_rock.{key}", f"law {self.name!r}: {key} must be "
                                   f"{bound} {spec.minimum:g} and finite, got {value!r}")
-            self.given[key] = value
-            setattr(self, key, value * scale**spec.speed_power)
+            if stated:
+                self.given[key] = value
+            setattr(self, key, value * scale**spec.speed_power if stated else value)
 
     def torque(self, speed: Any, wob: Any, radius: Any) -> np.ndarray:
         """Torque on bit [N m] at bit speed [rad/s], weight on bit [N], bit radius [m]."""
@@ -124,7 +126,8 @@ class BitRockLaw:
         return f"{type(self).__name__}({given}{unit})"
 
     def __eq__(self, other: object) -> bool:
-        return type(other) is type(self) and self.values() == other.values()  # type: ignore
+        return isinstance(other, BitRockLaw) and type(other) is type(self) and (
+            self.values() == other.values())
 
     def __hash__(self) -> int:
         return hash((type(self), tuple(sorted(self.values().items()))))

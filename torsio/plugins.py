@@ -64,7 +64,7 @@ def _collect(hook_name: str, kind: str) -> dict[str, type[Any]]:
     manager = plugin_manager()
     found: dict[str, type[Any]] = {}
     owner: dict[str, str] = {}
-    for impl in reversed(getattr(manager.hook, hook_name).get_hookimpls()):
+    for impl in getattr(manager.hook, hook_name).get_hookimpls():  # registration order
         plugin = impl.plugin_name
         try:
             classes = list(impl.function())

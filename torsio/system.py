@@ -107,12 +107,8 @@ class System:
 
     def at(self, wob: float | None = None, rpm: float | None = None) -> System:
         """The same system at another operating point."""
-        changes: dict[str, float] = {}
-        if wob is not None:
-            changes["wob"] = wob
-        if rpm is not None:
-            changes["rpm"] = rpm
-        return attrs.evolve(self, **changes)
+        return attrs.evolve(self, wob=self.wob if wob is None else wob,
+                            rpm=self.rpm if rpm is None else rpm)
 
     # --- matrices -------------------------------------------------------------------------
     @property

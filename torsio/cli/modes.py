@@ -13,7 +13,7 @@ from torsio.cli.common import (
 )
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "modes", help="natural frequencies and their error against the exact continuum",
         description="Natural frequencies of the lumped model against the exact continuum.")

@@ -1,0 +1,57 @@
+"""``torsio laws``: the registered bit-rock laws and their parameters (plugins included)."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+from torsio.cli.common import print_json
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    parser = subparsers.add_parser(
+        "laws",
+        help="registered bit-rock laws (built-in and plugins) and their parameters",
+        description="List every registered bit-rock law, built-in or from a plugin.",
+    )
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.set_defaults(run=run)
+
+
+def describe(cls: type[Any]) -> dict[str, Any]:
+    """``name``, ``description`` and ``parameters`` of a law class (any plugin's)."""
+    if hasattr(cls, "describe"):
+        data = dict(cls.describe())
+    else:  # a law that does not subclass BitRockLaw
+        doc = (cls.__doc__ or "").strip().splitlines()
+        data = {"name": cls.name, "description": doc[0] if doc else "", "parameters": []}
+    data.setdefault("parameters", [])
+    data["class"] = f"{cls.__module__}.{cls.__qualname__}"
+    return data
+
+
+def run(args: argparse.Namespace) -> int:
+    from torsio.plugins import bit_laws
+
+    laws = [describe(cls) for _, cls in sorted(bit_laws().items())]
+    if args.json:
+        print_json({"laws": laws})
+        return 0
+    from rich.console import Console
+    from rich.markup import escape
+    from rich.table import Table
+
+    table = Table(title="Bit-rock laws (parameters in the rad/s reading; speed_unit='rpm' also)")
+    table.add_column("name")
+    table.add_column("parameters")
+    table.add_column("law")
+    for law in laws:
+        parameters = []
+        for p in law["parameters"]:
+            default = "required" if p.get("default") is None else f"{p['default']:g}"
+            parameters.append(f"{p['name']} [{p.get('unit', '')}] = {default}")
+        table.add_row(
+            escape(law["name"]), escape("\n".join(parameters)), escape(law.get("description", ""))
+        )
+    Console().print(table)
+    return 0
