@@ -8,15 +8,16 @@ built from the same numbers. To add a section, write one such function and
 append it to :data:`SECTIONS`; :func:`report_data` and :func:`render` pick it up.
 
 Sections now: the drill-string, its discretization, the first modes against
-the exact continuum, the Rayleigh damping ratios of those modes, and the
-operating point.
+the exact continuum, the Rayleigh damping ratios of those modes, the operating
+point, the dimensionless groups and the response there (S_SS, stick fraction).
 
 Examples
 --------
 >>> from torsio.config import builtin_config
 >>> data = report_data(builtin_config(), modes=3)
 >>> list(data)
-['name', 'source', 'string', 'discretization', 'modes', 'damping', 'operation']
+['name', 'source', 'string', 'discretization', 'modes', 'damping', 'operation',
+ 'dimensionless', 'response']
 >>> data["discretization"]["strategy"], data["discretization"]["dofs"]
 ('C', 5)
 >>> [round(f, 4) for f in data["modes"]["continuum_hz"]]  # rigid-BHA continuum, strategy C
@@ -146,6 +147,17 @@ class ReportContext:
         """The first modes of the model."""
         count = min(self.requested_modes, self.model.dofs)
         return modal_analysis(self.model, count, string=self.config.string)
+
+    @functools.cached_property
+    def transient(self) -> Any:
+        """The transient response at the operating point (None without law or operating point)."""
+        op = self.config.operation
+        if self.system is None or op.wob is None or op.rpm is None:
+            return None
+        from torsio.transient import simulate_config
+
+        discretization = {k: v for k, v in self.overrides.items() if v is not None}
+        return simulate_config(self.config, discretization=discretization)
 
     @functools.cached_property
     def comparison(self) -> ModalComparison:
@@ -515,12 +527,81 @@ def operation_section(ctx: ReportContext) -> ReportSection:
     return ReportSection("operation", "Operating point", data, table)
 
 
+# --- dimensionless groups -------------------------------------------------------------------
+def dimensionless_section(ctx: ReportContext) -> ReportSection | None:
+    """k_eq, omega_1, I_eq, Pi_1, Pi_2 and Tucker-Wang b0..b3 (Eqs. 9-11, ERRATA 2 and 3)."""
+    if ctx.system is None:
+        return None
+    from torsio.dimensionless import dimensionless_groups
+
+    groups = dimensionless_groups(ctx.system)
+    data = groups.to_dict()
+    table = Table.grid(padding=(0, 2))
+    table.add_column(style="dim")
+    table.add_column()
+    rows = [
+        ("k_eq = 1/[K⁻¹]_NN", f"{groups.k_eq:.5g} N m/rad (Eq. 9)"),
+        ("ω₁", f"{groups.omega1:.5g} rad/s"),
+        ("I_eq = k_eq/ω₁²", f"{groups.i_eq:.5g} kg m² (Eq. 10)"),
+        ("Π₁ = Ω/ω₁", f"{groups.pi1:.5g}"),
+        ("Π₂ = W_ob R_bit/k_eq", f"{groups.pi2:.5g}"),
+    ]
+    if groups.tucker_wang is not None:
+        b = ", ".join(f"b{i} = {v:.4g}" for i, v in enumerate(groups.tucker_wang))
+        rows.append(("Tucker-Wang", f"{b} (b2 = ω₁ a2)"))
+    for label, value in rows:
+        table.add_row(label, Text(value))
+    return ReportSection("dimensionless", "Dimensionless groups (Eq. 11)", data, table)
+
+
+# --- response at the operating point ------------------------------------------------------------
+def response_section(ctx: ReportContext) -> ReportSection | None:
+    """S_SS (Eq. 12) and the stick fraction of a start-up from rest at the operating point."""
+    results = ctx.transient
+    if results is None:
+        return None
+    start, end = results.window_start, results.duration
+    solver = results.solver
+    data = {
+        "severity": results.severity,
+        "stick_fraction": results.stick_fraction,
+        "stick_threshold": results.stick_threshold,
+        "steady_window_s": [start, end],
+        "bit_speed_min_rad_s": float(results.bit_speed[results.window_mask].min()),
+        "bit_speed_max_rad_s": float(results.bit_speed[results.window_mask].max()),
+        "solver": {k: solver[k] for k in ("method", "rtol", "atol", "nfev") if k in solver},
+    }
+    from torsio.severity import SEVERE_THRESHOLD
+
+    if results.severity > SEVERE_THRESHOLD:
+        verdict = Text("severe stick-slip", style="bold red")
+    elif results.severity > 1e-3:
+        verdict = Text("torsional oscillation", style="yellow")
+    else:
+        verdict = Text("steady rotation", style="green")
+    table = Table.grid(padding=(0, 2))
+    table.add_column(style="dim")
+    table.add_column()
+    table.add_row("S_SS", Text.assemble(f"{results.severity:.4f}  ", verdict))
+    table.add_row("stick fraction", Text(f"{results.stick_fraction:.3f} of the window "
+                                         f"(bit below {results.stick_threshold:g} Ω)"))
+    table.add_row("bit speed", Text(f"{data['bit_speed_min_rad_s']:.4g} to "
+                                    f"{data['bit_speed_max_rad_s']:.4g} rad/s"))
+    table.add_row("window", Text(f"{start:.4g} to {end:.4g} s of a start-up from rest"))
+    table.add_row("integrator", Text(f"{solver.get('method')} (rtol {solver.get('rtol'):g}, "
+                                     f"atol {solver.get('atol'):g}), {solver.get('nfev')} "
+                                     "evaluations"))
+    return ReportSection("response", "Response at the operating point (Eq. 12)", data, table)
+
+
 SECTIONS: list[Callable[[ReportContext], ReportSection | None]] = [
     string_section,
     discretization_section,
     modes_section,
     damping_section,
     operation_section,
+    dimensionless_section,
+    response_section,
 ]
 """The sections of the report, in order; a function may return None to be left out."""
 
