@@ -1,0 +1,46 @@
+"""``torsio report``: the built-in example, JSON sections, a modal-only configuration."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from torsio.cli import main
+from torsio.config import builtin_config
+from torsio.transient import simulate_config
+
+
+def report_json(capsys, *argv: str) -> dict:
+    assert main(["report", *argv, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_report_json_of_the_builtin_example(capsys):
+    data = report_json(capsys)
+    assert {"string", "discretization", "modes", "damping", "operation", "dimensionless",
+            "response"} <= set(data)
+    # Source: ERRATA 1 (I_BHA with the bit) and the paper's FEM value for the continuum
+    assert data["string"]["bha_inertia_kg_m2"] == pytest.approx(233.78, abs=0.005)
+    assert round(data["modes"]["flexible_continuum_hz"][0], 4) == 0.1307
+    # the response is the transient analyzer's own at the file's operating point
+    expected = simulate_config(builtin_config()).severity
+    assert data["response"]["severity"] == pytest.approx(expected, abs=1e-12)
+    # Pi_2 = W R / k_eq (ERRATA 3) with strategy C's k_eq = k_DP (rigid BHA)
+    assert data["dimensionless"]["pi2"] == pytest.approx(100e3 * 0.108 / 324.857, rel=1e-4)
+
+
+def test_report_terminal_output(capsys):
+    assert main(["report", "--strategy", "A"]) == 0
+    out = capsys.readouterr().out
+    assert "Ritto et al. (2017)" in out and "S_SS" in out and "0.13438" in out
+
+
+def test_report_of_a_modal_only_configuration(tmp_path, capsys):
+    path = tmp_path / "modal.toml"
+    path.write_text('[[section]]\nkind = "drill_pipe"\nod = "5 in"\nid = "4.276 in"\n'
+                    'length = "3000 m"\n[[section]]\nkind = "bit"\nod = "8.5 in"\nid = 0.05\n'
+                    'length = 0.3\n[discretization]\nstrategy = "B"\ndp_elements = 10\n')
+    data = report_json(capsys, str(path))
+    assert "response" not in data and "dimensionless" not in data
+    assert data["discretization"]["dofs"] == 10
