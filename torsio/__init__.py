@@ -21,6 +21,7 @@ from torsio.components import (
 )
 from torsio.config import Config, builtin_config, load_config, parse_config
 from torsio.continuum import ContinuumModes, continuum_modes
+from torsio.damping import RayleighDamping
 from torsio.dimensionless import (
     DimensionlessGroups,
     dimensional_system,
@@ -36,6 +37,7 @@ from torsio.hookspecs import hookimpl
 from torsio.laws import BitRockLaw, Parameter, TuckerWang
 from torsio.lumped import LumpedModel
 from torsio.modal import ModalResults, modal_analysis
+from torsio.system import ConstantSpeedTop, System
 from torsio.transient import SimulationOptions, TransientResults, simulate, simulate_config
 
 __version__ = "0.1.0"
@@ -49,5 +51,6 @@ __all__ = [
     "load_config", "modal_analysis", "parse_config", "ritto2017_config", "ritto2017_string",
     "SimulationOptions", "TransientResults", "simulate", "simulate_config",
     "EnergyBalance", "energy_balance",
+    "ConstantSpeedTop", "RayleighDamping", "System",
     "DimensionlessGroups", "dimensional_system", "dimensionless_groups", "dimensionless_system",
 ]
