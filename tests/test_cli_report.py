@@ -44,3 +44,19 @@ def test_report_of_a_modal_only_configuration(tmp_path, capsys):
     data = report_json(capsys, str(path))
     assert "response" not in data and "dimensionless" not in data
     assert data["discretization"]["dofs"] == 10
+
+
+def test_report_html_is_standalone_with_embedded_figures(tmp_path, capsys):
+    path = tmp_path / "report.html"
+    assert main(["report", "--strategy", "A", "--html", str(path)]) == 0
+    assert "S_SS" in capsys.readouterr().out  # the terminal report is still printed
+    page = path.read_text(encoding="utf-8")
+    assert page.startswith("<!DOCTYPE html>")
+    assert page.count("data:image/png;base64,") == 2  # mode shapes and transient
+    assert "http://" not in page and "https://" not in page  # nothing fetched on opening
+    assert "Dimensionless groups" in page and "0.13438" in page
+
+
+def test_report_html_unwritable_path_is_a_clear_error(capsys):
+    assert main(["report", "--html", "/nonexistent/dir/report.html"]) == 2
+    assert "--html" in capsys.readouterr().err

@@ -614,7 +614,7 @@ def report_sections(ctx: ReportContext) -> Iterator[ReportSection]:
             yield section
 
 
-def report_data(config: Config, **options: Any) -> dict[str, Any]:
+def report_data(config: Config | ReportContext, **options: Any) -> dict[str, Any]:
     """The report as plain data (what ``torsio report --json`` prints).
 
     Parameters
@@ -630,20 +630,24 @@ def report_data(config: Config, **options: Any) -> dict[str, Any]:
         ``name``, ``source`` and one key per section (``string``,
         ``discretization``, ``modes``, ``damping``, ``operation``, ...).
     """
-    ctx = ReportContext(config, **options)
+    ctx = config if isinstance(config, ReportContext) else ReportContext(config, **options)
+    config = ctx.config
     data: dict[str, Any] = {"name": config.name, "source": config.source}
     for section in report_sections(ctx):
         data[section.key] = section.data
     return data
 
 
-def render(config: Config, console: Console | None = None, **options: Any) -> None:
+def render(config: Config | ReportContext, console: Console | None = None,
+           **options: Any) -> None:
     """Print the report of ``config`` on a rich console (a new one by default).
 
-    ``options`` as for :func:`report_data`.
+    ``options`` as for :func:`report_data`. A :class:`ReportContext` may be passed
+    instead of a configuration, to reuse what it has already computed.
     """
     console = console or Console()
-    ctx = ReportContext(config, **options)
+    ctx = config if isinstance(config, ReportContext) else ReportContext(config, **options)
+    config = ctx.config
     sections = list(report_sections(ctx))  # compute everything before printing
     title = Text.assemble(("torsio report", "bold"), f" — {config.name or 'unnamed'}")
     console.print(title, Text(f"configuration: {config.source}", style="dim"), "", sep="\n")

@@ -27,20 +27,33 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "--modes", type=int, default=5, metavar="N", help="number of modes shown (default: 5)"
     )
     parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.add_argument("--html", metavar="FILE",
+                        help="also write the report as a standalone HTML page with its plots")
     parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
     """Print the report (rich, or JSON with ``--json``)."""
     from torsio.errors import ConfigError
-    from torsio.report import render, report_data
+    from torsio.report import ReportContext, render, report_data
 
     if args.modes < 1:
         raise ConfigError("--modes", f"expected a whole number of modes >= 1, got {args.modes}")
     config = load(args)
     options = {**discretization_overrides(args), "modes": args.modes}
+    ctx = ReportContext(config, **options)  # computed once, shared by every output
+    if args.html:
+        from pathlib import Path
+
+        from torsio.html_report import html_report
+
+        path = Path(args.html)
+        try:
+            path.write_text(html_report(ctx), encoding="utf-8")
+        except OSError as exc:
+            raise ConfigError("--html", f"cannot write {args.html!r}: {exc.strerror}") from None
     if args.json:
-        print_json(report_data(config, **options))
+        print_json(report_data(ctx))
     else:
-        render(config, **options)
+        render(ctx)
     return 0
