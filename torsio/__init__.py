@@ -42,6 +42,23 @@ from torsio.transient import SimulationOptions, TransientResults, simulate, simu
 
 __version__ = "0.1.0"
 
+# Severity maps and the batch engine load numba: imported on first use, not with torsio.
+_LAZY = {
+    "SeverityMap": "torsio.maps", "severity_map": "torsio.maps",
+    "dimensionless_map": "torsio.maps", "load_map": "torsio.maps",
+    "simulate_batch": "torsio.batch", "StabilityBoundary": "torsio.stability",
+    "stability_boundary": "torsio.stability", "critical_bit_damping": "torsio.stability",
+}
+
+
+def __getattr__(name: str) -> object:
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'torsio' has no attribute {name!r}")
+    import importlib
+
+    return getattr(importlib.import_module(module), name)
+
 __all__ = [
     "LWD", "MWD", "STEEL", "BHASection", "Bit", "BitRockLaw", "Config", "ConfigError",
     "ConsistentMass", "ContinuumModes", "DrillCollar", "DrillPipe", "DrillString",
@@ -53,4 +70,6 @@ __all__ = [
     "EnergyBalance", "energy_balance",
     "ConstantSpeedTop", "RayleighDamping", "System",
     "DimensionlessGroups", "dimensional_system", "dimensionless_groups", "dimensionless_system",
+    "SeverityMap", "severity_map", "dimensionless_map", "load_map", "simulate_batch",
+    "StabilityBoundary", "stability_boundary", "critical_bit_damping",
 ]

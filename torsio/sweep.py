@@ -1,0 +1,354 @@
+"""Run independent chunks of work (grid points of a map, cases of a study) on any executor.
+
+A sweep is a list of tasks, each a call ``function(*arguments)`` whose result does
+not depend on where it runs. :func:`run_tasks` submits them to a
+:class:`concurrent.futures.Executor` and collects the results in task order, so
+the outcome is identical whichever executor ran it:
+
+``None`` or ``"serial"``
+    In this process, one task after the other (:class:`SerialExecutor`).
+an ``int`` N
+    N local worker processes (a :class:`~concurrent.futures.ProcessPoolExecutor`
+    owned by the sweep and shut down at its end).
+a ``str`` address (``"tcp://host:8786"``)
+    A running Dask scheduler, through ``distributed.Client(address).get_executor()``
+    (the ``dask`` extra). The connection times out after :data:`CONNECT_TIMEOUT`
+    seconds with a :class:`~torsio.errors.ConfigError` naming the address.
+any :class:`concurrent.futures.Executor`
+    Used as given and left open (for instance ``client.get_executor()`` of a
+    ``distributed.Client`` the caller manages).
+
+Failures of the infrastructure (a worker process that died: ``BrokenProcessPool``,
+Dask's ``KilledWorker``, a lost connection) are retried up to ``retries`` times
+per task; a pool the sweep owns is rebuilt first. Exceptions raised by the task
+itself (bad input, a solver error) are not retried: they propagate.
+
+Ctrl-C (``KeyboardInterrupt``) cancels what has not started and raises
+:class:`SweepInterrupted`, which carries the results finished so far (``None``
+for the others) and is itself a ``KeyboardInterrupt``.
+
+Examples
+--------
+>>> import operator
+>>> run_tasks(operator.mul, [(2, 3), (4, 5)]).results
+[6, 20]
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import os
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from typing import Any
+
+import attrs
+
+from torsio.errors import ConfigError, TorsioError
+
+__all__ = [
+    "CONNECT_TIMEOUT",
+    "ExecutorSpec",
+    "SerialExecutor",
+    "SweepError",
+    "SweepInterrupted",
+    "SweepOutcome",
+    "open_executor",
+    "run_tasks",
+]
+
+CONNECT_TIMEOUT = 10.0
+"""Seconds to wait for a Dask scheduler before giving up."""
+
+ExecutorSpec = None | int | str | cf.Executor
+"""What ``executor=`` accepts: None/"serial", a number of processes, a Dask address, an
+Executor."""
+
+
+class SerialExecutor(cf.Executor):
+    """An Executor that runs each task at submission, in the calling thread.
+
+    Exceptions are stored in the future like any executor's, except
+    ``KeyboardInterrupt``, which propagates at once.
+    """
+
+    def submit(self, fn: Callable[..., Any], /, *args: Any, **kwargs: Any) -> cf.Future[Any]:
+        future: cf.Future[Any] = cf.Future()
+        if not future.set_running_or_notify_cancel():  # pragma: no cover - never cancelled
+            return future
+        try:
+            result = fn(*args, **kwargs)
+        except Exception as exc:
+            future.set_exception(exc)
+        else:
+            future.set_result(result)
+        return future
+
+
+class SweepError(TorsioError, RuntimeError):
+    """The executor failed in a way retries could not cure.
+
+    Attributes
+    ----------
+    results : list
+        Results of the tasks that finished (``None`` for the others).
+    """
+
+    def __init__(self, message: str, results: list[Any]) -> None:
+        super().__init__(message)
+        self.results = results
+
+
+class SweepInterrupted(KeyboardInterrupt):
+    """Ctrl-C during a sweep; ``results`` holds what finished (``None`` elsewhere)."""
+
+    def __init__(self, results: list[Any], done: int, total: int) -> None:
+        super().__init__(f"sweep interrupted after {done} of {total} tasks")
+        self.results = results
+        self.done = done
+        self.total = total
+
+
+@attrs.frozen
+class SweepOutcome:
+    """Results of a sweep, in task order.
+
+    Attributes
+    ----------
+    results : list
+        One result per task.
+    retries : int
+        Tasks resubmitted after an infrastructure failure.
+    executor : str
+        What ran the tasks ("serial", "processes(N)", "dask(address)", or the
+        executor's class name).
+    """
+
+    results: list[Any]
+    retries: int = 0
+    executor: str = "serial"
+
+
+def _retryable_types() -> tuple[type[BaseException], ...]:
+    kinds: list[type[BaseException]] = [cf.BrokenExecutor, cf.CancelledError, ConnectionError,
+                                        EOFError]
+    try:  # distributed is optional
+        from distributed import KilledWorker
+        from distributed.comm.core import CommClosedError
+
+        kinds += [KilledWorker, CommClosedError]
+    except ImportError:  # pragma: no cover - dask extra not installed
+        pass
+    return tuple(kinds)
+
+
+def describe_executor(spec: ExecutorSpec) -> str:
+    """A short name for an executor specification, for reports."""
+    if spec is None or spec == "serial":
+        return "serial"
+    if isinstance(spec, bool):
+        raise ConfigError("executor", f"expected None, a number of processes, a Dask "
+                                      f"scheduler address or an Executor, got {spec!r}")
+    if isinstance(spec, int):
+        return f"processes({spec})"
+    if isinstance(spec, str):
+        return f"dask({spec})"
+    return type(spec).__name__
+
+
+@attrs.define
+class _Handle:
+    """An executor and how to rebuild it if the sweep owns it."""
+
+    executor: cf.Executor
+    name: str
+    rebuild: Callable[[], cf.Executor] | None = None
+    close: Callable[[], None] | None = None
+    serial: bool = False
+
+
+@contextmanager
+def open_executor(spec: ExecutorSpec, timeout: float = CONNECT_TIMEOUT) -> Iterator[_Handle]:
+    """The executor ``spec`` names (see the module documentation), closed at exit if owned."""
+    name = describe_executor(spec)
+    if spec is None or spec == "serial":
+        yield _Handle(SerialExecutor(), name, serial=True)
+        return
+    if isinstance(spec, int):
+        if spec < 1:
+            raise ConfigError("workers", f"expected a number of worker processes >= 1, "
+                                         f"got {spec}")
+        holder: dict[str, cf.Executor] = {}
+
+        def build() -> cf.Executor:
+            import multiprocessing
+
+            holder["pool"] = cf.ProcessPoolExecutor(
+                spec, mp_context=multiprocessing.get_context("spawn"))
+            return holder["pool"]
+
+        def close() -> None:
+            holder["pool"].shutdown(wait=False, cancel_futures=True)
+
+        handle = _Handle(build(), name, rebuild=build, close=close)
+        try:
+            yield handle
+        finally:
+            holder["pool"].shutdown(wait=True, cancel_futures=True)
+        return
+    if isinstance(spec, str):
+        client = connect_dask(spec, timeout)
+        try:
+            yield _Handle(client.get_executor(pure=False), name)
+        finally:
+            client.close()
+        return
+    if isinstance(spec, cf.Executor):
+        yield _Handle(spec, name)
+        return
+    raise ConfigError("executor", f"expected None, a number of processes, a Dask scheduler "
+                                  f"address or a concurrent.futures.Executor, got {spec!r}")
+
+
+def connect_dask(address: str, timeout: float = CONNECT_TIMEOUT) -> Any:
+    """A ``distributed.Client`` connected to ``address``; ConfigError if it cannot be reached."""
+    try:
+        import distributed
+    except ImportError:
+        raise ConfigError("scheduler", "a Dask scheduler needs the dask extra: "
+                                       "pip install 'torsio[dask]'") from None
+    try:
+        return distributed.Client(address, timeout=timeout, set_as_default=False)
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise ConfigError("scheduler", f"cannot reach the Dask scheduler at {address!r} "
+                                       f"within {timeout:g} s ({type(exc).__name__}: {exc})"
+                          ) from None
+
+
+def run_tasks(function: Callable[..., Any], tasks: Sequence[tuple[Any, ...]],
+              executor: ExecutorSpec = None, retries: int = 2,
+              progress: Callable[[int, int], None] | None = None,
+              timeout: float = CONNECT_TIMEOUT) -> SweepOutcome:
+    """Run ``function(*task)`` for every task; results in task order.
+
+    Parameters
+    ----------
+    function : callable
+        A module-level function (it is pickled for process and Dask workers).
+    tasks : sequence of tuple
+        Positional arguments of each call.
+    executor : None, int, str or Executor
+        Where to run (see the module documentation).
+    retries : int
+        Resubmissions allowed per task after an infrastructure failure.
+    progress : callable, optional
+        ``progress(done, total)`` after each finished task.
+    timeout : float
+        Seconds to wait for a Dask scheduler.
+
+    Raises
+    ------
+    SweepInterrupted
+        On Ctrl-C, with the finished results.
+    SweepError
+        When a task's worker keeps dying, or an executor the sweep does not own
+        breaks.
+    """
+    if isinstance(retries, bool) or not isinstance(retries, int) or retries < 0:
+        raise ConfigError("retries", f"expected a whole number >= 0, got {retries!r}")
+    with open_executor(executor, timeout) as handle:
+        return _run(function, list(tasks), handle, retries, progress)
+
+
+def run_tasks_on(handle: _Handle, function: Callable[..., Any],
+                 tasks: Sequence[tuple[Any, ...]], retries: int = 2,
+                 progress: Callable[[int, int], None] | None = None) -> SweepOutcome:
+    """:func:`run_tasks` on an executor already opened with :func:`open_executor`."""
+    return _run(function, list(tasks), handle, retries, progress)
+
+
+def _run(function: Callable[..., Any], tasks: list[tuple[Any, ...]], handle: _Handle,
+         retries: int, progress: Callable[[int, int], None] | None) -> SweepOutcome:
+    total = len(tasks)
+    results: list[Any] = [None] * total
+    finished = [False] * total
+    attempts = [0] * total
+    retried = 0
+    rebuilds = 0
+    done = 0
+    retryable = _retryable_types()
+    pending: dict[cf.Future[Any], int] = {}
+
+    def submit(index: int) -> None:
+        attempts[index] += 1
+        pending[handle.executor.submit(function, *tasks[index])] = index
+
+    def finish(index: int, value: Any) -> None:
+        nonlocal done
+        results[index] = value
+        finished[index] = True
+        done += 1
+        if progress is not None:
+            progress(done, total)
+
+    try:
+        if handle.serial:  # in order, in this thread
+            for index in range(total):
+                finish(index, handle.executor.submit(function, *tasks[index]).result())
+            return SweepOutcome(results, 0, handle.name)
+        for index in range(total):
+            submit(index)
+        while pending:
+            completed, _ = cf.wait(list(pending), return_when=cf.FIRST_COMPLETED)
+            broken: BaseException | None = None
+            for future in completed:
+                index = pending.pop(future)
+                try:
+                    value = future.result()
+                except cf.BrokenExecutor as exc:  # the pool lost a worker: all pending fail
+                    broken = exc
+                    continue
+                except retryable as exc:  # e.g. Dask's KilledWorker: resubmit this task
+                    if attempts[index] > retries:
+                        raise SweepError(
+                            f"task {index} failed {attempts[index]} times on {handle.name} "
+                            f"(last: {type(exc).__name__}: {exc}); {done} of {total} tasks "
+                            f"finished", results) from exc
+                    retried += 1
+                    submit(index)
+                    continue
+                finish(index, value)
+            if broken is not None:
+                rebuilds += 1
+                if handle.rebuild is None or rebuilds > retries:
+                    why = ("cannot be rebuilt" if handle.rebuild is None
+                           else f"broke {rebuilds} times")
+                    raise SweepError(f"the executor {handle.name} lost a worker process and "
+                                     f"{why} ({type(broken).__name__}: {broken}); {done} of "
+                                     f"{total} tasks finished", results) from broken
+                for future in pending:
+                    future.cancel()
+                pending.clear()
+                if handle.close is not None:
+                    handle.close()
+                handle.executor = handle.rebuild()
+                for index in range(total):
+                    if not finished[index]:
+                        retried += 1
+                        submit(index)
+        return SweepOutcome(results, retried, handle.name)
+    except KeyboardInterrupt:
+        for future in pending:
+            future.cancel()
+        if handle.close is not None:
+            handle.close()
+        raise SweepInterrupted(results, done, total) from None
+
+
+def worker_count(spec: ExecutorSpec) -> int:
+    """How many tasks the executor runs at once (1 for serial; a guess for foreign ones)."""
+    if spec is None or spec == "serial":
+        return 1
+    if isinstance(spec, int) and not isinstance(spec, bool):
+        return max(1, spec)
+    return max(1, os.cpu_count() or 1)
