@@ -53,13 +53,15 @@ def grid(points: int) -> tuple[np.ndarray, np.ndarray]:
 def batch_map(system: System, points: int, **options: object) -> tuple[float, np.ndarray, dict]:
     wob, rpm = grid(points)
     start = time.perf_counter()
-    result = severity_map(system, wob, rpm, duration=DURATION, steady_window=WINDOW, refine=0,
-                          **options)
+    result = severity_map(
+        system, wob, rpm, duration=DURATION, steady_window=WINDOW, refine=0, **options
+    )
     return time.perf_counter() - start, result.severity, result.info
 
 
-def baseline(system: System, points: int, every: int, limit: int | None = None
-             ) -> tuple[float, int, np.ndarray, np.ndarray]:
+def baseline(
+    system: System, points: int, every: int, limit: int | None = None
+) -> tuple[float, int, np.ndarray, np.ndarray]:
     """Per-point RK45 runs on every ``every``-th point: (seconds, runs, indices, S_SS)."""
     wob, rpm = grid(points)
     ww, rr = np.meshgrid(wob, rpm)
@@ -70,8 +72,9 @@ def baseline(system: System, points: int, every: int, limit: int | None = None
     start = time.perf_counter()
     for k, index in enumerate(indices):
         point = system.at(wob=float(ww.flat[index]), rpm=float(rr.flat[index]))
-        values[k] = simulate(point, duration=DURATION, steady_window=WINDOW, method="RK45",
-                             rtol=1e-6, atol=1e-9).severity
+        values[k] = simulate(
+            point, duration=DURATION, steady_window=WINDOW, method="RK45", rtol=1e-6, atol=1e-9
+        ).severity
     return time.perf_counter() - start, indices.size, indices, values
 
 
@@ -82,15 +85,23 @@ def compare(label: str, system: System, every: int) -> dict[str, float]:
     extrapolated = base_seconds * points * points / runs
     error = float(np.max(np.abs(severity.ravel()[indices] - base_values)))
     print(f"{label}: 21 x 21 map, {system.model.dofs} DOF")
-    print(f"  batch engine ({info['executor']}, {batch.DEFAULT_RTOL:g} rtol): "
-          f"{seconds:8.3f} s")
-    note = "" if runs == points * points else (
-        f" (timed on {runs} of {points * points} points, x {points * points / runs:.2f})")
+    print(f"  batch engine ({info['executor']}, {batch.DEFAULT_RTOL:g} rtol): {seconds:8.3f} s")
+    note = (
+        ""
+        if runs == points * points
+        else (f" (timed on {runs} of {points * points} points, x {points * points / runs:.2f})")
+    )
     print(f"  per-point solve_ivp RK45 rtol 1e-6:   {extrapolated:8.1f} s{note}")
-    print(f"  speed-up: {extrapolated / seconds:7.0f} x     max |dS_SS| = {error:.2e} "
-          f"over {runs} points")
-    return {"speedup": extrapolated / seconds, "error": error, "batch": seconds,
-            "baseline": extrapolated}
+    print(
+        f"  speed-up: {extrapolated / seconds:7.0f} x     max |dS_SS| = {error:.2e} "
+        f"over {runs} points"
+    )
+    return {
+        "speedup": extrapolated / seconds,
+        "error": error,
+        "batch": seconds,
+        "baseline": extrapolated,
+    }
 
 
 def engines(system: System) -> None:
@@ -98,22 +109,28 @@ def engines(system: System) -> None:
     ww, rr = np.meshgrid(wob, rpm)
     rows = []
     for engine, threads in (("numba", 1), ("numba", 2), ("numpy", None)):
-        result = batch.simulate_batch(system, ww, rr, duration=DURATION, steady_window=WINDOW,
-                                      engine=engine, threads=threads)
-        rows.append((f"{engine}" + (f", {threads} thread(s)" if threads else ""),
-                     result.elapsed, result))
+        result = batch.simulate_batch(
+            system, ww, rr, duration=DURATION, steady_window=WINDOW, engine=engine, threads=threads
+        )
+        rows.append(
+            (f"{engine}" + (f", {threads} thread(s)" if threads else ""), result.elapsed, result)
+        )
     reference = rows[0][2].severity
     for name, seconds, result in rows:
-        print(f"  {name:22s} {seconds:8.3f} s   max |dS| vs numba(1): "
-              f"{np.nanmax(np.abs(result.severity - reference)):.1e}")
+        print(
+            f"  {name:22s} {seconds:8.3f} s   max |dS| vs numba(1): "
+            f"{np.nanmax(np.abs(result.severity - reference)):.1e}"
+        )
 
 
 def scaling_grid(system: System, sizes: list[int]) -> None:
     for points in sizes:
         seconds, severity, _ = batch_map(system, points)
-        print(f"  {points:3d} x {points:3d} = {points * points:6d} points: {seconds:7.2f} s "
-              f"({seconds / points**2 * 1e3:.3f} ms/point), severe: "
-              f"{int((severity > 0.8).sum())}")
+        print(
+            f"  {points:3d} x {points:3d} = {points * points:6d} points: {seconds:7.2f} s "
+            f"({seconds / points**2 * 1e3:.3f} ms/point), severe: "
+            f"{int((severity > 0.8).sum())}"
+        )
 
 
 def scaling_dofs(dofs: list[int], quick: bool) -> None:
@@ -132,22 +149,32 @@ def scaling_dofs(dofs: list[int], quick: bool) -> None:
             if n > 50 and quick:
                 continue
             start = time.perf_counter()
-            simulate(system.at(wob=w, rpm=r), duration=span, steady_window=span / 3,
-                     method="RK45", rtol=1e-6, atol=1e-9)
+            simulate(
+                system.at(wob=w, rpm=r),
+                duration=span,
+                steady_window=span / 3,
+                method="RK45",
+                rtol=1e-6,
+                atol=1e-9,
+            )
             base.append((time.perf_counter() - start) * DURATION / span)
         severe = float((result.severity > 0.8).mean())
         if base:
             estimate = (1 - severe) * base[0] + severe * base[-1]
             how = "2 points" + (", 30 s x 10" if n > 50 else "")
-            base_text = (f"~{estimate * ww.size:8.0f} s (from {how})  speed-up "
-                         f"~{estimate * ww.size / result.elapsed:5.0f} x")
+            base_text = (
+                f"~{estimate * ww.size:8.0f} s (from {how})  speed-up "
+                f"~{estimate * ww.size / result.elapsed:5.0f} x"
+            )
         else:
             base_text = "(not run with --quick)"
-        print(f"  {n:4d} DOF: batch {result.elapsed:7.2f} s, "
-              f"{attempts / ww.size:7.0f} steps/point, "
-              f"{result.elapsed / attempts * 1e9 * _threads():7.0f} ns/step/thread; "
-              f"RK45 baseline {base_text}; highest mode "
-              f"{batch.BatchModel.from_system(system).highest_frequency:7.1f} rad/s")
+        print(
+            f"  {n:4d} DOF: batch {result.elapsed:7.2f} s, "
+            f"{attempts / ww.size:7.0f} steps/point, "
+            f"{result.elapsed / attempts * 1e9 * _threads():7.0f} ns/step/thread; "
+            f"RK45 baseline {base_text}; highest mode "
+            f"{batch.BatchModel.from_system(system).highest_frequency:7.1f} rad/s"
+        )
 
 
 def _threads() -> int:
@@ -176,13 +203,19 @@ def profile(system: System) -> None:
     steps = result.steps
     severe = result.severity > 0.8
     print(f"  full map with critical-WOB bisection: {total:.3f} s")
-    print(f"    integration kernel: {kernel:.3f} s ({kernel / total:.0%}) for {grid_runs} grid "
-          f"runs + {extra} bisection runs")
-    print(f"    modal analysis / stability boundary / rest: {modal:.3f} s / {stability:.3f} s "
-          f"/ {total - kernel - modal - stability:.3f} s")
-    print(f"    steps per point: stable {np.median(steps[~severe]):.0f} (median), stick-slip "
-          f"{np.median(steps[severe]):.0f}: stick-slip points take "
-          f"{steps[severe].sum() / steps.sum():.0%} of the steps")
+    print(
+        f"    integration kernel: {kernel:.3f} s ({kernel / total:.0%}) for {grid_runs} grid "
+        f"runs + {extra} bisection runs"
+    )
+    print(
+        f"    modal analysis / stability boundary / rest: {modal:.3f} s / {stability:.3f} s "
+        f"/ {total - kernel - modal - stability:.3f} s"
+    )
+    print(
+        f"    steps per point: stable {np.median(steps[~severe]):.0f} (median), stick-slip "
+        f"{np.median(steps[severe]):.0f}: stick-slip points take "
+        f"{steps[severe].sum() / steps.sum():.0%} of the steps"
+    )
 
 
 def _cumulative(stats: pstats.Stats, name: str) -> float:
@@ -195,29 +228,40 @@ def _cumulative(stats: pstats.Stats, name: str) -> float:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--baseline-every", type=int, default=8,
-                        help="time the baseline on every k-th grid point (default 8)")
+    parser.add_argument(
+        "--baseline-every",
+        type=int,
+        default=8,
+        help="time the baseline on every k-th grid point (default 8)",
+    )
     parser.add_argument("--quick", action="store_true", help="a short run")
     args = parser.parse_args()
     every = args.baseline_every if not args.quick else 20
-    print(f"machine: {os.cpu_count()} cores; numba {'yes' if batch.HAVE_NUMBA else 'no'}; "
-          f"python {sys.version.split()[0]}")
+    print(
+        f"machine: {os.cpu_count()} cores; numba {'yes' if batch.HAVE_NUMBA else 'no'}; "
+        f"python {sys.version.split()[0]}"
+    )
     start = time.perf_counter()
     for system in (ritto("A"), ritto("C", 10)):  # the 1-DOF and the n-DOF kernels
-        severity_map(system, [1e5, 2e5], [60.0, 80.0], duration=10.0, steady_window=5.0,
-                     refine=1)
-        batch.simulate_batch(system, [1e5, 2e5], [60.0, 80.0], duration=10.0,
-                             steady_window=5.0, threads=1)
-    print(f"first calls (numba compile, or load from its cache): "
-          f"{time.perf_counter() - start:.2f} s\n")
+        severity_map(system, [1e5, 2e5], [60.0, 80.0], duration=10.0, steady_window=5.0, refine=1)
+        batch.simulate_batch(
+            system, [1e5, 2e5], [60.0, 80.0], duration=10.0, steady_window=5.0, threads=1
+        )
+    print(
+        f"first calls (numba compile, or load from its cache): "
+        f"{time.perf_counter() - start:.2f} s\n"
+    )
 
     one = compare("1-DOF strategy A", ritto("A"), every)
     ten = compare("10-DOF strategy C", ritto("C", 10), every)
     print()
-    met = (one["speedup"] >= 200 and ten["speedup"] >= 100
-           and max(one["error"], ten["error"]) <= 0.01)
-    print("targets: >= 200 x (1 DOF), >= 100 x (10 DOF), max |dS_SS| <= 0.01: "
-          f"{'met' if met else 'NOT met'}")
+    met = (
+        one["speedup"] >= 200 and ten["speedup"] >= 100 and max(one["error"], ten["error"]) <= 0.01
+    )
+    print(
+        "targets: >= 200 x (1 DOF), >= 100 x (10 DOF), max |dS_SS| <= 0.01: "
+        f"{'met' if met else 'NOT met'}"
+    )
     print("\nengines on the 1-DOF 21 x 21 grid (with and without numba):")
     engines(ritto("A"))
     print("\nengines on the 10-DOF 21 x 21 grid:")

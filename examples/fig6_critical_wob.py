@@ -38,8 +38,7 @@ def variants() -> dict[str, Callable[[DrillString], DrillString]]:
     def scale_section(index: int, factor: float) -> Callable[[DrillString], DrillString]:
         def change(string: DrillString) -> DrillString:
             sections = list(string.sections)
-            sections[index] = attrs.evolve(sections[index],
-                                           length=sections[index].length * factor)
+            sections[index] = attrs.evolve(sections[index], length=sections[index].length * factor)
             return string.with_sections(sections)
 
         return change
@@ -47,8 +46,9 @@ def variants() -> dict[str, Callable[[DrillString], DrillString]]:
     def five_inch(string: DrillString) -> DrillString:
         sections = list(string.sections)
         dp = sections[0]
-        sections[0] = DrillPipe(od=0.127, id=0.1086, length=dp.length, material=dp.material,
-                                name="Drill pipes 5 in")
+        sections[0] = DrillPipe(
+            od=0.127, id=0.1086, length=dp.length, material=dp.material, name="Drill pipes 5 in"
+        )
         return string.with_sections(sections)
 
     def longer_bha(string: DrillString) -> DrillString:
@@ -98,8 +98,11 @@ def main(argv: list[str] | None = None) -> None:
     dimensionless: dict[str, SeverityMap] = {}
     for name, change in variants().items():
         string = change(config.string)
-        model = config.model(**overrides) if string is config.string else \
-            attrs.evolve(config, string=string).model(**overrides)
+        model = (
+            config.model(**overrides)
+            if string is config.string
+            else attrs.evolve(config, string=string).model(**overrides)
+        )
         system = attrs.evolve(base, model=model, string=string)
         dimensional[name] = severity_map(system, wob=wob, rpm=rpm, refine=refine)
         dimensionless[name] = dimensionless_map(system, pi1=pi1, pi2=pi2, refine=refine)
@@ -117,8 +120,10 @@ def main(argv: list[str] | None = None) -> None:
 
     spread_w, n_w = spread(np.array([m.critical_wob for m in dimensional.values()]))
     spread_p, n_p = spread(np.array([m.critical_pi2 for m in dimensionless.values()]))
-    print(f"\nspread of the critical curves across the {len(dimensional)} strings "
-          "(mean coefficient of variation):")
+    print(
+        f"\nspread of the critical curves across the {len(dimensional)} strings "
+        "(mean coefficient of variation):"
+    )
     print(f"  dimensional    W_ob,cr(rpm):  {100 * spread_w:.1f} % over {n_w} speeds")
     print(f"  dimensionless  Pi_2,cr(Pi_1): {100 * spread_p:.1f} % over {n_p} values of Pi_1")
     if np.isfinite(spread_w) and np.isfinite(spread_p) and spread_p > 0:
@@ -130,10 +135,16 @@ def main(argv: list[str] | None = None) -> None:
         ax_a.plot(m.rpm, m.critical_wob / 1e3, marker="o", label=name)
     for name, m in dimensionless.items():
         ax_b.plot(m.pi1, m.critical_pi2, marker="o", label=name)
-    ax_a.set(xlabel="surface speed [rpm]", ylabel="critical weight on bit [kN]",
-             title=f"(a) dimensional: spread {100 * spread_w:.0f} %")
-    ax_b.set(xlabel="Π₁ = Ω/ω₁ [-]", ylabel="critical Π₂ = W_ob R_bit / k_eq [-]",
-             title=f"(b) dimensionless: spread {100 * spread_p:.0f} %")
+    ax_a.set(
+        xlabel="surface speed [rpm]",
+        ylabel="critical weight on bit [kN]",
+        title=f"(a) dimensional: spread {100 * spread_w:.0f} %",
+    )
+    ax_b.set(
+        xlabel="Π₁ = Ω/ω₁ [-]",
+        ylabel="critical Π₂ = W_ob R_bit / k_eq [-]",
+        title=f"(b) dimensionless: spread {100 * spread_p:.0f} %",
+    )
     for ax in (ax_a, ax_b):
         ax.grid(True, alpha=0.4)
     ax_b.legend(fontsize="small")

@@ -42,8 +42,9 @@ def ten_dof() -> System:
 
 
 def reference(system: System, wob: float, rpm: float, duration: float, window: float) -> float:
-    return simulate(system.at(wob=wob, rpm=rpm), duration=duration, steady_window=window,
-                    **TIGHT).severity
+    return simulate(
+        system.at(wob=wob, rpm=rpm), duration=duration, steady_window=window, **TIGHT
+    ).severity
 
 
 # --- interpolation of the extremes ------------------------------------------------------------
@@ -95,34 +96,49 @@ def test_one_dof_constant_torque_matches_the_damped_oscillator(one_dof: System) 
     sigma, wd = c / (2 * m), math.sqrt(k / m - (c / (2 * m)) ** 2)
     a_, b_ = -steady, (-omega + sigma * -steady) / wd
     times = np.linspace(10.0, 20.0, 400_001)
-    speed = omega + np.exp(-sigma * times) * ((-sigma * a_ + wd * b_) * np.cos(wd * times)
-                                              + (-sigma * b_ - wd * a_) * np.sin(wd * times))
+    speed = omega + np.exp(-sigma * times) * (
+        (-sigma * a_ + wd * b_) * np.cos(wd * times) + (-sigma * b_ - wd * a_) * np.sin(wd * times)
+    )
     exact = (speed.max() - speed.min()) / (2 * omega)
     assert exact == pytest.approx(_exact_severity(system, 20.0, 10.0), rel=1e-9)
     # error control: the global error is proportional to the tolerance (measured: about
     # 1.5-2 rtol relative); check it stays within 5 rtol and falls with the tolerance
     errors = []
     for rtol in (1e-4, 1e-6, 1e-8):
-        result = batch.simulate_batch(system, [0.0], [60.0], duration=20.0, steady_window=10.0,
-                                      rtol=rtol, atol=rtol * 1e-2)
+        result = batch.simulate_batch(
+            system, [0.0], [60.0], duration=20.0, steady_window=10.0, rtol=rtol, atol=rtol * 1e-2
+        )
         errors.append(abs(result.severity[0] - exact) / exact)
         assert errors[-1] < 5 * rtol, rtol
     assert errors[0] / errors[2] > 1e3
 
 
-@pytest.mark.parametrize("strategy, options", [
-    ("C", {"dp_elements": 10}),
-    ("consistent", {"dp_elements": 6, "bha_elements": 2}),  # consistent (tridiagonal) mass
-    ("B", {"dp_elements": 40, "bha_elements": 10}),        # stiff: beta K on short elements
-])
-def test_multi_dof_constant_torque_matches_the_matrix_exponential(strategy: str,
-                                                                  options: dict) -> None:
-    system = _constant_torque(System.from_config(builtin_config(), strategy=strategy,
-                                                 **options), 3000.0).at(rpm=80.0)
+@pytest.mark.parametrize(
+    "strategy, options",
+    [
+        ("C", {"dp_elements": 10}),
+        ("consistent", {"dp_elements": 6, "bha_elements": 2}),  # consistent (tridiagonal) mass
+        ("B", {"dp_elements": 40, "bha_elements": 10}),  # stiff: beta K on short elements
+    ],
+)
+def test_multi_dof_constant_torque_matches_the_matrix_exponential(
+    strategy: str, options: dict
+) -> None:
+    system = _constant_torque(
+        System.from_config(builtin_config(), strategy=strategy, **options), 3000.0
+    ).at(rpm=80.0)
     exact = _exact_severity(system, 30.0, 15.0)
     for engine in ("numba", "numpy") if system.model.dofs < 20 else ("numba",):
-        result = batch.simulate_batch(system, [0.0], [80.0], duration=30.0, steady_window=15.0,
-                                      rtol=1e-8, atol=1e-10, engine=engine)
+        result = batch.simulate_batch(
+            system,
+            [0.0],
+            [80.0],
+            duration=30.0,
+            steady_window=15.0,
+            rtol=1e-8,
+            atol=1e-10,
+            engine=engine,
+        )
         assert result.severity[0] == pytest.approx(exact, rel=1e-6, abs=1e-9), engine
 
 
@@ -173,7 +189,7 @@ def test_results_do_not_depend_on_batch_composition_or_threads(ten_dof: System) 
     rpm = np.array([50.0, 70.0, 90.0, 130.0])
     whole = batch.simulate_batch(ten_dof, wob, rpm, threads=2)
     for k in range(4):
-        alone = batch.simulate_batch(ten_dof, wob[k:k + 1], rpm[k:k + 1], threads=1)
+        alone = batch.simulate_batch(ten_dof, wob[k : k + 1], rpm[k : k + 1], threads=1)
         assert alone.severity[0] == whole.severity[k]  # bitwise: each point is independent
         assert alone.steps[0] == whole.steps[k]
 
@@ -219,7 +235,8 @@ def test_non_chain_model_needs_the_scipy_engine(one_dof: System) -> None:
     system = attrs.evolve(one_dof, model=model)
     with pytest.raises(ConfigError, match="tridiagonal"):
         batch.simulate_batch(system, [1e4], [60.0])
-    result = batch.simulate_batch(system, [1e4], [60.0], engine="scipy", duration=60.0,
-                                  steady_window=20.0)
+    result = batch.simulate_batch(
+        system, [1e4], [60.0], engine="scipy", duration=60.0, steady_window=20.0
+    )
     expected = reference(system, 1e4, 60.0, 60.0, 20.0)
     assert abs(result.severity[0] - expected) < 1e-3

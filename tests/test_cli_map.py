@@ -43,15 +43,25 @@ def test_json_contract(capsys, library_map) -> None:
 
 
 def test_ranges_accept_units(capsys) -> None:
-    data = run_json(capsys, "--strategy", "A", "--wob", "25 kN:0.225 MN:2",
-                    "--rpm", "40 rpm:4.5 rad/s:2", "--refine", "0")
+    data = run_json(
+        capsys,
+        "--strategy",
+        "A",
+        "--wob",
+        "25 kN:0.225 MN:2",
+        "--rpm",
+        "40 rpm:4.5 rad/s:2",
+        "--refine",
+        "0",
+    )
     assert data["wob"] == [25e3, 225e3]
     assert data["rpm"] == pytest.approx([40.0, 4.5 * 30 / np.pi])
 
 
 def test_dimensionless_grid(capsys) -> None:
-    data = run_json(capsys, "--strategy", "A", "--pi1", "5:10:2", "--pi2", "10:40:2",
-                    "--refine", "0")
+    data = run_json(
+        capsys, "--strategy", "A", "--pi1", "5:10:2", "--pi2", "10:40:2", "--refine", "0"
+    )
     assert data["pi1"] == pytest.approx([5.0, 10.0]) and data["pi2"] == pytest.approx([10.0, 40.0])
     assert data["dimensionless"] is True and len(data["critical_pi2"]) == 2
 
@@ -80,25 +90,30 @@ def test_workers_give_the_serial_result(capsys) -> None:
     assert parallel["critical_wob"] == serial["critical_wob"]
 
 
-@pytest.mark.parametrize("args, message", [
-    (["--wob", "225kN:25kN:3"], "--wob: reversed range"),
-    (["--wob", "25kN:225kN:0"], "--wob: empty range"),
-    (["--rpm", "60:60:5"], "--rpm: empty range"),
-    (["--rpm", "40:140:2.5"], "--rpm: N in START:STOP:N must be a whole number"),
-    (["--rpm", "40:140"], "--rpm: expected START:STOP:N"),
-    (["--wob=-5kN:25kN:3"], "--wob: expected non-negative"),
-    (["--rpm", "0:140:3"], "--rpm: expected a positive rotary speed"),
-    (["--wob", "25 parsec:1:2"], "--wob: '25 parsec' is not a force"),
-    (["--wob", "0:1:100000", "--rpm", "1:2:100000"],
-     "--wob/--rpm: a grid of 100,000 rpm x 100,000 wob = 10,000,000,000 points needs about"),
-    (["--workers", "0"], "--workers: expected a number of processes"),
-    (["--workers", "2", "--scheduler", "tcp://127.0.0.1:9"], "--workers: give either"),
-    (["--wob", "1:2:2", "--pi2", "1:2:2"], "--pi2: give either --wob or --pi2"),
-    (["--pi1", "1:2:2"], "--pi2: a dimensionless map needs both"),
-    (["--threshold", "-1"], "--threshold: expected a non-negative number"),
-    (["--engine", "rk4"], "--engine: expected one of"),
-    (["--out", "/nonexistent-dir/map.json"], "--out: directory"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--wob", "225kN:25kN:3"], "--wob: reversed range"),
+        (["--wob", "25kN:225kN:0"], "--wob: empty range"),
+        (["--rpm", "60:60:5"], "--rpm: empty range"),
+        (["--rpm", "40:140:2.5"], "--rpm: N in START:STOP:N must be a whole number"),
+        (["--rpm", "40:140"], "--rpm: expected START:STOP:N"),
+        (["--wob=-5kN:25kN:3"], "--wob: expected non-negative"),
+        (["--rpm", "0:140:3"], "--rpm: expected a positive rotary speed"),
+        (["--wob", "25 parsec:1:2"], "--wob: '25 parsec' is not a force"),
+        (
+            ["--wob", "0:1:100000", "--rpm", "1:2:100000"],
+            "--wob/--rpm: a grid of 100,000 rpm x 100,000 wob = 10,000,000,000 points needs about",
+        ),
+        (["--workers", "0"], "--workers: expected a number of processes"),
+        (["--workers", "2", "--scheduler", "tcp://127.0.0.1:9"], "--workers: give either"),
+        (["--wob", "1:2:2", "--pi2", "1:2:2"], "--pi2: give either --wob or --pi2"),
+        (["--pi1", "1:2:2"], "--pi2: a dimensionless map needs both"),
+        (["--threshold", "-1"], "--threshold: expected a non-negative number"),
+        (["--engine", "rk4"], "--engine: expected one of"),
+        (["--out", "/nonexistent-dir/map.json"], "--out: directory"),
+    ],
+)
 def test_errors_name_the_option(capsys, args: list[str], message: str) -> None:
     assert main(["map", "--strategy", "A", *args]) == 2
     captured = capsys.readouterr()
@@ -108,8 +123,10 @@ def test_errors_name_the_option(capsys, args: list[str], message: str) -> None:
 
 def test_unreachable_scheduler(capsys) -> None:
     assert main(["map", *ARGS, "--scheduler", "tcp://127.0.0.1:9", "--timeout", "1"]) == 2
-    assert "--scheduler: cannot reach the Dask scheduler at 'tcp://127.0.0.1:9' within 1 s" \
+    assert (
+        "--scheduler: cannot reach the Dask scheduler at 'tcp://127.0.0.1:9' within 1 s"
         in capsys.readouterr().err
+    )
 
 
 def test_ctrl_c_writes_only_a_partial_file(tmp_path: Path, capsys, monkeypatch) -> None:

@@ -27,8 +27,19 @@ def test_modes_json_keys_and_values(capsys):
 
 
 def test_modes_overrides_and_count(capsys):
-    data = run_json(capsys, "modes", "--strategy", "B", "--dp-elements", "120",
-                    "--bha-elements", "30", "--count", "25", "--json")
+    data = run_json(
+        capsys,
+        "modes",
+        "--strategy",
+        "B",
+        "--dp-elements",
+        "120",
+        "--bha-elements",
+        "30",
+        "--count",
+        "25",
+        "--json",
+    )
     assert data["dofs"] == 150
     freqs = data["frequencies_hz"]
     assert freqs == sorted(freqs) and len(freqs) == len(data["continuum_hz"]) == 25
@@ -36,12 +47,15 @@ def test_modes_overrides_and_count(capsys):
     assert abs(freqs[24] / data["continuum_hz"][24] - 1) < 0.02
 
 
-@pytest.mark.parametrize(("argv", "needle"), [
-    (["modes", "--strategy", "Q"], "unknown strategy 'Q'"),
-    (["modes", "--dp-elements", "0", "--strategy", "B"], "dp_elements"),
-    (["modes", "--count", "0"], "--count"),
-    (["modes", "/nonexistent/file.toml"], "cannot read configuration file"),
-])
+@pytest.mark.parametrize(
+    ("argv", "needle"),
+    [
+        (["modes", "--strategy", "Q"], "unknown strategy 'Q'"),
+        (["modes", "--dp-elements", "0", "--strategy", "B"], "dp_elements"),
+        (["modes", "--count", "0"], "--count"),
+        (["modes", "/nonexistent/file.toml"], "cannot read configuration file"),
+    ],
+)
 def test_errors_go_to_stderr_with_status_2(capsys, argv, needle):
     assert main(argv) == 2
     captured = capsys.readouterr()
@@ -51,9 +65,15 @@ def test_errors_go_to_stderr_with_status_2(capsys, argv, needle):
 
 def test_bad_config_file_through_the_console_script(tmp_path):
     path = tmp_path / "bad.toml"
-    path.write_text('[[section]]\nkind = "drill_pipe"\nod = 0.1\nid = 0.2\nlength = 10\n'
-                    '[[section]]\nkind = "bit"\nod = 0.2\nid = 0.0\nlength = 0.3\n')
-    result = subprocess.run([sys.executable, "-m", "torsio.cli", "modes", str(path), "--json"],
-                            capture_output=True, text=True, check=False)
+    path.write_text(
+        '[[section]]\nkind = "drill_pipe"\nod = 0.1\nid = 0.2\nlength = 10\n'
+        '[[section]]\nkind = "bit"\nod = 0.2\nid = 0.0\nlength = 0.3\n'
+    )
+    result = subprocess.run(
+        [sys.executable, "-m", "torsio.cli", "modes", str(path), "--json"],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     assert result.returncode == 2 and result.stdout == ""
     assert "section[0].id" in result.stderr and "Traceback" not in result.stderr

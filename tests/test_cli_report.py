@@ -18,8 +18,15 @@ def report_json(capsys, *argv: str) -> dict:
 
 def test_report_json_of_the_builtin_example(capsys):
     data = report_json(capsys)
-    assert {"string", "discretization", "modes", "damping", "operation", "dimensionless",
-            "response"} <= set(data)
+    assert {
+        "string",
+        "discretization",
+        "modes",
+        "damping",
+        "operation",
+        "dimensionless",
+        "response",
+    } <= set(data)
     # Source: ERRATA 1 (I_BHA with the bit) and the paper's FEM value for the continuum
     assert data["string"]["bha_inertia_kg_m2"] == pytest.approx(233.78, abs=0.005)
     assert round(data["modes"]["flexible_continuum_hz"][0], 4) == 0.1307
@@ -38,9 +45,11 @@ def test_report_terminal_output(capsys):
 
 def test_report_of_a_modal_only_configuration(tmp_path, capsys):
     path = tmp_path / "modal.toml"
-    path.write_text('[[section]]\nkind = "drill_pipe"\nod = "5 in"\nid = "4.276 in"\n'
-                    'length = "3000 m"\n[[section]]\nkind = "bit"\nod = "8.5 in"\nid = 0.05\n'
-                    'length = 0.3\n[discretization]\nstrategy = "B"\ndp_elements = 10\n')
+    path.write_text(
+        '[[section]]\nkind = "drill_pipe"\nod = "5 in"\nid = "4.276 in"\n'
+        'length = "3000 m"\n[[section]]\nkind = "bit"\nod = "8.5 in"\nid = 0.05\n'
+        'length = 0.3\n[discretization]\nstrategy = "B"\ndp_elements = 10\n'
+    )
     data = report_json(capsys, str(path))
     assert "response" not in data and "dimensionless" not in data
     assert data["discretization"]["dofs"] == 10

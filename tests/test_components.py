@@ -37,15 +37,18 @@ def test_default_bha_membership_and_override():
     assert not HeavyWeightDrillPipe(od=0.1, id=0.05, length=1.0, bha=False).in_bha
 
 
-@pytest.mark.parametrize(("kwargs", "key"), [
-    ({"od": 0.1, "id": 0.1, "length": 1.0}, "id"),
-    ({"od": 0.1, "id": 0.2, "length": 1.0}, "id"),
-    ({"od": -0.1, "id": 0.0, "length": 1.0}, "od"),
-    ({"od": 0.1, "id": -0.01, "length": 1.0}, "id"),
-    ({"od": 0.1, "id": 0.05, "length": 0.0}, "length"),
-    ({"od": 0.1, "id": 0.05, "length": math.inf}, "length"),
-    ({"od": math.nan, "id": 0.05, "length": 1.0}, "od"),
-])
+@pytest.mark.parametrize(
+    ("kwargs", "key"),
+    [
+        ({"od": 0.1, "id": 0.1, "length": 1.0}, "id"),
+        ({"od": 0.1, "id": 0.2, "length": 1.0}, "id"),
+        ({"od": -0.1, "id": 0.0, "length": 1.0}, "od"),
+        ({"od": 0.1, "id": -0.01, "length": 1.0}, "id"),
+        ({"od": 0.1, "id": 0.05, "length": 0.0}, "length"),
+        ({"od": 0.1, "id": 0.05, "length": math.inf}, "length"),
+        ({"od": math.nan, "id": 0.05, "length": 1.0}, "od"),
+    ],
+)
 def test_bad_geometry_names_the_field(kwargs, key):
     with pytest.raises(ConfigError) as info:
         DrillCollar(**kwargs)
@@ -85,9 +88,13 @@ def test_string_needs_one_bit_last():
 
 def test_drill_pipe_below_bha_rejected():
     with pytest.raises(ConfigError, match="one block above the bit"):
-        DrillString([DrillCollar(od=0.2, id=0.07, length=100.0),
-                     DrillPipe(od=0.1, id=0.05, length=10.0),
-                     Bit(od=0.2, id=0.05, length=0.3)])
+        DrillString(
+            [
+                DrillCollar(od=0.2, id=0.07, length=100.0),
+                DrillPipe(od=0.1, id=0.05, length=10.0),
+                Bit(od=0.2, id=0.05, length=0.3),
+            ]
+        )
 
 
 def test_series_stiffness_of_two_pipe_grades():

@@ -15,7 +15,8 @@ from torsio.config import parse_config_text
 from torsio.errors import ConfigError, TorsioError
 
 BUILTIN = tomllib.loads(
-    resources.files("torsio").joinpath("data/ritto2017.toml").read_text(encoding="utf-8"))
+    resources.files("torsio").joinpath("data/ritto2017.toml").read_text(encoding="utf-8")
+)
 
 
 def with_change(path: tuple, value) -> dict:
@@ -37,11 +38,16 @@ _DELETE = object()
 def test_builtin_reproduces_table_1():
     # Source: paper Table 1 (Ritto et al. 2017) and Section 3 (G = 85.3 GPa, rho = 7800).
     string = builtin_config().string
-    table = [(0.140, 0.119, 4733.6), (0.140, 0.076, 171.30), (0.171, 0.071, 294.90),
-             (0.216, 0.057, 0.25)]
+    table = [
+        (0.140, 0.119, 4733.6),
+        (0.140, 0.076, 171.30),
+        (0.171, 0.071, 294.90),
+        (0.216, 0.057, 0.25),
+    ]
     assert [(s.od, s.id, s.length) for s in string.sections] == table
-    assert all(s.material.shear_modulus == 85.3e9 and s.material.density == 7800.0
-               for s in string.sections)
+    assert all(
+        s.material.shear_modulus == 85.3e9 and s.material.density == 7800.0 for s in string.sections
+    )
     assert [s.in_bha for s in string.sections] == [False, True, True, True]  # HWDP is "BHA 1"
     assert builtin_config().bit_radius == 0.108  # 8 1/2 in bit (ERRATA)
 
@@ -70,32 +76,35 @@ def test_bha_override():
     assert parse_config(data).string.sections[1].in_bha is False
 
 
-@pytest.mark.parametrize(("path", "value", "key", "text"), [
-    (("section", 0, "id"), 0.2, "section[0].id", "smaller than the outer diameter"),
-    (("section", 0, "id"), 0.140, "section[0].id", "smaller than the outer diameter"),
-    (("section", 0, "length"), 0.0, "section[0].length", "positive"),
-    (("section", 0, "length"), -3.0, "section[0].length", "positive"),
-    (("section", 1, "od"), "3 kg", "section[1].od", "not a length"),
-    (("section", 1, "od"), "lots", "section[1].od", "cannot read"),
-    (("section", 1, "kind"), "casing", "section[1].kind", "unknown section kind"),
-    (("section", 1, "colour"), "red", "section[1].colour", "unknown key"),
-    (("section", 1, "od"), _DELETE, "section[1].od", "missing"),
-    (("material", "shear_modulus"), -1.0, "material.shear_modulus", "positive"),
-    (("material", "density"), 0, "material.density", "positive"),
-    (("discretization", "strategy"), "Z", "discretization.strategy", "unknown strategy"),
-    (("discretization", "dp_elements"), 0, "discretization.dp_elements", ">= 1"),
-    (("discretization", "bha_elements"), 30, "discretization.bha_elements", "rigid"),
-    (("discretization", "elements"), 3, "discretization.elements", "unknown key"),
-    (("operation", "wob"), "-5 kN", "operation.wob", "non-negative"),
-    (("operation", "rpm"), 0, "operation.rpm", "positive"),
-    (("bit_rock", "law"), "magic", "bit_rock.law", "unknown bit-rock law"),
-    (("bit_rock", "a0"), -0.2, "bit_rock.a0", "must be > 0"),
-    (("bit_rock", "a0"), _DELETE, "bit_rock.a0", "needs parameter"),
-    (("bit_rock", "a9"), 1.0, "bit_rock.a9", "no parameter"),
-    (("bit_rock", "speed_unit"), "rps", "bit_rock.speed_unit", "expected one of"),
-    (("damping", "gamma"), 1.0, "damping.gamma", "unknown key"),
-    (("colour",), "blue", "colour", "unknown key"),
-])
+@pytest.mark.parametrize(
+    ("path", "value", "key", "text"),
+    [
+        (("section", 0, "id"), 0.2, "section[0].id", "smaller than the outer diameter"),
+        (("section", 0, "id"), 0.140, "section[0].id", "smaller than the outer diameter"),
+        (("section", 0, "length"), 0.0, "section[0].length", "positive"),
+        (("section", 0, "length"), -3.0, "section[0].length", "positive"),
+        (("section", 1, "od"), "3 kg", "section[1].od", "not a length"),
+        (("section", 1, "od"), "lots", "section[1].od", "cannot read"),
+        (("section", 1, "kind"), "casing", "section[1].kind", "unknown section kind"),
+        (("section", 1, "colour"), "red", "section[1].colour", "unknown key"),
+        (("section", 1, "od"), _DELETE, "section[1].od", "missing"),
+        (("material", "shear_modulus"), -1.0, "material.shear_modulus", "positive"),
+        (("material", "density"), 0, "material.density", "positive"),
+        (("discretization", "strategy"), "Z", "discretization.strategy", "unknown strategy"),
+        (("discretization", "dp_elements"), 0, "discretization.dp_elements", ">= 1"),
+        (("discretization", "bha_elements"), 30, "discretization.bha_elements", "rigid"),
+        (("discretization", "elements"), 3, "discretization.elements", "unknown key"),
+        (("operation", "wob"), "-5 kN", "operation.wob", "non-negative"),
+        (("operation", "rpm"), 0, "operation.rpm", "positive"),
+        (("bit_rock", "law"), "magic", "bit_rock.law", "unknown bit-rock law"),
+        (("bit_rock", "a0"), -0.2, "bit_rock.a0", "must be > 0"),
+        (("bit_rock", "a0"), _DELETE, "bit_rock.a0", "needs parameter"),
+        (("bit_rock", "a9"), 1.0, "bit_rock.a9", "no parameter"),
+        (("bit_rock", "speed_unit"), "rps", "bit_rock.speed_unit", "expected one of"),
+        (("damping", "gamma"), 1.0, "damping.gamma", "unknown key"),
+        (("colour",), "blue", "colour", "unknown key"),
+    ],
+)
 def test_bad_values_name_the_key(path, value, key, text):
     with pytest.raises(ConfigError) as info:
         parse_config(with_change(path, value))
@@ -141,12 +150,21 @@ def test_damping_ratios():
 
 
 # --- property-based: malformed configurations give a ConfigError, never a traceback -----------
-scalars = st.one_of(st.none(), st.booleans(), st.integers(-10**6, 10**6),
-                    st.floats(allow_nan=True, allow_infinity=True), st.text(max_size=12),
-                    st.sampled_from(["5 in", "-3 m", "1e400 m", "85 GPa", "kN", "1/0", "nan m"]))
-values = st.recursive(scalars, lambda inner: st.one_of(
-    st.lists(inner, max_size=3), st.dictionaries(st.text(max_size=6), inner, max_size=3)),
-    max_leaves=6)
+scalars = st.one_of(
+    st.none(),
+    st.booleans(),
+    st.integers(-(10**6), 10**6),
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.text(max_size=12),
+    st.sampled_from(["5 in", "-3 m", "1e400 m", "85 GPa", "kN", "1/0", "nan m"]),
+)
+values = st.recursive(
+    scalars,
+    lambda inner: st.one_of(
+        st.lists(inner, max_size=3), st.dictionaries(st.text(max_size=6), inner, max_size=3)
+    ),
+    max_leaves=6,
+)
 
 
 def _paths(data, prefix=()):

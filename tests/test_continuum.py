@@ -22,8 +22,12 @@ def test_first_frequency_matches_paper_fem(ritto):
 
 
 def uniform_shaft_with_tip(tip_length: float = 0.5) -> DrillString:
-    return DrillString([DrillPipe(od=0.14, id=0.1, length=3000.0, material=STEEL),
-                        Bit(od=0.3, id=0.05, length=tip_length, material=STEEL)])
+    return DrillString(
+        [
+            DrillPipe(od=0.14, id=0.1, length=3000.0, material=STEEL),
+            Bit(od=0.3, id=0.05, length=tip_length, material=STEEL),
+        ]
+    )
 
 
 def closed_form_roots(inertia_ratio: float, count: int) -> np.ndarray:
@@ -32,8 +36,12 @@ def closed_form_roots(inertia_ratio: float, count: int) -> np.ndarray:
     def residual(beta: float) -> float:
         return beta * math.sin(beta) - inertia_ratio * math.cos(beta)
 
-    return np.array([brentq(residual, (n - 1) * math.pi + 1e-12, (n - 0.5) * math.pi - 1e-12,
-                            xtol=1e-15) for n in range(1, count + 1)])
+    return np.array(
+        [
+            brentq(residual, (n - 1) * math.pi + 1e-12, (n - 0.5) * math.pi - 1e-12, xtol=1e-15)
+            for n in range(1, count + 1)
+        ]
+    )
 
 
 def test_uniform_shaft_with_tip_inertia_matches_closed_form():
@@ -69,8 +77,10 @@ def test_count_below_agrees_with_sign_changes_of_the_transfer_residual(ritto):
         for m in members:
             kappa, rk = omega / m.wave_speed, m.torsional_rigidity * omega / m.wave_speed
             phase = kappa * m.length
-            rotation, torque = (math.cos(phase) * rotation + math.sin(phase) / rk * torque,
-                                -rk * math.sin(phase) * rotation + math.cos(phase) * torque)
+            rotation, torque = (
+                math.cos(phase) * rotation + math.sin(phase) / rk * torque,
+                -rk * math.sin(phase) * rotation + math.cos(phase) * torque,
+            )
         residual.append(torque - omega**2 * tip * rotation)
     changes = int(np.count_nonzero(np.diff(np.sign(residual)) != 0))
     assert count_below(20.0, members, tip) == changes
@@ -83,8 +93,11 @@ def test_splitting_a_section_into_two_halves_changes_nothing(ritto):
     dp = ritto.sections[0]
     half = DrillPipe(od=dp.od, id=dp.id, length=dp.length / 2, material=dp.material)
     split = DrillString([half, half, *ritto.sections[1:]])
-    np.testing.assert_allclose(continuum_modes(split, 20).frequencies_rad,
-                               continuum_modes(ritto, 20).frequencies_rad, rtol=1e-12)
+    np.testing.assert_allclose(
+        continuum_modes(split, 20).frequencies_rad,
+        continuum_modes(ritto, 20).frequencies_rad,
+        rtol=1e-12,
+    )
 
 
 def test_mode_shape_is_zero_at_top_and_normalized(ritto):

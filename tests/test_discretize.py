@@ -54,8 +54,9 @@ def test_strategy_a_frequency_is_paper_value_and_2_8_percent_above_continuum(rit
 def test_one_element_model_is_k_over_i():
     # Source: analytic 1-DOF frequency sqrt(k/I).
     model = LumpedModel.from_chain([455.0], [325.0])
-    assert modal_analysis(model).frequencies_rad[0] == pytest.approx(math.sqrt(325.0 / 455.0),
-                                                                      rel=1e-14)
+    assert modal_analysis(model).frequencies_rad[0] == pytest.approx(
+        math.sqrt(325.0 / 455.0), rel=1e-14
+    )
 
 
 # --- strategy B with the drill pipes as one DOF (paper Fig. 4) ----------------------------------
@@ -85,8 +86,9 @@ def test_strategy_c_modes_1_to_3_converge_at_second_order(ritto, continuum_rigid
     # Source: paper Fig. 3(a): modes 1-3 converge towards the reference with a rigid BHA;
     # order 2 is the analytic dispersion error of lumped-mass linear elements.
     exact = continuum_rigid.frequencies_hz[:3]
-    errors = {n: frequencies_hz(StrategyC(dp_elements=n), ritto, 3) / exact - 1
-              for n in (5, 10, 20, 40)}
+    errors = {
+        n: frequencies_hz(StrategyC(dp_elements=n), ritto, 3) / exact - 1 for n in (5, 10, 20, 40)
+    }
     for mode in range(3):
         sequence = [abs(errors[n][mode]) for n in (5, 10, 20, 40)]
         assert sequence == sorted(sequence, reverse=True)
@@ -116,8 +118,9 @@ def test_consistent_mass_bounds_from_above_at_the_same_order(ritto, continuum30)
     # mass, i.e. the same second order and about the same size.
     exact = continuum30.frequencies_hz[:25]
     lumped = frequencies_hz(StrategyB(dp_elements=120, bha_elements=30), ritto, 25) / exact - 1
-    consistent = frequencies_hz(ConsistentMass(dp_elements=120, bha_elements=30), ritto, 25) / \
-        exact - 1
+    consistent = (
+        frequencies_hz(ConsistentMass(dp_elements=120, bha_elements=30), ritto, 25) / exact - 1
+    )
     assert np.all(consistent > 0)
     np.testing.assert_allclose(np.abs(consistent[[14, 24]]), np.abs(lumped[[14, 24]]), rtol=0.1)
 
@@ -132,10 +135,12 @@ def test_mixed_mass_is_fourth_order_preasymptotically_and_far_more_accurate(ritt
     exact = continuum30.frequencies_hz[:25]
     mixed, lumped = [], []
     for n, m in ((40, 10), (80, 20), (160, 40)):
-        mixed.append(frequencies_hz(MixedMass(dp_elements=n, bha_elements=m), ritto, 25)
-                     / exact - 1)
-        lumped.append(frequencies_hz(StrategyB(dp_elements=n, bha_elements=m), ritto, 25)
-                      / exact - 1)
+        mixed.append(
+            frequencies_hz(MixedMass(dp_elements=n, bha_elements=m), ritto, 25) / exact - 1
+        )
+        lumped.append(
+            frequencies_hz(StrategyB(dp_elements=n, bha_elements=m), ritto, 25) / exact - 1
+        )
     for mode in (14, 24):
         assert observed_order(mixed[0][mode], mixed[1][mode]) > 3.0
         for level in (1, 2):
@@ -160,9 +165,16 @@ def test_dofs_needed_for_1_percent_on_mode_25(ritto, continuum30):
 
 
 # --- invariants -------------------------------------------------------------------------------
-@pytest.mark.parametrize("discretizer", [
-    StrategyA(), StrategyB(dp_elements=7, bha_elements=4), StrategyC(dp_elements=6),
-    ConsistentMass(dp_elements=5, bha_elements=3), MixedMass(dp_elements=5, bha_elements=3)])
+@pytest.mark.parametrize(
+    "discretizer",
+    [
+        StrategyA(),
+        StrategyB(dp_elements=7, bha_elements=4),
+        StrategyC(dp_elements=6),
+        ConsistentMass(dp_elements=5, bha_elements=3),
+        MixedMass(dp_elements=5, bha_elements=3),
+    ],
+)
 def test_matrices_symmetric_and_positive_definite(ritto, discretizer):
     model = discretizer.discretize(ritto)
     for matrix in (model.inertia, model.stiffness):
@@ -173,8 +185,9 @@ def test_matrices_symmetric_and_positive_definite(ritto, discretizer):
     assert top[0] > 0 and np.allclose(top[1:], 0.0, atol=1e-9 * top[0])
 
 
-@pytest.mark.parametrize(("cls", "top_fraction"), [
-    (StrategyB, 1 / 2), (ConsistentMass, 2 / 3), (MixedMass, 7 / 12)])
+@pytest.mark.parametrize(
+    ("cls", "top_fraction"), [(StrategyB, 1 / 2), (ConsistentMass, 2 / 3), (MixedMass, 7 / 12)]
+)
 def test_total_inertia_is_conserved(ritto, cls, top_fraction):
     # Source: conservation of mass: 1^T [I] 1 = sum of rho J L over every section, less the
     # entries of the prescribed top node, which belong to the first element m_1: m_1/2 for
@@ -192,8 +205,9 @@ def test_splitting_a_section_into_identical_halves_gives_the_same_model(ritto):
     split = DrillString([half, half, *ritto.sections[1:]])
     whole = StrategyB(section_elements=[120, 11, 19]).discretize(ritto)
     halves = StrategyB(section_elements=[60, 60, 11, 19]).discretize(split)
-    np.testing.assert_allclose(modal_analysis(halves).frequencies_rad,
-                               modal_analysis(whole).frequencies_rad, rtol=1e-10)
+    np.testing.assert_allclose(
+        modal_analysis(halves).frequencies_rad, modal_analysis(whole).frequencies_rad, rtol=1e-10
+    )
 
 
 def test_equivalent_stiffness_is_the_series_stiffness(ritto):
@@ -213,21 +227,27 @@ def test_bha_count_split_in_proportion_to_length(ritto):
 
 def test_max_element_length(ritto):
     model = StrategyB(max_element_length=100.0).discretize(ritto)
-    assert model.details["elements"] == {"Drill pipes 5 1/2 in": 48, "HWDP 5 1/2 in": 2,
-                                         "Drill collars, MWD and LWD tools 6 3/4 in": 3}
+    assert model.details["elements"] == {
+        "Drill pipes 5 1/2 in": 48,
+        "HWDP 5 1/2 in": 2,
+        "Drill collars, MWD and LWD tools 6 3/4 in": 3,
+    }
     assert np.all(np.diff(np.concatenate([[0.0], model.node_depths])) <= 100.0 + 1e-9)
 
 
-@pytest.mark.parametrize(("factory", "key"), [
-    (lambda: StrategyB(dp_elements=0), "dp_elements"),
-    (lambda: StrategyB(dp_elements=2.5), "dp_elements"),
-    (lambda: StrategyB(bha_elements=-1), "bha_elements"),
-    (lambda: StrategyC(bha_elements=30), "bha_elements"),
-    (lambda: StrategyA(dp_elements=5), "dp_elements"),
-    (lambda: StrategyB(dp_elements=3, max_element_length=10.0), "discretization"),
-    (lambda: StrategyB(max_element_length=-5.0), "max_element_length"),
-    (lambda: StrategyB(section_elements=[1, 0, 1]), "section_elements[1]"),
-])
+@pytest.mark.parametrize(
+    ("factory", "key"),
+    [
+        (lambda: StrategyB(dp_elements=0), "dp_elements"),
+        (lambda: StrategyB(dp_elements=2.5), "dp_elements"),
+        (lambda: StrategyB(bha_elements=-1), "bha_elements"),
+        (lambda: StrategyC(bha_elements=30), "bha_elements"),
+        (lambda: StrategyA(dp_elements=5), "dp_elements"),
+        (lambda: StrategyB(dp_elements=3, max_element_length=10.0), "discretization"),
+        (lambda: StrategyB(max_element_length=-5.0), "max_element_length"),
+        (lambda: StrategyB(section_elements=[1, 0, 1]), "section_elements[1]"),
+    ],
+)
 def test_bad_element_options_name_the_key(factory, key):
     with pytest.raises(ConfigError) as info:
         factory()
@@ -245,7 +265,8 @@ def test_section_elements_length_must_match(ritto):
 
 
 def test_rigid_bha_strategies_need_drill_pipe():
-    string = DrillString([DrillPipe(od=0.2, id=0.1, length=100.0, bha=True),
-                          Bit(od=0.2, id=0.05, length=0.3)])
+    string = DrillString(
+        [DrillPipe(od=0.2, id=0.1, length=100.0, bha=True), Bit(od=0.2, id=0.05, length=0.3)]
+    )
     with pytest.raises(ConfigError, match="drill-pipe"):
         StrategyC(dp_elements=2).discretize(string)

@@ -55,20 +55,23 @@ def ten_dof() -> System:
 
 def single_run(system: System, wob: float, rpm: float, duration: float, window: float) -> float:
     """S_SS of one independent transient run (module level: picklable for workers)."""
-    return simulate(system.at(wob=wob, rpm=rpm), duration=duration, steady_window=window,
-                    **TIGHT).severity
+    return simulate(
+        system.at(wob=wob, rpm=rpm), duration=duration, steady_window=window, **TIGHT
+    ).severity
 
 
 def assert_map_matches_single_runs(result: SeverityMap, system: System, executor=None) -> None:
     duration, window = result.info["duration"], result.info["steady_window"]
-    tasks = [(system, float(w), float(r), duration, window)
-             for r in result.rpm for w in result.wob]
+    tasks = [(system, float(w), float(r), duration, window) for r in result.rpm for w in result.wob]
     expected = np.array(run_tasks(single_run, tasks, executor=executor).results).reshape(
-        result.shape)
+        result.shape
+    )
     difference = np.abs(result.severity - expected)
     worst = np.unravel_index(np.argmax(difference), difference.shape)
-    assert difference.max() <= 0.01, (f"|dS_SS| = {difference.max():.3g} at rpm "
-                                      f"{result.rpm[worst[0]]}, wob {result.wob[worst[1]]}")
+    assert difference.max() <= 0.01, (
+        f"|dS_SS| = {difference.max():.3g} at rpm "
+        f"{result.rpm[worst[0]]}, wob {result.wob[worst[1]]}"
+    )
 
 
 # --- the issue's accuracy requirement -------------------------------------------------------
@@ -84,8 +87,7 @@ def test_ten_dof_subgrid_matches_single_runs(ten_dof: System) -> None:
 
 @pytest.mark.slow
 @pytest.mark.parametrize("model", ["one_dof", "ten_dof"])
-def test_full_21_by_21_map_matches_single_runs(model: str, request: pytest.FixtureRequest
-                                               ) -> None:
+def test_full_21_by_21_map_matches_single_runs(model: str, request: pytest.FixtureRequest) -> None:
     system = request.getfixturevalue(model)
     result = severity_map(system, WOB21, RPM21, refine=0)
     assert_map_matches_single_runs(result, system, executor=2)
@@ -120,12 +122,15 @@ def test_critical_rule_statuses(one_dof: System) -> None:
 
 def test_critical_rule_on_given_severities() -> None:
     wob = np.array([10.0, 20.0, 30.0, 40.0])
-    severity = np.array([[0.0, 1.2, 0.0, 1.1],    # severe island, then severe from 40
-                         [0.0, 0.0, 0.0, 0.5],    # never severe
-                         [0.9, 1.0, 1.1, 1.2],    # severe everywhere
-                         [0.0, np.nan, 1.0, 1.0]])  # a failed point
-    critical, status, bracket = maps._critical_wob(None, wob, np.ones(4), severity, 0.8, 0,
-                                                   "mark")
+    severity = np.array(
+        [
+            [0.0, 1.2, 0.0, 1.1],  # severe island, then severe from 40
+            [0.0, 0.0, 0.0, 0.5],  # never severe
+            [0.9, 1.0, 1.1, 1.2],  # severe everywhere
+            [0.0, np.nan, 1.0, 1.0],
+        ]
+    )  # a failed point
+    critical, status, bracket = maps._critical_wob(None, wob, np.ones(4), severity, 0.8, 0, "mark")
     assert status == ("grid", "none", "below_range", "unresolved")
     assert critical[0] == 35.0 and tuple(bracket[0]) == (30.0, 40.0)
     assert math.isnan(critical[1]) and critical[2] == 10.0 and math.isnan(critical[3])
@@ -135,8 +140,9 @@ def test_classification_thresholds(one_dof: System) -> None:
     result = severity_map(one_dof, [50e3, 150e3], [60.0], refine=0)
     labels = result.classification()
     assert labels.tolist() == [["stable", "severe"]]
-    looser = severity_map(one_dof, [50e3, 150e3], [60.0], refine=0, threshold=1.5,
-                          stick_slip_threshold=0.01)
+    looser = severity_map(
+        one_dof, [50e3, 150e3], [60.0], refine=0, threshold=1.5, stick_slip_threshold=0.01
+    )
     assert looser.classification().tolist() == [["stable", "stick-slip"]]  # S = 1.32
     with pytest.raises(ConfigError, match="stick_slip_threshold"):
         severity_map(one_dof, [50e3], [60.0], threshold=0.5, stick_slip_threshold=0.6)
@@ -169,8 +175,13 @@ def test_dimensionless_map_axes_and_invariance(one_dof: System) -> None:
     tau_duration = result.info["duration"] * groups.omega1
     tau_window = result.info["steady_window"] * groups.omega1
     grid_pi1, grid_pi2 = np.meshgrid(pi1, pi2, indexing="ij")
-    tau = batch.simulate_batch(scaled, grid_pi2.ravel(), grid_pi1.ravel() * 30 / math.pi,
-                               duration=tau_duration, steady_window=tau_window)
+    tau = batch.simulate_batch(
+        scaled,
+        grid_pi2.ravel(),
+        grid_pi1.ravel() * 30 / math.pi,
+        duration=tau_duration,
+        steady_window=tau_window,
+    )
     np.testing.assert_allclose(tau.severity.reshape(2, 2), result.severity, atol=1e-3)
     assert result.critical_pi2.shape == (2,)
 
@@ -268,20 +279,26 @@ def test_solver_failures_raise_or_are_marked(one_dof: System, monkeypatch) -> No
     assert "too many steps" in marked.failures()[0]
 
 
-@pytest.mark.parametrize("wob, rpm, key", [
-    ([], [60.0], "wob"),
-    ([2e5, 1e5], [60.0], "wob"),
-    ([-1.0, 1e5], [60.0], "wob"),
-    ([1e5], [60.0, 60.0], "rpm"),
-    ([1e5], [0.0], "rpm"),
-])
+@pytest.mark.parametrize(
+    "wob, rpm, key",
+    [
+        ([], [60.0], "wob"),
+        ([2e5, 1e5], [60.0], "wob"),
+        ([-1.0, 1e5], [60.0], "wob"),
+        ([1e5], [60.0, 60.0], "rpm"),
+        ([1e5], [0.0], "rpm"),
+    ],
+)
 def test_bad_axes(one_dof: System, wob, rpm, key: str) -> None:
     with pytest.raises(ConfigError, match=f"^{key}:"):
         severity_map(one_dof, wob, rpm)
 
 
 def test_grid_too_large_for_memory() -> None:
-    with pytest.raises(ConfigError, match=r"100,000 rpm x 100,000 wob = 10,000,000,000 points "
-                                          r"needs about 2.56 TB"):
+    with pytest.raises(
+        ConfigError,
+        match=r"100,000 rpm x 100,000 wob = 10,000,000,000 points "
+        r"needs about 2.56 TB",
+    ):
         check_grid_size(100_000, 100_000, memory=16e9)
     check_grid_size(100, 100, memory=16e9)  # 2.56 MB: fine

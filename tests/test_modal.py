@@ -47,8 +47,9 @@ def test_mass_normalization_and_orthogonality(ritto):
     phi = modal_analysis(model).mass_normalized_shapes
     np.testing.assert_allclose(phi.T @ model.inertia @ phi, np.eye(model.dofs), atol=1e-10)
     omega2 = modal_analysis(model).frequencies_rad ** 2
-    np.testing.assert_allclose(phi.T @ model.stiffness @ phi, np.diag(omega2),
-                               atol=1e-9 * omega2.max())
+    np.testing.assert_allclose(
+        phi.T @ model.stiffness @ phi, np.diag(omega2), atol=1e-9 * omega2.max()
+    )
 
 
 def test_two_dof_chain_against_closed_form():

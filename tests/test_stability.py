@@ -65,8 +65,9 @@ def test_one_dof_eigenvalues_are_the_quadratic_roots(one_dof: System) -> None:
     c = float(one_dof.damping_matrix[0, 0])
     for s in (-400.0, -c, 0.0, 500.0):
         roots = np.roots([m, c + s, k])
-        np.testing.assert_allclose(np.sort_complex(eigenvalues(one_dof, s)),
-                                   np.sort_complex(roots), rtol=1e-12, atol=1e-12)
+        np.testing.assert_allclose(
+            np.sort_complex(eigenvalues(one_dof, s)), np.sort_complex(roots), rtol=1e-12, atol=1e-12
+        )
 
 
 def test_one_dof_receptance_closed_form(one_dof: System) -> None:
@@ -74,17 +75,22 @@ def test_one_dof_receptance_closed_form(one_dof: System) -> None:
     k = float(one_dof.model.stiffness[0, 0])
     c = float(one_dof.damping_matrix[0, 0])
     w = np.array([0.1, 0.8, 0.85, 3.0])
-    np.testing.assert_allclose(bit_receptance(one_dof, w), 1.0 / (k - w**2 * m + 1j * w * c),
-                               rtol=1e-13)
+    np.testing.assert_allclose(
+        bit_receptance(one_dof, w), 1.0 / (k - w**2 * m + 1j * w * c), rtol=1e-13
+    )
 
 
-@pytest.mark.parametrize("strategy, options", [
-    ("C", {"dp_elements": 10}),
-    ("B", {"dp_elements": 20, "bha_elements": 6}),
-    ("consistent", {"dp_elements": 8, "bha_elements": 3}),
-])
-def test_multi_dof_boundary_is_where_an_eigenvalue_crosses(strategy: str,
-                                                           options: dict[str, Any]) -> None:
+@pytest.mark.parametrize(
+    "strategy, options",
+    [
+        ("C", {"dp_elements": 10}),
+        ("B", {"dp_elements": 20, "bha_elements": 6}),
+        ("consistent", {"dp_elements": 8, "bha_elements": 3}),
+    ],
+)
+def test_multi_dof_boundary_is_where_an_eigenvalue_crosses(
+    strategy: str, options: dict[str, Any]
+) -> None:
     system = System.from_config(builtin_config(), strategy=strategy, **options)
     critical = critical_bit_damping(system)
     # eigenvalues of the first-order system, computed here without the library
@@ -94,8 +100,9 @@ def test_multi_dof_boundary_is_where_an_eigenvalue_crosses(strategy: str,
         damping = system.damping_matrix.copy()
         damping[-1, -1] += s
         inverse = np.linalg.inv(system.model.inertia)
-        matrix = np.block([[np.zeros((n, n)), np.eye(n)],
-                           [-inverse @ system.model.stiffness, -inverse @ damping]])
+        matrix = np.block(
+            [[np.zeros((n, n)), np.eye(n)], [-inverse @ system.model.stiffness, -inverse @ damping]]
+        )
         return float(np.linalg.eigvals(matrix).real.max())
 
     assert rate(critical.slope * (1 - 1e-6)) < 0 < rate(critical.slope * (1 + 1e-6))
@@ -134,8 +141,13 @@ class SquareRootLaw(BitRockLaw):
 
     def torque(self, speed: Any, wob: Any, radius: Any) -> np.ndarray:
         w = np.asarray(speed, dtype=float)
-        return np.sqrt(np.asarray(wob, dtype=float)) * 1e3 * np.asarray(radius) * self.a0 * (
-            np.tanh(2.0 * w) + 8.5 * w / (1.0 + 5.47 * w * w))
+        return (
+            np.sqrt(np.asarray(wob, dtype=float))
+            * 1e3
+            * np.asarray(radius)
+            * self.a0
+            * (np.tanh(2.0 * w) + 8.5 * w / (1.0 + 5.47 * w * w))
+        )
 
 
 def test_law_not_proportional_to_wob(one_dof: System) -> None:
@@ -151,5 +163,8 @@ def test_fine_model_boundary_matches_eigenvalues() -> None:
     # 150 DOFs (receptance scan, O(n) per frequency) against the eigenvalues
     system = System.from_config(builtin_config(), strategy="C", dp_elements=150)
     critical = critical_bit_damping(system)
-    assert growth_rate(system, critical.slope * (1 - 1e-6)) < 0 < growth_rate(
-        system, critical.slope * (1 + 1e-6))
+    assert (
+        growth_rate(system, critical.slope * (1 - 1e-6))
+        < 0
+        < growth_rate(system, critical.slope * (1 + 1e-6))
+    )

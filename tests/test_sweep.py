@@ -122,30 +122,31 @@ def test_bad_executor_specifications() -> None:
 @pytest.fixture(scope="module")
 def cluster():
     distributed = pytest.importorskip("distributed")
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None, silence_logs=40) as local:
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None, silence_logs=40
+    ) as local:
         with distributed.Client(local) as client:
             yield local, client
 
 
-def test_dask_executor_gives_the_serial_map(cluster, system: System,
-                                            serial: SeverityMap) -> None:
+def test_dask_executor_gives_the_serial_map(cluster, system: System, serial: SeverityMap) -> None:
     _, client = cluster
-    result = severity_map(system, WOB, RPM, refine=2, executor=client.get_executor(),
-                          chunk_size=3)
+    result = severity_map(system, WOB, RPM, refine=2, executor=client.get_executor(), chunk_size=3)
     assert_same_map(result, serial)
 
 
-def test_dask_scheduler_address_gives_the_serial_map(cluster, system: System,
-                                                     serial: SeverityMap) -> None:
+def test_dask_scheduler_address_gives_the_serial_map(
+    cluster, system: System, serial: SeverityMap
+) -> None:
     local, _ = cluster
     result = severity_map(system, WOB, RPM, refine=2, executor=local.scheduler_address)
     assert_same_map(result, serial)
     assert result.info["executor"] == f"dask({local.scheduler_address})"
 
 
-def test_dask_worker_killed_mid_map_is_retried(cluster, system: System,
-                                              serial: SeverityMap) -> None:
+def test_dask_worker_killed_mid_map_is_retried(
+    cluster, system: System, serial: SeverityMap
+) -> None:
     local, client = cluster
     before = client.run(os.getpid)
     killed: list[int] = []
@@ -156,20 +157,33 @@ def test_dask_worker_killed_mid_map_is_retried(cluster, system: System,
             os.kill(pid, signal.SIGKILL)
             killed.append(pid)
 
-    result = severity_map(system, WOB, RPM, refine=2, executor=client.get_executor(),
-                          chunk_size=1, progress=kill_a_worker)
+    result = severity_map(
+        system,
+        WOB,
+        RPM,
+        refine=2,
+        executor=client.get_executor(),
+        chunk_size=1,
+        progress=kill_a_worker,
+    )
     assert killed
     assert_same_map(result, serial)
     # the scheduler's log shows chunks that were running on the killed worker and ran again
-    log = client.run_on_scheduler(lambda dask_scheduler: [
-        (t[1], t[2], t[4]) for t in dask_scheduler.transition_log])
-    assert any(start == "processing" and end == "released" and "worker" in stimulus
-               for start, end, stimulus in log)
+    log = client.run_on_scheduler(
+        lambda dask_scheduler: [(t[1], t[2], t[4]) for t in dask_scheduler.transition_log]
+    )
+    assert any(
+        start == "processing" and end == "released" and "worker" in stimulus
+        for start, end, stimulus in log
+    )
     client.wait_for_workers(2, timeout=60)
     assert killed[0] not in client.run(os.getpid).values()  # the nanny started a new one
 
 
 def test_unreachable_scheduler_is_a_clear_error(system: System) -> None:
-    with pytest.raises(ConfigError, match=r"cannot reach the Dask scheduler at "
-                                          r"'tcp://127.0.0.1:9' within 1 s"):
+    with pytest.raises(
+        ConfigError,
+        match=r"cannot reach the Dask scheduler at "
+        r"'tcp://127.0.0.1:9' within 1 s",
+    ):
         severity_map(system, WOB, RPM, executor="tcp://127.0.0.1:9", timeout=1.0)

@@ -14,8 +14,10 @@ PAGE = Path(__file__).parents[1] / "docs" / "validation.md"
 @pytest.mark.parametrize("name", list(CHECKS))
 def test_check_passes(name):
     row = CHECKS[name]()
-    assert row.passed, (f"{row.quantity}: torsio {row.value!r} vs {row.source} "
-                        f"{row.source_value!r} (tolerance {row.tolerance!r})")
+    assert row.passed, (
+        f"{row.quantity}: torsio {row.value!r} vs {row.source} "
+        f"{row.source_value!r} (tolerance {row.tolerance!r})"
+    )
 
 
 def test_validation_page_is_generated_from_the_checks():

@@ -103,8 +103,14 @@ except ImportError:  # pragma: no cover - exercised only without numba
     njit = _identity
 
 __all__ = [
-    "DEFAULT_ATOL", "DEFAULT_RTOL", "ENGINES", "HAVE_NUMBA", "BatchModel", "BatchResults",
-    "reference_severity", "simulate_batch",
+    "DEFAULT_ATOL",
+    "DEFAULT_RTOL",
+    "ENGINES",
+    "HAVE_NUMBA",
+    "BatchModel",
+    "BatchResults",
+    "reference_severity",
+    "simulate_batch",
 ]
 
 ENGINES = ("auto", "numba", "numpy", "scipy")
@@ -145,8 +151,13 @@ _C[1, 0] = -5.6688
 _C[2, :2] = (-2.430093356833875, -0.2063599157091915)
 _C[3, :3] = (-0.1073529058151375, -9.594562251023355, -20.47028614809616)
 _C[4, :4] = (7.496443313967647, -10.24680431464352, -33.99990352819905, 11.70890893206160)
-_C[5, :5] = (8.083246795921522, -7.981132988064893, -31.52159432874371, 16.31930543123136,
-             -6.058818238834054)
+_C[5, :5] = (
+    8.083246795921522,
+    -7.981132988064893,
+    -31.52159432874371,
+    16.31930543123136,
+    -6.058818238834054,
+)
 # y_new = (argument of stage 6) + k6 and the embedded error estimate is k6 itself.
 
 # --- bit-rock laws with a compiled kernel ---------------------------------------------------
@@ -175,8 +186,11 @@ def _tridiagonal(key: str, matrix: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         upper[:-1] = np.diag(matrix, 1)
     band = np.diag(diagonal) + np.diag(upper[:-1], 1) + np.diag(upper[:-1], -1)
     if not np.array_equal(band, matrix):
-        raise ConfigError(key, "the batch engine needs tridiagonal (chain) matrices [I], [K], "
-                               "[C]; use engine='scipy' for other models")
+        raise ConfigError(
+            key,
+            "the batch engine needs tridiagonal (chain) matrices [I], [K], "
+            "[C]; use engine='scipy' for other models",
+        )
     return diagonal, upper
 
 
@@ -191,11 +205,11 @@ class BatchModel:
     ----------
     dofs : int
     mass_diag, mass_upper : ndarray
-        [I] [kg m^2].
+        [I], in kg m^2.
     stiffness_diag, stiffness_upper : ndarray
-        [K] [N m/rad].
+        [K], in N m/rad.
     damping_diag, damping_upper : ndarray
-        [C] [N m s/rad].
+        [C], in N m s/rad.
     drag : ndarray
         d = [C] 1 - c_t [N m s/rad]: torque per unit rigid rotation speed.
     bit_radius : float
@@ -236,14 +250,24 @@ class BatchModel:
         mass = _tridiagonal("inertia", model.inertia)
         stiffness = _tridiagonal("stiffness", model.stiffness)
         damping = _tridiagonal("damping", system.damping_matrix)
-        eigenvalues = scipy.linalg.eigh(np.asarray(model.stiffness), np.asarray(model.inertia),
-                                        eigvals_only=True)
+        eigenvalues = scipy.linalg.eigh(
+            np.asarray(model.stiffness), np.asarray(model.inertia), eigvals_only=True
+        )
         kernel = _law_kernel(system.law)
         code, parameters = kernel if kernel is not None else (-1, np.zeros(1))
-        return cls(model.dofs, *mass, *stiffness, *damping,
-                   np.ascontiguousarray(system.drag_per_speed, dtype=float),
-                   float(system.bit_radius), system.law, int(code), parameters,
-                   float(np.sqrt(eigenvalues[0])), float(np.sqrt(eigenvalues[-1])))
+        return cls(
+            model.dofs,
+            *mass,
+            *stiffness,
+            *damping,
+            np.ascontiguousarray(system.drag_per_speed, dtype=float),
+            float(system.bit_radius),
+            system.law,
+            int(code),
+            parameters,
+            float(np.sqrt(eigenvalues[0])),
+            float(np.sqrt(eigenvalues[-1])),
+        )
 
     @property
     def lumped_mass(self) -> bool:
@@ -269,8 +293,9 @@ def _slope_nb(code: int, p: np.ndarray, w: float, wob: float, radius: float) -> 
 
 
 @njit(cache=True)
-def _extremes_of_cubic(u0: float, u1: float, d0: float, d1: float, lo: float,
-                       vmax: float, vmin: float) -> tuple[float, float]:
+def _extremes_of_cubic(
+    u0: float, u1: float, d0: float, d1: float, lo: float, vmax: float, vmin: float
+) -> tuple[float, float]:
     """Max and min of the cubic Hermite interpolant on [lo, 1] (d0, d1 scaled by h)."""
     c2 = -3.0 * u0 - 2.0 * d0 + 3.0 * u1 - d1
     c3 = 2.0 * u0 + d0 - 2.0 * u1 + d1
@@ -300,9 +325,18 @@ def _extremes_of_cubic(u0: float, u1: float, d0: float, d1: float, lo: float,
 
 
 @njit(cache=True)
-def _tri_residual(n: int, kd: np.ndarray, ku: np.ndarray, cd: np.ndarray, cu: np.ndarray,
-                  drag: np.ndarray, omega: float, xphi: np.ndarray, xv: np.ndarray,
-                  gv: np.ndarray) -> None:
+def _tri_residual(
+    n: int,
+    kd: np.ndarray,
+    ku: np.ndarray,
+    cd: np.ndarray,
+    cu: np.ndarray,
+    drag: np.ndarray,
+    omega: float,
+    xphi: np.ndarray,
+    xv: np.ndarray,
+    gv: np.ndarray,
+) -> None:
     """gv = -[K] xphi - [C] xv - omega d (the bit torque is added by the caller)."""
     for i in range(n):
         gv[i] = -kd[i] * xphi[i] - cd[i] * xv[i] - omega * drag[i]
@@ -313,12 +347,31 @@ def _tri_residual(n: int, kd: np.ndarray, ku: np.ndarray, cd: np.ndarray, cu: np
 
 
 @njit(cache=True)
-def _integrate_point(n: int, md: np.ndarray, mu: np.ndarray, kd: np.ndarray, ku: np.ndarray,
-                     cd: np.ndarray, cu: np.ndarray, drag: np.ndarray, code: int,
-                     p: np.ndarray, radius: float, wob: float, omega: float,
-                     t_end: float, t_window: float, rtol: float, atol: float, h0: float,
-                     hmax: float, max_steps: int, a_coef: np.ndarray, c_coef: np.ndarray,
-                     out: np.ndarray) -> None:
+def _integrate_point(
+    n: int,
+    md: np.ndarray,
+    mu: np.ndarray,
+    kd: np.ndarray,
+    ku: np.ndarray,
+    cd: np.ndarray,
+    cu: np.ndarray,
+    drag: np.ndarray,
+    code: int,
+    p: np.ndarray,
+    radius: float,
+    wob: float,
+    omega: float,
+    t_end: float,
+    t_window: float,
+    rtol: float,
+    atol: float,
+    h0: float,
+    hmax: float,
+    max_steps: int,
+    a_coef: np.ndarray,
+    c_coef: np.ndarray,
+    out: np.ndarray,
+) -> None:
     """RODAS4 from rest to t_end; out = [max, min, steps, rejected, status] of the bit speed."""
     lumped = True
     for i in range(n - 1):
@@ -483,8 +536,7 @@ def _integrate_point(n: int, md: np.ndarray, mu: np.ndarray, kd: np.ndarray, ku:
             t_new = t + h
             if t_new > t_window:
                 lo = (t_window - t) / h if t < t_window else 0.0
-                vmax, vmin = _extremes_of_cubic(u0, v[n - 1], h * acc0, h * acc1, lo,
-                                                vmax, vmin)
+                vmax, vmin = _extremes_of_cubic(u0, v[n - 1], h * acc0, h * acc1, lo, vmax, vmin)
             acc0 = acc1
             t = t_new
             steps += 1
@@ -504,11 +556,27 @@ def _integrate_point(n: int, md: np.ndarray, mu: np.ndarray, kd: np.ndarray, ku:
 
 
 @njit(cache=True)
-def _integrate_one_dof(m: float, k: float, c: float, drag: float, code: int, p: np.ndarray,
-                       radius: float, wob: float, omega: float, t_end: float,
-                       t_window: float, rtol: float, atol: float, h0: float, hmax: float,
-                       max_steps: int, a_coef: np.ndarray, c_coef: np.ndarray,
-                       out: np.ndarray) -> None:
+def _integrate_one_dof(
+    m: float,
+    k: float,
+    c: float,
+    drag: float,
+    code: int,
+    p: np.ndarray,
+    radius: float,
+    wob: float,
+    omega: float,
+    t_end: float,
+    t_window: float,
+    rtol: float,
+    atol: float,
+    h0: float,
+    hmax: float,
+    max_steps: int,
+    a_coef: np.ndarray,
+    c_coef: np.ndarray,
+    out: np.ndarray,
+) -> None:
     """:func:`_integrate_point` written out for one degree of freedom (same method)."""
     kphi = np.zeros(6)
     kv = np.zeros(6)
@@ -562,8 +630,13 @@ def _integrate_one_dof(m: float, k: float, c: float, drag: float, code: int, p: 
                 fv = f0v
             else:
                 fphi = av + uphi / h
-                fv = (-k * aphi - c * av - omega * drag
-                      - _torque_nb(code, p, omega + av, wob, radius) + m * uv / h)
+                fv = (
+                    -k * aphi
+                    - c * av
+                    - omega * drag
+                    - _torque_nb(code, p, omega + av, wob, radius)
+                    + m * uv / h
+                )
             x = (fv - g * k * fphi) * ia
             kv[stage] = x
             kphi[stage] = g * (fphi + x)
@@ -617,45 +690,172 @@ def _integrate_one_dof(m: float, k: float, c: float, drag: float, code: int, p: 
 
 
 @njit(cache=True, nogil=True)
-def _integrate_batch_serial(n: int, md: np.ndarray, mu: np.ndarray, kd: np.ndarray,
-                            ku: np.ndarray, cd: np.ndarray, cu: np.ndarray, drag: np.ndarray,
-                            code: int, p: np.ndarray, radius: float, wobs: np.ndarray,
-                            omegas: np.ndarray, t_end: float, t_window: float, rtol: float,
-                            atol: float, h0: float, hmax: float, max_steps: int,
-                            a_coef: np.ndarray, c_coef: np.ndarray, out: np.ndarray) -> None:
+def _integrate_batch_serial(
+    n: int,
+    md: np.ndarray,
+    mu: np.ndarray,
+    kd: np.ndarray,
+    ku: np.ndarray,
+    cd: np.ndarray,
+    cu: np.ndarray,
+    drag: np.ndarray,
+    code: int,
+    p: np.ndarray,
+    radius: float,
+    wobs: np.ndarray,
+    omegas: np.ndarray,
+    t_end: float,
+    t_window: float,
+    rtol: float,
+    atol: float,
+    h0: float,
+    hmax: float,
+    max_steps: int,
+    a_coef: np.ndarray,
+    c_coef: np.ndarray,
+    out: np.ndarray,
+) -> None:
     for k in range(wobs.size):
         if n == 1:
-            _integrate_one_dof(md[0], kd[0], cd[0], drag[0], code, p, radius, wobs[k],
-                               omegas[k], t_end, t_window, rtol, atol, h0, hmax, max_steps,
-                               a_coef, c_coef, out[k])
+            _integrate_one_dof(
+                md[0],
+                kd[0],
+                cd[0],
+                drag[0],
+                code,
+                p,
+                radius,
+                wobs[k],
+                omegas[k],
+                t_end,
+                t_window,
+                rtol,
+                atol,
+                h0,
+                hmax,
+                max_steps,
+                a_coef,
+                c_coef,
+                out[k],
+            )
         else:
-            _integrate_point(n, md, mu, kd, ku, cd, cu, drag, code, p, radius, wobs[k],
-                             omegas[k], t_end, t_window, rtol, atol, h0, hmax, max_steps,
-                             a_coef, c_coef, out[k])
+            _integrate_point(
+                n,
+                md,
+                mu,
+                kd,
+                ku,
+                cd,
+                cu,
+                drag,
+                code,
+                p,
+                radius,
+                wobs[k],
+                omegas[k],
+                t_end,
+                t_window,
+                rtol,
+                atol,
+                h0,
+                hmax,
+                max_steps,
+                a_coef,
+                c_coef,
+                out[k],
+            )
 
 
 @njit(cache=True, parallel=True)
-def _integrate_batch(n: int, md: np.ndarray, mu: np.ndarray, kd: np.ndarray, ku: np.ndarray,
-                     cd: np.ndarray, cu: np.ndarray, drag: np.ndarray, code: int,
-                     p: np.ndarray, radius: float, wobs: np.ndarray, omegas: np.ndarray,
-                     t_end: float, t_window: float, rtol: float, atol: float, h0: float,
-                     hmax: float, max_steps: int, a_coef: np.ndarray, c_coef: np.ndarray,
-                     out: np.ndarray) -> None:
+def _integrate_batch(
+    n: int,
+    md: np.ndarray,
+    mu: np.ndarray,
+    kd: np.ndarray,
+    ku: np.ndarray,
+    cd: np.ndarray,
+    cu: np.ndarray,
+    drag: np.ndarray,
+    code: int,
+    p: np.ndarray,
+    radius: float,
+    wobs: np.ndarray,
+    omegas: np.ndarray,
+    t_end: float,
+    t_window: float,
+    rtol: float,
+    atol: float,
+    h0: float,
+    hmax: float,
+    max_steps: int,
+    a_coef: np.ndarray,
+    c_coef: np.ndarray,
+    out: np.ndarray,
+) -> None:
     for k in prange(wobs.size):
         if n == 1:
-            _integrate_one_dof(md[0], kd[0], cd[0], drag[0], code, p, radius, wobs[k],
-                               omegas[k], t_end, t_window, rtol, atol, h0, hmax, max_steps,
-                               a_coef, c_coef, out[k])
+            _integrate_one_dof(
+                md[0],
+                kd[0],
+                cd[0],
+                drag[0],
+                code,
+                p,
+                radius,
+                wobs[k],
+                omegas[k],
+                t_end,
+                t_window,
+                rtol,
+                atol,
+                h0,
+                hmax,
+                max_steps,
+                a_coef,
+                c_coef,
+                out[k],
+            )
         else:
-            _integrate_point(n, md, mu, kd, ku, cd, cu, drag, code, p, radius, wobs[k],
-                             omegas[k], t_end, t_window, rtol, atol, h0, hmax, max_steps,
-                             a_coef, c_coef, out[k])
+            _integrate_point(
+                n,
+                md,
+                mu,
+                kd,
+                ku,
+                cd,
+                cu,
+                drag,
+                code,
+                p,
+                radius,
+                wobs[k],
+                omegas[k],
+                t_end,
+                t_window,
+                rtol,
+                atol,
+                h0,
+                hmax,
+                max_steps,
+                a_coef,
+                c_coef,
+                out[k],
+            )
 
 
 # --- numpy engine: the same method vectorized across the batch -----------------------------
-def _numpy_batch(model: BatchModel, wob: np.ndarray, omega: np.ndarray, t_end: float,
-                 t_window: float, rtol: float, atol: float, h0: float, hmax: float,
-                 max_steps: int) -> np.ndarray:
+def _numpy_batch(
+    model: BatchModel,
+    wob: np.ndarray,
+    omega: np.ndarray,
+    t_end: float,
+    t_window: float,
+    rtol: float,
+    atol: float,
+    h0: float,
+    hmax: float,
+    max_steps: int,
+) -> np.ndarray:
     n = model.dofs
     md, mu = model.mass_diag, model.mass_upper
     kd, ku = model.stiffness_diag, model.stiffness_upper
@@ -685,8 +885,9 @@ def _numpy_batch(model: BatchModel, wob: np.ndarray, omega: np.ndarray, t_end: f
             y[:, 1:] += upper[:-1] * x[:, :-1]
         return y
 
-    def rhs(xphi: np.ndarray, xv: np.ndarray, w: np.ndarray, om: np.ndarray
-            ) -> tuple[np.ndarray, np.ndarray]:
+    def rhs(
+        xphi: np.ndarray, xv: np.ndarray, w: np.ndarray, om: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
         gv = -tri_mul(kd, ku, xphi) - tri_mul(cd, cu, xv) - om[:, None] * drag
         gv[:, -1] -= np.asarray(law.torque(om + xv[:, -1], w, radius), dtype=float)
         return xv.copy(), gv
@@ -732,11 +933,48 @@ def _numpy_batch(model: BatchModel, wob: np.ndarray, omega: np.ndarray, t_end: f
         keep = (t < t_end) & (status == 0)
         if not keep.all():
             retire(keep)
-            idx, w, om, phi, v, f0phi, f0v, acc0, t, h, vmax, vmin, steps, rejected, status, \
-                last_rejected, h_accepted, err_accepted = (
-                    a[keep] for a in (idx, w, om, phi, v, f0phi, f0v, acc0, t, h, vmax, vmin,
-                                      steps, rejected, status, last_rejected, h_accepted,
-                                      err_accepted))
+            (
+                idx,
+                w,
+                om,
+                phi,
+                v,
+                f0phi,
+                f0v,
+                acc0,
+                t,
+                h,
+                vmax,
+                vmin,
+                steps,
+                rejected,
+                status,
+                last_rejected,
+                h_accepted,
+                err_accepted,
+            ) = (
+                a[keep]
+                for a in (
+                    idx,
+                    w,
+                    om,
+                    phi,
+                    v,
+                    f0phi,
+                    f0v,
+                    acc0,
+                    t,
+                    h,
+                    vmax,
+                    vmin,
+                    steps,
+                    rejected,
+                    status,
+                    last_rejected,
+                    h_accepted,
+                    err_accepted,
+                )
+            )
             if not idx.size:
                 break
         h = np.minimum(h, t_end - t)
@@ -789,15 +1027,17 @@ def _numpy_batch(model: BatchModel, wob: np.ndarray, omega: np.ndarray, t_end: f
         sp = atol + rtol * np.maximum(np.abs(phi), np.abs(yphi))
         sv = atol + rtol * np.maximum(np.abs(v), np.abs(yv))
         with np.errstate(invalid="ignore", over="ignore"):
-            err = np.sqrt((((kphi[5] / sp) ** 2).sum(axis=1) + ((kv[5] / sv) ** 2).sum(axis=1))
-                          / (2 * n))
+            err = np.sqrt(
+                (((kphi[5] / sp) ** 2).sum(axis=1) + ((kv[5] / sv) ** 2).sum(axis=1)) / (2 * n)
+            )
         finite = np.isfinite(err) & np.isfinite(yphi).all(axis=1) & np.isfinite(yv).all(axis=1)
         bad = singular | ~finite
         err = np.where(bad, np.inf, err)
         with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
             factor = np.clip(np.sqrt(np.sqrt(err)) / 0.9, 1.0 / 6.0, 5.0)
-            predicted = np.clip(h_accepted / h * np.sqrt(np.sqrt(err * err / err_accepted))
-                                / 0.9, 1.0 / 6.0, 5.0)
+            predicted = np.clip(
+                h_accepted / h * np.sqrt(np.sqrt(err * err / err_accepted)) / 0.9, 1.0 / 6.0, 5.0
+            )
         accept = err <= 1.0
         factor = np.where(accept & (steps > 0), np.maximum(factor, predicted), factor)
         h_new = np.where(singular, 0.5 * h, np.where(~finite, 0.25 * h, h / factor))
@@ -833,8 +1073,9 @@ def _numpy_batch(model: BatchModel, wob: np.ndarray, omega: np.ndarray, t_end: f
     return out
 
 
-def _extremes_numpy(u0: np.ndarray, u1: np.ndarray, d0: np.ndarray, d1: np.ndarray,
-                    lo: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _extremes_numpy(
+    u0: np.ndarray, u1: np.ndarray, d0: np.ndarray, d1: np.ndarray, lo: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """Vectorized :func:`_extremes_of_cubic` (max, min over [lo, 1])."""
     c2 = -3.0 * u0 - 2.0 * d0 + 3.0 * u1 - d1
     c3 = 2.0 * u0 + d0 - 2.0 * u1 + d1
@@ -852,9 +1093,11 @@ def _extremes_numpy(u0: np.ndarray, u1: np.ndarray, d0: np.ndarray, d1: np.ndarr
         disc = b * b - 4.0 * a * d0
         sq = np.sqrt(np.maximum(disc, 0.0))
         q = -0.5 * (b + np.copysign(sq, b))
-        roots = [np.where(quadratic & (disc >= 0), q / a, np.nan),
-                 np.where(quadratic & (disc >= 0) & (q != 0), d0 / q, np.nan),
-                 np.where(~quadratic & (b != 0), -d0 / b, np.nan)]
+        roots = [
+            np.where(quadratic & (disc >= 0), q / a, np.nan),
+            np.where(quadratic & (disc >= 0) & (q != 0), d0 / q, np.nan),
+            np.where(~quadratic & (b != 0), -d0 / b, np.nan),
+        ]
     for root in roots:
         ok = (root > lo) & (root < 1.0)
         u = at(np.where(ok, root, 1.0))
@@ -864,10 +1107,15 @@ def _extremes_numpy(u0: np.ndarray, u1: np.ndarray, d0: np.ndarray, d1: np.ndarr
 
 
 # --- reference: one solve_ivp run per point -----------------------------------------------
-def reference_severity(system: System, duration: float | None = None,
-                       steady_window: float | None = None, method: str = "Radau",
-                       rtol: float = 1e-8, atol: float = 1e-10,
-                       samples_per_step: int = 16) -> tuple[float, dict[str, Any]]:
+def reference_severity(
+    system: System,
+    duration: float | None = None,
+    steady_window: float | None = None,
+    method: str = "Radau",
+    rtol: float = 1e-8,
+    atol: float = 1e-10,
+    samples_per_step: int = 16,
+) -> tuple[float, dict[str, Any]]:
     """S_SS of one operating point with :func:`scipy.integrate.solve_ivp` (the reference).
 
     Integrates :class:`torsio.equations.TwistEquations` from rest (the exact
@@ -893,13 +1141,27 @@ def reference_severity(system: System, duration: float | None = None,
     options: dict[str, Any] = {}
     if implicit:
         options["jac"] = equations.jacobian
-    solution = solve_ivp(equations.rhs, (0.0, duration), equations.rest_state(), method=method,
-                         rtol=rtol, atol=atol, dense_output=True, **options)
-    info = {"nfev": int(solution.nfev), "steps": int(solution.t.size - 1),
-            "status": int(solution.status), "message": str(solution.message)}
+    solution = solve_ivp(
+        equations.rhs,
+        (0.0, duration),
+        equations.rest_state(),
+        method=method,
+        rtol=rtol,
+        atol=atol,
+        dense_output=True,
+        **options,
+    )
+    info = {
+        "nfev": int(solution.nfev),
+        "steps": int(solution.t.size - 1),
+        "status": int(solution.status),
+        "message": str(solution.message),
+    }
     if solution.status != 0:
-        raise SolverError(f"solve_ivp ({method}) failed at wob={system.wob:g} N, "
-                          f"rpm={system.rpm:g}: {solution.message}")
+        raise SolverError(
+            f"solve_ivp ({method}) failed at wob={system.wob:g} N, "
+            f"rpm={system.rpm:g}: {solution.message}"
+        )
     start = duration - steady_window
     nodes = solution.t
     inside = nodes[(nodes > start) & (nodes < duration)]
@@ -913,8 +1175,9 @@ def reference_severity(system: System, duration: float | None = None,
     return float((bit_speed.max() - bit_speed.min()) / (2.0 * system.omega)), info
 
 
-def _times(system: System, duration: float | None, steady_window: float | None
-           ) -> tuple[float, float]:
+def _times(
+    system: System, duration: float | None, steady_window: float | None
+) -> tuple[float, float]:
     from torsio.modal import modal_analysis
 
     if duration is None or steady_window is None:
@@ -977,8 +1240,11 @@ class BatchResults:
 
     def failures(self) -> list[str]:
         """One line per failed point: operating point and reason."""
-        return [f"wob={w:g} N, rpm={r:g}: {STATUS_MESSAGES.get(int(s), f'status {s}')}"
-                for w, r, s in zip(self.wob, self.rpm, self.status, strict=True) if s]
+        return [
+            f"wob={w:g} N, rpm={r:g}: {STATUS_MESSAGES.get(int(s), f'status {s}')}"
+            for w, r, s in zip(self.wob, self.rpm, self.status, strict=True)
+            if s
+        ]
 
 
 def resolve_engine(engine: str, model: BatchModel) -> str:
@@ -991,16 +1257,27 @@ def resolve_engine(engine: str, model: BatchModel) -> str:
         if not HAVE_NUMBA:
             raise ConfigError("engine", "engine 'numba' needs numba (pip install numba)")
         if model.law_code < 0:
-            raise ConfigError("engine", f"bit-rock law {type(model.law).__name__} has no "
-                              "compiled kernel; use engine='numpy' (any law) or 'auto'")
+            raise ConfigError(
+                "engine",
+                f"bit-rock law {type(model.law).__name__} has no "
+                "compiled kernel; use engine='numpy' (any law) or 'auto'",
+            )
     return engine
 
 
-def simulate_batch(system: System, wob: Any, rpm: Any, duration: float | None = None,
-                   steady_window: float | None = None, rtol: float = DEFAULT_RTOL,
-                   atol: float = DEFAULT_ATOL, max_step: float | None = None,
-                   max_steps: int = DEFAULT_MAX_STEPS, engine: str = "auto",
-                   threads: int | None = None) -> BatchResults:
+def simulate_batch(
+    system: System,
+    wob: Any,
+    rpm: Any,
+    duration: float | None = None,
+    steady_window: float | None = None,
+    rtol: float = DEFAULT_RTOL,
+    atol: float = DEFAULT_ATOL,
+    max_step: float | None = None,
+    max_steps: int = DEFAULT_MAX_STEPS,
+    engine: str = "auto",
+    threads: int | None = None,
+) -> BatchResults:
     """S_SS of ``system`` at each operating point (wob[k], rpm[k]), started from rest.
 
     Parameters
@@ -1032,8 +1309,9 @@ def simulate_batch(system: System, wob: Any, rpm: Any, duration: float | None = 
         Failed points have NaN severity and a non-zero status; they are never
         silently dropped.
     """
-    wob_arr, rpm_arr = np.broadcast_arrays(np.asarray(wob, dtype=float),
-                                           np.asarray(rpm, dtype=float))
+    wob_arr, rpm_arr = np.broadcast_arrays(
+        np.asarray(wob, dtype=float), np.asarray(rpm, dtype=float)
+    )
     wob_arr = np.ascontiguousarray(wob_arr.ravel())
     rpm_arr = np.ascontiguousarray(rpm_arr.ravel())
     if wob_arr.size and not (np.isfinite(wob_arr).all() and (wob_arr >= 0).all()):
@@ -1072,36 +1350,93 @@ def simulate_batch(system: System, wob: Any, rpm: Any, duration: float | None = 
         out = np.empty((0, 5))
     elif name == "numpy":
         assert model is not None
-        out = _numpy_batch(model, wob_arr, omega, duration, t_window, rtol, atol, h0,
-                           max_step, max_steps)
+        out = _numpy_batch(
+            model, wob_arr, omega, duration, t_window, rtol, atol, h0, max_step, max_steps
+        )
     else:
         out = np.empty((wob_arr.size, 5))
         assert model is not None
-        _run_numba(model, wob_arr, omega, duration, t_window, rtol, atol, h0, max_step,
-                   max_steps, out, threads)
+        _run_numba(
+            model,
+            wob_arr,
+            omega,
+            duration,
+            t_window,
+            rtol,
+            atol,
+            h0,
+            max_step,
+            max_steps,
+            out,
+            threads,
+        )
     elapsed = time.perf_counter() - start
     status = out[:, 4].astype(np.int64)
     with np.errstate(invalid="ignore"):
         severity = np.where(status == 0, (out[:, 0] - out[:, 1]) / (2.0 * omega), np.nan)
-    return BatchResults(wob_arr, rpm_arr, severity, out[:, 0], out[:, 1],
-                        out[:, 2].astype(np.int64), out[:, 3].astype(np.int64), status, name,
-                        duration, steady_window, float(rtol), float(atol), elapsed)
+    return BatchResults(
+        wob_arr,
+        rpm_arr,
+        severity,
+        out[:, 0],
+        out[:, 1],
+        out[:, 2].astype(np.int64),
+        out[:, 3].astype(np.int64),
+        status,
+        name,
+        duration,
+        steady_window,
+        float(rtol),
+        float(atol),
+        elapsed,
+    )
 
 
-def _run_numba(model: BatchModel, wob: np.ndarray, omega: np.ndarray, t_end: float,
-               t_window: float, rtol: float, atol: float, h0: float, hmax: float,
-               max_steps: int, out: np.ndarray, threads: int | None) -> None:
+def _run_numba(
+    model: BatchModel,
+    wob: np.ndarray,
+    omega: np.ndarray,
+    t_end: float,
+    t_window: float,
+    rtol: float,
+    atol: float,
+    h0: float,
+    hmax: float,
+    max_steps: int,
+    out: np.ndarray,
+    threads: int | None,
+) -> None:
     import threading
 
     assert numba is not None
-    arguments = (model.dofs, model.mass_diag, model.mass_upper, model.stiffness_diag,
-                 model.stiffness_upper, model.damping_diag, model.damping_upper, model.drag,
-                 model.law_code, model.law_parameters, model.bit_radius, wob, omega, t_end,
-                 t_window, rtol, atol, h0, hmax, max_steps, _A, _C, out)
+    arguments = (
+        model.dofs,
+        model.mass_diag,
+        model.mass_upper,
+        model.stiffness_diag,
+        model.stiffness_upper,
+        model.damping_diag,
+        model.damping_upper,
+        model.drag,
+        model.law_code,
+        model.law_parameters,
+        model.bit_radius,
+        wob,
+        omega,
+        t_end,
+        t_window,
+        rtol,
+        atol,
+        h0,
+        hmax,
+        max_steps,
+        _A,
+        _C,
+        out,
+    )
     # numba's thread pool must not be entered from several threads at once (a thread pool
     # executor, a Dask worker with several threads): only the main thread uses it
-    if threads == 1 or wob.size == 1 or threading.current_thread() is not \
-            threading.main_thread():
+    if threads == 1 or wob.size == 1 or threading.current_thread() is not threading.main_thread():
         _integrate_batch_serial(*arguments)
         return
     previous_threads = numba.get_num_threads()

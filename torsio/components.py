@@ -31,15 +31,19 @@ from torsio.errors import ConfigError
 def _positive_finite(instance: Any, attribute: attrs.Attribute[Any], value: float) -> None:
     if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
         name = type(instance).__name__
-        raise ConfigError(attribute.name, f"{name}.{attribute.name} must be a positive finite "
-                          f"number, got {value!r}")
+        raise ConfigError(
+            attribute.name,
+            f"{name}.{attribute.name} must be a positive finite number, got {value!r}",
+        )
 
 
 def _non_negative_finite(instance: Any, attribute: attrs.Attribute[Any], value: float) -> None:
     if not (isinstance(value, int | float) and math.isfinite(value) and value >= 0):
         name = type(instance).__name__
-        raise ConfigError(attribute.name, f"{name}.{attribute.name} must be a non-negative "
-                          f"finite number, got {value!r}")
+        raise ConfigError(
+            attribute.name,
+            f"{name}.{attribute.name} must be a non-negative finite number, got {value!r}",
+        )
 
 
 @attrs.frozen
@@ -76,8 +80,10 @@ def _check_inner_diameter(instance: Section, attribute: attrs.Attribute[Any], va
     _non_negative_finite(instance, attribute, value)
     if value >= instance.od:
         raise ConfigError(
-            "id", f"inner diameter {value!r} m must be smaller than the outer diameter "
-            f"{instance.od!r} m of {instance.describe()}")
+            "id",
+            f"inner diameter {value!r} m must be smaller than the outer diameter "
+            f"{instance.od!r} m of {instance.describe()}",
+        )
 
 
 @attrs.frozen
@@ -109,11 +115,13 @@ class Section:
     od: float = attrs.field(converter=float, validator=_positive_finite)
     id: float = attrs.field(converter=float, validator=_check_inner_diameter)
     length: float = attrs.field(converter=float, validator=_positive_finite)
-    material: Material = attrs.field(default=STEEL,
-                                     validator=attrs.validators.instance_of(Material))
+    material: Material = attrs.field(
+        default=STEEL, validator=attrs.validators.instance_of(Material)
+    )
     name: str = attrs.field(default="", converter=str)
     bha: bool | None = attrs.field(
-        default=None, validator=attrs.validators.optional(attrs.validators.instance_of(bool)))
+        default=None, validator=attrs.validators.optional(attrs.validators.instance_of(bool))
+    )
 
     def describe(self) -> str:
         """Name of the section for messages: its name, else its kind."""
@@ -213,7 +221,6 @@ class Bit(Section):
 
 SECTION_KINDS: dict[str, type[Section]] = {
     cls.kind: cls
-    for cls in (DrillPipe, HeavyWeightDrillPipe, DrillCollar, MWD, LWD, Stabilizer, BHASection,
-                Bit)
+    for cls in (DrillPipe, HeavyWeightDrillPipe, DrillCollar, MWD, LWD, Stabilizer, BHASection, Bit)
 }
 """Section class of each ``kind`` accepted in configuration files."""

@@ -33,16 +33,36 @@ from torsio.drillstring import DrillString
 from torsio.errors import ConfigError
 from torsio.units import RPM_TO_RAD_S, to_si
 
-TOP_LEVEL_KEYS = {"name", "material", "section", "bit_rock", "damping", "discretization",
-                  "operation", "simulation"}
+TOP_LEVEL_KEYS = {
+    "name",
+    "material",
+    "section",
+    "bit_rock",
+    "damping",
+    "discretization",
+    "operation",
+    "simulation",
+}
 SECTION_KEYS = {"kind", "od", "id", "length", "name", "bha", "material"}
 MATERIAL_KEYS = {"shear_modulus", "density"}
-DISCRETIZATION_KEYS = {"strategy", "dp_elements", "bha_elements", "section_elements",
-                       "max_element_length"}
+DISCRETIZATION_KEYS = {
+    "strategy",
+    "dp_elements",
+    "bha_elements",
+    "section_elements",
+    "max_element_length",
+}
 DAMPING_KEYS = {"alpha", "beta", "ratios", "modes"}
 OPERATION_KEYS = {"wob", "rpm"}
-SIMULATION_KEYS = {"duration", "steady_window", "method", "rtol", "atol", "output_step",
-                   "stick_threshold"}
+SIMULATION_KEYS = {
+    "duration",
+    "steady_window",
+    "method",
+    "rtol",
+    "atol",
+    "output_step",
+    "stick_threshold",
+}
 
 
 @attrs.frozen
@@ -125,8 +145,9 @@ class Config:
         are kept only if the strategy is unchanged.
         """
         strategy = overrides.pop("strategy", None) or self.discretization.strategy
-        options = dict(self.discretization.options) if strategy == \
-            self.discretization.strategy else {}
+        options = (
+            dict(self.discretization.options) if strategy == self.discretization.strategy else {}
+        )
         options.update({k: v for k, v in overrides.items() if v is not None})
         return DiscretizationConfig(strategy, options).build().discretize(self.string)
 
@@ -140,8 +161,11 @@ class Config:
     def bit_law(self) -> Any:
         """The configured bit-rock law; a clear error if the file has no ``[bit_rock]`` table."""
         if self.bit_rock is None:
-            raise ConfigError("bit_rock", "the configuration has no [bit_rock] table; dynamic "
-                                          "analyses need a bit-rock law (see `torsio laws`)")
+            raise ConfigError(
+                "bit_rock",
+                "the configuration has no [bit_rock] table; dynamic "
+                "analyses need a bit-rock law (see `torsio laws`)",
+            )
         return self.bit_rock.build()
 
 
@@ -151,8 +175,9 @@ def load_config(path: str | Path) -> Config:
     try:
         text = path.read_text(encoding="utf-8")
     except OSError as exc:
-        raise ConfigError("", f"cannot read configuration file {str(path)!r}: "
-                              f"{exc.strerror or exc}") from None
+        raise ConfigError(
+            "", f"cannot read configuration file {str(path)!r}: {exc.strerror or exc}"
+        ) from None
     return parse_config_text(text, source=str(path))
 
 
@@ -179,8 +204,9 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
     raw_sections = table.get("section", [])
     if not isinstance(raw_sections, list):
         raise ConfigError("section", "expected an array of tables [[section]]")
-    sections = [_section(raw, f"section[{i}]", default_material)
-                for i, raw in enumerate(raw_sections)]
+    sections = [
+        _section(raw, f"section[{i}]", default_material) for i, raw in enumerate(raw_sections)
+    ]
     string = DrillString(sections, name=name)
     discretization = _discretization(table.get("discretization", {}))
     discretizer = discretization.build()
@@ -208,8 +234,9 @@ def _table(value: Any, key: str, allowed: set[str]) -> Mapping[str, Any]:
     unknown = sorted(set(value) - allowed)
     if unknown:
         where = f"{key}." if key else ""
-        raise ConfigError(f"{where}{unknown[0]}", f"unknown key; expected one of "
-                                                  f"{', '.join(sorted(allowed))}")
+        raise ConfigError(
+            f"{where}{unknown[0]}", f"unknown key; expected one of {', '.join(sorted(allowed))}"
+        )
     return value
 
 
@@ -225,10 +252,12 @@ def _material(value: Any, key: str, default: Material) -> Material:
     table = _table(value, key, MATERIAL_KEYS)
     try:
         return Material(
-            shear_modulus=to_si(table.get("shear_modulus", default.shear_modulus), "pressure",
-                                key=f"{key}.shear_modulus"),
-            density=to_si(table.get("density", default.density), "density",
-                          key=f"{key}.density"),
+            shear_modulus=to_si(
+                table.get("shear_modulus", default.shear_modulus),
+                "pressure",
+                key=f"{key}.shear_modulus",
+            ),
+            density=to_si(table.get("density", default.density), "density", key=f"{key}.density"),
         )
     except ConfigError as exc:
         full_key = exc.key if exc.key.startswith(key) else f"{key}.{exc.key}"
@@ -242,13 +271,16 @@ def _section(raw: Any, key: str, default_material: Material) -> Section:
             raise ConfigError(f"{key}.{required}", "missing required key")
     kind = table["kind"]
     if not isinstance(kind, str) or kind not in SECTION_KINDS:
-        raise ConfigError(f"{key}.kind", f"unknown section kind {kind!r}; expected one of "
-                                         f"{', '.join(SECTION_KINDS)}")
+        raise ConfigError(
+            f"{key}.kind",
+            f"unknown section kind {kind!r}; expected one of {', '.join(SECTION_KINDS)}",
+        )
     bha = table.get("bha")
     if bha is not None and not isinstance(bha, bool):
         raise ConfigError(f"{key}.bha", f"expected true or false, got {bha!r}")
-    values = {name: to_si(table[name], "length", key=f"{key}.{name}")
-              for name in ("od", "id", "length")}
+    values = {
+        name: to_si(table[name], "length", key=f"{key}.{name}") for name in ("od", "id", "length")
+    }
     try:
         return SECTION_KINDS[kind](
             **values,
@@ -279,8 +311,9 @@ def _bit_rock(raw: Any) -> BitRockConfig:
 def _positive_number(value: Any, key: str, dimension: str, allow_zero: bool = True) -> float:
     number = to_si(value, dimension, key=key)
     if number < 0 or (number == 0 and not allow_zero):
-        raise ConfigError(key, f"expected a {'non-negative' if allow_zero else 'positive'} "
-                               f"value, got {value!r}")
+        raise ConfigError(
+            key, f"expected a {'non-negative' if allow_zero else 'positive'} value, got {value!r}"
+        )
     return number
 
 
@@ -296,13 +329,19 @@ def _damping(raw: Any) -> DampingConfig:
         modes = table.get("modes", [1, 2])
         if not (isinstance(ratios, list) and len(ratios) == 2):
             raise ConfigError("damping.ratios", f"expected two damping ratios, got {ratios!r}")
-        if not (isinstance(modes, list) and len(modes) == 2 and all(
-                isinstance(m, int) and not isinstance(m, bool) and m >= 1 for m in modes)
-                and modes[0] != modes[1]):
-            raise ConfigError("damping.modes", f"expected two different mode numbers >= 1, "
-                                               f"got {modes!r}")
-        values = tuple(_positive_number(r, f"damping.ratios[{i}]", "dimensionless")
-                       for i, r in enumerate(ratios))
+        if not (
+            isinstance(modes, list)
+            and len(modes) == 2
+            and all(isinstance(m, int) and not isinstance(m, bool) and m >= 1 for m in modes)
+            and modes[0] != modes[1]
+        ):
+            raise ConfigError(
+                "damping.modes", f"expected two different mode numbers >= 1, got {modes!r}"
+            )
+        values = tuple(
+            _positive_number(r, f"damping.ratios[{i}]", "dimensionless")
+            for i, r in enumerate(ratios)
+        )
         return DampingConfig(ratios=(values[0], values[1]), modes=(modes[0], modes[1]))
     return DampingConfig(
         alpha=_positive_number(table.get("alpha", 0.0), "damping.alpha", "inverse_time"),
@@ -316,8 +355,11 @@ def _discretization(raw: Any) -> DiscretizationConfig:
     options = {k: v for k, v in table.items() if k != "strategy"}
     if "max_element_length" in options:
         options["max_element_length"] = _positive_number(
-            options["max_element_length"], "discretization.max_element_length", "length",
-            allow_zero=False)
+            options["max_element_length"],
+            "discretization.max_element_length",
+            "length",
+            allow_zero=False,
+        )
     try:
         DiscretizationConfig(strategy, options).build()
     except ConfigError as exc:
@@ -359,12 +401,14 @@ def _simulation(raw: Any) -> SimulationConfig:
     options: dict[str, Any] = {}
     for key in ("duration", "steady_window", "output_step"):
         if key in table:
-            options[key] = _positive_number(table[key], f"simulation.{key}", "time",
-                                            allow_zero=False)
+            options[key] = _positive_number(
+                table[key], f"simulation.{key}", "time", allow_zero=False
+            )
     for key in ("rtol", "atol", "stick_threshold"):
         if key in table:
-            options[key] = _positive_number(table[key], f"simulation.{key}", "dimensionless",
-                                            allow_zero=False)
+            options[key] = _positive_number(
+                table[key], f"simulation.{key}", "dimensionless", allow_zero=False
+            )
     if "method" in table:
         options["method"] = _string(table["method"], "simulation.method")
     return SimulationConfig(options)

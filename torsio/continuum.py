@@ -57,8 +57,9 @@ def _members(string: DrillString, rigid_bha: bool) -> tuple[list[_Member], float
         raise ConfigError("section", "a continuum with a rigid BHA needs a drill-pipe section")
     members, top = [], 0.0
     for s in sections:
-        members.append(_Member(s.material.shear_modulus * s.polar_moment, s.length,
-                               s.material.wave_speed, top))
+        members.append(
+            _Member(s.material.shear_modulus * s.polar_moment, s.length, s.material.wave_speed, top)
+        )
         top += s.length
     tip_inertia = string.bha_inertia if rigid_bha else string.bit.inertia
     return members, tip_inertia
@@ -101,8 +102,9 @@ def count_below(omega: float, members: Sequence[_Member], tip_inertia: float) ->
     return clamped + negative
 
 
-def _bisect_mode(index: int, members: Sequence[_Member], tip_inertia: float,
-                 low: float, high: float) -> float:
+def _bisect_mode(
+    index: int, members: Sequence[_Member], tip_inertia: float, low: float, high: float
+) -> float:
     """The ``index``-th (1-based) frequency, knowing J(low) < index <= J(high)."""
     while (high - low) > _RELATIVE_WIDTH * high:
         middle = 0.5 * (low + high)
@@ -164,19 +166,19 @@ class ContinuumModes:
             rigidity_kappa = m.torsional_rigidity * kappa
             inside = (depths >= m.top_depth) & (depths <= m.top_depth + m.length)
             x = depths[inside] - m.top_depth
-            out[inside] = (np.cos(kappa * x) * rotation
-                           + np.sin(kappa * x) / rigidity_kappa * torque)
+            out[inside] = np.cos(kappa * x) * rotation + np.sin(kappa * x) / rigidity_kappa * torque
             phase = kappa * m.length
-            rotation, torque = (math.cos(phase) * rotation + math.sin(phase) / rigidity_kappa
-                                * torque,
-                                -rigidity_kappa * math.sin(phase) * rotation
-                                + math.cos(phase) * torque)
+            rotation, torque = (
+                math.cos(phase) * rotation + math.sin(phase) / rigidity_kappa * torque,
+                -rigidity_kappa * math.sin(phase) * rotation + math.cos(phase) * torque,
+            )
         out[depths > bottom] = rotation
         return out
 
 
-def continuum_modes(string: DrillString, count: int = 10, rigid_bha: bool = False
-                    ) -> ContinuumModes:
+def continuum_modes(
+    string: DrillString, count: int = 10, rigid_bha: bool = False
+) -> ContinuumModes:
     """The first ``count`` exact natural frequencies of the stepped shaft.
 
     Parameters

@@ -28,8 +28,9 @@ from torsio.lumped import LumpedModel
 
 def _non_negative(instance: object, attribute: attrs.Attribute[float], value: float) -> None:
     if not (math.isfinite(value) and value >= 0):
-        raise ConfigError(f"damping.{attribute.name}", f"expected a non-negative finite value, "
-                                                       f"got {value!r}")
+        raise ConfigError(
+            f"damping.{attribute.name}", f"expected a non-negative finite value, got {value!r}"
+        )
 
 
 @attrs.frozen
@@ -56,13 +57,14 @@ class RayleighDamping:
         return self.beta * model.top_stiffness
 
     def ratios(self, omega: np.ndarray) -> np.ndarray:
-        """Modal damping ratios alpha/(2 omega) + beta omega/2 at natural frequencies omega [rad/s]."""
+        """Modal damping ratios alpha/(2 omega) + beta omega/2 at frequencies omega [rad/s]."""
         omega = np.asarray(omega, dtype=float)
         return self.alpha / (2.0 * omega) + self.beta * omega / 2.0
 
     @classmethod
-    def from_modal_ratios(cls, model: LumpedModel, ratios: tuple[float, float],
-                          modes: tuple[int, int] = (1, 2)) -> RayleighDamping:
+    def from_modal_ratios(
+        cls, model: LumpedModel, ratios: tuple[float, float], modes: tuple[int, int] = (1, 2)
+    ) -> RayleighDamping:
         """alpha and beta that give damping ratios ``ratios`` to modes ``modes`` (1-based).
 
         Solves zeta_i = alpha/(2 omega_i) + beta omega_i/2 for the two modes.
@@ -78,8 +80,11 @@ class RayleighDamping:
         matrix = np.array([[1 / (2 * omega[0]), omega[0] / 2], [1 / (2 * omega[1]), omega[1] / 2]])
         alpha, beta = np.linalg.solve(matrix, np.asarray(ratios, dtype=float))
         if alpha < 0 or beta < 0:
-            raise ConfigError("damping.ratios", f"ratios {ratios} at modes {modes} need a negative "
-                              f"Rayleigh coefficient (alpha={alpha:.3g}, beta={beta:.3g})")
+            raise ConfigError(
+                "damping.ratios",
+                f"ratios {ratios} at modes {modes} need a negative "
+                f"Rayleigh coefficient (alpha={alpha:.3g}, beta={beta:.3g})",
+            )
         return cls(alpha=alpha, beta=beta)
 
 

@@ -45,7 +45,6 @@ from torsio.drillstring import DrillString
 from torsio.errors import ConfigError
 from torsio.lumped import LumpedModel, chain_matrix
 
-
 MAX_DOFS = 5000
 """Largest model a discretizer builds (dense n x n matrices: 200 MB each at the limit)."""
 
@@ -64,8 +63,11 @@ def split_count(total: int, sections: Sequence[Section], key: str) -> list[int]:
     if n == 0:
         return []
     if total < n:
-        raise ConfigError(key, f"{total} elements cannot cover {n} sections; give at least {n} "
-                               "(one element per section)")
+        raise ConfigError(
+            key,
+            f"{total} elements cannot cover {n} sections; give at least {n} "
+            "(one element per section)",
+        )
     times = np.array([s.wave_travel_time for s in sections])
     spare = total - n
     share = spare * times / times.sum()
@@ -108,8 +110,12 @@ class StrategyA(Discretizer):
         inertia = string.drill_pipe_inertia / 3.0 + string.bha_inertia
         depth = sum(s.length for s in string.drill_pipe_sections)
         return LumpedModel(
-            [[inertia]], [[string.drill_pipe_stiffness]], [depth], strategy=self.name,
-            details={"elements": {"drill pipe": 1, "BHA": "rigid"}})
+            [[inertia]],
+            [[string.drill_pipe_stiffness]],
+            [depth],
+            strategy=self.name,
+            details={"elements": {"drill pipe": 1, "BHA": "rigid"}},
+        )
 
 
 class _ElementDiscretizer(Discretizer):
@@ -125,26 +131,39 @@ class _ElementDiscretizer(Discretizer):
         section_elements: Sequence[int] | None = None,
         max_element_length: float | None = None,
     ) -> None:
-        given = [k for k, v in (("dp_elements/bha_elements",
-                                 dp_elements if bha_elements is None else bha_elements),
-                                ("section_elements", section_elements),
-                                ("max_element_length", max_element_length)) if v is not None]
+        given = [
+            k
+            for k, v in (
+                ("dp_elements/bha_elements", dp_elements if bha_elements is None else bha_elements),
+                ("section_elements", section_elements),
+                ("max_element_length", max_element_length),
+            )
+            if v is not None
+        ]
         if len(given) > 1:
-            raise ConfigError("discretization", f"give only one way of counting elements, got "
-                                                f"{' and '.join(given)}")
+            raise ConfigError(
+                "discretization",
+                f"give only one way of counting elements, got {' and '.join(given)}",
+            )
         if dp_elements is not None:
             _check_count("dp_elements", dp_elements)
         if bha_elements is not None:
             _check_count("bha_elements", bha_elements)
             if self.rigid_bha and bha_elements != 1:
-                raise ConfigError("bha_elements", f"strategy {self.name} keeps the BHA rigid (one "
-                                  f"body); bha_elements must be 1, got {bha_elements}")
+                raise ConfigError(
+                    "bha_elements",
+                    f"strategy {self.name} keeps the BHA rigid (one "
+                    f"body); bha_elements must be 1, got {bha_elements}",
+                )
         if max_element_length is not None and not (
-                isinstance(max_element_length, int | float) and not isinstance(
-                    max_element_length, bool) and math.isfinite(max_element_length)
-                and max_element_length > 0):
-            raise ConfigError("max_element_length",
-                              f"expected a positive length in m, got {max_element_length!r}")
+            isinstance(max_element_length, int | float)
+            and not isinstance(max_element_length, bool)
+            and math.isfinite(max_element_length)
+            and max_element_length > 0
+        ):
+            raise ConfigError(
+                "max_element_length", f"expected a positive length in m, got {max_element_length!r}"
+            )
         if section_elements is not None:
             for i, count in enumerate(section_elements):
                 _check_count(f"section_elements[{i}]", count)
@@ -159,20 +178,24 @@ class _ElementDiscretizer(Discretizer):
         if self.section_elements is not None:
             if len(self.section_elements) != len(sections):
                 what = "drill-pipe" if self.rigid_bha else "flexible (non-bit)"
-                raise ConfigError("section_elements", f"expected one count per {what} section "
-                                  f"({len(sections)}), got {len(self.section_elements)}")
+                raise ConfigError(
+                    "section_elements",
+                    f"expected one count per {what} section "
+                    f"({len(sections)}), got {len(self.section_elements)}",
+                )
             return list(self.section_elements)
         if self.max_element_length is not None:
-            return [max(1, math.ceil(s.length / self.max_element_length - 1e-9))
-                    for s in sections]
+            return [max(1, math.ceil(s.length / self.max_element_length - 1e-9)) for s in sections]
         dp = split_count(self.dp_elements or 1, string.drill_pipe_sections, "dp_elements")
         if self.rigid_bha:
             return dp
         bha_sections = string.bha_sections
         if not bha_sections:
             if self.bha_elements is not None:
-                raise ConfigError("bha_elements", "the string has no flexible BHA section "
-                                                  "(only the rigid bit) to split")
+                raise ConfigError(
+                    "bha_elements",
+                    "the string has no flexible BHA section (only the rigid bit) to split",
+                )
             return dp
         bha_total = self.bha_elements if self.bha_elements is not None else len(bha_sections)
         return dp + split_count(bha_total, bha_sections, "bha_elements")
@@ -183,9 +206,12 @@ class _ElementDiscretizer(Discretizer):
         sections = string.drill_pipe_sections if self.rigid_bha else string.flexible_sections
         counts = self.element_counts(string)
         if sum(counts) > MAX_DOFS:
-            raise ConfigError("discretization", f"{sum(counts)} elements (degrees of freedom) "
-                              f"exceed the limit of {MAX_DOFS}: the model's matrices are dense "
-                              f"({sum(counts) ** 2 * 8 / 1e9:.1f} GB each)")
+            raise ConfigError(
+                "discretization",
+                f"{sum(counts)} elements (degrees of freedom) "
+                f"exceed the limit of {MAX_DOFS}: the model's matrices are dense "
+                f"({sum(counts) ** 2 * 8 / 1e9:.1f} GB each)",
+            )
         springs, inertias, depths = [], [], []
         top = 0.0
         for section, count in zip(sections, counts, strict=True):
@@ -206,12 +232,12 @@ class _ElementDiscretizer(Discretizer):
             elements[name] = count
         if self.rigid_bha:
             elements["BHA"] = "rigid"
-        return LumpedModel(inertia, stiffness, depths, strategy=self.name,
-                           details={"elements": elements})
+        return LumpedModel(
+            inertia, stiffness, depths, strategy=self.name, details={"elements": elements}
+        )
 
 
-def element_inertia_matrix(element_inertias: np.ndarray, consistent: bool | float
-                           ) -> np.ndarray:
+def element_inertia_matrix(element_inertias: np.ndarray, consistent: bool | float) -> np.ndarray:
     """Inertia matrix of a chain of shaft elements, the top node removed.
 
     Lumped (``consistent=False``): half of each element's rho J L on each end
@@ -291,19 +317,30 @@ def _reject_options(strategy: str, options: dict[str, Any], allowed: dict[str, A
         if key in allowed and (value is None or value == allowed[key]):
             continue
         if key in allowed:
-            raise ConfigError(key, f"strategy {strategy} has one degree of freedom; {key} "
-                                   f"must be {allowed[key]}, got {value!r}")
+            raise ConfigError(
+                key,
+                f"strategy {strategy} has one degree of freedom; {key} "
+                f"must be {allowed[key]}, got {value!r}",
+            )
         raise ConfigError(key, f"strategy {strategy} takes no option {key!r}")
 
 
 def _require_drill_pipe(string: DrillString, strategy: str) -> None:
     if not string.drill_pipe_sections:
-        raise ConfigError("section", f"strategy {strategy} needs at least one drill-pipe "
-                                     "(non-BHA) section above the rigid BHA")
+        raise ConfigError(
+            "section",
+            f"strategy {strategy} needs at least one drill-pipe "
+            "(non-BHA) section above the rigid BHA",
+        )
 
 
-BUILTIN_DISCRETIZERS: tuple[type[Discretizer], ...] = (StrategyA, StrategyB, StrategyC,
-                                                       ConsistentMass, MixedMass)
+BUILTIN_DISCRETIZERS: tuple[type[Discretizer], ...] = (
+    StrategyA,
+    StrategyB,
+    StrategyC,
+    ConsistentMass,
+    MixedMass,
+)
 
 
 from torsio.hookspecs import hookimpl  # noqa: E402  (after the classes it registers)

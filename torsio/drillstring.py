@@ -57,20 +57,26 @@ class DrillString:
             raise ConfigError("section", "a drill-string needs at least one section and a bit")
         bits = [i for i, s in enumerate(sections) if isinstance(s, Bit)]
         if not bits:
-            raise ConfigError("section", "no bit: the last section must have kind = \"bit\"")
+            raise ConfigError("section", 'no bit: the last section must have kind = "bit"')
         if len(bits) > 1:
-            raise ConfigError(f"section[{bits[1]}]",
-                              f"a drill-string has one bit; found bits at positions {bits}")
+            raise ConfigError(
+                f"section[{bits[1]}]", f"a drill-string has one bit; found bits at positions {bits}"
+            )
         if bits[0] != len(sections) - 1:
-            raise ConfigError(f"section[{bits[0]}]",
-                              f"the bit must be the last section (it is at position {bits[0]} "
-                              f"of {len(sections)})")
+            raise ConfigError(
+                f"section[{bits[0]}]",
+                f"the bit must be the last section (it is at position {bits[0]} "
+                f"of {len(sections)})",
+            )
         if sections[-1].bha is False:
-            raise ConfigError(f"section[{len(sections) - 1}].bha",
-                              "the bit always belongs to the BHA; bha = false is not allowed")
+            raise ConfigError(
+                f"section[{len(sections) - 1}].bha",
+                "the bit always belongs to the BHA; bha = false is not allowed",
+            )
         if len(sections) < 2:
-            raise ConfigError("section", "a drill-string needs at least one flexible section "
-                                         "above the bit")
+            raise ConfigError(
+                "section", "a drill-string needs at least one flexible section above the bit"
+            )
         flags = [s.in_bha for s in sections[:-1]]
         first_bha = flags.index(True) if True in flags else len(flags)
         for i in range(first_bha, len(flags)):
@@ -78,7 +84,8 @@ class DrillString:
                 raise ConfigError(
                     f"section[{i}].bha",
                     f"{sections[i].describe()} is not BHA but lies below the BHA section "
-                    f"{sections[first_bha].describe()}; the BHA must be one block above the bit")
+                    f"{sections[first_bha].describe()}; the BHA must be one block above the bit",
+                )
 
     # --- parts -------------------------------------------------------------------------
     @property

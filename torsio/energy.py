@@ -52,7 +52,7 @@ __all__ = ["EnergyBalance", "damping_split", "energy_balance"]
 
 
 def damping_split(system: System) -> tuple[np.ndarray, np.ndarray]:
-    """(C_rel, D): the relative and the absolute (drag) parts of [C] [N m s/rad].
+    """(C_rel, D): the relative and the absolute (drag) parts of [C], in N m s/rad.
 
     For Rayleigh damping C_rel = beta [K] and D = alpha [I]; otherwise the drag
     is taken diagonal, D = diag([C] 1 - c_t) (exact for a chain of dampers plus

@@ -60,8 +60,10 @@ def _png(figure: Any) -> str:
 
 
 def _figure_html(figure: Any, caption: str) -> str:
-    return (f'<figure><img alt="{html.escape(caption)}" src="data:image/png;base64,'
-            f'{_png(figure)}"><figcaption>{html.escape(caption)}</figcaption></figure>')
+    return (
+        f'<figure><img alt="{html.escape(caption)}" src="data:image/png;base64,'
+        f'{_png(figure)}"><figcaption>{html.escape(caption)}</figcaption></figure>'
+    )
 
 
 def report_figures(ctx: ReportContext) -> list[tuple[Any, str]]:
@@ -74,16 +76,26 @@ def report_figures(ctx: ReportContext) -> list[tuple[Any, str]]:
     modes = tuple(range(1, min(3, ctx.modal.frequencies_rad.size) + 1))
     figure = Figure(figsize=(6.0, 6.5))
     plot_mode_shapes(ctx.modal, modes, ax=figure.add_subplot())
-    figures.append((figure, f"Mode shapes {', '.join(map(str, modes))} of the "
-                            f"{ctx.model.dofs}-DOF model (markers) against the exact "
-                            "continuum (lines)."))
+    figures.append(
+        (
+            figure,
+            f"Mode shapes {', '.join(map(str, modes))} of the "
+            f"{ctx.model.dofs}-DOF model (markers) against the exact "
+            "continuum (lines).",
+        )
+    )
     results = ctx.transient
     if results is not None:
         figure = Figure(figsize=(8.0, 7.0))
         results.plot(axes=figure.subplots(3, 1, sharex=True))
-        figures.append((figure, f"Start-up from rest at {results.system.wob / 1e3:.4g} kN, "
-                                f"{results.system.rpm:.4g} rpm: S_SS = "
-                                f"{results.severity:.3f} over the shaded steady window."))
+        figures.append(
+            (
+                figure,
+                f"Start-up from rest at {results.system.wob / 1e3:.4g} kN, "
+                f"{results.system.rpm:.4g} rpm: S_SS = "
+                f"{results.severity:.3f} over the shaded steady window.",
+            )
+        )
     return figures
 
 
@@ -102,5 +114,9 @@ def html_report(config: Config | ReportContext, **options: Any) -> str:
     console.print(Text(""))
     report = console.export_html(inline_styles=True, code_format="{code}")
     figures = "\n".join(_figure_html(figure, caption) for figure, caption in report_figures(ctx))
-    return PAGE.format(title=html.escape(config.name or "unnamed"),
-                       source=html.escape(config.source), report=report, figures=figures)
+    return PAGE.format(
+        title=html.escape(config.name or "unnamed"),
+        source=html.escape(config.source),
+        report=report,
+        figures=figures,
+    )

@@ -77,13 +77,16 @@ class BitRockLaw:
 
     def __init__(self, *, speed_unit: str = "rad/s", **values: Any) -> None:
         if speed_unit not in SPEED_UNITS:
-            raise ConfigError("bit_rock.speed_unit", f"expected one of {sorted(SPEED_UNITS)}, "
-                                                     f"got {speed_unit!r}")
+            raise ConfigError(
+                "bit_rock.speed_unit", f"expected one of {sorted(SPEED_UNITS)}, got {speed_unit!r}"
+            )
         unknown = sorted(set(values) - set(self.parameters))
         if unknown:
-            raise ConfigError(f"bit_rock.{unknown[0]}",
-                              f"law {self.name!r} has no parameter {unknown[0]!r}; its "
-                              f"parameters are {', '.join(self.parameters) or 'none'}")
+            raise ConfigError(
+                f"bit_rock.{unknown[0]}",
+                f"law {self.name!r} has no parameter {unknown[0]!r}; its "
+                f"parameters are {', '.join(self.parameters) or 'none'}",
+            )
         self.speed_unit = speed_unit
         self.given: dict[str, float] = {}
         scale = SPEED_UNITS[speed_unit]
@@ -91,16 +94,21 @@ class BitRockLaw:
             stated = key in values  # a default is in the rad/s reading, never converted
             value = values[key] if stated else spec.default
             if value is None:
-                raise ConfigError(f"bit_rock.{key}", f"law {self.name!r} needs parameter "
-                                  f"{key!r} ({spec.description}, {spec.unit})")
+                raise ConfigError(
+                    f"bit_rock.{key}",
+                    f"law {self.name!r} needs parameter {key!r} ({spec.description}, {spec.unit})",
+                )
             if isinstance(value, bool) or not isinstance(value, int | float | np.floating):
                 raise ConfigError(f"bit_rock.{key}", f"expected a number, got {value!r}")
             value = float(value)
             low_ok = value > spec.minimum if spec.strict else value >= spec.minimum
             if not (math.isfinite(value) and low_ok):
                 bound = ">" if spec.strict else ">="
-                raise ConfigError(f"bit_rock.{key}", f"law {self.name!r}: {key} must be "
-                                  f"{bound} {spec.minimum:g} and finite, got {value!r}")
+                raise ConfigError(
+                    f"bit_rock.{key}",
+                    f"law {self.name!r}: {key} must be "
+                    f"{bound} {spec.minimum:g} and finite, got {value!r}",
+                )
             if stated:
                 self.given[key] = value
             setattr(self, key, value * scale**spec.speed_power if stated else value)
@@ -114,7 +122,8 @@ class BitRockLaw:
         w = np.asarray(speed, dtype=float)
         step = 1e-6 * np.maximum(1.0, np.abs(w))
         return (self.torque(w + step, wob, radius) - self.torque(w - step, wob, radius)) / (
-            2.0 * step)
+            2.0 * step
+        )
 
     def values(self) -> dict[str, float]:
         """The parameters in the rad/s reading."""
@@ -126,8 +135,11 @@ class BitRockLaw:
         return f"{type(self).__name__}({given}{unit})"
 
     def __eq__(self, other: object) -> bool:
-        return isinstance(other, BitRockLaw) and type(other) is type(self) and (
-            self.values() == other.values())
+        return (
+            isinstance(other, BitRockLaw)
+            and type(other) is type(self)
+            and (self.values() == other.values())
+        )
 
     def __hash__(self) -> int:
         return hash((type(self), tuple(sorted(self.values().items()))))
@@ -139,9 +151,14 @@ class BitRockLaw:
             "name": cls.name,
             "description": cls.description,
             "parameters": [
-                {"name": key, "unit": spec.unit, "description": spec.description,
-                 "default": spec.default, "minimum": spec.minimum,
-                 "speed_power": spec.speed_power}
+                {
+                    "name": key,
+                    "unit": spec.unit,
+                    "description": spec.description,
+                    "default": spec.default,
+                    "minimum": spec.minimum,
+                    "speed_power": spec.speed_power,
+                }
                 for key, spec in cls.parameters.items()
             ],
         }
@@ -161,8 +178,9 @@ class TuckerWang(BitRockLaw):
     description = "W R a0 (tanh(a1 w) + a2 w / (1 + a3 w^2))  (Tucker and Wang 1997, Eq. 2)"
     parameters = {
         "a0": Parameter("-", "friction coefficient scale", minimum=0.0, strict=True),
-        "a1": Parameter("s/rad", "tanh regularization of the sign", minimum=0.0, strict=True,
-                        speed_power=1),
+        "a1": Parameter(
+            "s/rad", "tanh regularization of the sign", minimum=0.0, strict=True, speed_power=1
+        ),
         "a2": Parameter("s/rad", "slope of the velocity-weakening term", speed_power=1),
         "a3": Parameter("s^2/rad^2", "speed scale of the velocity weakening", speed_power=2),
     }
@@ -173,16 +191,26 @@ class TuckerWang(BitRockLaw):
 
     def torque(self, speed: Any, wob: Any, radius: Any) -> np.ndarray:
         w = np.asarray(speed, dtype=float)
-        return np.asarray(wob) * np.asarray(radius) * self.a0 * (
-            np.tanh(self.a1 * w) + self.a2 * w / (1.0 + self.a3 * w * w))
+        return (
+            np.asarray(wob)
+            * np.asarray(radius)
+            * self.a0
+            * (np.tanh(self.a1 * w) + self.a2 * w / (1.0 + self.a3 * w * w))
+        )
 
     def slope(self, speed: Any, wob: Any, radius: Any) -> np.ndarray:
         """d torque / d speed [N m s/rad], analytic."""
         w = np.asarray(speed, dtype=float)
         denominator = 1.0 + self.a3 * w * w
-        return np.asarray(wob) * np.asarray(radius) * self.a0 * (
-            self.a1 / np.cosh(self.a1 * w) ** 2
-            + self.a2 * (1.0 - self.a3 * w * w) / denominator**2)
+        return (
+            np.asarray(wob)
+            * np.asarray(radius)
+            * self.a0
+            * (
+                self.a1 / np.cosh(self.a1 * w) ** 2
+                + self.a2 * (1.0 - self.a3 * w * w) / denominator**2
+            )
+        )
 
 
 class ConstantTorque(BitRockLaw):

@@ -100,17 +100,20 @@ class LumpedModel:
     node_depths: np.ndarray = attrs.field(converter=_as_vector)
     strategy: str = "custom"
     damping: np.ndarray | None = attrs.field(
-        default=None, converter=attrs.converters.optional(_as_matrix))
+        default=None, converter=attrs.converters.optional(_as_matrix)
+    )
     top_damping: np.ndarray | None = attrs.field(
-        default=None, converter=attrs.converters.optional(_as_vector))
+        default=None, converter=attrs.converters.optional(_as_vector)
+    )
     details: dict[str, Any] = attrs.field(factory=dict, eq=False)
 
     def __attrs_post_init__(self) -> None:
         n = self.inertia.shape[0]
         for key, matrix in (("inertia", self.inertia), ("stiffness", self.stiffness)):
             if matrix.shape != (n, n) or n == 0:
-                raise ConfigError(key, f"expected a non-empty square matrix of size {n}, got "
-                                       f"shape {matrix.shape}")
+                raise ConfigError(
+                    key, f"expected a non-empty square matrix of size {n}, got shape {matrix.shape}"
+                )
             if not np.all(np.isfinite(matrix)):
                 raise ConfigError(key, "matrix has non-finite entries")
             if not np.allclose(matrix, matrix.T, rtol=1e-12, atol=0.0):
@@ -118,8 +121,11 @@ class LumpedModel:
             try:
                 np.linalg.cholesky(matrix)
             except np.linalg.LinAlgError:
-                raise ConfigError(key, "matrix must be positive definite (is every node tied "
-                                       "to the top through springs, every inertia > 0?)") from None
+                raise ConfigError(
+                    key,
+                    "matrix must be positive definite (is every node tied "
+                    "to the top through springs, every inertia > 0?)",
+                ) from None
         if self.node_depths.shape != (n,):
             raise ConfigError("node_depths", f"expected {n} depths, got {self.node_depths.size}")
         if self.damping is not None:
@@ -170,8 +176,9 @@ class LumpedModel:
         spring_values = np.asarray(stiffnesses, dtype=float).reshape(-1)
         n = inertia_values.size
         if spring_values.size != n:
-            raise ConfigError("stiffnesses", f"expected {n} values (one per inertia), got "
-                                             f"{spring_values.size}")
+            raise ConfigError(
+                "stiffnesses", f"expected {n} values (one per inertia), got {spring_values.size}"
+            )
         _check_chain_values("inertias", inertia_values, allow_zero=False)
         _check_chain_values("stiffnesses", spring_values, allow_zero=False)
         depths = np.arange(1.0, n + 1) if node_depths is None else node_depths
@@ -186,8 +193,14 @@ class LumpedModel:
             damping = chain_matrix(c) + np.diag(d)
             top_damping = np.zeros(n)
             top_damping[0] = c[0]
-        return cls(np.diag(inertia_values), chain_matrix(spring_values), depths,
-                   strategy=strategy, damping=damping, top_damping=top_damping)
+        return cls(
+            np.diag(inertia_values),
+            chain_matrix(spring_values),
+            depths,
+            strategy=strategy,
+            damping=damping,
+            top_damping=top_damping,
+        )
 
     # --- derived quantities ---------------------------------------------------------------
     @property
@@ -197,7 +210,7 @@ class LumpedModel:
 
     @property
     def top_stiffness(self) -> np.ndarray:
-        """Coupling of each node to the prescribed top, ``[K] @ 1`` [N m/rad] (k_1 e_1 for a chain)."""
+        """Coupling of each node to the prescribed top, ``[K] @ 1`` [N m/rad] (k_1 e_1)."""
         return self.stiffness.sum(axis=1)
 
     @property

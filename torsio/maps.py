@@ -222,8 +222,11 @@ class SeverityMap:
         """Number of points of each class."""
         labels = self.classification()
         names = (*CLASSES, "failed", "missing")
-        return {name: int((labels == name).sum()) for name in names if (labels == name).any()
-                or name in CLASSES}
+        return {
+            name: int((labels == name).sum())
+            for name in names
+            if (labels == name).any() or name in CLASSES
+        }
 
     def failures(self) -> list[str]:
         """One line per point the solver failed on."""
@@ -271,36 +274,49 @@ class SeverityMap:
     def from_dict(cls, data: dict[str, Any]) -> SeverityMap:
         """Rebuild a map from :meth:`to_dict` output."""
         if data.get("format") != FORMAT:
-            raise ConfigError("format", f"expected a {FORMAT!r} file, got format "
-                                        f"{data.get('format')!r}")
+            raise ConfigError(
+                "format", f"expected a {FORMAT!r} file, got format {data.get('format')!r}"
+            )
         if int(data.get("version", 0)) > FORMAT_VERSION:
-            raise ConfigError("version", f"this torsio reads map format version "
-                                         f"<= {FORMAT_VERSION}, got {data.get('version')!r}")
+            raise ConfigError(
+                "version",
+                f"this torsio reads map format version "
+                f"<= {FORMAT_VERSION}, got {data.get('version')!r}",
+            )
 
         def array(key: str, dtype: Any = float) -> np.ndarray:
             value = data[key]
             if dtype is float:
-                return np.array([[np.nan if x is None else x for x in row] for row in value]
-                                if value and isinstance(value[0], list) else
-                                [np.nan if x is None else x for x in value], dtype=float)
+                return np.array(
+                    [[np.nan if x is None else x for x in row] for row in value]
+                    if value and isinstance(value[0], list)
+                    else [np.nan if x is None else x for x in value],
+                    dtype=float,
+                )
             return np.array(value, dtype=dtype)
 
         wob = array("wob")
         rpm = array("rpm")
         return cls(
-            wob=wob, rpm=rpm, severity=array("severity").reshape(rpm.size, wob.size),
+            wob=wob,
+            rpm=rpm,
+            severity=array("severity").reshape(rpm.size, wob.size),
             critical_wob=array("critical_wob"),
             critical_status=tuple(data["critical_status"]),
             critical_bracket=array("critical_bracket").reshape(rpm.size, 2),
-            stability_wob=array("stability_wob"), threshold=float(data["threshold"]),
+            stability_wob=array("stability_wob"),
+            threshold=float(data["threshold"]),
             stick_slip_threshold=float(data["stick_slip_threshold"]),
-            k_eq=float(data["k_eq"]), omega1=float(data["omega1"]),
+            k_eq=float(data["k_eq"]),
+            omega1=float(data["omega1"]),
             bit_radius=float(data["bit_radius"]),
             status=array("status", np.int64).reshape(rpm.size, wob.size),
             steps=array("steps", np.int64).reshape(rpm.size, wob.size),
             done=array("done", bool).reshape(rpm.size, wob.size),
-            complete=bool(data["complete"]), dimensionless=bool(data.get("dimensionless")),
-            info=dict(data.get("info", {})))
+            complete=bool(data["complete"]),
+            dimensionless=bool(data.get("dimensionless")),
+            info=dict(data.get("info", {})),
+        )
 
     def save(self, path: str | Path) -> Path:
         """Write the map: JSON (``.json``, any other suffix) or numpy ``.npz``.
@@ -319,12 +335,31 @@ class SeverityMap:
         try:
             with open(temporary, "xb") as stream:  # ordinary permissions (umask)
                 if path.suffix == ".npz":
-                    arrays: dict[str, Any] = {key: np.array(value, dtype=float if key not in (
-                        "status", "steps", "done", "classification", "critical_status")
-                        else None) for key, value in data.items()
-                        if key in ("wob", "rpm", "critical_wob", "critical_pi2",
-                                   "stability_wob", "status", "steps", "done", "pi1", "pi2",
-                                   "classification", "critical_status")}
+                    arrays: dict[str, Any] = {
+                        key: np.array(
+                            value,
+                            dtype=float
+                            if key
+                            not in ("status", "steps", "done", "classification", "critical_status")
+                            else None,
+                        )
+                        for key, value in data.items()
+                        if key
+                        in (
+                            "wob",
+                            "rpm",
+                            "critical_wob",
+                            "critical_pi2",
+                            "stability_wob",
+                            "status",
+                            "steps",
+                            "done",
+                            "pi1",
+                            "pi2",
+                            "classification",
+                            "critical_status",
+                        )
+                    }
                     arrays["severity"] = self.severity
                     arrays["critical_bracket"] = self.critical_bracket
                     meta = {k: v for k, v in data.items() if k not in arrays}
@@ -350,21 +385,36 @@ class SeverityMap:
             for i in range(self.rpm.size):
                 for j in range(self.wob.size):
                     s = self.severity[i, j]
-                    writer.writerow([repr(float(self.rpm[i])), repr(float(self.wob[j])),
-                                     repr(float(pi1[i])), repr(float(pi2[j])),
-                                     "" if not math.isfinite(s) else repr(float(s)),
-                                     labels[i, j], int(self.status[i, j])])
+                    writer.writerow(
+                        [
+                            repr(float(self.rpm[i])),
+                            repr(float(self.wob[j])),
+                            repr(float(pi1[i])),
+                            repr(float(pi2[j])),
+                            "" if not math.isfinite(s) else repr(float(s)),
+                            labels[i, j],
+                            int(self.status[i, j]),
+                        ]
+                    )
         return path
 
     def critical_rows(self) -> list[tuple[float, float | None, str, float | None]]:
         """(rpm, W_ob,cr [N] or None, status, linear-stability W_ob [N] or None) per rpm."""
-        return [(float(r), None if not math.isfinite(w) else float(w), s,
-                 None if not math.isfinite(lin) else float(lin))
-                for r, w, s, lin in zip(self.rpm, self.critical_wob, self.critical_status,
-                                        self.stability_wob, strict=True)]
+        return [
+            (
+                float(r),
+                None if not math.isfinite(w) else float(w),
+                s,
+                None if not math.isfinite(lin) else float(lin),
+            )
+            for r, w, s, lin in zip(
+                self.rpm, self.critical_wob, self.critical_status, self.stability_wob, strict=True
+            )
+        ]
 
-    def plot(self, path: str | Path | None = None, ax: Any = None,
-             dimensionless: bool | None = None) -> Any:
+    def plot(
+        self, path: str | Path | None = None, ax: Any = None, dimensionless: bool | None = None
+    ) -> Any:
         """Heat map of S_SS with the critical curve and the linear stability boundary.
 
         Rotary speed on the x axis, weight on bit on the y axis (Pi_1 and Pi_2
@@ -378,8 +428,9 @@ class SeverityMap:
                 matplotlib.use("Agg")
             import matplotlib.pyplot as plt
         except ImportError:
-            raise ConfigError("plot", "plotting needs matplotlib: pip install "
-                                      "'torsio[plot]'") from None
+            raise ConfigError(
+                "plot", "plotting needs matplotlib: pip install 'torsio[plot]'"
+            ) from None
         use_pi = self.dimensionless if dimensionless is None else dimensionless
         if use_pi:
             x, y = self.pi1, self.pi2
@@ -393,14 +444,23 @@ class SeverityMap:
         if ax is None:
             figure, ax = plt.subplots(figsize=(7.0, 5.0), constrained_layout=True)
         values = np.ma.masked_invalid(self.severity.T)
-        mesh = ax.pcolormesh(x, y, values, shading="nearest", cmap="viridis",
-                             vmin=0.0, vmax=max(2.0, float(np.nanmax(self.severity))
-                                                if np.isfinite(self.severity).any() else 2.0))
+        mesh = ax.pcolormesh(
+            x,
+            y,
+            values,
+            shading="nearest",
+            cmap="viridis",
+            vmin=0.0,
+            vmax=max(
+                2.0, float(np.nanmax(self.severity)) if np.isfinite(self.severity).any() else 2.0
+            ),
+        )
         colorbar = ax.figure.colorbar(mesh, ax=ax)
         colorbar.set_label(r"$S_{SS}$")
         if np.isfinite(crit).any():
-            ax.plot(x, crit, "w-o", ms=3, lw=2,
-                    label=f"critical WOB ($S_{{SS}}$ > {self.threshold:g})")
+            ax.plot(
+                x, crit, "w-o", ms=3, lw=2, label=f"critical WOB ($S_{{SS}}$ > {self.threshold:g})"
+            )
         if np.isfinite(lin).any():
             ax.plot(x, lin, "r--", lw=1.5, label="linear stability boundary")
         ax.set_xlim(x.min() - 0.5 * _spacing(x), x.max() + 0.5 * _spacing(x))
@@ -419,8 +479,9 @@ class SeverityMap:
 
 
 def _spacing(values: np.ndarray) -> float:
-    return float(np.min(np.diff(values))) if values.size > 1 else max(abs(float(values[0])),
-                                                                        1.0) * 0.1
+    return (
+        float(np.min(np.diff(values))) if values.size > 1 else max(abs(float(values[0])), 1.0) * 0.1
+    )
 
 
 def load_map(path: str | Path) -> SeverityMap:
@@ -436,8 +497,9 @@ def load_map(path: str | Path) -> SeverityMap:
         else:
             data = json.loads(path.read_text(encoding="utf-8"))
     except OSError as exc:
-        raise ConfigError("path", f"cannot read map file {str(path)!r}: "
-                                  f"{exc.strerror or exc}") from None
+        raise ConfigError(
+            "path", f"cannot read map file {str(path)!r}: {exc.strerror or exc}"
+        ) from None
     except (ValueError, KeyError) as exc:
         raise ConfigError("path", f"{str(path)!r} is not a saved severity map ({exc})") from None
     return SeverityMap.from_dict(data)
@@ -447,16 +509,18 @@ def load_map(path: str | Path) -> SeverityMap:
 def _axis(key: str, values: Any, positive: bool) -> np.ndarray:
     array = np.atleast_1d(np.asarray(values, dtype=float))
     if array.ndim != 1 or array.size == 0:
-        raise ConfigError(key, f"expected a non-empty 1-D sequence of values, got shape "
-                               f"{array.shape}")
+        raise ConfigError(
+            key, f"expected a non-empty 1-D sequence of values, got shape {array.shape}"
+        )
     bad = ~np.isfinite(array) | ((array <= 0) if positive else (array < 0))
     if bad.any():
         what = "positive" if positive else "non-negative"
         raise ConfigError(key, f"expected {what} finite values, got {array[bad][0]!r}")
     if array.size > 1 and not (np.diff(array) > 0).all():
         k = int(np.argmin(np.diff(array) > 0))
-        raise ConfigError(key, f"expected strictly increasing values, got {array[k]!r} then "
-                               f"{array[k + 1]!r}")
+        raise ConfigError(
+            key, f"expected strictly increasing values, got {array[k]!r} then {array[k + 1]!r}"
+        )
     return array
 
 
@@ -481,10 +545,13 @@ def check_grid_size(rows: int, columns: int, memory: float | None = None) -> Non
     needed = points * BYTES_PER_POINT
     memory = _available_memory() if memory is None else memory
     if memory is not None and needed > 0.5 * memory:
-        raise ConfigError("grid", f"a grid of {rows:,} rpm x {columns:,} wob = {points:,} "
-                                  f"points needs about {_bytes(needed)} for its results; "
-                                  f"{_bytes(memory)} of memory is available (split the map "
-                                  f"or use fewer points)")
+        raise ConfigError(
+            "grid",
+            f"a grid of {rows:,} rpm x {columns:,} wob = {points:,} "
+            f"points needs about {_bytes(needed)} for its results; "
+            f"{_bytes(memory)} of memory is available (split the map "
+            f"or use fewer points)",
+        )
 
 
 def _bytes(value: float) -> str:
@@ -495,8 +562,9 @@ def _bytes(value: float) -> str:
     return f"{value:.3g} PB"  # pragma: no cover
 
 
-def _chunk_task(system: System, wob: np.ndarray, rpm: np.ndarray, options: dict[str, Any]
-                ) -> np.ndarray:
+def _chunk_task(
+    system: System, wob: np.ndarray, rpm: np.ndarray, options: dict[str, Any]
+) -> np.ndarray:
     """Worker side: S_SS and diagnostics of a chunk of points, shape (k, 4)."""
     result = simulate_batch(system, wob, rpm, **options)
     return np.column_stack([result.severity, result.status, result.steps, result.rejected])
@@ -512,8 +580,15 @@ def _scales(system: System) -> tuple[float, float]:
 class _Runner:
     """Runs lists of points through the sweep, in chunks, with shared progress."""
 
-    def __init__(self, system: System, handle: Any, options: dict[str, Any], chunk_size: int,
-                 retries: int, progress: Callable[[int, int], None] | None) -> None:
+    def __init__(
+        self,
+        system: System,
+        handle: Any,
+        options: dict[str, Any],
+        chunk_size: int,
+        retries: int,
+        progress: Callable[[int, int], None] | None,
+    ) -> None:
         self.system = system
         self.handle = handle
         self.options = options
@@ -524,9 +599,12 @@ class _Runner:
         self.total_points = 0
         self.retried = 0
 
-    def run(self, wob: np.ndarray, rpm: np.ndarray,
-            on_partial: Callable[[list[tuple[tuple[int, int], np.ndarray]]], None] | None = None
-            ) -> np.ndarray:
+    def run(
+        self,
+        wob: np.ndarray,
+        rpm: np.ndarray,
+        on_partial: Callable[[list[tuple[tuple[int, int], np.ndarray]]], None] | None = None,
+    ) -> np.ndarray:
         """Rows (severity, status, steps, rejected) of the points (wob[k], rpm[k])."""
         count = wob.size
         size = self.chunk_size
@@ -538,12 +616,14 @@ class _Runner:
 
         def report(done: int, total: int) -> None:
             if progress is not None:
-                progress(base + (count if done == total else min(done * size, count)),
-                         self.total_points)
+                progress(
+                    base + (count if done == total else min(done * size, count)), self.total_points
+                )
 
         try:
-            outcome = run_tasks_on(self.handle, _chunk_task, tasks, retries=self.retries,
-                                   progress=report)
+            outcome = run_tasks_on(
+                self.handle, _chunk_task, tasks, retries=self.retries, progress=report
+            )
         except SweepInterrupted as exc:
             if on_partial is not None:
                 on_partial([(bounds[k], r) for k, r in enumerate(exc.results) if r is not None])
@@ -560,15 +640,25 @@ def _default_chunk_size(points: int, workers: int, serial: bool, dofs: int) -> i
     return max(1, min(largest, math.ceil(points / (4 * workers))))
 
 
-def severity_map(system: System, wob: Any, rpm: Any, duration: float | None = None,
-                 steady_window: float | None = None, executor: ExecutorSpec = None,
-                 chunk_size: int | None = None,
-                 progress: bool | Callable[[int, int], None] | None = None,
-                 threshold: float = SEVERE_THRESHOLD,
-                 stick_slip_threshold: float = STICK_SLIP_THRESHOLD,
-                 refine: int = DEFAULT_REFINE, rtol: float = DEFAULT_RTOL,
-                 atol: float = DEFAULT_ATOL, engine: str = "auto", retries: int = 2,
-                 on_failure: str = "raise", timeout: float | None = None) -> SeverityMap:
+def severity_map(
+    system: System,
+    wob: Any,
+    rpm: Any,
+    duration: float | None = None,
+    steady_window: float | None = None,
+    executor: ExecutorSpec = None,
+    chunk_size: int | None = None,
+    progress: bool | Callable[[int, int], None] | None = None,
+    threshold: float = SEVERE_THRESHOLD,
+    stick_slip_threshold: float = STICK_SLIP_THRESHOLD,
+    refine: int = DEFAULT_REFINE,
+    rtol: float = DEFAULT_RTOL,
+    atol: float = DEFAULT_ATOL,
+    engine: str = "auto",
+    retries: int = 2,
+    on_failure: str = "raise",
+    timeout: float | None = None,
+) -> SeverityMap:
     """S_SS over the grid ``rpm`` x ``wob``, its classification and critical curve.
 
     Parameters
@@ -620,9 +710,26 @@ def severity_map(system: System, wob: Any, rpm: Any, duration: float | None = No
     """
     wob_axis = _axis("wob", wob, positive=False)
     rpm_axis = _axis("rpm", rpm, positive=True)
-    return _build_map(system, wob_axis, rpm_axis, duration, steady_window, executor,
-                      chunk_size, progress, threshold, stick_slip_threshold, refine, rtol, atol,
-                      engine, retries, on_failure, timeout, dimensionless=False)
+    return _build_map(
+        system,
+        wob_axis,
+        rpm_axis,
+        duration,
+        steady_window,
+        executor,
+        chunk_size,
+        progress,
+        threshold,
+        stick_slip_threshold,
+        refine,
+        rtol,
+        atol,
+        engine,
+        retries,
+        on_failure,
+        timeout,
+        dimensionless=False,
+    )
 
 
 def dimensionless_map(system: System, pi1: Any, pi2: Any, **options: Any) -> SeverityMap:
@@ -649,19 +756,41 @@ def dimensionless_map(system: System, pi1: Any, pi2: Any, **options: Any) -> Sev
     k_eq, omega1 = _scales(system)
     rpm = pi1_axis * omega1 / RPM_TO_RAD_S
     wob = pi2_axis * k_eq / system.bit_radius
-    keys = ("duration", "steady_window", "executor", "chunk_size", "progress", "threshold",
-            "stick_slip_threshold", "refine", "rtol", "atol", "engine", "retries",
-            "on_failure", "timeout")
+    keys = (
+        "duration",
+        "steady_window",
+        "executor",
+        "chunk_size",
+        "progress",
+        "threshold",
+        "stick_slip_threshold",
+        "refine",
+        "rtol",
+        "atol",
+        "engine",
+        "retries",
+        "on_failure",
+        "timeout",
+    )
     unknown = sorted(set(options) - set(keys))
     if unknown:
         raise ConfigError(unknown[0], f"unknown option; expected one of {', '.join(keys)}")
-    defaults: dict[str, Any] = {"duration": None, "steady_window": None, "executor": None,
-                                "chunk_size": None, "progress": None,
-                                "threshold": SEVERE_THRESHOLD,
-                                "stick_slip_threshold": STICK_SLIP_THRESHOLD,
-                                "refine": DEFAULT_REFINE, "rtol": DEFAULT_RTOL,
-                                "atol": DEFAULT_ATOL, "engine": "auto", "retries": 2,
-                                "on_failure": "raise", "timeout": None}
+    defaults: dict[str, Any] = {
+        "duration": None,
+        "steady_window": None,
+        "executor": None,
+        "chunk_size": None,
+        "progress": None,
+        "threshold": SEVERE_THRESHOLD,
+        "stick_slip_threshold": STICK_SLIP_THRESHOLD,
+        "refine": DEFAULT_REFINE,
+        "rtol": DEFAULT_RTOL,
+        "atol": DEFAULT_ATOL,
+        "engine": "auto",
+        "retries": 2,
+        "on_failure": "raise",
+        "timeout": None,
+    }
     defaults.update(options)
     return _build_map(system, wob, rpm, dimensionless=True, **defaults)
 
@@ -677,9 +806,16 @@ def _rich_progress() -> tuple[Callable[[int, int], None], Callable[[], None]]:
         TimeRemainingColumn,
     )
 
-    bar = Progress(TextColumn("severity map"), BarColumn(), MofNCompleteColumn(),
-                   TextColumn("points"), TimeElapsedColumn(), TimeRemainingColumn(),
-                   transient=True, console=Console(stderr=True))
+    bar = Progress(
+        TextColumn("severity map"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TextColumn("points"),
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+        transient=True,
+        console=Console(stderr=True),
+    )
     task = bar.add_task("map", total=None)
     bar.start()
 
@@ -689,12 +825,26 @@ def _rich_progress() -> tuple[Callable[[int, int], None], Callable[[], None]]:
     return update, bar.stop
 
 
-def _build_map(system: System, wob: np.ndarray, rpm: np.ndarray, duration: float | None,
-               steady_window: float | None, executor: ExecutorSpec, chunk_size: int | None,
-               progress: bool | Callable[[int, int], None] | None, threshold: float,
-               stick_slip_threshold: float, refine: int, rtol: float, atol: float,
-               engine: str, retries: int, on_failure: str, timeout: float | None,
-               dimensionless: bool) -> SeverityMap:
+def _build_map(
+    system: System,
+    wob: np.ndarray,
+    rpm: np.ndarray,
+    duration: float | None,
+    steady_window: float | None,
+    executor: ExecutorSpec,
+    chunk_size: int | None,
+    progress: bool | Callable[[int, int], None] | None,
+    threshold: float,
+    stick_slip_threshold: float,
+    refine: int,
+    rtol: float,
+    atol: float,
+    engine: str,
+    retries: int,
+    on_failure: str,
+    timeout: float | None,
+    dimensionless: bool,
+) -> SeverityMap:
     import time
 
     from torsio.batch import _times
@@ -702,32 +852,43 @@ def _build_map(system: System, wob: np.ndarray, rpm: np.ndarray, duration: float
     from torsio.sweep import CONNECT_TIMEOUT
 
     for key, value in (("threshold", threshold), ("stick_slip_threshold", stick_slip_threshold)):
-        if isinstance(value, bool) or not (isinstance(value, int | float)
-                                           and math.isfinite(value) and value >= 0):
+        if isinstance(value, bool) or not (
+            isinstance(value, int | float) and math.isfinite(value) and value >= 0
+        ):
             raise ConfigError(key, f"expected a non-negative number, got {value!r}")
     if stick_slip_threshold > threshold:
-        raise ConfigError("stick_slip_threshold", f"expected at most the severe threshold "
-                          f"({threshold:g}), got {stick_slip_threshold!r}")
+        raise ConfigError(
+            "stick_slip_threshold",
+            f"expected at most the severe threshold ({threshold:g}), got {stick_slip_threshold!r}",
+        )
     if isinstance(refine, bool) or not isinstance(refine, int) or not 0 <= refine <= 40:
-        raise ConfigError("refine", f"expected a whole number of bisection steps in 0..40, "
-                                    f"got {refine!r}")
+        raise ConfigError(
+            "refine", f"expected a whole number of bisection steps in 0..40, got {refine!r}"
+        )
     if on_failure not in ("raise", "mark"):
         raise ConfigError("on_failure", f"expected 'raise' or 'mark', got {on_failure!r}")
-    if chunk_size is not None and (isinstance(chunk_size, bool) or not isinstance(
-            chunk_size, int) or chunk_size < 1):
+    if chunk_size is not None and (
+        isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1
+    ):
         raise ConfigError("chunk_size", f"expected a whole number >= 1, got {chunk_size!r}")
     check_grid_size(rpm.size, wob.size)
     duration, steady_window = _times(system, duration, steady_window)
     k_eq, omega1 = _scales(system)
     serial = executor is None or executor == "serial"
-    options: dict[str, Any] = {"duration": duration, "steady_window": steady_window,
-                               "rtol": rtol, "atol": atol, "engine": engine,
-                               "threads": None if serial else 1}
+    options: dict[str, Any] = {
+        "duration": duration,
+        "steady_window": steady_window,
+        "rtol": rtol,
+        "atol": atol,
+        "engine": engine,
+        "threads": None if serial else 1,
+    }
     # validate options (engine, tolerances) here rather than in every worker
     simulate_batch(system, np.empty(0), np.empty(0), **options)
     points = rpm.size * wob.size
-    size = chunk_size or _default_chunk_size(points, worker_count(executor), serial,
-                                             system.model.dofs)
+    size = chunk_size or _default_chunk_size(
+        points, worker_count(executor), serial, system.model.dofs
+    )
 
     stop: Callable[[], None] | None = None
     callback: Callable[[int, int], None] | None
@@ -747,12 +908,19 @@ def _build_map(system: System, wob: np.ndarray, rpm: np.ndarray, duration: float
     flat_rpm = grid_rpm.ravel()
     start = time.perf_counter()
     info: dict[str, Any] = {
-        "model": {"name": getattr(system.string, "name", "") or "",
-                  "strategy": system.model.strategy, "dofs": system.model.dofs},
+        "model": {
+            "name": getattr(system.string, "name", "") or "",
+            "strategy": system.model.strategy,
+            "dofs": system.model.dofs,
+        },
         "law": repr(system.law),
         "damping": repr(system.damping),
-        "duration": duration, "steady_window": steady_window, "rtol": rtol, "atol": atol,
-        "refine": refine, "initial_state": "rest",
+        "duration": duration,
+        "steady_window": steady_window,
+        "rtol": rtol,
+        "atol": atol,
+        "refine": refine,
+        "initial_state": "rest",
     }
 
     def store(rows: np.ndarray, at: np.ndarray) -> None:
@@ -764,12 +932,26 @@ def _build_map(system: System, wob: np.ndarray, rpm: np.ndarray, duration: float
 
     def partial_map() -> SeverityMap:
         nan_rows = np.full(rpm.size, np.nan)
-        return SeverityMap(wob, rpm, severity.copy(), nan_rows, ("unresolved",) * rpm.size,
-                           np.full((rpm.size, 2), np.nan), nan_rows.copy(), float(threshold),
-                           float(stick_slip_threshold), k_eq, omega1, system.bit_radius,
-                           status.copy(), steps.copy(), done.copy(), complete=False,
-                           dimensionless=dimensionless,
-                           info={**info, "elapsed_s": time.perf_counter() - start})
+        return SeverityMap(
+            wob,
+            rpm,
+            severity.copy(),
+            nan_rows,
+            ("unresolved",) * rpm.size,
+            np.full((rpm.size, 2), np.nan),
+            nan_rows.copy(),
+            float(threshold),
+            float(stick_slip_threshold),
+            k_eq,
+            omega1,
+            system.bit_radius,
+            status.copy(),
+            steps.copy(),
+            done.copy(),
+            complete=False,
+            dimensionless=dimensionless,
+            info={**info, "elapsed_s": time.perf_counter() - start},
+        )
 
     try:
         with open_executor(executor, CONNECT_TIMEOUT if timeout is None else timeout) as handle:
@@ -789,12 +971,16 @@ def _build_map(system: System, wob: np.ndarray, rpm: np.ndarray, duration: float
             failed = done & (status != 0)
             if failed.any() and on_failure == "raise":
                 lines = _failure_lines(wob, rpm, status)
-                raise SolverError(f"the batch solver failed at {len(lines)} of {points} points: "
-                                  + "; ".join(lines[:5]) + (" ..." if len(lines) > 5 else "")
-                                  + " (on_failure='mark' keeps the others)")
+                raise SolverError(
+                    f"the batch solver failed at {len(lines)} of {points} points: "
+                    + "; ".join(lines[:5])
+                    + (" ..." if len(lines) > 5 else "")
+                    + " (on_failure='mark' keeps the others)"
+                )
             try:
                 critical, crit_status, bracket = _critical_wob(
-                    runner, wob, rpm, severity, threshold, refine, on_failure)
+                    runner, wob, rpm, severity, threshold, refine, on_failure
+                )
             except SweepInterrupted:
                 raise MapInterrupted(partial_map()) from None
             info["retried_chunks"] = runner.retried
@@ -802,26 +988,53 @@ def _build_map(system: System, wob: np.ndarray, rpm: np.ndarray, duration: float
         if stop is not None:
             stop()
     if failed.any():
-        warnings.warn(f"the batch solver failed at {int(failed.sum())} points; they are NaN "
-                      f"in the map", RuntimeWarning, stacklevel=3)
+        warnings.warn(
+            f"the batch solver failed at {int(failed.sum())} points; they are NaN in the map",
+            RuntimeWarning,
+            stacklevel=3,
+        )
     info["elapsed_s"] = time.perf_counter() - start
     info["extra_runs"] = runner.done_points - points
     boundary = stability_boundary(system, rpm)
-    return SeverityMap(wob, rpm, severity, critical, crit_status, bracket,
-                       boundary.critical_wob, float(threshold), float(stick_slip_threshold),
-                       k_eq, omega1, system.bit_radius, status, steps, done, complete=True,
-                       dimensionless=dimensionless, info=info)
+    return SeverityMap(
+        wob,
+        rpm,
+        severity,
+        critical,
+        crit_status,
+        bracket,
+        boundary.critical_wob,
+        float(threshold),
+        float(stick_slip_threshold),
+        k_eq,
+        omega1,
+        system.bit_radius,
+        status,
+        steps,
+        done,
+        complete=True,
+        dimensionless=dimensionless,
+        info=info,
+    )
 
 
 def _failure_lines(wob: np.ndarray, rpm: np.ndarray, status: np.ndarray) -> list[str]:
-    return [f"wob={wob[j]:g} N, rpm={rpm[i]:g}: "
-            f"{STATUS_MESSAGES.get(int(status[i, j]), f'status {status[i, j]}')}"
-            for i, j in zip(*np.nonzero(status), strict=True)]
+    return [
+        f"wob={wob[j]:g} N, rpm={rpm[i]:g}: "
+        f"{STATUS_MESSAGES.get(int(status[i, j]), f'status {status[i, j]}')}"
+        for i, j in zip(*np.nonzero(status), strict=True)
+    ]
 
 
-def _critical_wob(runner: _Runner, wob: np.ndarray, rpm: np.ndarray, severity: np.ndarray,
-                  threshold: float, refine: int, on_failure: str
-                  ) -> tuple[np.ndarray, tuple[str, ...], np.ndarray]:
+def _critical_wob(
+    runner: _Runner,
+    wob: np.ndarray,
+    rpm: np.ndarray,
+    severity: np.ndarray,
+    threshold: float,
+    refine: int,
+    on_failure: str,
+) -> tuple[np.ndarray, tuple[str, ...], np.ndarray]:
     rows = severity.shape[0]
     critical = np.full(rows, np.nan)
     bracket = np.full((rows, 2), np.nan)
@@ -856,9 +1069,11 @@ def _critical_wob(runner: _Runner, wob: np.ndarray, rpm: np.ndarray, severity: n
         failed = result[:, 1] != 0
         if failed.any() and on_failure == "raise":
             k = int(np.argmax(failed))
-            raise SolverError(f"the batch solver failed at wob={middle[k]:g} N, "
-                              f"rpm={speeds[k]:g} while bisecting the critical weight on bit: "
-                              f"{STATUS_MESSAGES.get(int(result[k, 1]))}")
+            raise SolverError(
+                f"the batch solver failed at wob={middle[k]:g} N, "
+                f"rpm={speeds[k]:g} while bisecting the critical weight on bit: "
+                f"{STATUS_MESSAGES.get(int(result[k, 1]))}"
+            )
         is_severe = values > threshold
         high[active] = np.where(is_severe, middle, high[active])
         low[active] = np.where(is_severe, low[active], middle)

@@ -2,7 +2,8 @@
 
 Mode shapes are normalized to a peak magnitude of 1, with the node nearest the
 surface positive (a shape reads as a fraction of its peak rotation; the sign is
-fixed so results are reproducible and comparable with the continuum). Mass-normalized shapes (phi^T [I] phi = 1) are also kept.
+fixed so results are reproducible and comparable with the continuum).
+Mass-normalized shapes (phi^T [I] phi = 1) are also kept.
 
 Examples
 --------
@@ -96,8 +97,10 @@ class ModalResults:
         """
         if reference is None:
             if self.string is None:
-                raise ConfigError("reference", "this model has no drill-string to compare "
-                                               "against; pass a ContinuumModes")
+                raise ConfigError(
+                    "reference",
+                    "this model has no drill-string to compare against; pass a ContinuumModes",
+                )
             rigid = bool(self.model.details.get("elements", {}).get("BHA") == "rigid")
             reference = continuum_modes(self.string, self.frequencies_rad.size, rigid)
         count = min(reference.frequencies_rad.size, self.frequencies_rad.size)
@@ -145,8 +148,12 @@ class ModalComparison:
 
     def rows(self) -> list[tuple[int, float, float, float]]:
         """(mode, lumped Hz, continuum Hz, relative error) per mode."""
-        return [(i + 1, float(f), float(r), float(e)) for i, (f, r, e) in enumerate(
-            zip(self.frequencies_hz, self.reference_hz, self.relative_error, strict=True))]
+        return [
+            (i + 1, float(f), float(r), float(e))
+            for i, (f, r, e) in enumerate(
+                zip(self.frequencies_hz, self.reference_hz, self.relative_error, strict=True)
+            )
+        ]
 
     def to_dict(self) -> dict[str, Any]:
         """Plain data for JSON."""
@@ -161,8 +168,9 @@ def _is_tridiagonal(matrix: np.ndarray) -> bool:
     return bool(np.count_nonzero(np.triu(matrix, 2)) == 0)
 
 
-def modal_analysis(model: LumpedModel, count: int | None = None,
-                   string: DrillString | None = None) -> ModalResults:
+def modal_analysis(
+    model: LumpedModel, count: int | None = None, string: DrillString | None = None
+) -> ModalResults:
     """Solve [K] phi = omega^2 [I] phi for the lowest ``count`` modes (all by default).
 
     Lumped (diagonal) inertia with a chain stiffness is solved as the tridiagonal
@@ -182,13 +190,16 @@ def modal_analysis(model: LumpedModel, count: int | None = None,
         diagonal = np.diag(model.stiffness) * scale**2
         off_diagonal = np.diag(model.stiffness, 1) * scale[:-1] * scale[1:]
         eigenvalues, vectors = scipy.linalg.eigh_tridiagonal(
-            diagonal, off_diagonal, select="i", select_range=(0, count - 1))
+            diagonal, off_diagonal, select="i", select_range=(0, count - 1)
+        )
         vectors = vectors * scale[:, None]
     else:
-        eigenvalues, vectors = scipy.linalg.eigh(model.stiffness, model.inertia,
-                                                 subset_by_index=(0, count - 1))
+        eigenvalues, vectors = scipy.linalg.eigh(
+            model.stiffness, model.inertia, subset_by_index=(0, count - 1)
+        )
     if np.any(eigenvalues <= 0):
-        raise ConfigError("stiffness", "non-positive eigenvalue: the model is not fixed at the "
-                                       "top or not positive definite")
-    return ModalResults(model, np.sqrt(eigenvalues), normalize_shape(vectors), vectors,
-                        string)
+        raise ConfigError(
+            "stiffness",
+            "non-positive eigenvalue: the model is not fixed at the top or not positive definite",
+        )
+    return ModalResults(model, np.sqrt(eigenvalues), normalize_shape(vectors), vectors, string)

@@ -47,8 +47,7 @@ def _load_entry_points(manager: pluggy.PluginManager) -> None:
 
     for entry_point in entry_points(group="torsio"):
         label = f"{entry_point.name} = {entry_point.value}"
-        if manager.get_plugin(entry_point.name) is not None or manager.is_blocked(
-                entry_point.name):
+        if manager.get_plugin(entry_point.name) is not None or manager.is_blocked(entry_point.name):
             continue
         try:
             plugin = entry_point.load()
@@ -56,8 +55,12 @@ def _load_entry_points(manager: pluggy.PluginManager) -> None:
         except Exception as exc:  # a broken third-party plugin must not stop torsio
             dist = getattr(entry_point, "dist", None)
             where = f" from distribution {dist.name!r}" if dist is not None else ""
-            warnings.warn(f"torsio plugin {label!r}{where} failed to load and is skipped: "
-                          f"{type(exc).__name__}: {exc}", PluginWarning, stacklevel=2)
+            warnings.warn(
+                f"torsio plugin {label!r}{where} failed to load and is skipped: "
+                f"{type(exc).__name__}: {exc}",
+                PluginWarning,
+                stacklevel=2,
+            )
 
 
 def _collect(hook_name: str, kind: str) -> dict[str, type[Any]]:
@@ -69,20 +72,30 @@ def _collect(hook_name: str, kind: str) -> dict[str, type[Any]]:
         try:
             classes = list(impl.function())
         except Exception as exc:
-            warnings.warn(f"torsio plugin {plugin!r}: hook {hook_name} raised "
-                          f"{type(exc).__name__}: {exc}; its {kind}s are skipped",
-                          PluginWarning, stacklevel=3)
+            warnings.warn(
+                f"torsio plugin {plugin!r}: hook {hook_name} raised "
+                f"{type(exc).__name__}: {exc}; its {kind}s are skipped",
+                PluginWarning,
+                stacklevel=3,
+            )
             continue
         for cls in classes:
             name = getattr(cls, "name", None)
             if not isinstance(name, str) or not name:
-                warnings.warn(f"torsio plugin {plugin!r}: {kind} {cls!r} has no string "
-                              "attribute 'name'; skipped", PluginWarning, stacklevel=3)
+                warnings.warn(
+                    f"torsio plugin {plugin!r}: {kind} {cls!r} has no string "
+                    "attribute 'name'; skipped",
+                    PluginWarning,
+                    stacklevel=3,
+                )
                 continue
             if name in found:
-                warnings.warn(f"torsio plugin {plugin!r}: {kind} name {name!r} is already "
-                              f"registered by {owner[name]!r}; the second one is skipped",
-                              PluginWarning, stacklevel=3)
+                warnings.warn(
+                    f"torsio plugin {plugin!r}: {kind} name {name!r} is already "
+                    f"registered by {owner[name]!r}; the second one is skipped",
+                    PluginWarning,
+                    stacklevel=3,
+                )
                 continue
             found[name] = cls
             owner[name] = plugin
@@ -103,8 +116,10 @@ def get_bit_law(name: str) -> type[Any]:
     """The bit-rock law class registered as ``name``; a clear error if there is none."""
     laws = bit_laws()
     if name not in laws:
-        raise ConfigError("bit_rock.law", f"unknown bit-rock law {name!r}; registered laws: "
-                                          f"{', '.join(sorted(laws))}")
+        raise ConfigError(
+            "bit_rock.law",
+            f"unknown bit-rock law {name!r}; registered laws: {', '.join(sorted(laws))}",
+        )
     return laws[name]
 
 
@@ -112,6 +127,8 @@ def get_discretizer(name: str) -> type[Any]:
     """The discretizer class registered as ``name``; a clear error if there is none."""
     found = discretizers()
     if name not in found:
-        raise ConfigError("discretization.strategy", f"unknown strategy {name!r}; registered: "
-                                                     f"{', '.join(sorted(found))}")
+        raise ConfigError(
+            "discretization.strategy",
+            f"unknown strategy {name!r}; registered: {', '.join(sorted(found))}",
+        )
     return found[name]

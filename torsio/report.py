@@ -583,14 +583,25 @@ def response_section(ctx: ReportContext) -> ReportSection | None:
     table.add_column(style="dim")
     table.add_column()
     table.add_row("S_SS", Text.assemble(f"{results.severity:.4f}  ", verdict))
-    table.add_row("stick fraction", Text(f"{results.stick_fraction:.3f} of the window "
-                                         f"(bit below {results.stick_threshold:g} Ω)"))
-    table.add_row("bit speed", Text(f"{data['bit_speed_min_rad_s']:.4g} to "
-                                    f"{data['bit_speed_max_rad_s']:.4g} rad/s"))
+    table.add_row(
+        "stick fraction",
+        Text(
+            f"{results.stick_fraction:.3f} of the window (bit below {results.stick_threshold:g} Ω)"
+        ),
+    )
+    table.add_row(
+        "bit speed",
+        Text(f"{data['bit_speed_min_rad_s']:.4g} to {data['bit_speed_max_rad_s']:.4g} rad/s"),
+    )
     table.add_row("window", Text(f"{start:.4g} to {end:.4g} s of a start-up from rest"))
-    table.add_row("integrator", Text(f"{solver.get('method')} (rtol {solver.get('rtol'):g}, "
-                                     f"atol {solver.get('atol'):g}), {solver.get('nfev')} "
-                                     "evaluations"))
+    table.add_row(
+        "integrator",
+        Text(
+            f"{solver.get('method')} (rtol {solver.get('rtol'):g}, "
+            f"atol {solver.get('atol'):g}), {solver.get('nfev')} "
+            "evaluations"
+        ),
+    )
     return ReportSection("response", "Response at the operating point (Eq. 12)", data, table)
 
 
@@ -638,8 +649,7 @@ def report_data(config: Config | ReportContext, **options: Any) -> dict[str, Any
     return data
 
 
-def render(config: Config | ReportContext, console: Console | None = None,
-           **options: Any) -> None:
+def render(config: Config | ReportContext, console: Console | None = None, **options: Any) -> None:
     """Print the report of ``config`` on a rich console (a new one by default).
 
     ``options`` as for :func:`report_data`. A :class:`ReportContext` may be passed

@@ -42,8 +42,10 @@ SEVERE_THRESHOLD = 0.8
 def severity(bit_speed: np.ndarray, omega: float) -> float:
     """S_SS of bit speeds [rad/s] sampled over the steady window, at surface speed omega [rad/s]."""
     if not (math.isfinite(omega) and omega > 0):
-        raise ConfigError("rpm", f"S_SS divides by the surface speed; expected a positive speed, "
-                                 f"got {omega!r} rad/s")
+        raise ConfigError(
+            "rpm",
+            f"S_SS divides by the surface speed; expected a positive speed, got {omega!r} rad/s",
+        )
     speeds = np.asarray(bit_speed, dtype=float)
     if speeds.size == 0:
         raise ConfigError("steady_window", "no samples in the steady-state window")
@@ -62,5 +64,7 @@ def check_window(duration: float, steady_window: float) -> None:
         if not (math.isfinite(value) and value > 0):
             raise ConfigError(f"simulation.{key}", f"expected a positive time in s, got {value!r}")
     if steady_window > duration:
-        raise ConfigError("simulation.steady_window", f"the steady window ({steady_window:g} s) "
-                          f"is longer than the run ({duration:g} s)")
+        raise ConfigError(
+            "simulation.steady_window",
+            f"the steady window ({steady_window:g} s) is longer than the run ({duration:g} s)",
+        )

@@ -76,8 +76,10 @@ def _bit_slope(system: System, speed: Any, wob: Any) -> np.ndarray:
         return np.asarray(law.slope(speed, wob, system.bit_radius), dtype=float)
     w = np.asarray(speed, dtype=float)
     step = 1e-6 * np.maximum(1.0, np.abs(w))
-    return (np.asarray(law.torque(w + step, wob, system.bit_radius))
-            - np.asarray(law.torque(w - step, wob, system.bit_radius))) / (2.0 * step)
+    return (
+        np.asarray(law.torque(w + step, wob, system.bit_radius))
+        - np.asarray(law.torque(w - step, wob, system.bit_radius))
+    ) / (2.0 * step)
 
 
 def linearized_matrix(system: System, bit_slope: float | None = None) -> np.ndarray:
@@ -138,15 +140,16 @@ def bit_receptance(system: System, omega: Any) -> np.ndarray:
         for i in range(1, n):
             pivot = diag[:, i] - off[:, i - 1] ** 2 / pivot
         return 1.0 / pivot
-    dynamic = (k[None] - w[:, None, None] ** 2 * m[None] + 1j * w[:, None, None] * c[None])
+    dynamic = k[None] - w[:, None, None] ** 2 * m[None] + 1j * w[:, None, None] * c[None]
     unit = np.zeros(n, dtype=complex)
     unit[-1] = 1.0
     return np.linalg.solve(dynamic, np.broadcast_to(unit, (w.size, n))[..., None])[:, -1, 0]
 
 
 def _is_tridiagonal(matrix: np.ndarray) -> bool:
-    return bool(np.count_nonzero(np.triu(matrix, 2)) == 0
-                and np.count_nonzero(np.tril(matrix, -2)) == 0)
+    return bool(
+        np.count_nonzero(np.triu(matrix, 2)) == 0 and np.count_nonzero(np.tril(matrix, -2)) == 0
+    )
 
 
 @attrs.frozen
@@ -190,8 +193,9 @@ def critical_bit_damping(system: System) -> CriticalDamping:
     # estimate s at each sign change by linear interpolation, refine the best few exactly
     fraction = real[changes] / (real[changes] - real[changes + 1])
     w_est = omegas[changes] + fraction * (omegas[changes + 1] - omegas[changes])
-    g_est = receptance[changes].imag + fraction * (receptance[changes + 1].imag
-                                                   - receptance[changes].imag)
+    g_est = receptance[changes].imag + fraction * (
+        receptance[changes + 1].imag - receptance[changes].imag
+    )
     with np.errstate(divide="ignore"):
         s_est = 1.0 / (w_est * g_est)
     order = np.argsort(np.where(s_est < 0, -s_est, np.inf))[:4]
@@ -200,8 +204,9 @@ def critical_bit_damping(system: System) -> CriticalDamping:
         if not s_est[index] < 0:
             continue
         a, b = omegas[changes[index]], omegas[changes[index] + 1]
-        root = scipy.optimize.brentq(lambda x: float(bit_receptance(system, x)[0].real), a, b,
-                                     xtol=1e-14 * b, rtol=1e-13)
+        root = scipy.optimize.brentq(
+            lambda x: float(bit_receptance(system, x)[0].real), a, b, xtol=1e-14 * b, rtol=1e-13
+        )
         g = complex(bit_receptance(system, root)[0])
         s = 1.0 / (root * g.imag)
         if s < 0 and s > best.slope:
@@ -235,8 +240,7 @@ class StabilityBoundary:
         """Plain data for JSON (NaN -> None)."""
         return {
             "rpm": self.rpm.tolist(),
-            "critical_wob": [None if not math.isfinite(w) else float(w)
-                             for w in self.critical_wob],
+            "critical_wob": [None if not math.isfinite(w) else float(w) for w in self.critical_wob],
             "critical_slope": self.critical_slope,
             "onset_frequency": self.onset_frequency,
         }

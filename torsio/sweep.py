@@ -130,8 +130,12 @@ class SweepOutcome:
 
 
 def _retryable_types() -> tuple[type[BaseException], ...]:
-    kinds: list[type[BaseException]] = [cf.BrokenExecutor, cf.CancelledError, ConnectionError,
-                                        EOFError]
+    kinds: list[type[BaseException]] = [
+        cf.BrokenExecutor,
+        cf.CancelledError,
+        ConnectionError,
+        EOFError,
+    ]
     try:  # distributed is optional
         from distributed import KilledWorker
         from distributed.comm.core import CommClosedError
@@ -147,8 +151,11 @@ def describe_executor(spec: ExecutorSpec) -> str:
     if spec is None or spec == "serial":
         return "serial"
     if isinstance(spec, bool):
-        raise ConfigError("executor", f"expected None, a number of processes, a Dask "
-                                      f"scheduler address or an Executor, got {spec!r}")
+        raise ConfigError(
+            "executor",
+            f"expected None, a number of processes, a Dask "
+            f"scheduler address or an Executor, got {spec!r}",
+        )
     if isinstance(spec, int):
         return f"processes({spec})"
     if isinstance(spec, str):
@@ -176,15 +183,15 @@ def open_executor(spec: ExecutorSpec, timeout: float = CONNECT_TIMEOUT) -> Itera
         return
     if isinstance(spec, int):
         if spec < 1:
-            raise ConfigError("workers", f"expected a number of worker processes >= 1, "
-                                         f"got {spec}")
+            raise ConfigError("workers", f"expected a number of worker processes >= 1, got {spec}")
         holder: dict[str, cf.Executor] = {}
 
         def build() -> cf.Executor:
             import multiprocessing
 
             holder["pool"] = cf.ProcessPoolExecutor(
-                spec, mp_context=multiprocessing.get_context("spawn"))
+                spec, mp_context=multiprocessing.get_context("spawn")
+            )
             return holder["pool"]
 
         def close() -> None:
@@ -206,8 +213,11 @@ def open_executor(spec: ExecutorSpec, timeout: float = CONNECT_TIMEOUT) -> Itera
     if isinstance(spec, cf.Executor):
         yield _Handle(spec, name)
         return
-    raise ConfigError("executor", f"expected None, a number of processes, a Dask scheduler "
-                                  f"address or a concurrent.futures.Executor, got {spec!r}")
+    raise ConfigError(
+        "executor",
+        f"expected None, a number of processes, a Dask scheduler "
+        f"address or a concurrent.futures.Executor, got {spec!r}",
+    )
 
 
 def connect_dask(address: str, timeout: float = CONNECT_TIMEOUT) -> Any:
@@ -215,20 +225,27 @@ def connect_dask(address: str, timeout: float = CONNECT_TIMEOUT) -> Any:
     try:
         import distributed
     except ImportError:
-        raise ConfigError("scheduler", "a Dask scheduler needs the dask extra: "
-                                       "pip install 'torsio[dask]'") from None
+        raise ConfigError(
+            "scheduler", "a Dask scheduler needs the dask extra: pip install 'torsio[dask]'"
+        ) from None
     try:
         return distributed.Client(address, timeout=timeout, set_as_default=False)
     except (OSError, TimeoutError, ValueError) as exc:
-        raise ConfigError("scheduler", f"cannot reach the Dask scheduler at {address!r} "
-                                       f"within {timeout:g} s ({type(exc).__name__}: {exc})"
-                          ) from None
+        raise ConfigError(
+            "scheduler",
+            f"cannot reach the Dask scheduler at {address!r} "
+            f"within {timeout:g} s ({type(exc).__name__}: {exc})",
+        ) from None
 
 
-def run_tasks(function: Callable[..., Any], tasks: Sequence[tuple[Any, ...]],
-              executor: ExecutorSpec = None, retries: int = 2,
-              progress: Callable[[int, int], None] | None = None,
-              timeout: float = CONNECT_TIMEOUT) -> SweepOutcome:
+def run_tasks(
+    function: Callable[..., Any],
+    tasks: Sequence[tuple[Any, ...]],
+    executor: ExecutorSpec = None,
+    retries: int = 2,
+    progress: Callable[[int, int], None] | None = None,
+    timeout: float = CONNECT_TIMEOUT,
+) -> SweepOutcome:
     """Run ``function(*task)`` for every task; results in task order.
 
     Parameters
@@ -260,15 +277,24 @@ def run_tasks(function: Callable[..., Any], tasks: Sequence[tuple[Any, ...]],
         return _run(function, list(tasks), handle, retries, progress)
 
 
-def run_tasks_on(handle: _Handle, function: Callable[..., Any],
-                 tasks: Sequence[tuple[Any, ...]], retries: int = 2,
-                 progress: Callable[[int, int], None] | None = None) -> SweepOutcome:
+def run_tasks_on(
+    handle: _Handle,
+    function: Callable[..., Any],
+    tasks: Sequence[tuple[Any, ...]],
+    retries: int = 2,
+    progress: Callable[[int, int], None] | None = None,
+) -> SweepOutcome:
     """:func:`run_tasks` on an executor already opened with :func:`open_executor`."""
     return _run(function, list(tasks), handle, retries, progress)
 
 
-def _run(function: Callable[..., Any], tasks: list[tuple[Any, ...]], handle: _Handle,
-         retries: int, progress: Callable[[int, int], None] | None) -> SweepOutcome:
+def _run(
+    function: Callable[..., Any],
+    tasks: list[tuple[Any, ...]],
+    handle: _Handle,
+    retries: int,
+    progress: Callable[[int, int], None] | None,
+) -> SweepOutcome:
     total = len(tasks)
     results: list[Any] = [None] * total
     finished = [False] * total
@@ -313,7 +339,9 @@ def _run(function: Callable[..., Any], tasks: list[tuple[Any, ...]], handle: _Ha
                         raise SweepError(
                             f"task {index} failed {attempts[index]} times on {handle.name} "
                             f"(last: {type(exc).__name__}: {exc}); {done} of {total} tasks "
-                            f"finished", results) from exc
+                            f"finished",
+                            results,
+                        ) from exc
                     retried += 1
                     submit(index)
                     continue
@@ -321,11 +349,15 @@ def _run(function: Callable[..., Any], tasks: list[tuple[Any, ...]], handle: _Ha
             if broken is not None:
                 rebuilds += 1
                 if handle.rebuild is None or rebuilds > retries:
-                    why = ("cannot be rebuilt" if handle.rebuild is None
-                           else f"broke {rebuilds} times")
-                    raise SweepError(f"the executor {handle.name} lost a worker process and "
-                                     f"{why} ({type(broken).__name__}: {broken}); {done} of "
-                                     f"{total} tasks finished", results) from broken
+                    why = (
+                        "cannot be rebuilt" if handle.rebuild is None else f"broke {rebuilds} times"
+                    )
+                    raise SweepError(
+                        f"the executor {handle.name} lost a worker process and "
+                        f"{why} ({type(broken).__name__}: {broken}); {done} of "
+                        f"{total} tasks finished",
+                        results,
+                    ) from broken
                 for future in pending:
                     future.cancel()
                 pending.clear()

@@ -98,17 +98,27 @@ class System:
         """The System a configuration describes; ``discretization`` overrides its options."""
         model = config.model(**discretization)
         d = config.damping
-        damping = (RayleighDamping.from_modal_ratios(model, d.ratios, d.modes)
-                   if d.ratios is not None else RayleighDamping(d.alpha or 0.0, d.beta or 0.0))
+        damping = (
+            RayleighDamping.from_modal_ratios(model, d.ratios, d.modes)
+            if d.ratios is not None
+            else RayleighDamping(d.alpha or 0.0, d.beta or 0.0)
+        )
         op = config.operation
-        return cls(model=model, law=config.bit_law(), bit_radius=config.bit_radius,
-                   damping=damping, wob=op.wob if op.wob is not None else 0.0,
-                   rpm=op.rpm if op.rpm is not None else 60.0, string=config.string)
+        return cls(
+            model=model,
+            law=config.bit_law(),
+            bit_radius=config.bit_radius,
+            damping=damping,
+            wob=op.wob if op.wob is not None else 0.0,
+            rpm=op.rpm if op.rpm is not None else 60.0,
+            string=config.string,
+        )
 
     def at(self, wob: float | None = None, rpm: float | None = None) -> System:
         """The same system at another operating point."""
-        return attrs.evolve(self, wob=self.wob if wob is None else wob,
-                            rpm=self.rpm if rpm is None else rpm)
+        return attrs.evolve(
+            self, wob=self.wob if wob is None else wob, rpm=self.rpm if rpm is None else rpm
+        )
 
     # --- matrices -------------------------------------------------------------------------
     @property

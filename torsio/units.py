@@ -91,8 +91,9 @@ def _parse(text: str, dimension: str, key: str) -> float:
     try:
         quantity = ureg.Quantity(text.strip())
     except Exception as exc:  # pint's parser raises many types on arbitrary text
-        raise ConfigError(key, f"cannot read {text!r} as a quantity "
-                               f"({type(exc).__name__}: {exc})") from None
+        raise ConfigError(
+            key, f"cannot read {text!r} as a quantity ({type(exc).__name__}: {exc})"
+        ) from None
     if not isinstance(quantity, ureg.Quantity):  # a bare number in a string
         return float(quantity)
     if quantity.dimensionless and target not in ("", "rad/s", "1/s"):

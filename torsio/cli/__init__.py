@@ -25,7 +25,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     parser = argparse.ArgumentParser(
         prog="torsio",
-        description="Torsional dynamics of drill-strings: modes, stick-slip, severity maps.")
+        description="Torsional dynamics of drill-strings: modes, stick-slip, severity maps.",
+    )
     parser.add_argument("--version", action="version", version=f"torsio {__version__}")
     subparsers = parser.add_subparsers(dest="command", metavar="COMMAND")
     subparsers.required = True

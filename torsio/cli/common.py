@@ -13,24 +13,30 @@ from torsio.config import Config, builtin_config, load_config
 
 def add_config_argument(parser: argparse.ArgumentParser) -> None:
     """The optional CONFIG positional (default: the built-in Ritto 2017 string)."""
-    parser.add_argument("config", nargs="?", metavar="CONFIG",
-                        help="TOML configuration file (default: the built-in Ritto et al. "
-                             "2017 example)")
+    parser.add_argument(
+        "config",
+        nargs="?",
+        metavar="CONFIG",
+        help="TOML configuration file (default: the built-in Ritto et al. 2017 example)",
+    )
 
 
 def add_discretization_arguments(parser: argparse.ArgumentParser) -> None:
     """--strategy, --dp-elements, --bha-elements (override the file)."""
     parser.add_argument("--strategy", help="discretizer name (A, B, C, consistent, mixed, ...)")
-    parser.add_argument("--dp-elements", type=int, metavar="N",
-                        help="elements (DOFs) in the drill pipes")
-    parser.add_argument("--bha-elements", type=int, metavar="N",
-                        help="elements (DOFs) in the BHA")
+    parser.add_argument(
+        "--dp-elements", type=int, metavar="N", help="elements (DOFs) in the drill pipes"
+    )
+    parser.add_argument("--bha-elements", type=int, metavar="N", help="elements (DOFs) in the BHA")
 
 
 def discretization_overrides(args: argparse.Namespace) -> dict[str, Any]:
     """The discretization options given on the command line."""
-    return {"strategy": args.strategy, "dp_elements": args.dp_elements,
-            "bha_elements": args.bha_elements}
+    return {
+        "strategy": args.strategy,
+        "dp_elements": args.dp_elements,
+        "bha_elements": args.bha_elements,
+    }
 
 
 def load(args: argparse.Namespace) -> Config:

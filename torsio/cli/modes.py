@@ -15,12 +15,19 @@ from torsio.cli.common import (
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
-        "modes", help="natural frequencies and their error against the exact continuum",
-        description="Natural frequencies of the lumped model against the exact continuum.")
+        "modes",
+        help="natural frequencies and their error against the exact continuum",
+        description="Natural frequencies of the lumped model against the exact continuum.",
+    )
     add_config_argument(parser)
     add_discretization_arguments(parser)
-    parser.add_argument("--count", type=int, default=None, metavar="N",
-                        help="number of modes (default: all, at most 10)")
+    parser.add_argument(
+        "--count",
+        type=int,
+        default=None,
+        metavar="N",
+        help="number of modes (default: all, at most 10)",
+    )
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.set_defaults(run=run)
 

@@ -27,8 +27,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "--modes", type=int, default=5, metavar="N", help="number of modes shown (default: 5)"
     )
     parser.add_argument("--json", action="store_true", help="print one JSON object")
-    parser.add_argument("--html", metavar="FILE",
-                        help="also write the report as a standalone HTML page with its plots")
+    parser.add_argument(
+        "--html",
+        metavar="FILE",
+        help="also write the report as a standalone HTML page with its plots",
+    )
     parser.set_defaults(run=run)
 
 
