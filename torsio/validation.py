@@ -247,6 +247,184 @@ def strategy_c_order() -> Check:
     )
 
 
+# --- dynamics: analytic results and conservation laws ------------------------------------
+def _ritto_system(strategy: str = "C", **options: object) -> object:
+    from torsio.config import builtin_config
+    from torsio.system import System
+
+    return System.from_config(builtin_config(), strategy=strategy, **options)
+
+
+@check
+def static_twist() -> Check:
+    import attrs
+
+    from torsio.damping import RayleighDamping
+    from torsio.laws import ConstantTorque
+    from torsio.transient import simulate
+
+    torque = 2000.0
+    system = attrs.evolve(
+        _ritto_system(),
+        law=ConstantTorque(torque_on_bit=torque),
+        damping=RayleighDamping(alpha=0.0, beta=0.06),
+    )
+    # beta damping alone gives zeta_1 = 0.025: 2000 s leave e^-40 of the start-up transient
+    results = simulate(system, duration=2000.0, steady_window=100.0, rtol=1e-9, atol=1e-12)
+    expected = -torque / system.model.equivalent_stiffness
+    return Check(
+        "bit twist under a constant bit torque of 2 kN m [rad]",
+        "Eq. 9: steady twist -T/k_eq (beta damping only)",
+        expected,
+        float(results.bit_twist[-1]),
+        1e-6 * abs(expected),
+        "to the solver tolerance",
+    )
+
+
+@check
+def static_surface_torque() -> Check:
+    import attrs
+
+    from torsio.damping import RayleighDamping
+    from torsio.laws import ConstantTorque
+    from torsio.transient import simulate
+
+    system = attrs.evolve(
+        _ritto_system(),
+        law=ConstantTorque(torque_on_bit=2000.0),
+        damping=RayleighDamping(alpha=0.0, beta=0.06),
+    )
+    results = simulate(system, duration=2000.0, steady_window=100.0, rtol=1e-9, atol=1e-12)
+    return Check(
+        "surface torque under a constant bit torque of 2 kN m [N m]",
+        "static equilibrium: equals the bit torque",
+        2000.0,
+        float(results.surface_torque[-1]),
+        2000.0 * 1e-6,
+        "to the solver tolerance",
+    )
+
+
+@check
+def energy_balance_stick_slip() -> Check:
+    from torsio.energy import energy_balance
+    from torsio.transient import simulate
+
+    results = simulate(_ritto_system().at(wob=150e3, rpm=60.0))
+    return Check(
+        "energy balance residual, stick-slip at 150 kN, 60 rpm [-]",
+        "conservation of energy (work in = dissipated + bit work + stored)",
+        0.0,
+        energy_balance(results).relative_residual,
+        1e-4,
+        "quadrature of the output, relative to the work in",
+    )
+
+
+@check
+def one_dof_severity_reference() -> Check:
+    from scipy.integrate import solve_ivp
+
+    from torsio.transient import simulate
+
+    system = _ritto_system("A").at(wob=100e3, rpm=60.0)
+    results = simulate(system)
+    inertia = float(system.model.inertia[0, 0])
+    stiffness = float(system.model.stiffness[0, 0])
+    alpha, beta, omega = system.damping.alpha, system.damping.beta, system.omega
+
+    def rhs(t: float, y: list[float]) -> list[float]:  # Eq. 1 written out, theta absolute
+        angle, speed = y
+        torque = float(system.law.torque(speed, system.wob, system.bit_radius))
+        acceleration = (
+            -(alpha * inertia + beta * stiffness) * speed
+            - stiffness * (angle - omega * t)
+            + beta * stiffness * omega
+            - torque
+        )
+        return [speed, acceleration / inertia]
+
+    time = results.time
+    reference = solve_ivp(
+        rhs,
+        (0.0, float(time[-1])),
+        [0.0, 0.0],
+        method="DOP853",
+        rtol=1e-11,
+        atol=1e-11,
+        t_eval=time[results.window_mask],
+    )
+    expected = float((reference.y[1].max() - reference.y[1].min()) / (2 * omega))
+    return Check(
+        "S_SS, 1 DOF at 100 kN, 60 rpm [-]",
+        "independent integration of Eq. 1 (DOP853, rtol 1e-11)",
+        expected,
+        results.severity,
+        1e-3,
+        "issue tolerance",
+    )
+
+
+@check
+def dimensionless_severity() -> Check:
+    from torsio.dimensionless import dimensionless_system
+    from torsio.transient import simulate
+
+    system = _ritto_system().at(wob=150e3, rpm=60.0)
+    dimensional = simulate(system, rtol=1e-10, atol=1e-12)
+    scaled = simulate(dimensionless_system(system), rtol=1e-10, atol=1e-12)
+    return Check(
+        "S_SS, dimensionless (Eq. 11) against dimensional run [-]",
+        "the same equations scaled by omega_1 and k_eq",
+        dimensional.severity,
+        scaled.severity,
+        1e-6,
+        "issue tolerance",
+    )
+
+
+@check
+def stability_one_dof() -> Check:
+    from torsio.stability import stability_boundary
+
+    system = _ritto_system("A")
+    rpm = 100.0
+    omega = rpm * math.pi / 30
+    damping = system.damping.alpha * float(
+        system.model.inertia[0, 0]
+    ) + system.damping.beta * float(system.model.stiffness[0, 0])
+    slope = float(system.law.slope(omega, 1.0, 1.0))  # d(T / (W R)) / d speed
+    expected = -damping / (system.bit_radius * slope)
+    value = float(stability_boundary(system, [rpm]).critical_wob[0])
+    return Check(
+        "1-DOF linear stability boundary at 100 rpm [N]",
+        "analytic c + W_ob R_bit T'(Omega) = 0",
+        expected,
+        value,
+        1e-6 * expected,
+        "root of a polynomial",
+    )
+
+
+@check
+def map_point_against_single_run() -> Check:
+    from torsio.maps import severity_map
+    from torsio.transient import simulate
+
+    system = _ritto_system()
+    result = severity_map(system, wob=[150e3], rpm=[60.0], refine=0)
+    single = simulate(system.at(wob=150e3, rpm=60.0), rtol=1e-9, atol=1e-12)
+    return Check(
+        "S_SS of a map point (batch engine), 5 DOF at 150 kN, 60 rpm [-]",
+        "single transient run, LSODA rtol 1e-9",
+        single.severity,
+        float(result.severity[0, 0]),
+        0.01,
+        "issue tolerance",
+    )
+
+
 def table(rows: list[Check]) -> str:
     """The checks as a Markdown table."""
     lines = [
