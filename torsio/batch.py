@@ -689,8 +689,9 @@ def _integrate_one_dof(
     out[4] = status
 
 
-@njit(cache=True, nogil=True)
-def _integrate_batch_serial(
+@njit(cache=True)
+def _integrate_index(
+    k: int,
     n: int,
     md: np.ndarray,
     mu: np.ndarray,
@@ -715,132 +716,69 @@ def _integrate_batch_serial(
     c_coef: np.ndarray,
     out: np.ndarray,
 ) -> None:
-    for k in range(wobs.size):
-        if n == 1:
-            _integrate_one_dof(
-                md[0],
-                kd[0],
-                cd[0],
-                drag[0],
-                code,
-                p,
-                radius,
-                wobs[k],
-                omegas[k],
-                t_end,
-                t_window,
-                rtol,
-                atol,
-                h0,
-                hmax,
-                max_steps,
-                a_coef,
-                c_coef,
-                out[k],
-            )
-        else:
-            _integrate_point(
-                n,
-                md,
-                mu,
-                kd,
-                ku,
-                cd,
-                cu,
-                drag,
-                code,
-                p,
-                radius,
-                wobs[k],
-                omegas[k],
-                t_end,
-                t_window,
-                rtol,
-                atol,
-                h0,
-                hmax,
-                max_steps,
-                a_coef,
-                c_coef,
-                out[k],
-            )
+    """Integrate grid point k (the 1-DOF kernel for one degree of freedom)."""
+    if n == 1:
+        _integrate_one_dof(
+            md[0],
+            kd[0],
+            cd[0],
+            drag[0],
+            code,
+            p,
+            radius,
+            wobs[k],
+            omegas[k],
+            t_end,
+            t_window,
+            rtol,
+            atol,
+            h0,
+            hmax,
+            max_steps,
+            a_coef,
+            c_coef,
+            out[k],
+        )
+    else:
+        _integrate_point(
+            n,
+            md,
+            mu,
+            kd,
+            ku,
+            cd,
+            cu,
+            drag,
+            code,
+            p,
+            radius,
+            wobs[k],
+            omegas[k],
+            t_end,
+            t_window,
+            rtol,
+            atol,
+            h0,
+            hmax,
+            max_steps,
+            a_coef,
+            c_coef,
+            out[k],
+        )
+
+
+@njit(cache=True, nogil=True)
+def _integrate_batch_serial(arguments: tuple) -> None:
+    """Every point of ``arguments`` (see :func:`_integrate_index`) in turn, without the GIL."""
+    for k in range(arguments[11].size):
+        _integrate_index(k, *arguments)
 
 
 @njit(cache=True, parallel=True)
-def _integrate_batch(
-    n: int,
-    md: np.ndarray,
-    mu: np.ndarray,
-    kd: np.ndarray,
-    ku: np.ndarray,
-    cd: np.ndarray,
-    cu: np.ndarray,
-    drag: np.ndarray,
-    code: int,
-    p: np.ndarray,
-    radius: float,
-    wobs: np.ndarray,
-    omegas: np.ndarray,
-    t_end: float,
-    t_window: float,
-    rtol: float,
-    atol: float,
-    h0: float,
-    hmax: float,
-    max_steps: int,
-    a_coef: np.ndarray,
-    c_coef: np.ndarray,
-    out: np.ndarray,
-) -> None:
-    for k in prange(wobs.size):
-        if n == 1:
-            _integrate_one_dof(
-                md[0],
-                kd[0],
-                cd[0],
-                drag[0],
-                code,
-                p,
-                radius,
-                wobs[k],
-                omegas[k],
-                t_end,
-                t_window,
-                rtol,
-                atol,
-                h0,
-                hmax,
-                max_steps,
-                a_coef,
-                c_coef,
-                out[k],
-            )
-        else:
-            _integrate_point(
-                n,
-                md,
-                mu,
-                kd,
-                ku,
-                cd,
-                cu,
-                drag,
-                code,
-                p,
-                radius,
-                wobs[k],
-                omegas[k],
-                t_end,
-                t_window,
-                rtol,
-                atol,
-                h0,
-                hmax,
-                max_steps,
-                a_coef,
-                c_coef,
-                out[k],
-            )
+def _integrate_batch(arguments: tuple) -> None:
+    """Every point of ``arguments`` on numba's thread pool."""
+    for k in prange(arguments[11].size):
+        _integrate_index(k, *arguments)
 
 
 # --- numpy engine: the same method vectorized across the batch -----------------------------
@@ -1437,7 +1375,7 @@ def _run_numba(
     # numba's thread pool must not be entered from several threads at once (a thread pool
     # executor, a Dask worker with several threads): only the main thread uses it
     if threads == 1 or wob.size == 1 or threading.current_thread() is not threading.main_thread():
-        _integrate_batch_serial(*arguments)
+        _integrate_batch_serial(arguments)
         return
     previous_threads = numba.get_num_threads()
     previous_chunk = numba.get_parallel_chunksize()
@@ -1445,7 +1383,7 @@ def _run_numba(
         if threads is not None:
             numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
         numba.set_parallel_chunksize(1)  # points differ 100x in cost: share them dynamically
-        _integrate_batch(*arguments)
+        _integrate_batch(arguments)
     finally:
         numba.set_parallel_chunksize(previous_chunk)
         numba.set_num_threads(previous_threads)

@@ -18,6 +18,7 @@ import math
 import sys
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import attrs
 
@@ -248,7 +249,7 @@ def strategy_c_order() -> Check:
 
 
 # --- dynamics: analytic results and conservation laws ------------------------------------
-def _ritto_system(strategy: str = "C", **options: object) -> object:
+def _ritto_system(strategy: str = "C", **options: Any) -> Any:
     from torsio.config import builtin_config
     from torsio.system import System
 
