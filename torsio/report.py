@@ -9,7 +9,8 @@ append it to :data:`SECTIONS`; :func:`report_data` and :func:`render` pick it up
 
 Sections now: the drill-string, its discretization, the first modes against
 the exact continuum, the Rayleigh damping ratios of those modes, the operating
-point, the dimensionless groups and the response there (S_SS, stick fraction).
+point, the dimensionless groups, the response there (S_SS, stick fraction) and
+its distance to the critical weight on bit.
 
 Examples
 --------
@@ -17,7 +18,7 @@ Examples
 >>> data = report_data(builtin_config(), modes=3)
 >>> list(data)
 ['name', 'source', 'string', 'discretization', 'modes', 'damping', 'operation',
- 'dimensionless', 'response']
+ 'dimensionless', 'response', 'critical']
 >>> data["discretization"]["strategy"], data["discretization"]["dofs"]
 ('C', 5)
 >>> [round(f, 4) for f in data["modes"]["continuum_hz"]]  # rigid-BHA continuum, strategy C
@@ -605,6 +606,66 @@ def response_section(ctx: ReportContext) -> ReportSection | None:
     return ReportSection("response", "Response at the operating point (Eq. 12)", data, table)
 
 
+# --- distance to the critical weight on bit -----------------------------------------------
+CRITICAL_SEARCH = (0.25, 4.0, 9, 6)
+"""Critical-WOB search of the report: (lowest, highest) weight on bit as multiples of the
+operating one, grid points, bisection steps (final bracket 3.75/8/2^6 = 0.7 % of W_ob)."""
+
+
+def critical_section(ctx: ReportContext) -> ReportSection | None:
+    """Critical weight on bit at the operating speed, and the operating point's distance to it.
+
+    One row of a severity map at the operating rpm (:func:`torsio.maps.severity_map`,
+    every point started from rest) over :data:`CRITICAL_SEARCH`, bisected between grid
+    points, with the linear stability limit of steady rotation at the same speed.
+    """
+    op = ctx.config.operation
+    if ctx.system is None or op.wob is None or op.rpm is None or op.wob <= 0:
+        return None
+    from torsio.maps import severity_map
+
+    low, high, points, refine = CRITICAL_SEARCH
+    grid = np.linspace(low * op.wob, high * op.wob, points)
+    row = severity_map(ctx.system, wob=grid, rpm=[op.rpm], refine=refine)
+    critical = float(row.critical_wob[0])
+    status = row.critical_status[0]
+    linear = float(row.stability_wob[0])
+    margin = critical - op.wob if np.isfinite(critical) else None
+    data = {
+        "rpm": op.rpm,
+        "wob_n": op.wob,
+        "critical_wob_n": critical if np.isfinite(critical) else None,
+        "status": status,
+        "margin_n": margin,
+        "margin_fraction": None if margin is None else margin / op.wob,
+        "search_wob_n": [float(grid[0]), float(grid[-1])],
+        "bracket_n": [float(w) for w in row.critical_bracket[0]],
+        "linear_stability_wob_n": linear if np.isfinite(linear) else None,
+    }
+    table = Table.grid(padding=(0, 2))
+    table.add_column(style="dim")
+    table.add_column()
+    if status == "none":
+        text = f"none up to {grid[-1] / 1e3:.4g} kN (no severe point in the search)"
+    elif status == "below_range":
+        text = f"at or below {grid[0] / 1e3:.4g} kN (severe over the whole search)"
+    else:
+        text = f"{critical / 1e3:.4g} kN (S_SS > 0.8 above it, from rest)"
+    table.add_row(f"critical WOB at {op.rpm:.4g} rpm", Text(text))
+    if margin is not None and status not in ("below_range",):
+        side = "below" if margin > 0 else "above"
+        style = "green" if margin > 0 else "bold red"
+        table.add_row(
+            "operating point",
+            Text(f"{abs(margin) / 1e3:.4g} kN ({abs(margin) / op.wob:.0%}) {side} it", style=style),
+        )
+    if np.isfinite(linear):
+        table.add_row(
+            "linear stability", Text(f"steady rotation unstable above {linear / 1e3:.4g} kN")
+        )
+    return ReportSection("critical", "Distance to the critical weight on bit", data, table)
+
+
 SECTIONS: list[Callable[[ReportContext], ReportSection | None]] = [
     string_section,
     discretization_section,
@@ -613,6 +674,7 @@ SECTIONS: list[Callable[[ReportContext], ReportSection | None]] = [
     operation_section,
     dimensionless_section,
     response_section,
+    critical_section,
 ]
 """The sections of the report, in order; a function may return None to be left out."""
 
