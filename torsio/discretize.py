@@ -89,6 +89,7 @@ class Discretizer:
     description: ClassVar[str] = ""
 
     def discretize(self, string: DrillString) -> LumpedModel:  # pragma: no cover - abstract
+        """The lumped model of ``string`` (inertia [kg m^2], stiffness [N m/rad])."""
         raise NotImplementedError
 
 
@@ -106,6 +107,7 @@ class StrategyA(Discretizer):
         _reject_options(self.name, options, allowed={"dp_elements": 1, "bha_elements": 1})
 
     def discretize(self, string: DrillString) -> LumpedModel:
+        """The 1-DOF model of Eq. 5 (inertia [kg m^2], stiffness [N m/rad])."""
         _require_drill_pipe(string, self.name)
         inertia = string.drill_pipe_inertia / 3.0 + string.bha_inertia
         depth = sum(s.length for s in string.drill_pipe_sections)

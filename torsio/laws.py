@@ -225,6 +225,7 @@ class ConstantTorque(BitRockLaw):
     torque_on_bit: float
 
     def torque(self, speed: Any, wob: Any, radius: Any) -> np.ndarray:
+        """The constant torque [N m], broadcast to the shape of the inputs."""
         shape = np.broadcast_shapes(np.shape(speed), np.shape(wob), np.shape(radius))
         return np.full(shape, self.torque_on_bit)
 

@@ -73,6 +73,7 @@ class SerialExecutor(cf.Executor):
     """
 
     def submit(self, fn: Callable[..., Any], /, *args: Any, **kwargs: Any) -> cf.Future[Any]:
+        """Run ``fn(*args, **kwargs)`` now, in this thread; return its finished future."""
         future: cf.Future[Any] = cf.Future()
         if not future.set_running_or_notify_cancel():  # pragma: no cover - never cancelled
             return future

@@ -74,6 +74,9 @@ CHECKS: dict[str, Callable[[], Check]] = {}
 
 def check(function: Callable[[], Check]) -> Callable[[], Check]:
     """Register a check function under its name."""
+    function.__doc__ = function.__doc__ or (
+        "A validation check: compute torsio's value and return it as a :class:`Check`."
+    )
     CHECKS[function.__name__] = function
     return function
 

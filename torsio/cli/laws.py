@@ -9,6 +9,7 @@ from torsio.cli.common import print_json
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add the ``laws`` command to the ``torsio`` parser."""
     parser = subparsers.add_parser(
         "laws",
         help="registered bit-rock laws (built-in and plugins) and their parameters",
@@ -31,6 +32,7 @@ def describe(cls: type[Any]) -> dict[str, Any]:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Run ``torsio laws`` with parsed arguments; return the exit status."""
     from torsio.plugins import bit_laws
 
     laws = [describe(cls) for _, cls in sorted(bit_laws().items())]

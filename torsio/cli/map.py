@@ -27,6 +27,7 @@ DEFAULT_RPM = "40:140:21"
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add the ``map`` command to the ``torsio`` parser."""
     parser = subparsers.add_parser(
         "map",
         help="severity map S_SS over weight on bit x rotary speed, critical WOB",
@@ -212,6 +213,7 @@ _KEYS = {
 
 
 def run(args: argparse.Namespace) -> int:
+    """Run ``torsio map`` with parsed arguments; return the exit status."""
     from torsio.errors import ConfigError
 
     try:

@@ -14,6 +14,7 @@ from torsio.cli.common import (
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add the ``modes`` command to the ``torsio`` parser."""
     parser = subparsers.add_parser(
         "modes",
         help="natural frequencies and their error against the exact continuum",
@@ -33,6 +34,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Run ``torsio modes`` with parsed arguments; return the exit status."""
     from rich.console import Console
 
     from torsio.errors import ConfigError

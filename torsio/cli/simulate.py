@@ -15,6 +15,7 @@ from torsio.cli.common import (
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add the ``simulate`` command to the ``torsio`` parser."""
     parser = subparsers.add_parser(
         "simulate",
         help="start-up transient at one operating point and its stick-slip severity S_SS",
@@ -68,6 +69,7 @@ def _time(value: str | None, key: str) -> float | None:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Run ``torsio simulate`` with parsed arguments; return the exit status."""
     from torsio.errors import ConfigError, TorsioError
     from torsio.transient import simulate_config
 
