@@ -5,7 +5,11 @@ from __future__ import annotations
 import pytest
 
 from torsio import continuum_modes, ritto2017_string
+from torsio.damping import ModelDamping
 from torsio.drillstring import DrillString
+from torsio.laws import TuckerWang
+from torsio.lumped import LumpedModel
+from torsio.system import System
 
 
 @pytest.fixture(scope="session")
@@ -24,3 +28,22 @@ def continuum30(ritto: DrillString):
 def continuum_rigid(ritto: DrillString):
     """First 5 exact frequencies with the BHA rigid (strategy C's limit)."""
     return continuum_modes(ritto, 5, rigid_bha=True)
+
+
+@pytest.fixture
+def chain_with_own_dampers() -> System:
+    """A 3-inertia chain carrying its own dampers and drag (ModelDamping), Tucker-Wang."""
+    model = LumpedModel.from_chain(
+        inertias=[300.0, 200.0, 450.0],
+        stiffnesses=[900.0, 700.0, 800.0],
+        dampings=[40.0, 30.0, 35.0],
+        drag=[20.0, 0.0, 50.0],
+    )
+    return System(
+        model=model,
+        law=TuckerWang(a0=0.221, a1=0.2, a2=0.89, a3=0.06, speed_unit="rpm"),
+        bit_radius=0.108,
+        damping=ModelDamping(),
+        wob=100e3,
+        rpm=40.0,
+    )

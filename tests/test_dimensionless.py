@@ -14,7 +14,6 @@ import attrs
 import numpy as np
 import pytest
 
-from torsio.damping import ModelDamping
 from torsio.dimensionless import (
     DimensionlessLaw,
     dimensional_system,
@@ -22,8 +21,6 @@ from torsio.dimensionless import (
     dimensionless_system,
 )
 from torsio.errors import ConfigError
-from torsio.laws import TuckerWang
-from torsio.lumped import LumpedModel
 from torsio.modal import modal_analysis
 from torsio.plugins import get_bit_law
 from torsio.system import System, builtin_config
@@ -143,22 +140,9 @@ def test_dimensionless_run_equals_dimensional(config, strategy, law, rpm):
     assert dimensionless.to_dict()["pi1"] == pytest.approx(groups.pi1)
 
 
-def test_dimensionless_model_damping():
+def test_dimensionless_model_damping(chain_with_own_dampers):
     """A model's own damping matrix is scaled by omega_1/k_eq; the runs agree."""
-    model = LumpedModel.from_chain(
-        inertias=[300.0, 200.0, 450.0],
-        stiffnesses=[900.0, 700.0, 800.0],
-        dampings=[40.0, 30.0, 35.0],
-        drag=[20.0, 0.0, 50.0],
-    )
-    system = System(
-        model=model,
-        law=TuckerWang(a0=0.221, a1=0.2, a2=0.89, a3=0.06, speed_unit="rpm"),
-        bit_radius=0.108,
-        damping=ModelDamping(),
-        wob=100e3,
-        rpm=40.0,
-    )
+    system = chain_with_own_dampers
     dimensional, dimensionless, speed_error = _compare(system)
     assert dimensional.severity > 0.8
     assert speed_error < 1e-6

@@ -17,10 +17,9 @@ import attrs
 import numpy as np
 import pytest
 
-from torsio.damping import ModelDamping, RayleighDamping
+from torsio.damping import RayleighDamping
 from torsio.energy import damping_split, energy_balance
-from torsio.laws import ConstantTorque, TuckerWang
-from torsio.lumped import LumpedModel
+from torsio.laws import ConstantTorque
 from torsio.modal import modal_analysis
 from torsio.system import System, builtin_config
 from torsio.transient import simulate
@@ -52,22 +51,9 @@ def test_energy_balance_stick_slip(config, strategy, wob, rpm):
     assert abs(totals["kinetic_change"] + totals["potential_change"]) < 0.05 * totals["work_in"]
 
 
-def test_energy_balance_model_damping():
+def test_energy_balance_model_damping(chain_with_own_dampers):
     """A chain with its own dampers and drag (ModelDamping): the same balance holds."""
-    model = LumpedModel.from_chain(
-        inertias=[300.0, 200.0, 450.0],
-        stiffnesses=[900.0, 700.0, 800.0],
-        dampings=[40.0, 30.0, 35.0],
-        drag=[20.0, 0.0, 50.0],
-    )
-    system = System(
-        model=model,
-        law=TuckerWang(a0=0.221, a1=0.2, a2=0.89, a3=0.06, speed_unit="rpm"),
-        bit_radius=0.108,
-        damping=ModelDamping(),
-        wob=100e3,
-        rpm=40.0,
-    )
+    system = chain_with_own_dampers
     relative, drag = damping_split(system)
     assert np.allclose(drag, np.diag([20.0, 0.0, 50.0]))
     assert np.allclose(relative.sum(axis=1), [40.0, 0.0, 0.0])  # only c1 ties to the top
