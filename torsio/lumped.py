@@ -162,8 +162,11 @@ class LumpedModel:
 
         Examples
         --------
-        The 4-DOF model of Navarro-Lopez and Cortes (2007): rotary table, two pipe
-        inertias and the BHA (their Table 1 values):
+        A 4-DOF chain with the structure of Navarro-Lopez and Cortes (2007): rotary
+        table, two pipe inertias and the BHA, with inertias, springs and dampers of
+        the size their model uses (check them against the paper before a study). Their
+        rotary table is driven by a motor torque; here the prescribed top speed drives
+        it through a very stiff first spring:
 
         >>> m = LumpedModel.from_chain(
         ...     inertias=[930.0, 2782.25, 750.0, 471.9698],
