@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from torsio import continuum_modes, ritto2017_string
+from torsio import builtin_config, continuum_modes, ritto2017_string
 from torsio.damping import ModelDamping
 from torsio.drillstring import DrillString
 from torsio.laws import TuckerWang
@@ -28,6 +28,18 @@ def continuum30(ritto: DrillString):
 def continuum_rigid(ritto: DrillString):
     """First 5 exact frequencies with the BHA rigid (strategy C's limit)."""
     return continuum_modes(ritto, 5, rigid_bha=True)
+
+
+@pytest.fixture(scope="session")
+def one_dof() -> System:
+    """The built-in Ritto (2017) system with strategy A (1 DOF)."""
+    return System.from_config(builtin_config(), strategy="A")
+
+
+@pytest.fixture(scope="session")
+def ten_dof() -> System:
+    """The built-in Ritto (2017) system with strategy C and 10 drill-pipe elements."""
+    return System.from_config(builtin_config(), strategy="C", dp_elements=10)
 
 
 @pytest.fixture

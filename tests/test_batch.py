@@ -31,16 +31,6 @@ TIGHT = {"method": "LSODA", "rtol": 1e-8, "atol": 1e-10}
 """Tolerances of the independent reference runs."""
 
 
-@pytest.fixture(scope="module")
-def one_dof() -> System:
-    return System.from_config(builtin_config(), strategy="A")
-
-
-@pytest.fixture(scope="module")
-def ten_dof() -> System:
-    return System.from_config(builtin_config(), strategy="C", dp_elements=10)
-
-
 def reference(system: System, wob: float, rpm: float, duration: float, window: float) -> float:
     return simulate(
         system.at(wob=wob, rpm=rpm), duration=duration, steady_window=window, **TIGHT

@@ -35,22 +35,12 @@ from torsio.maps import (
     severity_map,
 )
 from torsio.sweep import run_tasks
-from torsio.system import System, builtin_config
+from torsio.system import System
 from torsio.transient import simulate
 
 TIGHT = {"method": "LSODA", "rtol": 1e-8, "atol": 1e-10}
 WOB21 = np.linspace(25e3, 225e3, 21)
 RPM21 = np.linspace(40.0, 140.0, 21)
-
-
-@pytest.fixture(scope="module")
-def one_dof() -> System:
-    return System.from_config(builtin_config(), strategy="A")
-
-
-@pytest.fixture(scope="module")
-def ten_dof() -> System:
-    return System.from_config(builtin_config(), strategy="C", dp_elements=10)
 
 
 def single_run(system: System, wob: float, rpm: float, duration: float, window: float) -> float:

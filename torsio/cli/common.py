@@ -39,6 +39,18 @@ def discretization_overrides(args: argparse.Namespace) -> dict[str, Any]:
     }
 
 
+def parse_time(value: str | None, key: str) -> float | None:
+    """A time option: a bare number in s, or a string with units ("5 min"); None stays None."""
+    from torsio.units import to_si
+
+    if value is None:
+        return None
+    try:
+        return float(value)
+    except ValueError:
+        return to_si(value, "time", key=key)
+
+
 def load(args: argparse.Namespace) -> Config:
     """The configuration named on the command line, or the built-in one."""
     return builtin_config() if args.config is None else load_config(args.config)

@@ -19,6 +19,7 @@ from torsio.cli.common import (
     add_discretization_arguments,
     discretization_overrides,
     load,
+    parse_time,
     print_json,
 )
 
@@ -180,17 +181,6 @@ def _range_bounds(text: str, option: str, kind: str) -> tuple[float, float, int]
     return start, stop, count
 
 
-def _time(value: str | None, key: str) -> float | None:
-    from torsio.units import to_si
-
-    if value is None:
-        return None
-    try:
-        return float(value)
-    except ValueError:
-        return to_si(value, "time", key=key)
-
-
 _KEYS = {
     "wob": "--wob",
     "rpm": "--rpm",
@@ -266,8 +256,8 @@ def _run(args: argparse.Namespace) -> int:
         config, **{k: v for k, v in discretization_overrides(args).items() if v is not None}
     )
     simulation = dict(config.simulation.options)
-    duration = _time(args.duration, "--duration")
-    window = _time(args.window, "--window")
+    duration = parse_time(args.duration, "--duration")
+    window = parse_time(args.window, "--window")
     options: dict[str, Any] = {
         "duration": duration if duration is not None else simulation.get("duration"),
         "steady_window": window if window is not None else simulation.get("steady_window"),

@@ -10,6 +10,7 @@ from torsio.cli.common import (
     add_discretization_arguments,
     discretization_overrides,
     load,
+    parse_time,
     print_json,
 )
 
@@ -57,17 +58,6 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.set_defaults(run=run)
 
 
-def _time(value: str | None, key: str) -> float | None:
-    from torsio.units import to_si
-
-    if value is None:
-        return None
-    try:
-        return float(value)
-    except ValueError:
-        return to_si(value, "time", key=key)
-
-
 def run(args: argparse.Namespace) -> int:
     """Run ``torsio simulate`` with parsed arguments; return the exit status."""
     from torsio.errors import ConfigError, TorsioError
@@ -75,9 +65,9 @@ def run(args: argparse.Namespace) -> int:
 
     config = load(args)
     overrides: dict[str, Any] = {
-        "duration": _time(args.duration, "--duration"),
-        "steady_window": _time(args.window, "--window"),
-        "output_step": _time(args.output_step, "--output-step"),
+        "duration": parse_time(args.duration, "--duration"),
+        "steady_window": parse_time(args.window, "--window"),
+        "output_step": parse_time(args.output_step, "--output-step"),
         "method": args.method,
         "rtol": args.rtol,
         "atol": args.atol,
