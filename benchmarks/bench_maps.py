@@ -1,8 +1,8 @@
 """Severity maps: the batch engine against one solve_ivp run per grid point, in one run.
 
-Baseline: ``torsio.transient.simulate`` per point with ``method="RK45", rtol=1e-6``
+Baseline: ``torsio.analysis.transient.simulate`` per point with ``method="RK45", rtol=1e-6``
 (atol 1e-9), i.e. one ``scipy.integrate.solve_ivp`` call per operating point.
-Batch: ``torsio.maps.severity_map`` on the same grid (``refine=0``: the grid only,
+Batch: ``torsio.analysis.maps.severity_map`` on the same grid (``refine=0``: the grid only,
 the same work as the baseline), default engine and tolerances.
 
 Both use runs of 300 s from rest and read S_SS over the last 100 s, on the
@@ -32,10 +32,10 @@ import time
 
 import numpy as np
 
-from torsio import batch
-from torsio.maps import severity_map
-from torsio.system import System, builtin_config
-from torsio.transient import simulate
+from torsio.solvers import batch
+from torsio.analysis.maps import severity_map
+from torsio.physics.system import System, builtin_config
+from torsio.analysis.transient import simulate
 
 DURATION = 300.0
 WINDOW = 100.0

@@ -28,8 +28,8 @@ import attrs
 import numpy as np
 
 from torsio import DrillPipe, DrillString, System, builtin_config
-from torsio.maps import SeverityMap, dimensionless_map, severity_map
-from torsio.plotting import pyplot, save_figure
+from torsio.analysis.maps import SeverityMap, dimensionless_map, severity_map
+from torsio.io.plotting import pyplot, save_figure
 
 
 def variants() -> dict[str, Callable[[DrillString], DrillString]]:

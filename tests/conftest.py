@@ -5,11 +5,11 @@ from __future__ import annotations
 import pytest
 
 from torsio import builtin_config, continuum_modes, ritto2017_string
-from torsio.damping import ModelDamping
-from torsio.drillstring import DrillString
-from torsio.laws import TuckerWang
-from torsio.lumped import LumpedModel
-from torsio.system import System
+from torsio.physics.damping import ModelDamping
+from torsio.model.drillstring import DrillString
+from torsio.physics.laws import TuckerWang
+from torsio.model.lumped import LumpedModel
+from torsio.physics.system import System
 
 
 @pytest.fixture(scope="session")

@@ -1,11 +1,11 @@
-"""The batch engine (torsio.batch) against closed forms and independent single runs.
+"""The batch engine (torsio.solvers.batch) against closed forms and independent single runs.
 
 Sources of the reference numbers:
 
 * closed form: a constant torque on bit makes the equations linear; their exact
   solution from rest is the matrix exponential of the first-order system
   (scipy.linalg.eig), and for one DOF the damped-oscillator formula;
-* independent single runs: torsio.transient.simulate (scipy LSODA) at
+* independent single runs: torsio.analysis.transient.simulate (scipy LSODA) at
   rtol = 1e-8, atol = 1e-10, on the same run length and steady window;
 * a cubic polynomial whose extremes are known by hand (Hermite interpolation of
   a cubic is exact).
@@ -20,12 +20,12 @@ import numpy as np
 import pytest
 import scipy.linalg
 
-from torsio import batch
+from torsio.solvers import batch
 from torsio.errors import ConfigError
-from torsio.laws import ConstantTorque, TuckerWang
-from torsio.lumped import LumpedModel
-from torsio.system import System, builtin_config
-from torsio.transient import simulate
+from torsio.physics.laws import ConstantTorque, TuckerWang
+from torsio.model.lumped import LumpedModel
+from torsio.physics.system import System, builtin_config
+from torsio.analysis.transient import simulate
 
 TIGHT = {"method": "LSODA", "rtol": 1e-8, "atol": 1e-10}
 """Tolerances of the independent reference runs."""
@@ -56,7 +56,7 @@ def _constant_torque(system: System, torque: float) -> System:
 
 def _exact_severity(system: System, duration: float, window: float) -> float:
     """S_SS of the linear (constant-torque) response from rest, by the matrix exponential."""
-    from torsio.stability import linearized_matrix
+    from torsio.analysis.stability import linearized_matrix
 
     model = system.model
     n = model.dofs
@@ -156,7 +156,7 @@ def test_stiff_model_needs_no_tiny_steps() -> None:
     assert result.severity[1] < 1e-6  # steady rotation (reference: S = 0 at 50 kN, 120 rpm)
     # an explicit method is stable only for h |lambda_max| < ~3.3 (RK45); the fastest
     # eigenvalue of the linearization is about beta omega_max^2
-    from torsio.stability import eigenvalues
+    from torsio.analysis.stability import eigenvalues
 
     fastest = float(np.max(np.abs(eigenvalues(system.at(wob=150e3, rpm=60.0)).real)))
     assert fastest > 0.5 * system.damping.beta * model.highest_frequency**2

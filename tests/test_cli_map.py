@@ -1,6 +1,6 @@
 """``torsio map``: JSON contract, ranges with units, files, executors, errors, Ctrl-C.
 
-Source of the reference numbers: the library call torsio.maps.severity_map on the
+Source of the reference numbers: the library call torsio.analysis.maps.severity_map on the
 same grid (the command must print what the library computes), and the DESIGN.md
 contract for the JSON keys.
 """
@@ -13,9 +13,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from torsio import maps
+from torsio.analysis import maps
 from torsio.cli import main
-from torsio.system import System, builtin_config
+from torsio.physics.system import System, builtin_config
 
 ARGS = ["--strategy", "A", "--wob", "25kN:225kN:3", "--rpm", "40:140:3"]
 

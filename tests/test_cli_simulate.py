@@ -1,7 +1,7 @@
 """``torsio simulate`` and ``torsio laws``: JSON contract of DESIGN.md, files, errors.
 
 Numbers checked: the JSON equals the library's result for the same options
-(torsio.transient.simulate_config); 100 kN = 100000 N (unit conversion).
+(torsio.analysis.transient.simulate_config); 100 kN = 100000 N (unit conversion).
 """
 
 from __future__ import annotations
@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 from torsio.cli import main
-from torsio.config import builtin_config
-from torsio.transient import simulate_config
+from torsio.io.config import builtin_config
+from torsio.analysis.transient import simulate_config
 
 FAST = ["--strategy", "A", "--duration", "60", "--window", "20"]
 

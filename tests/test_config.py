@@ -11,7 +11,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from torsio import builtin_config, load_config, parse_config
-from torsio.config import parse_config_text
+from torsio.io.config import parse_config_text
 from torsio.errors import ConfigError, TorsioError
 
 BUILTIN = tomllib.loads(

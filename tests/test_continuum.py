@@ -9,7 +9,7 @@ import pytest
 from scipy.optimize import brentq
 
 from torsio import Bit, DrillPipe, DrillString, Material, continuum_modes
-from torsio.continuum import _members, count_below
+from torsio.model.continuum import _members, count_below
 from torsio.errors import ConfigError
 
 STEEL = Material(shear_modulus=85.3e9, density=7800.0)

@@ -20,7 +20,7 @@ from torsio import (
     continuum_modes,
     modal_analysis,
 )
-from torsio.discretize import split_count
+from torsio.model.discretize import split_count
 from torsio.errors import ConfigError
 
 

@@ -2,7 +2,7 @@
 
 Source of every check: the power balance of the equations of motion,
 d/dt (E_kin + E_pot) = Omega T_s - v^T C_rel v - theta'^T D theta' - T_bit theta_N'
-(derived in the docstring of torsio.energy from Eq. 3), and, for the steady
+(derived in the docstring of torsio.analysis.energy from Eq. 3), and, for the steady
 state, the torque balance of the whole string.
 
 Stated tolerance: with the default output grid (200 samples per period of the
@@ -17,12 +17,12 @@ import attrs
 import numpy as np
 import pytest
 
-from torsio.damping import RayleighDamping
-from torsio.energy import damping_split, energy_balance
-from torsio.laws import ConstantTorque
-from torsio.modal import modal_analysis
-from torsio.system import System, builtin_config
-from torsio.transient import simulate
+from torsio.physics.damping import RayleighDamping
+from torsio.analysis.energy import damping_split, energy_balance
+from torsio.physics.laws import ConstantTorque
+from torsio.model.modal import modal_analysis
+from torsio.physics.system import System, builtin_config
+from torsio.analysis.transient import simulate
 
 BALANCE_TOLERANCE = 1e-5  # fraction of the work in, see the module docstring
 

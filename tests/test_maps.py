@@ -1,13 +1,13 @@
-"""Severity maps (torsio.maps) against independent single transient runs.
+"""Severity maps (torsio.analysis.maps) against independent single transient runs.
 
 Sources of the reference numbers:
 
-* independent single runs: torsio.transient.simulate (scipy LSODA) at rtol = 1e-8,
+* independent single runs: torsio.analysis.transient.simulate (scipy LSODA) at rtol = 1e-8,
   atol = 1e-10, each started from rest, same run length and steady window as the
-  map (the defaults of torsio.severity: 40 and 15 first-mode periods);
+  map (the defaults of torsio.analysis.severity: 40 and 15 first-mode periods);
 * the definitions Pi_1 = Omega/omega_1 and Pi_2 = W_ob R_bit/k_eq as implemented by
-  torsio.dimensionless (a separate module);
-* the dimensionless system of Eq. 11 (torsio.dimensionless.dimensionless_system),
+  torsio.physics.dimensionless (a separate module);
+* the dimensionless system of Eq. 11 (torsio.physics.dimensionless.dimensionless_system),
   integrated in tau = omega_1 t, which must give the same S_SS.
 
 The issue's requirement, |dS_SS| <= 0.01 at every point of a 21 x 21 map for a
@@ -24,9 +24,10 @@ import math
 import numpy as np
 import pytest
 
-from torsio import batch, maps
+from torsio.analysis import maps
+from torsio.solvers import batch
 from torsio.errors import ConfigError, SolverError
-from torsio.maps import (
+from torsio.analysis.maps import (
     MapInterrupted,
     SeverityMap,
     check_grid_size,
@@ -34,9 +35,9 @@ from torsio.maps import (
     load_map,
     severity_map,
 )
-from torsio.sweep import run_tasks
-from torsio.system import System
-from torsio.transient import simulate
+from torsio.analysis.sweep import run_tasks
+from torsio.physics.system import System
+from torsio.analysis.transient import simulate
 
 TIGHT = {"method": "LSODA", "rtol": 1e-8, "atol": 1e-10}
 WOB21 = np.linspace(25e3, 225e3, 21)
@@ -147,7 +148,7 @@ def test_orientation_severity_i_j_is_rpm_i_wob_j(one_dof: System) -> None:
 
 # --- dimensionless map ----------------------------------------------------------------------
 def test_dimensionless_map_axes_and_invariance(one_dof: System) -> None:
-    from torsio.dimensionless import dimensionless_groups, dimensionless_system
+    from torsio.physics.dimensionless import dimensionless_groups, dimensionless_system
 
     pi1, pi2 = np.array([5.0, 9.0]), np.array([15.0, 45.0])
     result = dimensionless_map(one_dof, pi1, pi2, refine=0)

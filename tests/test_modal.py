@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from torsio import LumpedModel, StrategyA, StrategyB, StrategyC, modal_analysis
-from torsio.damping import RayleighDamping
+from torsio.physics.damping import RayleighDamping
 from torsio.errors import ConfigError
 
 

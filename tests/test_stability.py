@@ -1,4 +1,4 @@
-"""Linear stability of steady rotation (torsio.stability).
+"""Linear stability of steady rotation (torsio.analysis.stability).
 
 Sources of the reference numbers:
 
@@ -20,8 +20,8 @@ import attrs
 import numpy as np
 import pytest
 
-from torsio.laws import BitRockLaw, Parameter
-from torsio.stability import (
+from torsio.physics.laws import BitRockLaw, Parameter
+from torsio.analysis.stability import (
     bit_receptance,
     critical_bit_damping,
     eigenvalues,
@@ -29,7 +29,7 @@ from torsio.stability import (
     linearized_matrix,
     stability_boundary,
 )
-from torsio.system import System, builtin_config
+from torsio.physics.system import System, builtin_config
 
 RPM = np.linspace(40.0, 140.0, 51)
 

@@ -1,4 +1,4 @@
-"""Sweeps on executors (torsio.sweep): serial, local processes, a Dask LocalCluster.
+"""Sweeps on executors (torsio.analysis.sweep): serial, local processes, a Dask LocalCluster.
 
 Source of the reference numbers: the serial map. Each grid point is integrated
 on its own (its own steps and error control), so any executor, chunking or
@@ -15,9 +15,9 @@ import numpy as np
 import pytest
 
 from torsio.errors import ConfigError
-from torsio.maps import SeverityMap, severity_map
-from torsio.sweep import SweepError, SweepInterrupted, run_tasks
-from torsio.system import System, builtin_config
+from torsio.analysis.maps import SeverityMap, severity_map
+from torsio.analysis.sweep import SweepError, SweepInterrupted, run_tasks
+from torsio.physics.system import System, builtin_config
 
 WOB = np.linspace(25e3, 225e3, 6)
 RPM = np.linspace(40.0, 140.0, 4)

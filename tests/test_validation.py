@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from torsio.validation import CHECKS, page
+from torsio.io.validation import CHECKS, page
 
 PAGE = Path(__file__).parents[1] / "docs" / "validation.md"
 
@@ -21,5 +21,5 @@ def test_check_passes(name):
 
 
 def test_validation_page_is_generated_from_the_checks():
-    # Regenerate with: python -m torsio.validation --write docs/validation.md
+    # Regenerate with: python -m torsio.io.validation --write docs/validation.md
     assert PAGE.read_text(encoding="utf-8") == page()

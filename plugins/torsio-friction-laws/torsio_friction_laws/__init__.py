@@ -10,7 +10,7 @@ the equations of motion stay ordinary differential equations:
   1994).
 
 Speeds are in rad/s, weight on bit in N, bit radius in m, torque in N m. Like
-every :class:`torsio.laws.BitRockLaw`, the parameters can be given for a bit
+every :class:`torsio.physics.laws.BitRockLaw`, the parameters can be given for a bit
 speed in rpm with ``speed_unit="rpm"``.
 
 Examples
@@ -30,7 +30,7 @@ import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.hookspecs import hookimpl
-from torsio.laws import BitRockLaw, Parameter
+from torsio.physics.laws import BitRockLaw, Parameter
 
 __all__ = ["CoulombStribeck", "GeneralizedStribeck", "torsio_bit_laws"]
 __version__ = "0.1.0"

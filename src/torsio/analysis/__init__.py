@@ -1,0 +1,2 @@
+"""Analyzers: transient response, severity maps, linear stability, energy balance and
+the severity coefficient S_SS."""

@@ -1,0 +1,296 @@
+"""Linear stability of steady rotation: where the bit-law slope outweighs the damping.
+
+Steady drilling is the rotation of the whole string at the surface speed,
+theta' = Omega at every node (in twist coordinates a constant twist phi*). Small
+perturbations about it obey (see :mod:`torsio.physics.system`)
+
+    [I] dphi'' + ([C] + s e_N e_N^T) dphi' + [K] dphi = 0,   s = T_bit'(Omega),
+
+where ``s`` [N m s/rad] is the slope of the bit torque at the steady bit speed: it
+acts as a damper at the bit, a *negative* one on the velocity-weakening branch
+of the law. Steady rotation is unstable when the first-order system of this
+equation has an eigenvalue with positive real part.
+
+Only ``s`` depends on the operating point, so the boundary is found once per
+model as a critical bit damping ``s_c < 0`` (unstable for s < s_c). It is where an
+eigenvalue crosses the imaginary axis at some lambda = i omega; with the bit
+receptance G(omega) = [(K - omega^2 I + i omega C)^-1]_NN the determinant lemma gives
+
+    1 + i omega s G(omega) = 0   =>   Re G(omega) = 0  and  s = 1 / (omega Im G(omega)),
+
+and s_c is the least negative of those values (the first crossing as s decreases
+from 0). G is evaluated for thousands of frequencies at once (a continued fraction
+for a chain), so s_c costs milliseconds even for 150 DOFs; the result is checked
+against the eigenvalues in the tests. For a law proportional to the weight on
+bit (Tucker-Wang), T_bit' = W_ob R_bit T'(Omega) with T' the slope of the
+normalized law, and the critical weight on bit of linear instability is
+
+    W_ob,lin(Omega) = s_c / (R_bit T'(Omega))   where T'(Omega) < 0  (none elsewhere).
+
+For the 1-DOF model s_c = -c with c = [C]_11 = alpha I + beta k, i.e. the analytic
+condition c + W_ob R_bit T'(Omega) = 0.
+
+Examples
+--------
+>>> from torsio.physics.system import System, builtin_config
+>>> system = System.from_config(builtin_config(), strategy="A")
+>>> c = system.damping_matrix[0, 0]                     # alpha I + beta k
+>>> round(float(critical_bit_damping(system).slope / c), 9)   # s_c = -c for one DOF
+-1.0
+>>> boundary = stability_boundary(system, rpm=[40.0, 100.0])
+>>> [round(float(w) / 1e3, 1) for w in boundary.critical_wob]   # kN
+[87.4, 532.0]
+>>> bool(growth_rate(system.at(wob=100e3, rpm=40.0)) > 0)
+True
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import attrs
+import numpy as np
+import scipy.linalg
+import scipy.optimize
+
+from torsio.errors import ConfigError
+from torsio.physics.system import System
+from torsio.units import RPM_TO_RAD_S
+
+__all__ = [
+    "CriticalDamping",
+    "StabilityBoundary",
+    "bit_receptance",
+    "critical_bit_damping",
+    "eigenvalues",
+    "growth_rate",
+    "linearized_matrix",
+    "stability_boundary",
+]
+
+
+def _bit_slope(system: System, speed: Any, wob: Any) -> np.ndarray:
+    law = system.law
+    if hasattr(law, "slope"):
+        return np.asarray(law.slope(speed, wob, system.bit_radius), dtype=float)
+    w = np.asarray(speed, dtype=float)
+    step = 1e-6 * np.maximum(1.0, np.abs(w))
+    return (
+        np.asarray(law.torque(w + step, wob, system.bit_radius))
+        - np.asarray(law.torque(w - step, wob, system.bit_radius))
+    ) / (2.0 * step)
+
+
+def linearized_matrix(system: System, bit_slope: float | None = None) -> np.ndarray:
+    """First-order matrix of small perturbations about steady rotation.
+
+    State ``[dphi_1..dphi_N, dv_1..dv_N]`` (twists [rad], then speeds [rad/s]).
+
+    Parameters
+    ----------
+    system : System
+        Model, damping and law; its operating point sets the slope.
+    bit_slope : float, optional
+        s [N m s/rad] to use instead of the law's slope at the system's speed.
+    """
+    model = system.model
+    n = model.dofs
+    s = float(_bit_slope(system, system.omega, system.wob)) if bit_slope is None else bit_slope
+    damping = np.array(system.damping_matrix, dtype=float)
+    damping[-1, -1] += s
+    inertia = np.asarray(model.inertia)
+    matrix = np.zeros((2 * n, 2 * n))
+    matrix[:n, n:] = np.eye(n)
+    matrix[n:, :n] = -np.linalg.solve(inertia, model.stiffness)
+    matrix[n:, n:] = -np.linalg.solve(inertia, damping)
+    return matrix
+
+
+def eigenvalues(system: System, bit_slope: float | None = None) -> np.ndarray:
+    """Eigenvalues [1/s] of :func:`linearized_matrix`, largest real part first."""
+    values = np.linalg.eigvals(linearized_matrix(system, bit_slope))
+    return values[np.argsort(-values.real, kind="stable")]
+
+
+def growth_rate(system: System, bit_slope: float | None = None) -> float:
+    """Largest real part of the eigenvalues [1/s]: > 0 means steady rotation is unstable."""
+    return float(eigenvalues(system, bit_slope)[0].real)
+
+
+def bit_receptance(system: System, omega: Any) -> np.ndarray:
+    """G(omega) = [(K - omega^2 I + i omega C)^-1]_NN [rad/(N m)] at frequencies omega [rad/s].
+
+    The angle at the bit per unit harmonic torque at the bit, with the top held
+    at constant speed. Vectorized over ``omega``.
+    """
+    w = np.atleast_1d(np.asarray(omega, dtype=float))
+    model = system.model
+    k = np.asarray(model.stiffness)
+    m = np.asarray(model.inertia)
+    c = np.asarray(system.damping_matrix)
+    n = model.dofs
+    if _is_tridiagonal(k) and _is_tridiagonal(m) and _is_tridiagonal(c):
+        ww = w[:, None]
+        diag = np.diag(k) - ww**2 * np.diag(m) + 1j * ww * np.diag(c)
+        if n == 1:
+            return 1.0 / diag[:, 0]
+        off = np.diag(k, 1) - ww**2 * np.diag(m, 1) + 1j * ww * np.diag(c, 1)
+        pivot = diag[:, 0]
+        for i in range(1, n):
+            pivot = diag[:, i] - off[:, i - 1] ** 2 / pivot
+        return 1.0 / pivot
+    dynamic = k[None] - w[:, None, None] ** 2 * m[None] + 1j * w[:, None, None] * c[None]
+    unit = np.zeros(n, dtype=complex)
+    unit[-1] = 1.0
+    return np.linalg.solve(dynamic, np.broadcast_to(unit, (w.size, n))[..., None])[:, -1, 0]
+
+
+def _is_tridiagonal(matrix: np.ndarray) -> bool:
+    return bool(
+        np.count_nonzero(np.triu(matrix, 2)) == 0 and np.count_nonzero(np.tril(matrix, -2)) == 0
+    )
+
+
+@attrs.frozen
+class CriticalDamping:
+    """Where steady rotation of a model loses stability.
+
+    Attributes
+    ----------
+    slope : float
+        s_c [N m s/rad]: steady rotation is unstable for bit-law slopes s < s_c
+        (s_c < 0; -inf if no negative slope destabilizes it).
+    frequency : float
+        omega_c [rad/s]: frequency of the oscillation that grows at the onset.
+    """
+
+    slope: float
+    frequency: float
+
+
+def critical_bit_damping(system: System) -> CriticalDamping:
+    """s_c and omega_c of a System (its operating point is ignored).
+
+    See the module documentation for the method. ``s_c = 0`` when the model
+    has no damping at all (any negative slope destabilizes it).
+    """
+    model = system.model
+    damping = np.asarray(system.damping_matrix)
+    natural = np.sqrt(np.abs(scipy.linalg.eigh(model.stiffness, model.inertia, eigvals_only=True)))
+    if not np.any(damping):
+        return CriticalDamping(0.0, float(natural[0]))
+    low, high = natural[0] / 1000.0, natural[-1] * 10.0
+    grid = [np.geomspace(low, high, 4000)]
+    for w in natural:
+        grid.append(w * np.linspace(0.8, 1.25, 61))
+    omegas = np.unique(np.concatenate(grid))
+    receptance = bit_receptance(system, omegas)
+    real = receptance.real
+    changes = np.flatnonzero(np.sign(real[:-1]) * np.sign(real[1:]) < 0)
+    if changes.size == 0:
+        return CriticalDamping(-math.inf, math.nan)
+    # estimate s at each sign change by linear interpolation, refine the best few exactly
+    fraction = real[changes] / (real[changes] - real[changes + 1])
+    w_est = omegas[changes] + fraction * (omegas[changes + 1] - omegas[changes])
+    g_est = receptance[changes].imag + fraction * (
+        receptance[changes + 1].imag - receptance[changes].imag
+    )
+    with np.errstate(divide="ignore"):
+        s_est = 1.0 / (w_est * g_est)
+    order = np.argsort(np.where(s_est < 0, -s_est, np.inf))[:4]
+    best = CriticalDamping(-math.inf, math.nan)
+    for index in order:
+        if not s_est[index] < 0:
+            continue
+        a, b = omegas[changes[index]], omegas[changes[index] + 1]
+        root = scipy.optimize.brentq(
+            lambda x: float(bit_receptance(system, x)[0].real), a, b, xtol=1e-14 * b, rtol=1e-13
+        )
+        g = complex(bit_receptance(system, root)[0])
+        s = 1.0 / (root * g.imag)
+        if s < 0 and s > best.slope:
+            best = CriticalDamping(float(s), float(root))
+    return best
+
+
+@attrs.frozen
+class StabilityBoundary:
+    """Critical weight on bit of linear instability over a range of rotary speeds.
+
+    Attributes
+    ----------
+    rpm : ndarray
+        Surface rotary speeds [rpm].
+    critical_wob : ndarray
+        Lowest weight on bit [N] at which steady rotation is linearly unstable;
+        NaN where no weight on bit destabilizes it (law slope >= 0 at that speed).
+    critical_slope : float
+        s_c [N m s/rad] (see :class:`CriticalDamping`).
+    onset_frequency : float
+        omega_c [rad/s] of the oscillation that grows first.
+    """
+
+    rpm: np.ndarray
+    critical_wob: np.ndarray
+    critical_slope: float
+    onset_frequency: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data for JSON (NaN -> None)."""
+        return {
+            "rpm": self.rpm.tolist(),
+            "critical_wob": [None if not math.isfinite(w) else float(w) for w in self.critical_wob],
+            "critical_slope": self.critical_slope,
+            "onset_frequency": self.onset_frequency,
+        }
+
+
+def stability_boundary(system: System, rpm: Any) -> StabilityBoundary:
+    """Critical weight on bit W_ob,lin(Omega) [N] of linear instability at each rpm.
+
+    Parameters
+    ----------
+    system : System
+    rpm : array_like
+        Surface rotary speeds [rpm], > 0.
+
+    Notes
+    -----
+    For laws proportional to the weight on bit the boundary is the closed form
+    of the module documentation. For other laws the weight on bit where the
+    slope reaches s_c is found by a root search up to 1e9 N.
+    """
+    speeds = np.atleast_1d(np.asarray(rpm, dtype=float))
+    if not (np.isfinite(speeds).all() and (speeds > 0).all()):
+        raise ConfigError("rpm", f"expected positive rotary speeds, got {speeds.tolist()!r}")
+    critical = critical_bit_damping(system)
+    omega = speeds * RPM_TO_RAD_S
+    wob = np.full(speeds.shape, np.nan)
+    if math.isfinite(critical.slope):
+        reference = 1e5
+        unit = _bit_slope(system, omega, 1.0)
+        scaled = _bit_slope(system, omega, reference)
+        if np.allclose(scaled, reference * unit, rtol=1e-9, atol=1e-12 * np.abs(scaled).max()):
+            with np.errstate(divide="ignore", invalid="ignore"):
+                wob = np.where(unit < 0, critical.slope / unit, np.nan)
+            if critical.slope == 0.0:
+                wob = np.where(unit < 0, 0.0, np.nan)
+        else:
+            for i, w in enumerate(omega):
+                wob[i] = _wob_at_slope(system, w, critical.slope)
+    return StabilityBoundary(speeds, wob, critical.slope, critical.frequency)
+
+
+def _wob_at_slope(system: System, omega: float, target: float) -> float:
+    def excess(wob: float) -> float:
+        return float(_bit_slope(system, omega, wob)) - target
+
+    if excess(0.0) < 0:
+        return 0.0
+    high = 1e3
+    while excess(high) >= 0:
+        high *= 4.0
+        if high > 1e9:
+            return math.nan
+    return float(scipy.optimize.brentq(excess, 0.0, high, xtol=1e-9 * high))

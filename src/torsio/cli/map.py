@@ -1,0 +1,362 @@
+"""``torsio map``: stick-slip severity S_SS over a grid of weight on bit x rotary speed.
+
+Ranges are ``START:STOP:N`` (N evenly spaced values, both ends included):
+``--wob 25kN:225kN:21`` (a bare number is N), ``--rpm 40:140:21`` (a bare number
+is rpm; units such as ``rad/s`` are accepted). ``--pi1``/``--pi2`` give the grid
+in the dimensionless groups of Eq. 11 instead.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from pathlib import Path
+from typing import Any
+
+from torsio.cli.common import (
+    add_config_argument,
+    add_discretization_arguments,
+    discretization_overrides,
+    load,
+    parse_time,
+    print_json,
+)
+
+DEFAULT_WOB = "25kN:225kN:21"
+DEFAULT_RPM = "40:140:21"
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add the ``map`` command to the ``torsio`` parser."""
+    parser = subparsers.add_parser(
+        "map",
+        help="severity map S_SS over weight on bit x rotary speed, critical WOB",
+        description=(
+            "Stick-slip severity S_SS (Eq. 12) over a grid of weight on bit and rotary "
+            "speed, each point started from rest; classification, the critical weight on bit "
+            "per rotary speed (bisected between grid points) and the linear stability "
+            "boundary. Ranges are START:STOP:N."
+        ),
+    )
+    add_config_argument(parser)
+    parser.add_argument(
+        "--wob",
+        metavar="START:STOP:N",
+        help=f"weights on bit: N or with units (default {DEFAULT_WOB})",
+    )
+    parser.add_argument(
+        "--rpm",
+        metavar="START:STOP:N",
+        help=f"rotary speeds: rpm or with units (default {DEFAULT_RPM})",
+    )
+    parser.add_argument(
+        "--pi1",
+        metavar="START:STOP:N",
+        help="dimensionless speeds Pi_1 = Omega/omega_1 (instead of --rpm)",
+    )
+    parser.add_argument(
+        "--pi2",
+        metavar="START:STOP:N",
+        help="dimensionless loads Pi_2 = W_ob R_bit/k_eq (instead of --wob)",
+    )
+    add_discretization_arguments(parser)
+    parser.add_argument(
+        "--duration",
+        metavar="T",
+        help="run length of every point: s or with units (default: 40 periods)",
+    )
+    parser.add_argument(
+        "--window",
+        metavar="T",
+        help="steady-state window at the end of each run (default: 15 periods)",
+    )
+    parser.add_argument(
+        "--threshold",
+        type=float,
+        default=None,
+        help="S_SS above which a point is severe (default 0.8)",
+    )
+    parser.add_argument(
+        "--refine",
+        type=int,
+        default=None,
+        metavar="N",
+        help="bisection steps of the critical weight on bit (default 4)",
+    )
+    parser.add_argument(
+        "--rtol",
+        type=float,
+        default=None,
+        help="relative tolerance of the batch engine (default 1e-5)",
+    )
+    parser.add_argument(
+        "--engine", default="auto", help="batch engine: auto (default), numba, numpy, scipy"
+    )
+    parser.add_argument("--workers", type=int, metavar="N", help="run on N local worker processes")
+    parser.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="run on a Dask scheduler (e.g. tcp://host:8786; needs the dask extra)",
+    )
+    parser.add_argument(
+        "--timeout",
+        type=float,
+        default=None,
+        metavar="S",
+        help="seconds to wait for the Dask scheduler (default 10)",
+    )
+    parser.add_argument(
+        "--out",
+        metavar="FILE",
+        help="save the map (.json, or .npz); an interrupted map goes to "
+        "FILE.partial.json/.npz, marked incomplete",
+    )
+    parser.add_argument("--csv", metavar="FILE", help="write one row per grid point")
+    parser.add_argument(
+        "--plot",
+        metavar="FILE",
+        help="write a PNG heat map with the critical curve (needs matplotlib)",
+    )
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.set_defaults(run=run)
+
+
+# --- ranges ---------------------------------------------------------------------------------
+def _split_range(text: str, option: str) -> tuple[str, str, int]:
+    parts = text.split(":")
+    if len(parts) != 3:
+        from torsio.errors import ConfigError
+
+        raise ConfigError(option, f"expected START:STOP:N, got {text!r}")
+    start, stop, count_text = (p.strip() for p in parts)
+    from torsio.errors import ConfigError
+
+    try:
+        count = int(count_text)
+    except ValueError:
+        raise ConfigError(
+            option, f"N in START:STOP:N must be a whole number of points, got {count_text!r}"
+        ) from None
+    if count < 1:
+        raise ConfigError(option, f"empty range {text!r}: N must be at least 1, got {count}")
+    return start, stop, count
+
+
+def _range_bounds(text: str, option: str, kind: str) -> tuple[float, float, int]:
+    """(start, stop, count) of a START:STOP:N range, in SI (N), rpm or dimensionless."""
+    from torsio.io.config import parse_rpm
+    from torsio.errors import ConfigError
+    from torsio.units import to_si
+
+    start_text, stop_text, count = _split_range(text, option)
+    values = []
+    for part in (start_text, stop_text):
+        if not part:
+            raise ConfigError(option, f"expected START:STOP:N, got {text!r}")
+        if kind == "wob":
+            value = to_si(part, "force", key=option)
+            if value < 0:
+                raise ConfigError(option, f"expected non-negative weights on bit, got {part!r}")
+        elif kind == "rpm":
+            value = parse_rpm(part, option)
+        else:
+            try:
+                value = float(part)
+            except ValueError:
+                raise ConfigError(option, f"expected a number, got {part!r}") from None
+            if not math.isfinite(value) or value < 0 or (kind == "pi1" and value == 0):
+                what = "positive" if kind == "pi1" else "non-negative"
+                raise ConfigError(option, f"expected a {what} number, got {part!r}")
+        values.append(value)
+    start, stop = values
+    if start > stop:
+        raise ConfigError(option, f"reversed range {text!r}: START must not exceed STOP")
+    if count == 1 and start != stop:
+        raise ConfigError(
+            option, f"range {text!r} has one point but START != STOP; give N >= 2 or START = STOP"
+        )
+    if count > 1 and start == stop:
+        raise ConfigError(option, f"empty range {text!r}: START = STOP with {count} points")
+    return start, stop, count
+
+
+_KEYS = {
+    "wob": "--wob",
+    "rpm": "--rpm",
+    "pi1": "--pi1",
+    "pi2": "--pi2",
+    "grid": "--wob/--rpm",
+    "duration": "--duration",
+    "steady_window": "--window",
+    "simulation.duration": "--duration",
+    "simulation.steady_window": "--window",
+    "threshold": "--threshold",
+    "refine": "--refine",
+    "rtol": "--rtol",
+    "engine": "--engine",
+    "workers": "--workers",
+    "scheduler": "--scheduler",
+    "out": "--out",
+    "timeout": "--timeout",
+}
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run ``torsio map`` with parsed arguments; return the exit status."""
+    from torsio.errors import ConfigError
+
+    try:
+        return _run(args)
+    except ConfigError as exc:
+        raise ConfigError(_KEYS.get(exc.key, exc.key), exc.message) from None
+
+
+def _run(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from torsio.errors import ConfigError
+    from torsio.analysis.maps import MapInterrupted, check_grid_size, dimensionless_map, severity_map
+    from torsio.physics.system import System
+
+    if args.wob is not None and args.pi2 is not None:
+        raise ConfigError("--pi2", "give either --wob or --pi2, not both")
+    if args.rpm is not None and args.pi1 is not None:
+        raise ConfigError("--pi1", "give either --rpm or --pi1, not both")
+    dimensionless = args.pi1 is not None or args.pi2 is not None
+    if dimensionless and (args.pi1 is None or args.pi2 is None):
+        raise ConfigError(
+            "--pi1" if args.pi1 is None else "--pi2",
+            "a dimensionless map needs both --pi1 and --pi2",
+        )
+    if args.workers is not None and args.scheduler is not None:
+        raise ConfigError("--workers", "give either --workers or --scheduler, not both")
+    if args.workers is not None and args.workers < 1:
+        raise ConfigError("--workers", f"expected a number of processes >= 1, got {args.workers}")
+    if dimensionless:
+        x_start, x_stop, x_count = _range_bounds(args.pi1, "--pi1", "pi1")
+        y_start, y_stop, y_count = _range_bounds(args.pi2, "--pi2", "pi2")
+    else:
+        x_start, x_stop, x_count = _range_bounds(args.rpm or DEFAULT_RPM, "--rpm", "rpm")
+        y_start, y_stop, y_count = _range_bounds(args.wob or DEFAULT_WOB, "--wob", "wob")
+    check_grid_size(x_count, y_count)  # before building the axes
+    for path, option in ((args.out, "--out"), (args.csv, "--csv"), (args.plot, "--plot")):
+        if path is not None and not Path(path).resolve().parent.is_dir():
+            raise ConfigError(option, f"directory of {path!r} does not exist")
+    if args.plot is not None:
+        try:
+            import matplotlib  # noqa: F401
+        except ImportError:
+            raise ConfigError(
+                "--plot", "needs matplotlib, which is not installed; pip install 'torsio[plot]'"
+            ) from None
+
+    config = load(args)
+    system = System.from_config(
+        config, **{k: v for k, v in discretization_overrides(args).items() if v is not None}
+    )
+    simulation = dict(config.simulation.options)
+    duration = parse_time(args.duration, "--duration")
+    window = parse_time(args.window, "--window")
+    options: dict[str, Any] = {
+        "duration": duration if duration is not None else simulation.get("duration"),
+        "steady_window": window if window is not None else simulation.get("steady_window"),
+        "executor": args.workers if args.workers is not None else args.scheduler,
+        "engine": args.engine,
+        "timeout": args.timeout,
+        "progress": (not args.json) and sys.stdout.isatty() or None,
+    }
+    if args.threshold is not None:
+        options["threshold"] = args.threshold
+    if args.refine is not None:
+        options["refine"] = args.refine
+    if args.rtol is not None:
+        options["rtol"] = args.rtol
+    x = np.linspace(x_start, x_stop, x_count)
+    y = np.linspace(y_start, y_stop, y_count)
+    try:
+        if dimensionless:
+            result = dimensionless_map(system, pi1=x, pi2=y, **options)
+        else:
+            result = severity_map(system, wob=y, rpm=x, **options)
+    except MapInterrupted as exc:
+        if args.out is not None:
+            partial = _partial_path(Path(args.out))
+            exc.partial.save(partial)
+            print(
+                f"torsio map: {exc}; partial results written to {partial} (marked incomplete)",
+                file=sys.stderr,
+            )
+        raise KeyboardInterrupt from None
+    written: dict[str, str] = {}
+    if args.out is not None:
+        written["out"] = str(result.save(args.out))
+    if args.csv is not None:
+        written["csv"] = str(result.to_csv(args.csv))
+    if args.plot is not None:
+        result.plot(args.plot)
+        written["plot"] = args.plot
+    if args.json:
+        data = result.to_dict()
+        data.update(written)
+        print_json(data)
+        return 0
+    _print_summary(result, written)
+    return 0
+
+
+def _partial_path(path: Path) -> Path:
+    suffix = path.suffix if path.suffix == ".npz" else ".json"
+    return path.with_name(f"{path.stem}.partial{suffix}")
+
+
+def _print_summary(result: Any, written: dict[str, str]) -> None:
+    from rich.console import Console
+    from rich.markup import escape
+    from rich.table import Table
+
+    info = result.info
+    model = info.get("model", {})
+    table = Table(
+        title=escape(
+            f"Severity map: {model.get('name', '')} ({model.get('strategy')}, "
+            f"{model.get('dofs')} DOF), {result.rpm.size} x {result.wob.size} points"
+        )
+    )
+    for name in ("rpm", "Pi_1", "critical WOB [kN]", "critical Pi_2", "linear stability WOB [kN]"):
+        table.add_column(escape(name), justify="right")
+    for (rpm, wob, status, linear), pi1, pi2 in zip(
+        result.critical_rows(), result.pi1, result.critical_pi2, strict=True
+    ):
+        if wob is None:
+            text = "none" if status == "none" else status
+            pi_text = "-"
+        else:
+            text = f"<= {wob / 1e3:.4g}" if status == "below_range" else f"{wob / 1e3:.4g}"
+            pi_text = f"{pi2:.4g}"
+        table.add_row(
+            f"{rpm:.4g}",
+            f"{pi1:.4g}",
+            text,
+            pi_text,
+            "-" if linear is None else f"{linear / 1e3:.4g}",
+        )
+    console = Console()
+    console.print(table)
+    counts = ", ".join(f"{n} {name}" for name, n in result.counts().items())
+    console.print(
+        escape(
+            f"points: {counts} (severe: S_SS > {result.threshold:g}; stick-slip: "
+            f"S_SS > {result.stick_slip_threshold:g})"
+        )
+    )
+    console.print(
+        escape(
+            f"runs of {info.get('duration', 0):.4g} s from rest, S_SS over the last "
+            f"{info.get('steady_window', 0):.4g} s; {info.get('extra_runs', 0)} "
+            f"extra runs for the critical curve; {info.get('elapsed_s', 0):.2f} s "
+            f"on {info.get('executor')}"
+        )
+    )
+    for key, path in written.items():
+        console.print(escape(f"{key}: {path}"))

@@ -1,0 +1,62 @@
+"""``torsio report``: the whole picture of one configuration."""
+
+from __future__ import annotations
+
+import argparse
+
+from torsio.cli.common import (
+    add_config_argument,
+    add_discretization_arguments,
+    discretization_overrides,
+    load,
+    print_json,
+)
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add the ``report`` command to the ``torsio`` parser."""
+    parser = subparsers.add_parser(
+        "report",
+        help="report on a configuration (default: the built-in example)",
+        description="The string, its discretization, its first modes against the exact "
+        "continuum, their damping ratios and the operating point.",
+    )
+    add_config_argument(parser)
+    add_discretization_arguments(parser)
+    parser.add_argument(
+        "--modes", type=int, default=5, metavar="N", help="number of modes shown (default: 5)"
+    )
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.add_argument(
+        "--html",
+        metavar="FILE",
+        help="also write the report as a standalone HTML page with its plots",
+    )
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Print the report (rich, or JSON with ``--json``)."""
+    from torsio.errors import ConfigError
+    from torsio.io.report import ReportContext, render, report_data
+
+    if args.modes < 1:
+        raise ConfigError("--modes", f"expected a whole number of modes >= 1, got {args.modes}")
+    config = load(args)
+    options = {**discretization_overrides(args), "modes": args.modes}
+    ctx = ReportContext(config, **options)  # computed once, shared by every output
+    if args.html:
+        from pathlib import Path
+
+        from torsio.io.html_report import html_report
+
+        path = Path(args.html)
+        try:
+            path.write_text(html_report(ctx), encoding="utf-8")
+        except OSError as exc:
+            raise ConfigError("--html", f"cannot write {args.html!r}: {exc.strerror}") from None
+    if args.json:
+        print_json(report_data(ctx))
+    else:
+        render(ctx)
+    return 0

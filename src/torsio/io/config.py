@@ -1,0 +1,414 @@
+"""The configuration file (TOML): reading, validation, and conversion to torsio objects.
+
+Bare numbers are SI; strings with units are accepted (``"5.5 in"``, ``"100 kN"``).
+Unknown keys are errors. Every error names the key, e.g. ``section[2].od``.
+See ``docs/configuration.md`` for every key, its unit and its default.
+
+Examples
+--------
+>>> config = builtin_config()
+>>> config.name
+'Ritto et al. (2017)'
+>>> config.discretization.strategy, config.operation.rpm
+('C', 100.0)
+>>> parse_config({"section": []}, source="<dict>")
+Traceback (most recent call last):
+...
+torsio.errors.ConfigError: section: a drill-string needs at least one section and a bit
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from collections.abc import Mapping
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import attrs
+
+from torsio.model.components import SECTION_KINDS, STEEL, Material, Section
+from torsio.model.drillstring import DrillString
+from torsio.errors import ConfigError
+from torsio.units import RPM_TO_RAD_S, to_si
+
+TOP_LEVEL_KEYS = {
+    "name",
+    "material",
+    "section",
+    "bit_rock",
+    "damping",
+    "discretization",
+    "operation",
+    "simulation",
+}
+SECTION_KEYS = {"kind", "od", "id", "length", "name", "bha", "material"}
+MATERIAL_KEYS = {"shear_modulus", "density"}
+DISCRETIZATION_KEYS = {
+    "strategy",
+    "dp_elements",
+    "bha_elements",
+    "section_elements",
+    "max_element_length",
+}
+DAMPING_KEYS = {"alpha", "beta", "ratios", "modes"}
+OPERATION_KEYS = {"wob", "rpm"}
+SIMULATION_KEYS = {
+    "duration",
+    "steady_window",
+    "method",
+    "rtol",
+    "atol",
+    "output_step",
+    "stick_threshold",
+}
+
+
+@attrs.frozen
+class BitRockConfig:
+    """The ``[bit_rock]`` table: law name, bit radius [m] (None: bit od/2), parameters."""
+
+    law: str = "tucker-wang"
+    radius: float | None = None
+    speed_unit: str = "rad/s"
+    parameters: Mapping[str, float] = attrs.field(factory=dict)
+
+    def build(self) -> Any:
+        """The bit-rock law object (looked up among the registered laws)."""
+        from torsio.plugins import get_bit_law
+
+        return get_bit_law(self.law)(speed_unit=self.speed_unit, **self.parameters)
+
+
+@attrs.frozen
+class DampingConfig:
+    """The ``[damping]`` table: Rayleigh alpha [1/s] and beta [s], or modal damping ratios."""
+
+    alpha: float | None = None
+    beta: float | None = None
+    ratios: tuple[float, float] | None = None
+    modes: tuple[int, int] = (1, 2)
+
+
+@attrs.frozen
+class DiscretizationConfig:
+    """The ``[discretization]`` table: strategy name and its element options."""
+
+    strategy: str = "C"
+    options: Mapping[str, Any] = attrs.field(factory=dict)
+
+    def build(self) -> Any:
+        """The discretizer object (looked up among the registered discretizers)."""
+        from torsio.plugins import get_discretizer
+
+        return get_discretizer(self.strategy)(**self.options)
+
+
+@attrs.frozen
+class OperationConfig:
+    """The ``[operation]`` table: weight on bit [N] and surface rotary speed [rpm]."""
+
+    wob: float | None = None
+    rpm: float | None = None
+
+    @property
+    def omega(self) -> float | None:
+        """Surface rotary speed [rad/s]."""
+        return None if self.rpm is None else self.rpm * RPM_TO_RAD_S
+
+
+@attrs.frozen
+class SimulationConfig:
+    """The ``[simulation]`` table: options of the transient analyzer (see ``torsio.analysis.transient``)."""
+
+    options: Mapping[str, Any] = attrs.field(factory=dict)
+
+
+@attrs.frozen
+class Config:
+    """A whole configuration file, validated."""
+
+    name: str
+    string: DrillString
+    bit_rock: BitRockConfig | None
+    damping: DampingConfig
+    discretization: DiscretizationConfig
+    operation: OperationConfig
+    simulation: SimulationConfig
+    source: str = ""
+
+    def model(self, **overrides: Any) -> Any:
+        """Discretize the string: the configured strategy, with ``overrides`` of its options.
+
+        ``strategy=...`` in ``overrides`` changes the strategy; options of the file
+        are kept only if the strategy is unchanged.
+        """
+        strategy = overrides.pop("strategy", None) or self.discretization.strategy
+        options = (
+            dict(self.discretization.options) if strategy == self.discretization.strategy else {}
+        )
+        options.update({k: v for k, v in overrides.items() if v is not None})
+        return DiscretizationConfig(strategy, options).build().discretize(self.string)
+
+    @property
+    def bit_radius(self) -> float:
+        """R_bit [m]: ``bit_rock.radius``, else half the bit's outer diameter."""
+        if self.bit_rock is None or self.bit_rock.radius is None:
+            return self.string.bit.radius
+        return self.bit_rock.radius
+
+    def bit_law(self) -> Any:
+        """The configured bit-rock law; a clear error if the file has no ``[bit_rock]`` table."""
+        if self.bit_rock is None:
+            raise ConfigError(
+                "bit_rock",
+                "the configuration has no [bit_rock] table; dynamic "
+                "analyses need a bit-rock law (see `torsio laws`)",
+            )
+        return self.bit_rock.build()
+
+
+def load_config(path: str | Path) -> Config:
+    """Read and validate a TOML configuration file."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise ConfigError(
+            "", f"cannot read configuration file {str(path)!r}: {exc.strerror or exc}"
+        ) from None
+    return parse_config_text(text, source=str(path))
+
+
+def parse_config_text(text: str, source: str = "<string>") -> Config:
+    """Parse and validate TOML text."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError("", f"{source} is not valid TOML: {exc}") from None
+    return parse_config(data, source=source)
+
+
+def builtin_config() -> Config:
+    """The built-in example: the Ritto et al. (2017) string of the paper's Table 1."""
+    text = resources.files("torsio").joinpath("data/ritto2017.toml").read_text(encoding="utf-8")
+    return parse_config_text(text, source="built-in ritto2017.toml")
+
+
+def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
+    """Validate a configuration already read into a dict (as from ``tomllib``)."""
+    table = _table(data, "", TOP_LEVEL_KEYS)
+    name = _string(table.get("name", ""), "name")
+    default_material = _material(table.get("material"), "material", STEEL)
+    raw_sections = table.get("section", [])
+    if not isinstance(raw_sections, list):
+        raise ConfigError("section", "expected an array of tables [[section]]")
+    sections = [
+        _section(raw, f"section[{i}]", default_material) for i, raw in enumerate(raw_sections)
+    ]
+    string = DrillString(sections, name=name)
+    discretization = _discretization(table.get("discretization", {}))
+    discretizer = discretization.build()
+    if hasattr(discretizer, "element_counts"):
+        try:
+            discretizer.element_counts(string)
+        except ConfigError as exc:
+            raise ConfigError(f"discretization.{exc.key}", exc.message) from None
+    return Config(
+        name=name,
+        string=string,
+        bit_rock=_bit_rock(table["bit_rock"]) if "bit_rock" in table else None,
+        damping=_damping(table.get("damping", {})),
+        discretization=discretization,
+        operation=_operation(table.get("operation", {})),
+        simulation=_simulation(table.get("simulation", {})),
+        source=source,
+    )
+
+
+# --- tables ---------------------------------------------------------------------------------
+def _table(value: Any, key: str, allowed: set[str]) -> Mapping[str, Any]:
+    if not isinstance(value, Mapping):
+        raise ConfigError(key, f"expected a table, got {value!r}")
+    unknown = sorted(set(value) - allowed)
+    if unknown:
+        where = f"{key}." if key else ""
+        raise ConfigError(
+            f"{where}{unknown[0]}", f"unknown key; expected one of {', '.join(sorted(allowed))}"
+        )
+    return value
+
+
+def _string(value: Any, key: str) -> str:
+    if not isinstance(value, str):
+        raise ConfigError(key, f"expected a string, got {value!r}")
+    return value
+
+
+def _material(value: Any, key: str, default: Material) -> Material:
+    if value is None:
+        return default
+    table = _table(value, key, MATERIAL_KEYS)
+    try:
+        return Material(
+            shear_modulus=to_si(
+                table.get("shear_modulus", default.shear_modulus),
+                "pressure",
+                key=f"{key}.shear_modulus",
+            ),
+            density=to_si(table.get("density", default.density), "density", key=f"{key}.density"),
+        )
+    except ConfigError as exc:
+        full_key = exc.key if exc.key.startswith(key) else f"{key}.{exc.key}"
+        raise ConfigError(full_key, exc.message) from None
+
+
+def _section(raw: Any, key: str, default_material: Material) -> Section:
+    table = _table(raw, key, SECTION_KEYS)
+    for required in ("kind", "od", "id", "length"):
+        if required not in table:
+            raise ConfigError(f"{key}.{required}", "missing required key")
+    kind = table["kind"]
+    if not isinstance(kind, str) or kind not in SECTION_KINDS:
+        raise ConfigError(
+            f"{key}.kind",
+            f"unknown section kind {kind!r}; expected one of {', '.join(SECTION_KINDS)}",
+        )
+    bha = table.get("bha")
+    if bha is not None and not isinstance(bha, bool):
+        raise ConfigError(f"{key}.bha", f"expected true or false, got {bha!r}")
+    values = {
+        name: to_si(table[name], "length", key=f"{key}.{name}") for name in ("od", "id", "length")
+    }
+    try:
+        return SECTION_KINDS[kind](
+            **values,
+            material=_material(table.get("material"), f"{key}.material", default_material),
+            name=_string(table.get("name", ""), f"{key}.name"),
+            bha=bha,
+        )
+    except ConfigError as exc:
+        raise ConfigError(f"{key}.{exc.key}", exc.message) from None
+
+
+def _bit_rock(raw: Any) -> BitRockConfig:
+    if not isinstance(raw, Mapping):
+        raise ConfigError("bit_rock", f"expected a table, got {raw!r}")
+    law = _string(raw.get("law", "tucker-wang"), "bit_rock.law")
+    radius = raw.get("radius")
+    if radius is not None:
+        radius = to_si(radius, "length", key="bit_rock.radius")
+        if radius <= 0:
+            raise ConfigError("bit_rock.radius", f"expected a positive radius, got {radius!r}")
+    speed_unit = _string(raw.get("speed_unit", "rad/s"), "bit_rock.speed_unit")
+    parameters = {k: v for k, v in raw.items() if k not in ("law", "radius", "speed_unit")}
+    config = BitRockConfig(law, radius, speed_unit, parameters)
+    config.build()  # validates the law name and its parameters now, naming the key
+    return config
+
+
+def _positive_number(value: Any, key: str, dimension: str, allow_zero: bool = True) -> float:
+    number = to_si(value, dimension, key=key)
+    if number < 0 or (number == 0 and not allow_zero):
+        raise ConfigError(
+            key, f"expected a {'non-negative' if allow_zero else 'positive'} value, got {value!r}"
+        )
+    return number
+
+
+def _damping(raw: Any) -> DampingConfig:
+    table = _table(raw, "damping", DAMPING_KEYS)
+    has_rayleigh = "alpha" in table or "beta" in table
+    if has_rayleigh and "ratios" in table:
+        raise ConfigError("damping.ratios", "give either alpha/beta or ratios, not both")
+    if "modes" in table and "ratios" not in table:
+        raise ConfigError("damping.modes", "modes goes with ratios")
+    if "ratios" in table:
+        ratios = table["ratios"]
+        modes = table.get("modes", [1, 2])
+        if not (isinstance(ratios, list) and len(ratios) == 2):
+            raise ConfigError("damping.ratios", f"expected two damping ratios, got {ratios!r}")
+        if not (
+            isinstance(modes, list)
+            and len(modes) == 2
+            and all(isinstance(m, int) and not isinstance(m, bool) and m >= 1 for m in modes)
+            and modes[0] != modes[1]
+        ):
+            raise ConfigError(
+                "damping.modes", f"expected two different mode numbers >= 1, got {modes!r}"
+            )
+        values = tuple(
+            _positive_number(r, f"damping.ratios[{i}]", "dimensionless")
+            for i, r in enumerate(ratios)
+        )
+        return DampingConfig(ratios=(values[0], values[1]), modes=(modes[0], modes[1]))
+    return DampingConfig(
+        alpha=_positive_number(table.get("alpha", 0.0), "damping.alpha", "inverse_time"),
+        beta=_positive_number(table.get("beta", 0.0), "damping.beta", "time"),
+    )
+
+
+def _discretization(raw: Any) -> DiscretizationConfig:
+    table = _table(raw, "discretization", DISCRETIZATION_KEYS)
+    strategy = _string(table.get("strategy", "C"), "discretization.strategy")
+    options = {k: v for k, v in table.items() if k != "strategy"}
+    if "max_element_length" in options:
+        options["max_element_length"] = _positive_number(
+            options["max_element_length"],
+            "discretization.max_element_length",
+            "length",
+            allow_zero=False,
+        )
+    try:
+        DiscretizationConfig(strategy, options).build()
+    except ConfigError as exc:
+        key = exc.key if exc.key.startswith("discretization") else f"discretization.{exc.key}"
+        raise ConfigError(key, exc.message) from None
+    except TypeError as exc:
+        raise ConfigError("discretization", f"strategy {strategy!r}: {exc}") from None
+    return DiscretizationConfig(strategy, options)
+
+
+def _operation(raw: Any) -> OperationConfig:
+    table = _table(raw, "operation", OPERATION_KEYS)
+    wob = rpm = None
+    if "wob" in table:
+        wob = _positive_number(table["wob"], "operation.wob", "force")
+    if "rpm" in table:
+        rpm = parse_rpm(table["rpm"], "operation.rpm")
+    return OperationConfig(wob, rpm)
+
+
+def parse_rpm(value: Any, key: str) -> float:
+    """A rotary speed in rpm: a bare number (or numeric string) is rpm; a string may carry
+    any angular-speed unit (``"10 rad/s"``)."""
+    rpm: float
+    if isinstance(value, str):
+        try:
+            rpm = float(value)
+        except ValueError:
+            rpm = to_si(value, "angular_speed", key=key) / RPM_TO_RAD_S
+    else:
+        rpm = to_si(value, "dimensionless", key=key)
+    if not (math.isfinite(rpm) and rpm > 0):
+        raise ConfigError(key, f"expected a positive rotary speed in rpm, got {value!r}")
+    return rpm
+
+
+def _simulation(raw: Any) -> SimulationConfig:
+    table = _table(raw, "simulation", SIMULATION_KEYS)
+    options: dict[str, Any] = {}
+    for key in ("duration", "steady_window", "output_step"):
+        if key in table:
+            options[key] = _positive_number(
+                table[key], f"simulation.{key}", "time", allow_zero=False
+            )
+    for key in ("rtol", "atol", "stick_threshold"):
+        if key in table:
+            options[key] = _positive_number(
+                table[key], f"simulation.{key}", "dimensionless", allow_zero=False
+            )
+    if "method" in table:
+        options["method"] = _string(table["method"], "simulation.method")
+    return SimulationConfig(options)

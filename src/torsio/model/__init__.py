@@ -1,0 +1,2 @@
+"""The structure: components, the drill string, discretizers, lumped models, the exact
+continuum and modal analysis."""

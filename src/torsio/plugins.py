@@ -1,0 +1,135 @@
+"""The plugin manager: collects bit-rock laws and discretizers from every plugin.
+
+Built-in plugins are registered first, then the entry points of group ``torsio``.
+A broken plugin (import error, hook raising, a class without ``name``, a name
+already taken) is reported with a :class:`PluginWarning` naming it and skipped;
+the other plugins keep working.
+
+Examples
+--------
+>>> sorted(discretizers())
+['A', 'B', 'C', 'consistent', 'mixed']
+>>> "tucker-wang" in bit_laws()
+True
+"""
+
+from __future__ import annotations
+
+import warnings
+from functools import lru_cache
+from typing import Any
+
+import pluggy
+
+from torsio import hookspecs
+from torsio.errors import ConfigError
+
+
+class PluginWarning(UserWarning):
+    """A plugin could not be loaded or conflicts with another one."""
+
+
+@lru_cache(maxsize=1)
+def plugin_manager() -> pluggy.PluginManager:
+    """The process-wide plugin manager, built on first use."""
+    from torsio.model import discretize
+    from torsio.physics import laws
+
+    manager = pluggy.PluginManager("torsio")
+    manager.add_hookspecs(hookspecs)
+    manager.register(laws, name="torsio.physics.laws")
+    manager.register(discretize, name="torsio.model.discretize")
+    _load_entry_points(manager)
+    return manager
+
+
+def _load_entry_points(manager: pluggy.PluginManager) -> None:
+    from importlib.metadata import entry_points
+
+    for entry_point in entry_points(group="torsio"):
+        label = f"{entry_point.name} = {entry_point.value}"
+        if manager.get_plugin(entry_point.name) is not None or manager.is_blocked(entry_point.name):
+            continue
+        try:
+            plugin = entry_point.load()
+            manager.register(plugin, name=entry_point.name)
+        except Exception as exc:  # a broken third-party plugin must not stop torsio
+            dist = getattr(entry_point, "dist", None)
+            where = f" from distribution {dist.name!r}" if dist is not None else ""
+            warnings.warn(
+                f"torsio plugin {label!r}{where} failed to load and is skipped: "
+                f"{type(exc).__name__}: {exc}",
+                PluginWarning,
+                stacklevel=2,
+            )
+
+
+def _collect(hook_name: str, kind: str) -> dict[str, type[Any]]:
+    manager = plugin_manager()
+    found: dict[str, type[Any]] = {}
+    owner: dict[str, str] = {}
+    for impl in getattr(manager.hook, hook_name).get_hookimpls():  # registration order
+        plugin = impl.plugin_name
+        try:
+            classes = list(impl.function())
+        except Exception as exc:
+            warnings.warn(
+                f"torsio plugin {plugin!r}: hook {hook_name} raised "
+                f"{type(exc).__name__}: {exc}; its {kind}s are skipped",
+                PluginWarning,
+                stacklevel=3,
+            )
+            continue
+        for cls in classes:
+            name = getattr(cls, "name", None)
+            if not isinstance(name, str) or not name:
+                warnings.warn(
+                    f"torsio plugin {plugin!r}: {kind} {cls!r} has no string "
+                    "attribute 'name'; skipped",
+                    PluginWarning,
+                    stacklevel=3,
+                )
+                continue
+            if name in found:
+                warnings.warn(
+                    f"torsio plugin {plugin!r}: {kind} name {name!r} is already "
+                    f"registered by {owner[name]!r}; the second one is skipped",
+                    PluginWarning,
+                    stacklevel=3,
+                )
+                continue
+            found[name] = cls
+            owner[name] = plugin
+    return found
+
+
+def bit_laws() -> dict[str, type[Any]]:
+    """Every registered bit-rock law class, by name."""
+    return _collect("torsio_bit_laws", "bit-rock law")
+
+
+def discretizers() -> dict[str, type[Any]]:
+    """Every registered discretizer class, by name."""
+    return _collect("torsio_discretizers", "discretizer")
+
+
+def get_bit_law(name: str) -> type[Any]:
+    """The bit-rock law class registered as ``name``; a clear error if there is none."""
+    laws = bit_laws()
+    if name not in laws:
+        raise ConfigError(
+            "bit_rock.law",
+            f"unknown bit-rock law {name!r}; registered laws: {', '.join(sorted(laws))}",
+        )
+    return laws[name]
+
+
+def get_discretizer(name: str) -> type[Any]:
+    """The discretizer class registered as ``name``; a clear error if there is none."""
+    found = discretizers()
+    if name not in found:
+        raise ConfigError(
+            "discretization.strategy",
+            f"unknown strategy {name!r}; registered: {', '.join(sorted(found))}",
+        )
+    return found[name]
