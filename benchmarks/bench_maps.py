@@ -32,10 +32,10 @@ import time
 
 import numpy as np
 
-from torsio.solvers import batch
 from torsio.analysis.maps import severity_map
-from torsio.physics.system import System, builtin_config
 from torsio.analysis.transient import simulate
+from torsio.physics.system import System, builtin_config
+from torsio.solvers import batch
 
 DURATION = 300.0
 WINDOW = 100.0

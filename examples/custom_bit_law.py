@@ -20,8 +20,8 @@ import attrs
 import numpy as np
 
 import torsio
-from torsio.physics.laws import BitRockLaw, Parameter
 from torsio.io.plotting import pyplot, save_figure
+from torsio.physics.laws import BitRockLaw, Parameter
 from torsio.plugins import get_bit_law, plugin_manager
 
 

@@ -5,10 +5,10 @@ from __future__ import annotations
 import pytest
 
 from torsio import builtin_config, continuum_modes, ritto2017_string
-from torsio.physics.damping import ModelDamping
 from torsio.model.drillstring import DrillString
-from torsio.physics.laws import TuckerWang
 from torsio.model.lumped import LumpedModel
+from torsio.physics.damping import ModelDamping
+from torsio.physics.laws import TuckerWang
 from torsio.physics.system import System
 
 

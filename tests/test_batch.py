@@ -20,12 +20,12 @@ import numpy as np
 import pytest
 import scipy.linalg
 
-from torsio.solvers import batch
-from torsio.errors import ConfigError
-from torsio.physics.laws import ConstantTorque, TuckerWang
-from torsio.model.lumped import LumpedModel
-from torsio.physics.system import System, builtin_config
 from torsio.analysis.transient import simulate
+from torsio.errors import ConfigError
+from torsio.model.lumped import LumpedModel
+from torsio.physics.laws import ConstantTorque, TuckerWang
+from torsio.physics.system import System, builtin_config
+from torsio.solvers import batch
 
 TIGHT = {"method": "LSODA", "rtol": 1e-8, "atol": 1e-10}
 """Tolerances of the independent reference runs."""

@@ -6,9 +6,9 @@ import json
 
 import pytest
 
+from torsio.analysis.transient import simulate_config
 from torsio.cli import main
 from torsio.io.config import builtin_config
-from torsio.analysis.transient import simulate_config
 
 
 def report_json(capsys, *argv: str) -> dict:

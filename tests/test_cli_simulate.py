@@ -13,9 +13,9 @@ import sys
 import numpy as np
 import pytest
 
+from torsio.analysis.transient import simulate_config
 from torsio.cli import main
 from torsio.io.config import builtin_config
-from torsio.analysis.transient import simulate_config
 
 FAST = ["--strategy", "A", "--duration", "60", "--window", "20"]
 

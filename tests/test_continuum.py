@@ -9,8 +9,8 @@ import pytest
 from scipy.optimize import brentq
 
 from torsio import Bit, DrillPipe, DrillString, Material, continuum_modes
-from torsio.model.continuum import _members, count_below
 from torsio.errors import ConfigError
+from torsio.model.continuum import _members, count_below
 
 STEEL = Material(shear_modulus=85.3e9, density=7800.0)
 

@@ -14,17 +14,17 @@ import attrs
 import numpy as np
 import pytest
 
+from torsio.analysis.transient import simulate
+from torsio.errors import ConfigError
+from torsio.model.modal import modal_analysis
 from torsio.physics.dimensionless import (
     DimensionlessLaw,
     dimensional_system,
     dimensionless_groups,
     dimensionless_system,
 )
-from torsio.errors import ConfigError
-from torsio.model.modal import modal_analysis
-from torsio.plugins import get_bit_law
 from torsio.physics.system import System, builtin_config
-from torsio.analysis.transient import simulate
+from torsio.plugins import get_bit_law
 
 RPM = 30.0 / math.pi  # rpm per rad/s
 

@@ -20,8 +20,8 @@ from torsio import (
     continuum_modes,
     modal_analysis,
 )
-from torsio.model.discretize import split_count
 from torsio.errors import ConfigError
+from torsio.model.discretize import split_count
 
 
 def frequencies_hz(discretizer, string, count=None):

@@ -17,12 +17,12 @@ import attrs
 import numpy as np
 import pytest
 
-from torsio.physics.damping import RayleighDamping
 from torsio.analysis.energy import damping_split, energy_balance
-from torsio.physics.laws import ConstantTorque
-from torsio.model.modal import modal_analysis
-from torsio.physics.system import System, builtin_config
 from torsio.analysis.transient import simulate
+from torsio.model.modal import modal_analysis
+from torsio.physics.damping import RayleighDamping
+from torsio.physics.laws import ConstantTorque
+from torsio.physics.system import System, builtin_config
 
 BALANCE_TOLERANCE = 1e-5  # fraction of the work in, see the module docstring
 

@@ -24,13 +24,13 @@ import attrs
 import numpy as np
 import pytest
 
-from torsio.io.config import parse_config_text
+from torsio.analysis.transient import simulate
 from torsio.errors import ConfigError
 from torsio.hookspecs import hookimpl
+from torsio.io.config import parse_config_text
 from torsio.physics.laws import BitRockLaw, TuckerWang
-from torsio.plugins import PluginWarning, bit_laws, get_bit_law, plugin_manager
 from torsio.physics.system import System, builtin_config
-from torsio.analysis.transient import simulate
+from torsio.plugins import PluginWarning, bit_laws, get_bit_law, plugin_manager
 
 PLUGIN_DIR = Path(__file__).resolve().parents[1] / "plugins" / "torsio-friction-laws"
 W_OB, R_B = 97347.0, 0.155575  # Navarro-López and Cortés (2007)

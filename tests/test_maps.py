@@ -25,8 +25,6 @@ import numpy as np
 import pytest
 
 from torsio.analysis import maps
-from torsio.solvers import batch
-from torsio.errors import ConfigError, SolverError
 from torsio.analysis.maps import (
     MapInterrupted,
     SeverityMap,
@@ -36,8 +34,10 @@ from torsio.analysis.maps import (
     severity_map,
 )
 from torsio.analysis.sweep import run_tasks
-from torsio.physics.system import System
 from torsio.analysis.transient import simulate
+from torsio.errors import ConfigError, SolverError
+from torsio.physics.system import System
+from torsio.solvers import batch
 
 TIGHT = {"method": "LSODA", "rtol": 1e-8, "atol": 1e-10}
 WOB21 = np.linspace(25e3, 225e3, 21)

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from torsio import LumpedModel, StrategyA, StrategyB, StrategyC, modal_analysis
-from torsio.physics.damping import RayleighDamping
 from torsio.errors import ConfigError
+from torsio.physics.damping import RayleighDamping
 
 
 def shape_error(string, discretizer, mode: int) -> float:

@@ -20,7 +20,6 @@ import attrs
 import numpy as np
 import pytest
 
-from torsio.physics.laws import BitRockLaw, Parameter
 from torsio.analysis.stability import (
     bit_receptance,
     critical_bit_damping,
@@ -29,6 +28,7 @@ from torsio.analysis.stability import (
     linearized_matrix,
     stability_boundary,
 )
+from torsio.physics.laws import BitRockLaw, Parameter
 from torsio.physics.system import System, builtin_config
 
 RPM = np.linspace(40.0, 140.0, 51)

@@ -14,9 +14,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from torsio.errors import ConfigError
 from torsio.analysis.maps import SeverityMap, severity_map
 from torsio.analysis.sweep import SweepError, SweepInterrupted, run_tasks
+from torsio.errors import ConfigError
 from torsio.physics.system import System, builtin_config
 
 WOB = np.linspace(25e3, 225e3, 6)

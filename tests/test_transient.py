@@ -22,18 +22,18 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from torsio.physics.damping import RayleighDamping
-from torsio.errors import ConfigError, SolverError
-from torsio.physics.laws import BitRockLaw, ConstantTorque, Parameter
-from torsio.model.modal import modal_analysis
 from torsio.analysis.severity import DEFAULT_DURATION_PERIODS, DEFAULT_WINDOW_PERIODS
-from torsio.physics.system import System, builtin_config
 from torsio.analysis.transient import (
     DEFAULT_SAMPLES_PER_PERIOD,
     SimulationOptions,
     simulate,
     simulate_config,
 )
+from torsio.errors import ConfigError, SolverError
+from torsio.model.modal import modal_analysis
+from torsio.physics.damping import RayleighDamping
+from torsio.physics.laws import BitRockLaw, ConstantTorque, Parameter
+from torsio.physics.system import System, builtin_config
 
 
 @pytest.fixture(scope="module")
@@ -304,8 +304,8 @@ def test_operating_point_errors(config):
 
 def test_simulation_table_of_the_config(config):
     """[simulation] keys of the file are used; keyword overrides win."""
-    from torsio.io.config import parse_config_text
     from torsio.examples import ritto2017_config
+    from torsio.io.config import parse_config_text
 
     base = ritto2017_config()
     assert base.simulation.options == {}

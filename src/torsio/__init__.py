@@ -6,6 +6,12 @@
 0.1344
 """
 
+from torsio.analysis.energy import EnergyBalance, energy_balance
+from torsio.analysis.transient import SimulationOptions, TransientResults, simulate, simulate_config
+from torsio.errors import ConfigError, PluginError, SolverError, TorsioError
+from torsio.examples import ritto2017_config, ritto2017_string
+from torsio.hookspecs import hookimpl
+from torsio.io.config import Config, builtin_config, load_config, parse_config
 from torsio.model.components import (
     LWD,
     MWD,
@@ -19,8 +25,11 @@ from torsio.model.components import (
     Section,
     Stabilizer,
 )
-from torsio.io.config import Config, builtin_config, load_config, parse_config
 from torsio.model.continuum import ContinuumModes, continuum_modes
+from torsio.model.discretize import ConsistentMass, MixedMass, StrategyA, StrategyB, StrategyC
+from torsio.model.drillstring import DrillString
+from torsio.model.lumped import LumpedModel
+from torsio.model.modal import ModalResults, modal_analysis
 from torsio.physics.damping import RayleighDamping
 from torsio.physics.dimensionless import (
     DimensionlessGroups,
@@ -28,17 +37,8 @@ from torsio.physics.dimensionless import (
     dimensionless_groups,
     dimensionless_system,
 )
-from torsio.model.discretize import ConsistentMass, MixedMass, StrategyA, StrategyB, StrategyC
-from torsio.model.drillstring import DrillString
-from torsio.analysis.energy import EnergyBalance, energy_balance
-from torsio.errors import ConfigError, PluginError, SolverError, TorsioError
-from torsio.examples import ritto2017_config, ritto2017_string
-from torsio.hookspecs import hookimpl
 from torsio.physics.laws import BitRockLaw, Parameter, TuckerWang
-from torsio.model.lumped import LumpedModel
-from torsio.model.modal import ModalResults, modal_analysis
 from torsio.physics.system import ConstantSpeedTop, System
-from torsio.analysis.transient import SimulationOptions, TransientResults, simulate, simulate_config
 
 __version__ = "0.1.0"
 

@@ -63,8 +63,6 @@ from typing import Any
 import attrs
 import numpy as np
 
-from torsio.solvers.batch import DEFAULT_ATOL, DEFAULT_RTOL, STATUS_MESSAGES, simulate_batch
-from torsio.errors import ConfigError, SolverError
 from torsio.analysis.severity import SEVERE_THRESHOLD
 from torsio.analysis.sweep import (
     ExecutorSpec,
@@ -73,7 +71,9 @@ from torsio.analysis.sweep import (
     run_tasks_on,
     worker_count,
 )
+from torsio.errors import ConfigError, SolverError
 from torsio.physics.system import System
+from torsio.solvers.batch import DEFAULT_ATOL, DEFAULT_RTOL, STATUS_MESSAGES, simulate_batch
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = [
@@ -847,9 +847,9 @@ def _build_map(
 ) -> SeverityMap:
     import time
 
-    from torsio.solvers.batch import _times
     from torsio.analysis.stability import stability_boundary
     from torsio.analysis.sweep import CONNECT_TIMEOUT
+    from torsio.solvers.batch import _times
 
     for key, value in (("threshold", threshold), ("stick_slip_threshold", stick_slip_threshold)):
         if isinstance(value, bool) or not (

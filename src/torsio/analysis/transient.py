@@ -47,15 +47,15 @@ import numpy as np
 import scipy.integrate
 import scipy.sparse
 
-from torsio.io.config import Config
-from torsio.physics.equations import TwistEquations
-from torsio.errors import ConfigError, SolverError
 from torsio.analysis.severity import (
     SEVERE_THRESHOLD,
     check_window,
     default_times,
     severity,
 )
+from torsio.errors import ConfigError, SolverError
+from torsio.io.config import Config
+from torsio.physics.equations import TwistEquations
 from torsio.physics.system import System
 from torsio.units import RPM_TO_RAD_S
 

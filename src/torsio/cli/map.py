@@ -145,8 +145,8 @@ def _split_range(text: str, option: str) -> tuple[str, str, int]:
 
 def _range_bounds(text: str, option: str, kind: str) -> tuple[float, float, int]:
     """(start, stop, count) of a START:STOP:N range, in SI (N), rpm or dimensionless."""
-    from torsio.io.config import parse_rpm
     from torsio.errors import ConfigError
+    from torsio.io.config import parse_rpm
     from torsio.units import to_si
 
     start_text, stop_text, count = _split_range(text, option)
@@ -215,8 +215,13 @@ def run(args: argparse.Namespace) -> int:
 def _run(args: argparse.Namespace) -> int:
     import numpy as np
 
+    from torsio.analysis.maps import (
+        MapInterrupted,
+        check_grid_size,
+        dimensionless_map,
+        severity_map,
+    )
     from torsio.errors import ConfigError
-    from torsio.analysis.maps import MapInterrupted, check_grid_size, dimensionless_map, severity_map
     from torsio.physics.system import System
 
     if args.wob is not None and args.pi2 is not None:

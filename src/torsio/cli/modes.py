@@ -38,8 +38,8 @@ def run(args: argparse.Namespace) -> int:
     from rich.console import Console
 
     from torsio.errors import ConfigError
-    from torsio.model.modal import modal_analysis
     from torsio.io.report import modes_table
+    from torsio.model.modal import modal_analysis
 
     config = load(args)
     model = config.model(**discretization_overrides(args))

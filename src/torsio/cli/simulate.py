@@ -60,8 +60,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``torsio simulate`` with parsed arguments; return the exit status."""
-    from torsio.errors import ConfigError, TorsioError
     from torsio.analysis.transient import simulate_config
+    from torsio.errors import ConfigError, TorsioError
 
     config = load(args)
     overrides: dict[str, Any] = {

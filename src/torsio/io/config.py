@@ -28,9 +28,9 @@ from typing import Any
 
 import attrs
 
+from torsio.errors import ConfigError
 from torsio.model.components import SECTION_KINDS, STEEL, Material, Section
 from torsio.model.drillstring import DrillString
-from torsio.errors import ConfigError
 from torsio.units import RPM_TO_RAD_S, to_si
 
 TOP_LEVEL_KEYS = {
@@ -120,7 +120,7 @@ class OperationConfig:
 
 @attrs.frozen
 class SimulationConfig:
-    """The ``[simulation]`` table: options of the transient analyzer (see ``torsio.analysis.transient``)."""
+    """The ``[simulation]`` table: options of :mod:`torsio.analysis.transient`."""
 
     options: Mapping[str, Any] = attrs.field(factory=dict)
 

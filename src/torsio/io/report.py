@@ -50,13 +50,13 @@ from rich.console import Console, ConsoleOptions, Group, RenderableType, RenderR
 from rich.table import Table
 from rich.text import Text
 
+from torsio.errors import ConfigError
 from torsio.io.config import Config
 from torsio.model.continuum import ContinuumModes, continuum_modes
-from torsio.physics.damping import ModelDamping, RayleighDamping
 from torsio.model.drillstring import DrillString
-from torsio.errors import ConfigError
 from torsio.model.lumped import LumpedModel
 from torsio.model.modal import ModalComparison, ModalResults, modal_analysis
+from torsio.physics.damping import ModelDamping, RayleighDamping
 from torsio.physics.system import System
 
 __all__ = [

@@ -22,10 +22,10 @@ from typing import Any
 
 import attrs
 
+from torsio.examples import ritto2017_string
 from torsio.model.continuum import continuum_modes
 from torsio.model.discretize import StrategyA, StrategyB, StrategyC
 from torsio.model.drillstring import DrillString
-from torsio.examples import ritto2017_string
 from torsio.model.lumped import LumpedModel
 from torsio.model.modal import modal_analysis
 
@@ -263,9 +263,9 @@ def _ritto_system(strategy: str = "C", **options: Any) -> Any:
 def static_twist() -> Check:
     import attrs
 
+    from torsio.analysis.transient import simulate
     from torsio.physics.damping import RayleighDamping
     from torsio.physics.laws import ConstantTorque
-    from torsio.analysis.transient import simulate
 
     torque = 2000.0
     system = attrs.evolve(
@@ -290,9 +290,9 @@ def static_twist() -> Check:
 def static_surface_torque() -> Check:
     import attrs
 
+    from torsio.analysis.transient import simulate
     from torsio.physics.damping import RayleighDamping
     from torsio.physics.laws import ConstantTorque
-    from torsio.analysis.transient import simulate
 
     system = attrs.evolve(
         _ritto_system(),
@@ -372,8 +372,8 @@ def one_dof_severity_reference() -> Check:
 
 @check
 def dimensionless_severity() -> Check:
-    from torsio.physics.dimensionless import dimensionless_system
     from torsio.analysis.transient import simulate
+    from torsio.physics.dimensionless import dimensionless_system
 
     system = _ritto_system().at(wob=150e3, rpm=60.0)
     dimensional = simulate(system, rtol=1e-10, atol=1e-12)

@@ -37,8 +37,8 @@ from collections.abc import Sequence
 import attrs
 import numpy as np
 
-from torsio.model.drillstring import DrillString
 from torsio.errors import ConfigError
+from torsio.model.drillstring import DrillString
 
 _RELATIVE_WIDTH = 1e-14
 

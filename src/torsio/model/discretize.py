@@ -40,9 +40,9 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from torsio.errors import ConfigError
 from torsio.model.components import Section
 from torsio.model.drillstring import DrillString
-from torsio.errors import ConfigError
 from torsio.model.lumped import LumpedModel, chain_matrix
 
 MAX_DOFS = 5000

@@ -17,8 +17,8 @@ from collections.abc import Iterable
 import attrs
 import numpy as np
 
-from torsio.model.components import Bit, Section
 from torsio.errors import ConfigError
+from torsio.model.components import Bit, Section
 
 
 def _to_tuple(sections: Iterable[Section]) -> tuple[Section, ...]:

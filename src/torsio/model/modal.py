@@ -24,9 +24,9 @@ import attrs
 import numpy as np
 import scipy.linalg
 
+from torsio.errors import ConfigError
 from torsio.model.continuum import ContinuumModes, continuum_modes
 from torsio.model.drillstring import DrillString
-from torsio.errors import ConfigError
 from torsio.model.lumped import LumpedModel
 
 

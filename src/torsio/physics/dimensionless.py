@@ -48,10 +48,10 @@ from typing import Any
 import attrs
 import numpy as np
 
-from torsio.physics.damping import ModelDamping, RayleighDamping
 from torsio.errors import ConfigError
-from torsio.physics.laws import TuckerWang
 from torsio.model.lumped import LumpedModel
+from torsio.physics.damping import ModelDamping, RayleighDamping
+from torsio.physics.laws import TuckerWang
 from torsio.physics.system import System
 from torsio.units import RPM_TO_RAD_S
 

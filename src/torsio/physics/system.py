@@ -29,10 +29,10 @@ from typing import Any
 import attrs
 import numpy as np
 
-from torsio.io.config import Config, builtin_config
-from torsio.physics.damping import ModelDamping, RayleighDamping
 from torsio.errors import ConfigError
+from torsio.io.config import Config, builtin_config
 from torsio.model.lumped import LumpedModel
+from torsio.physics.damping import ModelDamping, RayleighDamping
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = ["ConstantSpeedTop", "System", "builtin_config"]

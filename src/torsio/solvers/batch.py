@@ -77,8 +77,8 @@ from typing import Any
 import attrs
 import numpy as np
 
-from torsio.errors import ConfigError, SolverError
 from torsio.analysis.severity import check_window, default_times
+from torsio.errors import ConfigError, SolverError
 from torsio.physics.system import System
 
 numba: Any
