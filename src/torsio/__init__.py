@@ -37,8 +37,18 @@ from torsio.physics.dimensionless import (
     dimensionless_groups,
     dimensionless_system,
 )
+from torsio.physics.dynamics import Dynamics
 from torsio.physics.laws import BitRockLaw, Parameter, TuckerWang
-from torsio.physics.system import ConstantSpeedTop, System
+from torsio.physics.system import System
+from torsio.physics.top_drives import (
+    ConstantSpeedTop,
+    PITopDrive,
+    SoftTorqueTopDrive,
+    TopDriveBoundary,
+    TorqueTopDrive,
+    ZTorqueTopDrive,
+    top_drive_from_parameters,
+)
 
 __version__ = "0.1.0"
 
@@ -108,6 +118,13 @@ __all__ = [
     "EnergyBalance",
     "energy_balance",
     "ConstantSpeedTop",
+    "Dynamics",
+    "PITopDrive",
+    "SoftTorqueTopDrive",
+    "TopDriveBoundary",
+    "TorqueTopDrive",
+    "ZTorqueTopDrive",
+    "top_drive_from_parameters",
     "RayleighDamping",
     "System",
     "DimensionlessGroups",

@@ -6,7 +6,7 @@ third-party distribution registers it under the entry-point group ``torsio``::
     [project.entry-points.torsio]
     my_laws = "my_package.plugin"
 
-The built-in bit-rock laws and discretizers register through these same hooks.
+The built-in bit-rock laws, top drives and discretizers register through these same hooks.
 """
 
 from __future__ import annotations
@@ -40,5 +40,19 @@ def torsio_discretizers() -> Iterable[type[Any]]:
 
     Each class has a unique class attribute ``name``, is built from keyword
     options, and has ``discretize(string) -> LumpedModel``.
+    """
+    raise NotImplementedError
+
+
+@hookspec
+def torsio_top_drives() -> Iterable[type[Any]]:
+    """Return top-drive classes.
+
+    Each class has a unique class attribute ``name``, is built from keyword
+    parameters (validated on construction, raising
+    :class:`torsio.errors.ConfigError` naming ``top_drive.<key>``), and has
+    ``boundary(system) -> torsio.physics.top_drives.TopDriveBoundary``: its
+    inertia, drag and linear controller (with optional torque limit) for the
+    given System (see :mod:`torsio.physics.top_drives`).
     """
     raise NotImplementedError

@@ -1,4 +1,4 @@
-"""The plugin manager: collects bit-rock laws and discretizers from every plugin.
+"""The plugin manager: collects bit-rock laws, top drives and discretizers from every plugin.
 
 Built-in plugins are registered first, then the entry points of group ``torsio``.
 A broken plugin (import error, hook raising, a class without ``name``, a name
@@ -11,6 +11,8 @@ Examples
 ['A', 'B', 'C', 'consistent', 'mixed']
 >>> "tucker-wang" in bit_laws()
 True
+>>> sorted(top_drives())
+['constant-speed', 'pi', 'soft-torque', 'torque', 'z-torque']
 """
 
 from __future__ import annotations
@@ -33,11 +35,12 @@ class PluginWarning(UserWarning):
 def plugin_manager() -> pluggy.PluginManager:
     """The process-wide plugin manager, built on first use."""
     from torsio.model import discretize
-    from torsio.physics import laws
+    from torsio.physics import laws, top_drives
 
     manager = pluggy.PluginManager("torsio")
     manager.add_hookspecs(hookspecs)
     manager.register(laws, name="torsio.physics.laws")
+    manager.register(top_drives, name="torsio.physics.top_drives")
     manager.register(discretize, name="torsio.model.discretize")
     _load_entry_points(manager)
     return manager
@@ -111,6 +114,22 @@ def bit_laws() -> dict[str, type[Any]]:
 def discretizers() -> dict[str, type[Any]]:
     """Every registered discretizer class, by name."""
     return _collect("torsio_discretizers", "discretizer")
+
+
+def top_drives() -> dict[str, type[Any]]:
+    """Every registered top-drive class, by name."""
+    return _collect("torsio_top_drives", "top drive")
+
+
+def get_top_drive(name: str) -> type[Any]:
+    """The top-drive class registered as ``name``; a clear error if there is none."""
+    found = top_drives()
+    if name not in found:
+        raise ConfigError(
+            "top_drive.kind",
+            f"unknown top drive {name!r}; registered: {', '.join(sorted(found))}",
+        )
+    return found[name]
 
 
 def get_bit_law(name: str) -> type[Any]:

@@ -158,6 +158,33 @@ class Config:
             return self.string.bit.radius
         return self.bit_rock.radius
 
+    def system(self, **discretization: Any) -> Any:
+        """The :class:`torsio.physics.system.System` this configuration describes.
+
+        ``discretization`` overrides the ``[discretization]`` options; the operating
+        point is ``[operation]`` (0 N and 60 rpm where absent).
+        """
+        from torsio.physics.damping import RayleighDamping
+        from torsio.physics.system import System
+
+        model = self.model(**discretization)
+        d = self.damping
+        damping = (
+            RayleighDamping.from_modal_ratios(model, d.ratios, d.modes)
+            if d.ratios is not None
+            else RayleighDamping(d.alpha or 0.0, d.beta or 0.0)
+        )
+        op = self.operation
+        return System(
+            model=model,
+            law=self.bit_law(),
+            bit_radius=self.bit_radius,
+            damping=damping,
+            wob=op.wob if op.wob is not None else 0.0,
+            rpm=op.rpm if op.rpm is not None else 60.0,
+            string=self.string,
+        )
+
     def bit_law(self) -> Any:
         """The configured bit-rock law; a clear error if the file has no ``[bit_rock]`` table."""
         if self.bit_rock is None:

@@ -1,20 +1,18 @@
-"""First-order equations of motion of a System, in twist coordinates, with their Jacobian.
+"""First-order equations of motion of a System for scipy, derived from its one description.
 
-State (interleaved, so the Jacobian of a lumped-mass chain is banded):
+The equations, the state ordering and the Jacobian are those of
+:class:`torsio.physics.dynamics.Dynamics` (nothing is written here a second time)::
 
-    y = [phi_1, v_1, phi_2, v_2, ..., phi_N, v_N],   phi = theta - Omega t,  v = phi'
+    y = [z_0 .. z_{m-1}, phi_0, v_0, phi_1, v_1, ..., phi_{n-1}, v_{n-1}]
 
-    phi' = v
-    [I] v' = -[K] phi - [C] v - Omega ([C] 1 - c_t) - T_bit(Omega + v_N) e_N
-
-(see :mod:`torsio.physics.system`). Absolute bit speed is Omega + v_N. With lumped
-(diagonal) inertia the Jacobian has lower bandwidth 3 and upper bandwidth 2 in
-this ordering: tridiagonal [K] and [C] plus the scalar bit-law slope on the last
-diagonal entry. With consistent mass [I]^-1 is full and so is the Jacobian.
+with z the top drive's controller states (none for a held top), phi = theta -
+Omega_ref t and v = phi'. With lumped (diagonal) inertia the Jacobian is banded
+(lower bandwidth 3 and upper 2 for a held top); with consistent mass it is full.
 
 Examples
 --------
->>> from torsio.physics.system import System, builtin_config
+>>> from torsio.io.config import builtin_config
+>>> from torsio.physics.system import System
 >>> eq = TwistEquations(System.from_config(builtin_config()))
 >>> y0 = eq.rest_state()          # start-up from rest: phi = 0, theta' = 0
 >>> float(y0[-1]) == -eq.omega    # v_N = theta_N' - Omega
@@ -28,106 +26,63 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-import scipy.linalg
 import scipy.sparse
 
+from torsio.physics.dynamics import Dynamics
 from torsio.physics.system import System
 
 
 class TwistEquations:
-    """Right-hand side and Jacobian of a System's equations of motion in twist coordinates.
+    """Right-hand side and Jacobian of a System's equations for ``scipy.integrate.solve_ivp``.
 
     Parameters
     ----------
     system : System
+
+    Attributes
+    ----------
+    dynamics : Dynamics
+        The description everything is derived from.
+    dofs : int
+        Chain nodes n (the top drive included when it has inertia).
+    omega : float
+        Reference speed Omega_ref [rad/s] of the twist coordinates.
     """
 
     def __init__(self, system: System) -> None:
-        model = system.model
         self.system = system
-        self.dofs = n = model.dofs
-        self.omega = system.omega
-        self.lumped_mass = model.has_lumped_mass
-        inertia = np.asarray(model.inertia)
-        stiffness = np.asarray(model.stiffness)
-        damping = system.damping_matrix
-        steady_drag = system.omega * system.drag_per_speed  # torque of rigid rotation at Omega
-        if self.lumped_mass:
-            inverse_inertia = 1.0 / np.diag(inertia)
-            self._k = stiffness * inverse_inertia[:, None]
-            self._c = damping * inverse_inertia[:, None]
-            self._f = -steady_drag * inverse_inertia
-            self._bit_column = np.zeros(n)
-            self._bit_column[-1] = inverse_inertia[-1]
-        else:
-            factor = scipy.linalg.cho_factor(inertia)
-            self._k = scipy.linalg.cho_solve(factor, stiffness)
-            self._c = scipy.linalg.cho_solve(factor, damping)
-            self._f = -scipy.linalg.cho_solve(factor, steady_drag)
-            unit = np.zeros(n)
-            unit[-1] = 1.0
-            self._bit_column = scipy.linalg.cho_solve(factor, unit)
-        self._law = system.law
-        self._wob = system.wob
-        self._radius = system.bit_radius
+        self.dynamics = dynamics = Dynamics.from_system(system)
+        self.dofs = dynamics.dofs
+        self.states = dynamics.states
+        self.size = dynamics.size
+        self.omega = dynamics.reference_speed
+        self.lumped_mass = dynamics.lumped_mass
 
-    # --- state helpers -------------------------------------------------------------------
     def rest_state(self) -> np.ndarray:
-        """Start-up from rest: every angle and speed zero while the top turns at Omega."""
-        y = np.zeros(2 * self.dofs)
-        y[1::2] = -self.omega
-        return y
+        """Start-up from rest: every angle, speed and controller state zero."""
+        return self.dynamics.rest_state()
 
     def state(self, twist: np.ndarray, speed: np.ndarray) -> np.ndarray:
-        """Interleaved state from twists phi [rad] and absolute speeds theta' [rad/s]."""
-        y = np.empty(2 * self.dofs)
-        y[0::2] = twist
-        y[1::2] = np.asarray(speed, dtype=float) - self.omega
-        return y
+        """State from twists phi [rad] and absolute speeds theta' [rad/s] (controller at 0)."""
+        return self.dynamics.state(twist, speed)
 
-    # --- equations -----------------------------------------------------------------------
     def bit_torque(self, bit_speed: Any) -> np.ndarray:
         """Torque on bit [N m] at absolute bit speed [rad/s]."""
-        return np.asarray(self._law.torque(bit_speed, self._wob, self._radius))
+        return self.dynamics.bit_torque(bit_speed)
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         """dy/dt."""
-        phi = y[0::2]
-        v = y[1::2]
-        dy = np.empty_like(y)
-        dy[0::2] = v
-        torque = float(self.bit_torque(self.omega + v[-1]))
-        dy[1::2] = self._f - self._k @ phi - self._c @ v - torque * self._bit_column
-        return dy
+        return self.dynamics.rhs(t, y)
 
     @property
     def jacobian_bands(self) -> tuple[int, int] | None:
-        """(lower, upper) bandwidth of the Jacobian, or None when it is full.
-
-        Never wider than the matrix itself (a 1-DOF model has a 2 x 2 Jacobian).
-        """
-        if not self.lumped_mass:
-            return None
-        size = 2 * self.dofs
-        return (min(3, size - 1), min(2, size - 1))
+        """(lower, upper) bandwidth of the Jacobian, or None when it is full."""
+        return self.dynamics.jacobian_bands
 
     def jacobian(self, t: float, y: np.ndarray) -> scipy.sparse.csc_matrix:
         """d(dy/dt)/dy as a sparse matrix (banded for lumped mass)."""
-        n = self.dofs
-        slope = float(self._law.slope(self.omega + y[-1], self._wob, self._radius))
-        jac = np.zeros((2 * n, 2 * n))
-        jac[0::2, 1::2] = np.eye(n)
-        jac[1::2, 0::2] = -self._k
-        jac[1::2, 1::2] = -self._c
-        jac[1::2, 2 * n - 1] -= slope * self._bit_column
-        return scipy.sparse.csc_matrix(jac)
+        return self.dynamics.jacobian(t, y)
 
     def jacobian_sparsity(self) -> scipy.sparse.csc_matrix:
         """Where the Jacobian can be non-zero."""
-        n = self.dofs
-        pattern = np.zeros((2 * n, 2 * n), dtype=bool)
-        pattern[0::2, 1::2] = np.eye(n, dtype=bool)
-        pattern[1::2, 0::2] = self._k != 0
-        pattern[1::2, 1::2] = self._c != 0
-        pattern[1::2, 2 * n - 1] |= self._bit_column != 0
-        return scipy.sparse.csc_matrix(pattern)
+        return self.dynamics.jacobian_sparsity()

@@ -13,10 +13,16 @@ where k_t = [K] 1 and c_t are the couplings of the nodes to the top drive
 
     [I] phi'' + [C] phi' + [K] phi = (c_t - [C] 1) Omega - T_bit(Omega + phi_N') e_N
 
-which is how the transient analyzer integrates them.
+which is how the transient analyzer integrates them. A top drive with inertia
+(:mod:`torsio.physics.top_drives`) adds a node and controller states; the one
+description of the dynamics of either is :mod:`torsio.physics.dynamics`.
+
+The physics does not import the configuration layer: :meth:`System.from_config`
+asks the configuration object for its system (``config.system(...)``).
 
 Examples
 --------
+>>> from torsio.io.config import builtin_config
 >>> system = System.from_config(builtin_config())
 >>> system.model.dofs, round(system.omega, 4), system.wob
 (5, 10.472, 100000.0)
@@ -30,23 +36,31 @@ import attrs
 import numpy as np
 
 from torsio.errors import ConfigError
-from torsio.io.config import Config, builtin_config
 from torsio.model.lumped import LumpedModel
 from torsio.physics.damping import ModelDamping, RayleighDamping
+from torsio.physics.top_drives import ConstantSpeedTop
 from torsio.units import RPM_TO_RAD_S
 
-__all__ = ["ConstantSpeedTop", "System", "builtin_config"]
+__all__ = ["ConstantSpeedTop", "System"]
 
 
-@attrs.frozen
-class ConstantSpeedTop:
-    """Top drive held at the constant surface speed Omega of the operating point (Eq. 3).
+def __getattr__(name: str) -> Any:
+    # ``from torsio.physics.system import builtin_config`` of earlier versions;
+    # use ``torsio.io.config.builtin_config`` (or ``torsio.builtin_config``).
+    if name == "builtin_config":
+        import importlib
 
-    An object rather than a flag so that a speed-controlled top drive can take its
-    place later.
-    """
+        return importlib.import_module("torsio.io.config").builtin_config
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
-    name: str = "constant speed"
+
+def _check_top(instance: Any, attribute: Any, value: Any) -> None:
+    if not callable(getattr(value, "boundary", None)):
+        raise ConfigError(
+            "top_drive",
+            f"expected a top drive with a boundary(system) method (see torsio.physics."
+            f"top_drives), got {value!r}",
+        )
 
 
 def _check_operating_value(key: str, value: float, positive: bool) -> None:
@@ -74,7 +88,9 @@ class System:
         Weight on bit W_ob [N], >= 0.
     rpm : float
         Surface rotary speed [rpm], > 0.
-    top : ConstantSpeedTop
+    top : top drive
+        Any registered top drive (:mod:`torsio.physics.top_drives`); default
+        :class:`ConstantSpeedTop`.
     string : DrillString | None
         The string the model came from (for reports and the continuum).
     """
@@ -85,7 +101,7 @@ class System:
     damping: RayleighDamping | ModelDamping = attrs.field(factory=RayleighDamping)
     wob: float = attrs.field(default=0.0, converter=float)
     rpm: float = attrs.field(default=60.0, converter=float)
-    top: ConstantSpeedTop = attrs.field(factory=ConstantSpeedTop)
+    top: Any = attrs.field(factory=ConstantSpeedTop, validator=_check_top)
     string: Any = attrs.field(default=None, eq=False)
 
     def __attrs_post_init__(self) -> None:
@@ -94,25 +110,31 @@ class System:
         _check_operating_value("bit_rock.radius", self.bit_radius, positive=True)
 
     @classmethod
-    def from_config(cls, config: Config, **discretization: Any) -> System:
-        """The System a configuration describes; ``discretization`` overrides its options."""
-        model = config.model(**discretization)
-        d = config.damping
-        damping = (
-            RayleighDamping.from_modal_ratios(model, d.ratios, d.modes)
-            if d.ratios is not None
-            else RayleighDamping(d.alpha or 0.0, d.beta or 0.0)
-        )
-        op = config.operation
-        return cls(
-            model=model,
-            law=config.bit_law(),
-            bit_radius=config.bit_radius,
-            damping=damping,
-            wob=op.wob if op.wob is not None else 0.0,
-            rpm=op.rpm if op.rpm is not None else 60.0,
-            string=config.string,
-        )
+    def from_config(cls, config: Any, **discretization: Any) -> System:
+        """The System a configuration describes; ``discretization`` overrides its options.
+
+        ``config`` is any object with ``system(**discretization)`` (e.g.
+        :class:`torsio.io.config.Config`).
+        """
+        build = getattr(config, "system", None)
+        if not callable(build):
+            raise ConfigError(
+                "config", f"expected a configuration with a system() method, got {config!r}"
+            )
+        system = build(**discretization)
+        if not isinstance(system, cls):
+            raise ConfigError("config", f"config.system() returned {system!r}, not a System")
+        return system
+
+    def with_top(self, top: Any) -> System:
+        """The same system with another top drive."""
+        return attrs.evolve(self, top=top)
+
+    def dynamics(self) -> Any:
+        """The one description of its dynamics (:class:`torsio.physics.dynamics.Dynamics`)."""
+        from torsio.physics.dynamics import Dynamics
+
+        return Dynamics.from_system(self)
 
     def at(self, wob: float | None = None, rpm: float | None = None) -> System:
         """The same system at another operating point."""

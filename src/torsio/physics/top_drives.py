@@ -1,0 +1,509 @@
+"""Top drives: the boundary at the surface, from a held speed to a tuned controller.
+
+Every top drive is a small frozen class with a unique ``name``, built from keyword
+parameters (validated, errors name ``top_drive.<key>``), whose
+``boundary(system)`` returns a :class:`TopDriveBoundary`: the inertia and drag of
+the top drive (node 0 of the chain) and a linear controller with optional
+saturation (see ``docs/top_drives.md`` and :mod:`torsio.physics.dynamics`)::
+
+    y      = [e, T_pipe],  e = Omega_set - Omega_0,  T_pipe = k_1 (phi_0 - phi_1) + c_1 (v_0 - v_1)
+    u_free = u0 + c . z + d . y,   u = clip(u_free, -max_torque, max_torque)
+    z'     = a z + b y + w (u - u_free)
+    J Omega_0' = u - drag Omega_0 - T_pipe
+
+Kinds (all start from rest, controller states zero):
+
+* ``constant-speed``: Omega_0 = Omega_set (the paper's boundary); no node, no state.
+* ``torque``: constant motor torque u = ``torque`` (Navarro-Lopez and Cortes 2007).
+* ``pi``: speed loop u = kp e + ki int(e), optional ``max_torque`` with
+  back-calculation anti-windup w = 1/kp (tracking time kp/ki; Astrom and Hagglund 2006).
+* ``soft-torque``: ``pi`` tuned as a damper at the stick-slip frequency
+  (Kyllingstad and Nessjoen 2009): ki = omega_1^2 J, kp = zeta = J_p sqrt(G rho)
+  of the top drill-pipe section.
+* ``z-torque``: impedance matching by torque feedback on a stiff speed loop
+  (Dwars 2015): the speed set point is lowered by ``alpha / zeta`` times the
+  high-passed pipe torque.
+
+Top-drive inertia: there is no default; every kind with a node needs ``inertia``.
+A typical value is J = 2900 kg m^2 (top drive with gearbox, the NORCE/OSDC
+Simulator4nDOF default); Navarro-Lopez and Cortes (2007) use a rotary table of
+930 kg m^2.
+
+Examples
+--------
+>>> pi = top_drive_from_parameters("pi", inertia=2900.0, kp=5000.0, ki=2900.0 * 0.8**2)
+>>> round(abs(pi.impedance(0.8) - 5000.0), 9)   # ki = omega_s^2 J: a pure damper at omega_s
+0.0
+>>> round(pi.reflection_coefficient(zeta=5000.0), 12)
+0.0
+>>> top_drive_from_parameters("pi", inertia=-1.0, kp=1.0, ki=1.0)
+Traceback (most recent call last):
+...
+torsio.errors.ConfigError: top_drive.inertia: expected a positive finite value in kg m^2, got -1.0
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, ClassVar
+
+import attrs
+import numpy as np
+
+from torsio.errors import ConfigError
+from torsio.hookspecs import hookimpl
+
+__all__ = [
+    "ConstantSpeedTop",
+    "PITopDrive",
+    "SoftTorqueTopDrive",
+    "TopDriveBoundary",
+    "TorqueTopDrive",
+    "ZTorqueTopDrive",
+    "top_drive_from_parameters",
+    "top_pipe_impedance",
+]
+
+TYPICAL_INERTIA = 2900.0
+"""A typical top-drive inertia with gearbox [kg m^2] (NORCE/OSDC Simulator4nDOF default)."""
+
+
+def _number(key: str, value: Any, unit: str, *, positive: bool = False) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+        raise ConfigError(f"top_drive.{key}", f"expected a number in {unit}, got {value!r}")
+    number = float(value)
+    ok = math.isfinite(number) and (number > 0 if positive else number >= 0)
+    if not ok:
+        what = "positive" if positive else "non-negative"
+        raise ConfigError(
+            f"top_drive.{key}", f"expected a {what} finite value in {unit}, got {value!r}"
+        )
+    return number
+
+
+def _validator(unit: str, positive: bool) -> Any:
+    def check(instance: Any, attribute: attrs.Attribute[Any], value: Any) -> None:
+        if value is None or (attribute.name == "max_torque" and value == math.inf):
+            return
+        _number(attribute.name, value, unit, positive=positive)
+
+    return check
+
+
+def _to_float(value: Any) -> Any:
+    if value is None or isinstance(value, bool):
+        return value
+    if isinstance(value, int | float | np.integer | np.floating):
+        return float(value)
+    return value
+
+
+def _max_torque(value: Any) -> Any:
+    return math.inf if value is None else _to_float(value)
+
+
+@attrs.frozen
+class TopDriveBoundary:
+    """The top drive as the dynamics sees it: node 0 and a linear controller.
+
+    Attributes
+    ----------
+    inertia : float
+        J [kg m^2]; 0 means the top is held at ``set_speed`` (no node, no state).
+    drag : float
+        Torque per unit absolute speed of the top drive to the ground [N m s/rad].
+    set_speed : float
+        Omega_set [rad/s], the speed the controller aims at (for ``torque``: none, NaN).
+    u0 : float
+        Constant part of the motor torque [N m].
+    a, b, c, d, w : ndarray
+        Controller matrices, shapes (m, m), (m, 2), (m,), (2,), (m,), with
+        y = [e, T_pipe] (see the module documentation).
+    max_torque : float
+        |u| limit [N m] (inf: none).
+    """
+
+    inertia: float
+    drag: float = 0.0
+    set_speed: float = math.nan
+    u0: float = 0.0
+    a: np.ndarray = attrs.field(factory=lambda: np.zeros((0, 0)), eq=False)
+    b: np.ndarray = attrs.field(factory=lambda: np.zeros((0, 2)), eq=False)
+    c: np.ndarray = attrs.field(factory=lambda: np.zeros(0), eq=False)
+    d: np.ndarray = attrs.field(factory=lambda: np.zeros(2), eq=False)
+    w: np.ndarray = attrs.field(factory=lambda: np.zeros(0), eq=False)
+    max_torque: float = math.inf
+
+    @property
+    def held(self) -> bool:
+        """Whether the top is held at the set speed (no top-drive node)."""
+        return self.inertia == 0.0
+
+    @property
+    def states(self) -> int:
+        """Number m of controller states."""
+        return int(np.asarray(self.c).size)
+
+    def transfer(self, s: complex) -> np.ndarray:
+        """H(s) = c (s I - a)^-1 b + d: motor torque per unit (e, T_pipe), shape (2,)."""
+        m = self.states
+        h = np.asarray(self.d, dtype=complex).copy()
+        if m:
+            h += np.asarray(self.c) @ np.linalg.solve(s * np.eye(m) - self.a, self.b)
+        return h
+
+    def impedance(self, omega: Any) -> np.ndarray:
+        """Z(i omega) = -T_pipe / Omega_0 of the small motions [N m s/rad], unsaturated.
+
+        From J s dOmega = du - drag dOmega - dT and du = H_e (-dOmega) + H_T dT:
+        Z = (J s + drag + H_e(s)) / (1 - H_T(s)), s = i omega.
+        """
+        w = np.atleast_1d(np.asarray(omega, dtype=float))
+        values = []
+        for frequency in w:
+            s = 1j * frequency
+            h = self.transfer(s)
+            values.append((self.inertia * s + self.drag + h[0]) / (1.0 - h[1]))
+        result = np.asarray(values)
+        return result if np.ndim(omega) else result[0]
+
+
+def top_pipe_impedance(system: Any) -> float:
+    """zeta = J_p sqrt(G rho) of the top section of the system's string [N m s/rad].
+
+    The characteristic impedance of the drill pipe at the top: the torque per unit
+    speed a torsional wave carries. A clear error if the system has no string
+    (a ``[chain]`` model): then give ``kp`` (or ``zeta``) explicitly.
+    """
+    string = getattr(system, "string", None)
+    if string is None:
+        raise ConfigError(
+            "top_drive.kp",
+            "the default tuning needs the drill-pipe impedance zeta = J_p sqrt(G rho) of a "
+            "drill string, and this model is a chain without one; give kp (and zeta) explicitly",
+        )
+    section = string.sections[0]
+    material = section.material
+    return float(section.polar_moment * math.sqrt(material.shear_modulus * material.density))
+
+
+def _first_frequency(system: Any) -> float:
+    from torsio.model.modal import modal_analysis
+
+    return float(modal_analysis(system.model, 1).frequencies_rad[0])
+
+
+@attrs.frozen
+class ConstantSpeedTop:
+    """Top drive held at the surface speed Omega of the operating point (paper Eq. 3)."""
+
+    name: ClassVar[str] = "constant-speed"
+    description: ClassVar[str] = "Omega_0 = Omega_set from t = 0 (the paper's boundary)"
+
+    def boundary(self, system: Any) -> TopDriveBoundary:
+        """No node and no state: the top turns at ``system.omega``."""
+        return TopDriveBoundary(inertia=0.0, set_speed=float(system.omega))
+
+
+def _non_negative_field(unit: str, default: Any = 0.0) -> Any:
+    return attrs.field(
+        default=default, converter=_to_float, validator=_validator(unit, positive=False)
+    )
+
+
+@attrs.frozen
+class TorqueTopDrive:
+    """Constant motor torque on a top drive with inertia (Navarro-Lopez and Cortes 2007).
+
+    J Omega_0' = torque - drag Omega_0 - T_pipe. There is no set speed: the speed
+    follows from the torque balance, and S_SS is read relative to the mean
+    top-drive speed over the steady window.
+
+    Parameters
+    ----------
+    inertia : float
+        J [kg m^2].
+    torque : float
+        Motor torque [N m].
+    drag : float
+        Viscous drag of the top drive [N m s/rad], default 0.
+    """
+
+    name: ClassVar[str] = "torque"
+    description: ClassVar[str] = "J Omega' = torque - drag Omega - T_pipe"
+
+    inertia: float = attrs.field(converter=_to_float, validator=_validator("kg m^2", True))
+    torque: float = attrs.field(converter=_to_float, validator=_validator("N m", positive=True))
+    drag: float = _non_negative_field("N m s/rad")
+
+    def boundary(self, system: Any) -> TopDriveBoundary:
+        """Node 0 with a constant motor torque and no controller state."""
+        return TopDriveBoundary(inertia=self.inertia, drag=self.drag, u0=self.torque)
+
+
+def _pi_boundary(
+    inertia: float, drag: float, kp: float, ki: float, max_torque: float, set_speed: float
+) -> TopDriveBoundary:
+    return TopDriveBoundary(
+        inertia=inertia,
+        drag=drag,
+        set_speed=set_speed,
+        a=np.zeros((1, 1)),
+        b=np.array([[1.0, 0.0]]),
+        c=np.array([ki]),
+        d=np.array([kp, 0.0]),
+        w=np.array([1.0 / kp if kp > 0 else 0.0]),
+        max_torque=max_torque,
+    )
+
+
+def _pi_impedance(inertia: float, drag: float, kp: float, ki: float, omega: Any) -> Any:
+    w = np.asarray(omega, dtype=float)
+    return drag + kp + 1j * (w * inertia - ki / w)
+
+
+@attrs.frozen
+class PITopDrive:
+    """Speed loop: T_m = kp e + ki int(e), e = Omega_set - Omega_0.
+
+    With ``max_torque`` the motor torque is limited to +-max_torque and the
+    integral is corrected by back-calculation, z' = e + (u - u_free)/kp (tracking
+    time kp/ki; Astrom and Hagglund 2006, sec. 3.5), so it does not wind up.
+
+    Parameters
+    ----------
+    inertia : float
+        J [kg m^2].
+    kp : float
+        Proportional gain [N m s/rad], > 0.
+    ki : float
+        Integral gain [N m/rad], >= 0.
+    drag : float
+        Viscous drag of the top drive [N m s/rad], default 0.
+    max_torque : float, optional
+        Motor torque limit [N m]; none by default.
+    """
+
+    name: ClassVar[str] = "pi"
+    description: ClassVar[str] = "J Omega' = kp e + ki int(e) - drag Omega - T_pipe"
+
+    inertia: float = attrs.field(converter=_to_float, validator=_validator("kg m^2", True))
+    kp: float = attrs.field(converter=_to_float, validator=_validator("N m s/rad", positive=True))
+    ki: float = attrs.field(converter=_to_float, validator=_validator("N m/rad", positive=False))
+    drag: float = _non_negative_field("N m s/rad")
+    max_torque: float = attrs.field(
+        default=math.inf, converter=_max_torque, validator=_validator("N m", positive=True)
+    )
+
+    def boundary(self, system: Any) -> TopDriveBoundary:
+        """Node 0 with the PI integral as controller state."""
+        return _pi_boundary(
+            self.inertia, self.drag, self.kp, self.ki, self.max_torque, float(system.omega)
+        )
+
+    def impedance(self, omega: Any) -> Any:
+        """Z(i omega) = drag + kp + i (omega J - ki / omega) [N m s/rad] (unsaturated)."""
+        return _pi_impedance(self.inertia, self.drag, self.kp, self.ki, omega)
+
+    def reflection_coefficient(self, zeta: float) -> float:
+        """R = (zeta - kp) / (zeta + kp) of a torsional wave of pipe impedance zeta [-]."""
+        return (zeta - self.kp) / (zeta + self.kp)
+
+
+@attrs.frozen
+class SoftTorqueTopDrive:
+    """The PI speed loop with the SoftTorque tuning (Kyllingstad and Nessjoen 2009).
+
+    By default ki = omega_1^2 J (omega_1: first natural frequency of the model
+    with the top held) and kp = zeta = J_p sqrt(G rho) of the top drill-pipe
+    section, so that at omega_1 the top drive is the damper that absorbs a
+    torsional wave coming up the pipe (reflection coefficient 0).
+
+    Parameters
+    ----------
+    inertia : float
+        J [kg m^2].
+    kp, ki : float, optional
+        Gains [N m s/rad], [N m/rad]; the defaults above when not given.
+    drag, max_torque : float
+        As for ``pi``.
+    """
+
+    name: ClassVar[str] = "soft-torque"
+    description: ClassVar[str] = "pi with ki = omega_1^2 J, kp = zeta (SoftTorque tuning)"
+
+    inertia: float = attrs.field(converter=_to_float, validator=_validator("kg m^2", True))
+    kp: float | None = attrs.field(
+        default=None, converter=_to_float, validator=_validator("N m s/rad", positive=True)
+    )
+    ki: float | None = attrs.field(
+        default=None, converter=_to_float, validator=_validator("N m/rad", positive=False)
+    )
+    drag: float = _non_negative_field("N m s/rad")
+    max_torque: float = attrs.field(
+        default=math.inf, converter=_max_torque, validator=_validator("N m", positive=True)
+    )
+
+    def gains(self, system: Any = None) -> tuple[float, float]:
+        """(kp, ki) with the defaults resolved on ``system`` where not given."""
+        if (self.kp is None or self.ki is None) and system is None:
+            raise ConfigError(
+                "top_drive.kp" if self.kp is None else "top_drive.ki",
+                "the SoftTorque default tuning needs the system (omega_1, zeta); pass it",
+            )
+        kp = self.kp if self.kp is not None else top_pipe_impedance(system)
+        ki = self.ki if self.ki is not None else _first_frequency(system) ** 2 * self.inertia
+        return kp, ki
+
+    def boundary(self, system: Any) -> TopDriveBoundary:
+        """Node 0 with the PI integral as controller state, tuned on ``system``."""
+        kp, ki = self.gains(system)
+        return _pi_boundary(self.inertia, self.drag, kp, ki, self.max_torque, float(system.omega))
+
+    def impedance(self, omega: Any, system: Any = None) -> Any:
+        """Z(i omega) = drag + kp + i (omega J - ki / omega) [N m s/rad] (unsaturated)."""
+        kp, ki = self.gains(system)
+        return _pi_impedance(self.inertia, self.drag, kp, ki, omega)
+
+    def reflection_coefficient(self, zeta: float, system: Any = None) -> float:
+        """R = (zeta - kp) / (zeta + kp) [-]."""
+        kp, _ = self.gains(system)
+        return (zeta - kp) / (zeta + kp)
+
+
+@attrs.frozen
+class ZTorqueTopDrive:
+    """Z-Torque: a stiff speed loop whose set point is lowered by the pipe torque.
+
+    Impedance matching by torque feedback (Dwars 2015), as in NORCE/OSDC
+    Simulator4nDOF: the speed error fed to the PI loop is
+
+        e_z = Omega_set - Omega_0 - (alpha / zeta) HP(T_pipe)
+
+    with HP a first-order high-pass of corner frequency 1/``highpass_period``
+    (time constant highpass_period / (2 pi)), so that the steady torque does not
+    move the speed. Written with the low-passed torque q (q' = (T_pipe - q)/tau):
+    HP(T_pipe) = T_pipe - q. States: the PI integral of e_z and q.
+
+    Parameters
+    ----------
+    inertia : float
+        J [kg m^2].
+    kp, ki : float, optional
+        Speed-loop gains; default the stiff loop kp = 50 zeta, ki = 5 J
+        (Simulator4nDOF).
+    zeta : float, optional
+        Pipe impedance [N m s/rad]; default J_p sqrt(G rho) of the top section.
+    alpha : float
+        Tuning factor in (0, 1], default 0.25 (Simulator4nDOF).
+    highpass_period : float
+        1 / corner frequency of the torque high-pass [s], default 20.
+    drag, max_torque : float
+        As for ``pi``.
+    """
+
+    name: ClassVar[str] = "z-torque"
+    description: ClassVar[str] = "stiff PI on Omega_set - Omega - alpha HP(T_pipe) / zeta"
+
+    inertia: float = attrs.field(converter=_to_float, validator=_validator("kg m^2", True))
+    kp: float | None = attrs.field(
+        default=None, converter=_to_float, validator=_validator("N m s/rad", positive=True)
+    )
+    ki: float | None = attrs.field(
+        default=None, converter=_to_float, validator=_validator("N m/rad", positive=False)
+    )
+    zeta: float | None = attrs.field(
+        default=None, converter=_to_float, validator=_validator("N m s/rad", positive=True)
+    )
+    alpha: float = attrs.field(default=0.25, converter=_to_float, validator=_validator("-", True))
+    highpass_period: float = attrs.field(
+        default=20.0, converter=_to_float, validator=_validator("s", positive=True)
+    )
+    drag: float = _non_negative_field("N m s/rad")
+    max_torque: float = attrs.field(
+        default=math.inf, converter=_max_torque, validator=_validator("N m", positive=True)
+    )
+
+    def __attrs_post_init__(self) -> None:
+        if self.alpha > 1.0:
+            raise ConfigError("top_drive.alpha", f"expected a value in (0, 1], got {self.alpha!r}")
+
+    def parameters(self, system: Any = None) -> tuple[float, float, float]:
+        """(kp, ki, zeta) with the defaults resolved on ``system`` where not given."""
+        zeta = self.zeta
+        if zeta is None:
+            if system is None:
+                raise ConfigError("top_drive.zeta", "the default zeta needs the system; pass it")
+            zeta = top_pipe_impedance(system)
+        kp = self.kp if self.kp is not None else 50.0 * zeta
+        ki = self.ki if self.ki is not None else 5.0 * self.inertia
+        return kp, ki, zeta
+
+    def boundary(self, system: Any) -> TopDriveBoundary:
+        """Node 0 with two states: the PI integral and the low-passed pipe torque."""
+        kp, ki, zeta = self.parameters(system)
+        g = self.alpha / zeta
+        rate = 2.0 * math.pi / self.highpass_period
+        return TopDriveBoundary(
+            inertia=self.inertia,
+            drag=self.drag,
+            set_speed=float(system.omega),
+            a=np.array([[0.0, g], [0.0, -rate]]),
+            b=np.array([[1.0, -g], [0.0, rate]]),
+            c=np.array([ki, kp * g]),
+            d=np.array([kp, -kp * g]),
+            w=np.array([1.0 / kp, 0.0]),
+            max_torque=self.max_torque,
+        )
+
+
+BUILTIN_TOP_DRIVES: tuple[type[Any], ...] = (
+    ConstantSpeedTop,
+    TorqueTopDrive,
+    PITopDrive,
+    SoftTorqueTopDrive,
+    ZTorqueTopDrive,
+)
+
+
+@hookimpl
+def torsio_top_drives() -> tuple[type[Any], ...]:
+    """The built-in top drives, registered like any plugin's."""
+    return BUILTIN_TOP_DRIVES
+
+
+def top_drive_from_parameters(kind: str, **parameters: Any) -> Any:
+    """The top drive of kind ``kind`` (any registered name) built from keyword parameters.
+
+    Errors name ``top_drive.kind`` for an unknown kind and ``top_drive.<key>``
+    for an unknown, missing or invalid parameter.
+    """
+    from torsio.plugins import get_top_drive
+
+    cls = get_top_drive(kind)
+    if attrs.has(cls):
+        fields = attrs.fields_dict(cls)
+        unknown = sorted(set(parameters) - set(fields))
+        if unknown:
+            raise ConfigError(
+                f"top_drive.{unknown[0]}",
+                f"top drive {kind!r} has no parameter {unknown[0]!r}; its parameters are "
+                f"{', '.join(fields) or 'none'}",
+            )
+        missing = [
+            key
+            for key, field in fields.items()
+            if field.default is attrs.NOTHING and field.init and key not in parameters
+        ]
+        if missing:
+            raise ConfigError(
+                f"top_drive.{missing[0]}", f"top drive {kind!r} needs parameter {missing[0]!r}"
+            )
+    try:
+        return cls(**parameters)
+    except ConfigError:
+        raise
+    except (TypeError, ValueError) as exc:
+        raise ConfigError(
+            "top_drive", f"top drive {kind!r} rejected its parameters: {exc}"
+        ) from None
