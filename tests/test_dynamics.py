@@ -121,16 +121,17 @@ def test_pi_impedance_is_a_pure_damper_at_the_tuning_frequency() -> None:
 
 def test_soft_torque_default_tuning() -> None:
     # ki = omega_1^2 J and kp = zeta = J_p sqrt(G rho) of the top section (SoftTorque tuning)
-    system = System.from_config(builtin_config(), strategy="C")
-    from torsio.analysis.severity import first_natural_frequency
+    from torsio.model.modal import modal_analysis
 
+    system = System.from_config(builtin_config(), strategy="C")
+    omega_1 = float(modal_analysis(system.model, 1).frequencies_rad[0])
     section = system.string.sections[0]
     zeta = section.polar_moment * math.sqrt(
         section.material.shear_modulus * section.material.density
     )
     kp, ki = SoftTorqueTopDrive(inertia=J_TD).gains(system)
     assert kp == pytest.approx(zeta, rel=1e-15)
-    assert ki == pytest.approx(first_natural_frequency(system) ** 2 * J_TD, rel=1e-15)
+    assert ki == pytest.approx(omega_1**2 * J_TD, rel=1e-15)
 
 
 def test_registry_and_parameter_errors() -> None:
@@ -162,3 +163,28 @@ def test_soft_torque_on_a_chain_without_string_needs_kp(chain_with_own_dampers: 
 def test_system_refuses_an_object_that_is_no_top_drive(one_dof: System) -> None:
     with pytest.raises(ConfigError, match="top_drive: expected a top drive"):
         one_dof.with_top("pi")
+
+
+def test_plugin_guide_top_drive_example() -> None:
+    """The top-drive plugin of docs/plugins.md registers and runs as written."""
+    import types
+    from pathlib import Path
+
+    from torsio.plugins import plugin_manager
+
+    guide = (Path(__file__).resolve().parents[1] / "docs" / "plugins.md").read_text()
+    section = guide[guide.index("## Top drives") :]
+    start = section.index("```py\n") + 6
+    code = section[start : section.index("\n```", start)]
+    module = types.ModuleType("proportional_top")
+    exec(compile(code, "docs/plugins.md", "exec"), module.__dict__)
+    plugin_manager().register(module, name="proportional_top")
+    try:
+        top = top_drive_from_parameters("proportional", inertia=J_TD, kp=5e3)
+        system = System.from_config(builtin_config(), strategy="A").at(wob=20e3, rpm=60)
+        dynamics = system.with_top(top).dynamics()
+        # a pure proportional loop: a top-drive node, no controller state
+        assert dynamics.states == 0 and dynamics.has_top_node
+        assert dynamics.top.d[0] == 5e3
+    finally:
+        plugin_manager().unregister(name="proportional_top")
