@@ -110,9 +110,9 @@ class Dynamics:
     Attributes
     ----------
     mass_matrix : ndarray, shape (n, n)
-        [I] [kg m^2].
+        [I], in kg m^2.
     stiffness_matrix : ndarray
-        [K] [N m/rad].
+        [K], in N m/rad.
     relative_damping_matrix : ndarray
         [C_rel], the dampers across the springs [N m s/rad].
     drag : ndarray, shape (n,)
@@ -222,7 +222,7 @@ class Dynamics:
 
     @property
     def mass_diag(self) -> np.ndarray:
-        """Diagonal of [I] [kg m^2] (chains only)."""
+        """Diagonal of [I], in kg m^2 (chains only)."""
         return self._band(0)[0]
 
     @property
@@ -232,7 +232,7 @@ class Dynamics:
 
     @property
     def stiffness_diag(self) -> np.ndarray:
-        """Diagonal of [K] [N m/rad] (chains only)."""
+        """Diagonal of [K], in N m/rad (chains only)."""
         return self._band(1)[0]
 
     @property
@@ -242,7 +242,7 @@ class Dynamics:
 
     @property
     def damping_diag(self) -> np.ndarray:
-        """Diagonal of [C_rel] [N m s/rad] (chains only)."""
+        """Diagonal of [C_rel], in N m s/rad (chains only)."""
         return self._band(2)[0]
 
     @property
