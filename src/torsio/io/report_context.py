@@ -1,0 +1,179 @@
+"""The context every report section reads, the section type and the table helpers.
+
+See :mod:`torsio.io.report` for how sections make up the report.
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Callable
+from typing import Any
+
+import attrs
+from rich import box
+from rich.console import Console, ConsoleOptions, Group, RenderableType, RenderResult
+from rich.table import Table
+from rich.text import Text
+
+from torsio.errors import ConfigError
+from torsio.io.config import Config
+from torsio.model.lumped import LumpedModel
+from torsio.model.modal import ModalComparison, ModalResults, modal_analysis
+from torsio.physics.damping import ModelDamping, RayleighDamping
+from torsio.physics.system import System
+
+DEFAULT_MODES = 5
+"""Modes shown by default (fewer if the model has fewer degrees of freedom)."""
+
+WIDE = 100
+"""Console width [columns] from which tables use their wide layout."""
+
+
+class ReportContext:
+    """A configuration and what the report computes from it, each computed once on demand.
+
+    Parameters
+    ----------
+    config : Config
+        The validated configuration.
+    strategy : str, optional
+        Discretizer name overriding the file's ``[discretization] strategy``.
+    dp_elements, bha_elements : int, optional
+        Element counts overriding the file's (see :mod:`torsio.model.discretize`).
+    modes : int
+        How many modes to show (at most the model's degrees of freedom).
+    """
+
+    def __init__(
+        self,
+        config: Config,
+        *,
+        strategy: str | None = None,
+        dp_elements: int | None = None,
+        bha_elements: int | None = None,
+        modes: int = DEFAULT_MODES,
+    ) -> None:
+        if isinstance(modes, bool) or not isinstance(modes, int) or modes < 1:
+            raise ConfigError("modes", f"expected a whole number of modes >= 1, got {modes!r}")
+        self.config = config
+        self.overrides: dict[str, Any] = {
+            "strategy": strategy,
+            "dp_elements": dp_elements,
+            "bha_elements": bha_elements,
+        }
+        self.requested_modes = modes
+
+    @functools.cached_property
+    def system(self) -> System | None:
+        """The System of the configuration (model, damping, bit-rock law, operating point).
+
+        None when the configuration has no ``[bit_rock]`` table (modal analyses only).
+        """
+        if self.config.bit_rock is None:
+            return None
+        return System.from_config(self.config, **self.overrides)
+
+    @functools.cached_property
+    def model(self) -> LumpedModel:
+        """The discretized string."""
+        if self.system is not None:
+            return self.system.model
+        return self.config.model(**self.overrides)
+
+    @functools.cached_property
+    def damping(self) -> RayleighDamping | ModelDamping:
+        """The damping of the model, as :meth:`System.from_config` sets it."""
+        if self.system is not None:
+            return self.system.damping
+        d = self.config.damping
+        if d.ratios is not None:
+            return RayleighDamping.from_modal_ratios(self.model, d.ratios, d.modes)
+        return RayleighDamping(d.alpha or 0.0, d.beta or 0.0)
+
+    @functools.cached_property
+    def modal(self) -> ModalResults:
+        """The first modes of the model."""
+        count = min(self.requested_modes, self.model.dofs)
+        return modal_analysis(self.model, count, string=self.config.string)
+
+    @functools.cached_property
+    def transient(self) -> Any:
+        """The transient response at the operating point (None without law or operating point)."""
+        op = self.config.operation
+        if self.system is None or op.wob is None or op.rpm is None:
+            return None
+        from torsio.analysis.transient import simulate_config
+
+        discretization = {k: v for k, v in self.overrides.items() if v is not None}
+        return simulate_config(self.config, discretization=discretization)
+
+    @functools.cached_property
+    def comparison(self) -> ModalComparison:
+        """The modes against the exact continuum (rigid BHA if the model keeps it rigid)."""
+        return self.modal.compare()
+
+
+@attrs.frozen
+class ReportSection:
+    """One part of the report: the same content as data and as a rich renderable.
+
+    Attributes
+    ----------
+    key : str
+        Key of the section in :func:`report_data`.
+    title : str
+        Heading in the terminal.
+    data : dict
+        JSON-ready plain data (numbers in SI units unless the key names another).
+    body : rich renderable
+        What the terminal shows under the title.
+    """
+
+    key: str
+    title: str
+    data: dict[str, Any]
+    body: RenderableType
+
+    def __rich__(self) -> RenderableType:
+        return Group(Text(self.title, style="bold cyan"), self.body, Text(""))
+
+
+class _ByWidth:
+    """A renderable that picks a narrow or a wide layout from the console width."""
+
+    def __init__(
+        self,
+        narrow: Callable[[], RenderableType],
+        wide: Callable[[], RenderableType],
+        min_wide: int = WIDE,
+    ) -> None:
+        self.narrow, self.wide, self.min_wide = narrow, wide, min_wide
+
+    def __rich_console__(self, console: Console, options: ConsoleOptions) -> RenderResult:
+        yield (self.wide if options.max_width >= self.min_wide else self.narrow)()
+
+
+def _table(*columns: str, left: tuple[str, ...] = ()) -> Table:
+    table = Table(
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
+        show_edge=False,
+        collapse_padding=True,
+        header_style="bold",
+    )
+    for column in columns:  # Text: "[m]" in a header is a unit, not rich markup
+        table.add_column(Text(column), justify="left" if column in left else "right")
+    return table
+
+
+def _mm(value: float) -> str:
+    return f"{1000.0 * value:.4g}"
+
+
+def _number(value: float, digits: int = 4, scientific: bool = False) -> str:
+    """``value`` to ``digits`` significant digits, exponents written short (1.715e4)."""
+    text = f"{value:.{digits - 1}e}" if scientific else f"{value:.{digits}g}"
+    if "e" in text:
+        mantissa, exponent = text.split("e")
+        text = f"{mantissa}e{int(exponent)}"
+    return text

@@ -1,0 +1,198 @@
+"""Report sections on the dynamics: operating point, dimensionless groups, response,
+critical weight on bit."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from rich.table import Table
+from rich.text import Text
+
+from torsio.io.report_context import ReportContext, ReportSection
+
+
+# --- operating point ----------------------------------------------------------------------
+def operation_section(ctx: ReportContext) -> ReportSection:
+    """Weight on bit, rotary speed, bit radius and the bit-rock law with its parameters."""
+    op = ctx.config.operation
+    radius = ctx.config.bit_radius
+    law = None if ctx.config.bit_rock is None else ctx.config.bit_law()
+    law_data: dict[str, Any] | None = None
+    steady_torque = None
+    if law is not None:
+        law_data = {
+            "name": str(getattr(law, "name", type(law).__name__)),
+            "speed_unit": str(getattr(law, "speed_unit", "rad/s")),
+            "given": dict(getattr(law, "given", {})),
+            "parameters_rad_s": law.values() if hasattr(law, "values") else {},
+        }
+        if op.wob is not None and op.omega is not None:
+            steady_torque = float(law.torque(op.omega, op.wob, radius))
+    data = {
+        "wob_n": op.wob,
+        "rpm": op.rpm,
+        "omega_rad_s": op.omega,
+        "bit_radius_m": radius,
+        "bit_rock_law": law_data,
+        "bit_torque_steady_n_m": steady_torque,
+    }
+    table = Table.grid(padding=(0, 2))
+    table.add_column(style="dim")
+    table.add_column()
+    wob = "not set" if op.wob is None else f"{op.wob / 1000:.4g} kN"
+    rpm = "not set" if op.omega is None else f"{op.rpm:.4g} rpm (Ω = {op.omega:.4g} rad/s)"
+    rows = [("weight on bit", wob), ("surface speed", rpm)]
+    rows.append(("bit radius", f"{radius * 1000:.4g} mm"))
+    if law_data is None:
+        rows.append(("bit-rock law", "none: no [bit_rock] table (modal analyses only)"))
+    else:
+        given = ", ".join(f"{k} = {v:g}" for k, v in law_data["given"].items())
+        unit = law_data["speed_unit"]
+        rows.append(("bit-rock law", f"{law_data['name']} ({given}; bit speed in {unit})"))
+        values = law_data["parameters_rad_s"]
+        if values and unit != "rad/s":
+            rows.append(("in rad/s", ", ".join(f"{k} = {v:.4g}" for k, v in values.items())))
+    if steady_torque is not None:
+        rows.append(("torque on bit", f"{steady_torque:.5g} N m at steady rotation (bit at Ω)"))
+    for label, value in rows:
+        table.add_row(label, Text(value))
+    return ReportSection("operation", "Operating point", data, table)
+
+
+# --- dimensionless groups -------------------------------------------------------------------
+def dimensionless_section(ctx: ReportContext) -> ReportSection | None:
+    """k_eq, omega_1, I_eq, Pi_1, Pi_2 and Tucker-Wang b0..b3 (Eqs. 9-11, ERRATA 2 and 3)."""
+    if ctx.system is None:
+        return None
+    from torsio.physics.dimensionless import dimensionless_groups
+
+    groups = dimensionless_groups(ctx.system)
+    data = groups.to_dict()
+    table = Table.grid(padding=(0, 2))
+    table.add_column(style="dim")
+    table.add_column()
+    rows = [
+        ("k_eq = 1/[K⁻¹]_NN", f"{groups.k_eq:.5g} N m/rad (Eq. 9)"),
+        ("ω₁", f"{groups.omega1:.5g} rad/s"),
+        ("I_eq = k_eq/ω₁²", f"{groups.i_eq:.5g} kg m² (Eq. 10)"),
+        ("Π₁ = Ω/ω₁", f"{groups.pi1:.5g}"),
+        ("Π₂ = W_ob R_bit/k_eq", f"{groups.pi2:.5g}"),
+    ]
+    if groups.tucker_wang is not None:
+        b = ", ".join(f"b{i} = {v:.4g}" for i, v in enumerate(groups.tucker_wang))
+        rows.append(("Tucker-Wang", f"{b} (b2 = ω₁ a2)"))
+    for label, value in rows:
+        table.add_row(label, Text(value))
+    return ReportSection("dimensionless", "Dimensionless groups (Eq. 11)", data, table)
+
+
+# --- response at the operating point ------------------------------------------------------------
+def response_section(ctx: ReportContext) -> ReportSection | None:
+    """S_SS (Eq. 12) and the stick fraction of a start-up from rest at the operating point."""
+    results = ctx.transient
+    if results is None:
+        return None
+    start, end = results.window_start, results.duration
+    solver = results.solver
+    data = {
+        "severity": results.severity,
+        "stick_fraction": results.stick_fraction,
+        "stick_threshold": results.stick_threshold,
+        "steady_window_s": [start, end],
+        "bit_speed_min_rad_s": float(results.bit_speed[results.window_mask].min()),
+        "bit_speed_max_rad_s": float(results.bit_speed[results.window_mask].max()),
+        "solver": {k: solver[k] for k in ("method", "rtol", "atol", "nfev") if k in solver},
+    }
+    from torsio.analysis.severity import SEVERE_THRESHOLD
+
+    if results.severity > SEVERE_THRESHOLD:
+        verdict = Text("severe stick-slip", style="bold red")
+    elif results.severity > 1e-3:
+        verdict = Text("torsional oscillation", style="yellow")
+    else:
+        verdict = Text("steady rotation", style="green")
+    table = Table.grid(padding=(0, 2))
+    table.add_column(style="dim")
+    table.add_column()
+    table.add_row("S_SS", Text.assemble(f"{results.severity:.4f}  ", verdict))
+    table.add_row(
+        "stick fraction",
+        Text(
+            f"{results.stick_fraction:.3f} of the window (bit below {results.stick_threshold:g} Ω)"
+        ),
+    )
+    table.add_row(
+        "bit speed",
+        Text(f"{data['bit_speed_min_rad_s']:.4g} to {data['bit_speed_max_rad_s']:.4g} rad/s"),
+    )
+    table.add_row("window", Text(f"{start:.4g} to {end:.4g} s of a start-up from rest"))
+    table.add_row(
+        "integrator",
+        Text(
+            f"{solver.get('method')} (rtol {solver.get('rtol'):g}, "
+            f"atol {solver.get('atol'):g}), {solver.get('nfev')} "
+            "evaluations"
+        ),
+    )
+    return ReportSection("response", "Response at the operating point (Eq. 12)", data, table)
+
+
+# --- distance to the critical weight on bit -----------------------------------------------
+CRITICAL_SEARCH = (0.25, 4.0, 9, 6)
+"""Critical-WOB search of the report: (lowest, highest) weight on bit as multiples of the
+operating one, grid points, bisection steps (final bracket 3.75/8/2^6 = 0.7 % of W_ob)."""
+
+
+def critical_section(ctx: ReportContext) -> ReportSection | None:
+    """Critical weight on bit at the operating speed, and the operating point's distance to it.
+
+    One row of a severity map at the operating rpm (:func:`torsio.analysis.maps.severity_map`,
+    every point started from rest) over :data:`CRITICAL_SEARCH`, bisected between grid
+    points, with the linear stability limit of steady rotation at the same speed.
+    """
+    op = ctx.config.operation
+    if ctx.system is None or op.wob is None or op.rpm is None or op.wob <= 0:
+        return None
+    from torsio.analysis.maps import severity_map
+
+    low, high, points, refine = CRITICAL_SEARCH
+    grid = np.linspace(low * op.wob, high * op.wob, points)
+    row = severity_map(ctx.system, wob=grid, rpm=[op.rpm], refine=refine)
+    critical = float(row.critical_wob[0])
+    status = row.critical_status[0]
+    linear = float(row.stability_wob[0])
+    margin = critical - op.wob if np.isfinite(critical) else None
+    data = {
+        "rpm": op.rpm,
+        "wob_n": op.wob,
+        "critical_wob_n": critical if np.isfinite(critical) else None,
+        "status": status,
+        "margin_n": margin,
+        "margin_fraction": None if margin is None else margin / op.wob,
+        "search_wob_n": [float(grid[0]), float(grid[-1])],
+        "bracket_n": [float(w) for w in row.critical_bracket[0]],
+        "linear_stability_wob_n": linear if np.isfinite(linear) else None,
+    }
+    table = Table.grid(padding=(0, 2))
+    table.add_column(style="dim")
+    table.add_column()
+    if status == "none":
+        text = f"none up to {grid[-1] / 1e3:.4g} kN (no severe point in the search)"
+    elif status == "below_range":
+        text = f"at or below {grid[0] / 1e3:.4g} kN (severe over the whole search)"
+    else:
+        text = f"{critical / 1e3:.4g} kN (S_SS > 0.8 above it, from rest)"
+    table.add_row(f"critical WOB at {op.rpm:.4g} rpm", Text(text))
+    if margin is not None and status not in ("below_range",):
+        side = "below" if margin > 0 else "above"
+        style = "green" if margin > 0 else "bold red"
+        table.add_row(
+            "operating point",
+            Text(f"{abs(margin) / 1e3:.4g} kN ({abs(margin) / op.wob:.0%}) {side} it", style=style),
+        )
+    if np.isfinite(linear):
+        table.add_row(
+            "linear stability", Text(f"steady rotation unstable above {linear / 1e3:.4g} kN")
+        )
+    return ReportSection("critical", "Distance to the critical weight on bit", data, table)

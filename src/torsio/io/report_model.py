@@ -1,0 +1,272 @@
+"""Report sections on the structure: the drill-string, its discretization, modes, damping."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from rich.console import Group, RenderableType
+from rich.table import Table
+from rich.text import Text
+
+from torsio.io.config import Config
+from torsio.io.report_context import (
+    ReportContext,
+    ReportSection,
+    _ByWidth,
+    _mm,
+    _number,
+    _table,
+)
+from torsio.model.continuum import ContinuumModes, continuum_modes
+from torsio.model.drillstring import DrillString
+from torsio.model.modal import ModalComparison
+from torsio.physics.damping import RayleighDamping
+
+
+# --- the drill-string ---------------------------------------------------------------------
+def string_table(string: DrillString | Config, wide: bool = True) -> Table:
+    """The drill-string as a table: geometry, J, inertia, stiffness, BHA membership.
+
+    Parameters
+    ----------
+    string : DrillString or Config
+        The string (or a configuration holding it).
+    wide : bool
+        ``False`` gives a layout that fits 80 columns (kind under the name,
+        OD/ID in one column, units under the headers).
+
+    Examples
+    --------
+    >>> from torsio import ritto2017_string
+    >>> table = string_table(ritto2017_string(), wide=False)
+    >>> table.row_count
+    4
+    """
+    if isinstance(string, Config):
+        string = string.string
+    sections = string.sections
+    if wide:
+        table = _table(
+            "#",
+            "section",
+            "kind",
+            "OD\n[mm]",
+            "ID\n[mm]",
+            "length\n[m]",
+            "J\n[m⁴]",
+            "inertia\n[kg m²]",
+            "stiffness\n[N m/rad]",
+            "BHA",
+            left=("section", "kind"),
+        )
+    else:
+        table = _table(
+            "#",
+            "section",
+            "OD/ID\n[mm]",
+            "L\n[m]",
+            "J\n[m⁴]",
+            "I\n[kg m²]",
+            "k\n[N m/rad]",
+            "BHA",
+            left=("section",),
+        )
+    for i, s in enumerate(sections):
+        stiffness = "rigid" if s.kind == "bit" else _number(s.stiffness)
+        numbers = [
+            f"{s.length:.5g}",
+            _number(s.polar_moment, scientific=True),
+            f"{s.inertia:.5g}",
+            stiffness,
+            "yes" if s.in_bha else "no",
+        ]
+        if wide:
+            table.add_row(str(i), Text(s.name or "-"), s.kind, _mm(s.od), _mm(s.id), *numbers)
+        else:
+            name = Text(s.name or s.kind)
+            if s.name:
+                name.append(f"\n{s.kind}", style="dim")
+            table.add_row(str(i), name, f"{_mm(s.od)}/{_mm(s.id)}", *numbers)
+    return table
+
+
+def string_section(ctx: ReportContext) -> ReportSection:
+    """The drill-string: one row per section, then the lumped totals of Eq. 5."""
+    string = ctx.config.string
+    bottom = float(string.section_tops[-1] + string.bit.length)
+    data = {
+        "sections": [
+            {
+                "index": i,
+                "name": s.name,
+                "kind": s.kind,
+                "od_m": s.od,
+                "id_m": s.id,
+                "length_m": s.length,
+                "top_depth_m": float(string.section_tops[i]),
+                "polar_moment_m4": s.polar_moment,
+                "inertia_kg_m2": s.inertia,
+                "stiffness_n_m_per_rad": None if s.kind == "bit" else s.stiffness,
+                "shear_modulus_pa": s.material.shear_modulus,
+                "density_kg_m3": s.material.density,
+                "bha": s.in_bha,
+            }
+            for i, s in enumerate(string.sections)
+        ],
+        "bit_depth_m": bottom,
+        "drill_pipe_inertia_kg_m2": string.drill_pipe_inertia,
+        "bha_inertia_kg_m2": string.bha_inertia,
+        "drill_pipe_stiffness_n_m_per_rad": string.drill_pipe_stiffness,
+    }
+    totals = Text(
+        f"drill pipes: I_DP = {string.drill_pipe_inertia:.5g} kg m², "
+        f"k_DP = {string.drill_pipe_stiffness:.5g} N m/rad\n"
+        f"BHA (bit included): I_BHA = {string.bha_inertia:.5g} kg m²; "
+        f"bit bottom at {bottom:.6g} m",
+        style="dim",
+    )
+    body = Group(
+        _ByWidth(
+            lambda: string_table(ctx.config, wide=False),
+            lambda: string_table(ctx.config, wide=True),
+        ),
+        totals,
+    )
+    title = f"Drill-string: {ctx.config.name or 'unnamed'}"
+    return ReportSection("string", title, data, body)
+
+
+# --- the discretization -------------------------------------------------------------------
+def discretization_section(ctx: ReportContext) -> ReportSection:
+    """The strategy, its degrees of freedom and the elements of each section."""
+    from torsio.plugins import get_discretizer
+
+    model = ctx.model
+    description = getattr(get_discretizer(model.strategy), "description", "")
+    elements = dict(model.details.get("elements", {}))
+    lengths = {s.name or s.kind: s.length for s in ctx.config.string.flexible_sections}
+    table = _table("part", "elements", "element length [m]", left=("part",))
+    rows = []
+    for part, count in elements.items():
+        length = lengths.get(part) if isinstance(count, int) else None
+        element_length = None if length is None else length / count
+        rows.append({"part": part, "elements": count, "element_length_m": element_length})
+        length_text = "-" if element_length is None else f"{element_length:.4g}"
+        table.add_row(Text(str(part)), str(count), length_text)
+    data = {
+        "strategy": model.strategy,
+        "description": description,
+        "dofs": model.dofs,
+        "elements": elements,
+        "parts": rows,
+        "lumped_mass": model.has_lumped_mass,
+    }
+    head = Text.assemble(
+        ("strategy ", "dim"),
+        (model.strategy, "bold"),
+        f" — {description}\n",
+        ("degrees of freedom ", "dim"),
+        (str(model.dofs), "bold"),
+    )
+    return ReportSection("discretization", "Discretization", data, Group(head, table))
+
+
+# --- the modes ----------------------------------------------------------------------------
+def modes_table(comparison: ModalComparison, flexible: ContinuumModes | None = None) -> Table:
+    """Lumped frequencies against the exact continuum, mode by mode.
+
+    Parameters
+    ----------
+    comparison : ModalComparison
+        The modes against their reference continuum.
+    flexible : ContinuumModes, optional
+        When the reference keeps the BHA rigid: the continuum of the whole
+        flexible string, shown in two more columns (the error of the model
+        itself, not only of its discretization).
+    """
+    columns = ["mode", "lumped\n[Hz]", "continuum\n[Hz]", "error\n[%]"]
+    if flexible is not None:
+        columns = ["mode", "lumped\n[Hz]", "rigid BHA\n[Hz]", "error\n[%]"]
+        columns += ["flexible\n[Hz]", "error\n[%]"]
+    table = _table(*columns, "period\n[s]")
+    for i, (mode, lumped, exact, error) in enumerate(comparison.rows()):
+        cells = [str(mode), f"{lumped:.5f}", f"{exact:.5f}", f"{100 * error:+.3f}"]
+        if flexible is not None:
+            full = float(flexible.frequencies_hz[i])
+            cells += [f"{full:.5f}", f"{100 * (lumped / full - 1):+.3f}"]
+        table.add_row(*cells, f"{1.0 / lumped:.4g}")
+    return table
+
+
+def modes_section(ctx: ReportContext) -> ReportSection:
+    """The first natural frequencies against the exact stepped-shaft continuum.
+
+    The reference keeps the BHA rigid when the model does (strategies A and
+    C); the continuum of the whole flexible string is then given as well.
+    """
+    comparison = ctx.comparison
+    flexible = None
+    if comparison.reference.rigid_bha:
+        flexible = continuum_modes(ctx.config.string, comparison.count)
+    full = flexible if flexible is not None else comparison.reference
+    full_hz = full.frequencies_hz[: comparison.count]
+    data = {
+        "count": comparison.count,
+        "frequencies_hz": comparison.frequencies_hz.tolist(),
+        **comparison.to_dict(),
+        "flexible_continuum_hz": full_hz.tolist(),
+        "flexible_relative_error": (comparison.frequencies_hz / full_hz - 1.0).tolist(),
+    }
+    title = "Modes against the exact continuum"
+    if flexible is None:
+        title += " (flexible BHA)"
+    body: RenderableType = modes_table(comparison, flexible)
+    if flexible is not None:
+        note = Text(
+            "exact continuum with the BHA rigid (this strategy's limit) and flexible",
+            style="dim",
+        )
+        body = Group(body, note)
+    return ReportSection("modes", title, data, body)
+
+
+# --- damping ------------------------------------------------------------------------------
+def damping_section(ctx: ReportContext) -> ReportSection:
+    """Rayleigh damping [C] = alpha [I] + beta [K] and the modal damping ratio of each mode."""
+    damping = ctx.damping
+    omega = ctx.modal.frequencies_rad
+    if not isinstance(damping, RayleighDamping):  # a model carrying its own dampers
+        data: dict[str, Any] = {"kind": "model"}
+        return ReportSection("damping", "Damping", data, Text("damping carried by the model"))
+    alpha, beta = damping.alpha, damping.beta
+    ratios = np.asarray(damping.ratios(omega))
+    configured = ctx.config.damping
+    data = {
+        "kind": "rayleigh",
+        "alpha_per_s": alpha,
+        "beta_s": beta,
+        "target_ratios": None if configured.ratios is None else list(configured.ratios),
+        "target_modes": None if configured.ratios is None else list(configured.modes),
+        "modes": list(range(1, omega.size + 1)),
+        "ratios": ratios.tolist(),
+    }
+    table = _table("mode", "ω [rad/s]", "α/(2ω) [%]", "βω/2 [%]", "ζ [%]")
+    for i, (w, zeta) in enumerate(zip(omega, ratios, strict=True)):
+        table.add_row(
+            str(i + 1),
+            f"{w:.3f}",
+            f"{100 * alpha / (2 * w):.2f}",
+            f"{100 * beta * w / 2:.2f}",
+            f"{100 * zeta:.2f}",
+        )
+    if configured.ratios is None:
+        origin = "from the file"
+    else:
+        targets = ", ".join(f"{100 * r:g} %" for r in configured.ratios)
+        origin = (
+            f"set for ratios {targets} at modes {configured.modes[0]} and {configured.modes[1]}"
+        )
+    head = Text(f"α = {alpha:.4g} 1/s, β = {beta:.4g} s ({origin})\nζ = α/(2ω) + βω/2")
+    title = "Rayleigh damping [C] = α[I] + β[K]"
+    return ReportSection("damping", title, data, Group(head, table))
