@@ -18,4 +18,6 @@ def ritto2017_config() -> Config:
 
 def ritto2017_string() -> DrillString:
     """The drill-string of the paper's Table 1: drill pipes, HWDP, collars/MWD/LWD, bit."""
-    return builtin_config().string
+    string = builtin_config().string
+    assert string is not None  # the built-in example is a drill-string, not a chain
+    return string

@@ -36,6 +36,7 @@ SI_UNITS: dict[str, str] = {
     "torque": "N*m",
     "inertia": "kg*m**2",
     "stiffness": "N*m/rad",
+    "rotational_damping": "N*m*s/rad",
     "dimensionless": "",
 }
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
 from torsio.cli.common import (
     add_config_argument,
@@ -47,6 +48,8 @@ def run(args: argparse.Namespace) -> int:
         raise ConfigError("--count", f"expected a whole number of modes >= 1, got {args.count}")
     count = args.count if args.count is not None else min(model.dofs, 10)
     results = modal_analysis(model, count, string=config.string)
+    if config.string is None:  # a [chain]: no continuum reference
+        return _print_chain_modes(results, args.json)
     comparison = results.compare()
     if args.json:
         data = results.to_dict()
@@ -55,4 +58,28 @@ def run(args: argparse.Namespace) -> int:
         print_json(data)
         return 0
     Console().print(modes_table(comparison))
+    return 0
+
+
+def _print_chain_modes(results: Any, as_json: bool) -> int:
+    from rich.console import Console
+    from rich.table import Table
+
+    from torsio.io.report_model import NO_CONTINUUM
+
+    if as_json:
+        data = results.to_dict()
+        data.update({"continuum_hz": None, "relative_error": None, "continuum": NO_CONTINUUM})
+        data["count"] = int(results.frequencies_rad.size)
+        print_json(data)
+        return 0
+    table = Table(title=f"Modes of the {results.model.dofs}-DOF chain")
+    table.add_column("mode", justify="right")
+    table.add_column("frequency [Hz]", justify="right")
+    table.add_column("period [s]", justify="right")
+    for i, f in enumerate(results.frequencies_hz):
+        table.add_row(str(i + 1), f"{f:.5f}", f"{1.0 / f:.4g}")
+    console = Console()
+    console.print(table)
+    console.print(f"exact continuum: {NO_CONTINUUM}")
     return 0

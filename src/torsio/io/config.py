@@ -29,7 +29,15 @@ from typing import Any
 import attrs
 
 from torsio.errors import ConfigError
-from torsio.model.components import SECTION_KINDS, STEEL, Material, Section
+from torsio.io.chain_config import ChainConfig, parse_chain
+from torsio.io.config_tables import (
+    _material,
+    _positive_number,
+    _section,
+    _string,
+    _table,
+)
+from torsio.model.components import STEEL
 from torsio.model.drillstring import DrillString
 from torsio.units import RPM_TO_RAD_S, to_si
 
@@ -37,14 +45,13 @@ TOP_LEVEL_KEYS = {
     "name",
     "material",
     "section",
+    "chain",
     "bit_rock",
     "damping",
     "discretization",
     "operation",
     "simulation",
 }
-SECTION_KEYS = {"kind", "od", "id", "length", "name", "bha", "material"}
-MATERIAL_KEYS = {"shear_modulus", "density"}
 DISCRETIZATION_KEYS = {
     "strategy",
     "dp_elements",
@@ -127,16 +134,21 @@ class SimulationConfig:
 
 @attrs.frozen
 class Config:
-    """A whole configuration file, validated."""
+    """A whole configuration file, validated.
+
+    Exactly one of ``string`` (``[[section]]``) and ``chain`` (``[chain]``, a lumped
+    model given directly) is set.
+    """
 
     name: str
-    string: DrillString
+    string: DrillString | None
     bit_rock: BitRockConfig | None
     damping: DampingConfig
     discretization: DiscretizationConfig
     operation: OperationConfig
     simulation: SimulationConfig
     source: str = ""
+    chain: ChainConfig | None = None
 
     def model(self, **overrides: Any) -> Any:
         """Discretize the string: the configured strategy, with ``overrides`` of its options.
@@ -144,6 +156,14 @@ class Config:
         ``strategy=...`` in ``overrides`` changes the strategy; options of the file
         are kept only if the strategy is unchanged.
         """
+        if self.chain is not None:
+            given = sorted(k for k, v in overrides.items() if v is not None)
+            if given:
+                raise ConfigError(
+                    given[0], "the model is a [chain] given directly; it is not discretized"
+                )
+            return self.chain.model()
+        assert self.string is not None
         strategy = overrides.pop("strategy", None) or self.discretization.strategy
         options = (
             dict(self.discretization.options) if strategy == self.discretization.strategy else {}
@@ -155,8 +175,23 @@ class Config:
     def bit_radius(self) -> float:
         """R_bit [m]: ``bit_rock.radius``, else half the bit's outer diameter."""
         if self.bit_rock is None or self.bit_rock.radius is None:
+            if self.string is None:
+                raise ConfigError(
+                    "bit_rock.radius", "required with [chain]: a chain has no bit section"
+                )
             return self.string.bit.radius
         return self.bit_rock.radius
+
+    def model_damping(self, model: Any) -> Any:
+        """The damping of ``model``: the chain's own dampers, else ``[damping]`` (Rayleigh)."""
+        from torsio.physics.damping import ModelDamping, RayleighDamping
+
+        if self.chain is not None and self.chain.carries_damping:
+            return ModelDamping()
+        d = self.damping
+        if d.ratios is not None:
+            return RayleighDamping.from_modal_ratios(model, d.ratios, d.modes)
+        return RayleighDamping(d.alpha or 0.0, d.beta or 0.0)
 
     def system(self, **discretization: Any) -> Any:
         """The :class:`torsio.physics.system.System` this configuration describes.
@@ -164,16 +199,10 @@ class Config:
         ``discretization`` overrides the ``[discretization]`` options; the operating
         point is ``[operation]`` (0 N and 60 rpm where absent).
         """
-        from torsio.physics.damping import RayleighDamping
         from torsio.physics.system import System
 
         model = self.model(**discretization)
-        d = self.damping
-        damping = (
-            RayleighDamping.from_modal_ratios(model, d.ratios, d.modes)
-            if d.ratios is not None
-            else RayleighDamping(d.alpha or 0.0, d.beta or 0.0)
-        )
+        damping = self.model_damping(model)
         op = self.operation
         return System(
             model=model,
@@ -227,6 +256,8 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
     """Validate a configuration already read into a dict (as from ``tomllib``)."""
     table = _table(data, "", TOP_LEVEL_KEYS)
     name = _string(table.get("name", ""), "name")
+    if "chain" in table:
+        return _chain_config(table, name, source)
     default_material = _material(table.get("material"), "material", STEEL)
     raw_sections = table.get("section", [])
     if not isinstance(raw_sections, list):
@@ -254,69 +285,41 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
     )
 
 
-# --- tables ---------------------------------------------------------------------------------
-def _table(value: Any, key: str, allowed: set[str]) -> Mapping[str, Any]:
-    if not isinstance(value, Mapping):
-        raise ConfigError(key, f"expected a table, got {value!r}")
-    unknown = sorted(set(value) - allowed)
-    if unknown:
-        where = f"{key}." if key else ""
+def _chain_config(table: Mapping[str, Any], name: str, source: str) -> Config:
+    """A configuration whose model is the ``[chain]`` table (no string, no discretization)."""
+    for key in ("section", "material", "discretization"):
+        if key in table:
+            what = "[[section]]" if key == "section" else f"[{key}]"
+            raise ConfigError(
+                key, f"{what} goes with a drill-string; this file gives the model as [chain]"
+            )
+    chain = parse_chain(table["chain"])
+    if "damping" in table and chain.carries_damping:
+        given = "dampings" if chain.dampings is not None else "drag"
         raise ConfigError(
-            f"{where}{unknown[0]}", f"unknown key; expected one of {', '.join(sorted(allowed))}"
+            "damping",
+            f"damping is given twice: in [chain] ({given}) and in [damping]; give it in "
+            "one place ([chain] dampings/drag for a published model's own dampers)",
         )
-    return value
-
-
-def _string(value: Any, key: str) -> str:
-    if not isinstance(value, str):
-        raise ConfigError(key, f"expected a string, got {value!r}")
-    return value
-
-
-def _material(value: Any, key: str, default: Material) -> Material:
-    if value is None:
-        return default
-    table = _table(value, key, MATERIAL_KEYS)
-    try:
-        return Material(
-            shear_modulus=to_si(
-                table.get("shear_modulus", default.shear_modulus),
-                "pressure",
-                key=f"{key}.shear_modulus",
-            ),
-            density=to_si(table.get("density", default.density), "density", key=f"{key}.density"),
-        )
-    except ConfigError as exc:
-        full_key = exc.key if exc.key.startswith(key) else f"{key}.{exc.key}"
-        raise ConfigError(full_key, exc.message) from None
-
-
-def _section(raw: Any, key: str, default_material: Material) -> Section:
-    table = _table(raw, key, SECTION_KEYS)
-    for required in ("kind", "od", "id", "length"):
-        if required not in table:
-            raise ConfigError(f"{key}.{required}", "missing required key")
-    kind = table["kind"]
-    if not isinstance(kind, str) or kind not in SECTION_KINDS:
-        raise ConfigError(
-            f"{key}.kind",
-            f"unknown section kind {kind!r}; expected one of {', '.join(SECTION_KINDS)}",
-        )
-    bha = table.get("bha")
-    if bha is not None and not isinstance(bha, bool):
-        raise ConfigError(f"{key}.bha", f"expected true or false, got {bha!r}")
-    values = {
-        name: to_si(table[name], "length", key=f"{key}.{name}") for name in ("od", "id", "length")
-    }
-    try:
-        return SECTION_KINDS[kind](
-            **values,
-            material=_material(table.get("material"), f"{key}.material", default_material),
-            name=_string(table.get("name", ""), f"{key}.name"),
-            bha=bha,
-        )
-    except ConfigError as exc:
-        raise ConfigError(f"{key}.{exc.key}", exc.message) from None
+    bit_rock = None
+    if "bit_rock" in table:
+        bit_rock = _bit_rock(table["bit_rock"])
+        if bit_rock.radius is None:
+            raise ConfigError(
+                "bit_rock.radius",
+                "required with [chain]: a chain has no bit section to take the radius from",
+            )
+    return Config(
+        name=name,
+        string=None,
+        bit_rock=bit_rock,
+        damping=_damping(table.get("damping", {})),
+        discretization=DiscretizationConfig("chain"),
+        operation=_operation(table.get("operation", {})),
+        simulation=_simulation(table.get("simulation", {})),
+        source=source,
+        chain=chain,
+    )
 
 
 def _bit_rock(raw: Any) -> BitRockConfig:
@@ -333,15 +336,6 @@ def _bit_rock(raw: Any) -> BitRockConfig:
     config = BitRockConfig(law, radius, speed_unit, parameters)
     config.build()  # validates the law name and its parameters now, naming the key
     return config
-
-
-def _positive_number(value: Any, key: str, dimension: str, allow_zero: bool = True) -> float:
-    number = to_si(value, dimension, key=key)
-    if number < 0 or (number == 0 and not allow_zero):
-        raise ConfigError(
-            key, f"expected a {'non-negative' if allow_zero else 'positive'} value, got {value!r}"
-        )
-    return number
 
 
 def _damping(raw: Any) -> DampingConfig:

@@ -85,10 +85,8 @@ class ReportContext:
         """The damping of the model, as :meth:`System.from_config` sets it."""
         if self.system is not None:
             return self.system.damping
-        d = self.config.damping
-        if d.ratios is not None:
-            return RayleighDamping.from_modal_ratios(self.model, d.ratios, d.modes)
-        return RayleighDamping(d.alpha or 0.0, d.beta or 0.0)
+        damping: RayleighDamping | ModelDamping = self.config.model_damping(self.model)
+        return damping
 
     @functools.cached_property
     def modal(self) -> ModalResults:
@@ -108,8 +106,13 @@ class ReportContext:
         return simulate_config(self.config, discretization=discretization)
 
     @functools.cached_property
-    def comparison(self) -> ModalComparison:
-        """The modes against the exact continuum (rigid BHA if the model keeps it rigid)."""
+    def comparison(self) -> ModalComparison | None:
+        """The modes against the exact continuum (rigid BHA if the model keeps it rigid).
+
+        None for a ``[chain]`` model: it has no drill-string, hence no continuum.
+        """
+        if self.config.string is None:
+            return None
         return self.modal.compare()
 
 

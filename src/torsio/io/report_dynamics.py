@@ -16,7 +16,8 @@ from torsio.io.report_context import ReportContext, ReportSection
 def operation_section(ctx: ReportContext) -> ReportSection:
     """Weight on bit, rotary speed, bit radius and the bit-rock law with its parameters."""
     op = ctx.config.operation
-    radius = ctx.config.bit_radius
+    chain_without_law = ctx.config.string is None and ctx.config.bit_rock is None
+    radius = None if chain_without_law else ctx.config.bit_radius
     law = None if ctx.config.bit_rock is None else ctx.config.bit_law()
     law_data: dict[str, Any] | None = None
     steady_torque = None
@@ -27,7 +28,7 @@ def operation_section(ctx: ReportContext) -> ReportSection:
             "given": dict(getattr(law, "given", {})),
             "parameters_rad_s": law.values() if hasattr(law, "values") else {},
         }
-        if op.wob is not None and op.omega is not None:
+        if op.wob is not None and op.omega is not None and radius is not None:
             steady_torque = float(law.torque(op.omega, op.wob, radius))
     data = {
         "wob_n": op.wob,
@@ -43,7 +44,7 @@ def operation_section(ctx: ReportContext) -> ReportSection:
     wob = "not set" if op.wob is None else f"{op.wob / 1000:.4g} kN"
     rpm = "not set" if op.omega is None else f"{op.rpm:.4g} rpm (Ω = {op.omega:.4g} rad/s)"
     rows = [("weight on bit", wob), ("surface speed", rpm)]
-    rows.append(("bit radius", f"{radius * 1000:.4g} mm"))
+    rows.append(("bit radius", "not set" if radius is None else f"{radius * 1000:.4g} mm"))
     if law_data is None:
         rows.append(("bit-rock law", "none: no [bit_rock] table (modal analyses only)"))
     else:

@@ -9,6 +9,7 @@ from rich.console import Group, RenderableType
 from rich.table import Table
 from rich.text import Text
 
+from torsio.errors import ConfigError
 from torsio.io.config import Config
 from torsio.io.report_context import (
     ReportContext,
@@ -44,6 +45,8 @@ def string_table(string: DrillString | Config, wide: bool = True) -> Table:
     4
     """
     if isinstance(string, Config):
+        if string.string is None:
+            raise ConfigError("chain", "a [chain] model has no drill-string sections to show")
         string = string.string
     sections = string.sections
     if wide:
@@ -91,9 +94,48 @@ def string_table(string: DrillString | Config, wide: bool = True) -> Table:
     return table
 
 
+def chain_section(ctx: ReportContext) -> ReportSection:
+    """A ``[chain]`` model given directly: one row per node (inertia, spring, damper, drag)."""
+    chain = ctx.config.chain
+    assert chain is not None
+    n = chain.dofs
+    dampings = chain.dampings or (0.0,) * n
+    drag = chain.drag or (0.0,) * n
+    data = {
+        "nodes": [
+            {
+                "index": i + 1,
+                "inertia_kg_m2": chain.inertias[i],
+                "stiffness_n_m_per_rad": chain.stiffnesses[i],
+                "damping_n_m_s_per_rad": dampings[i],
+                "drag_n_m_s_per_rad": drag[i],
+            }
+            for i in range(n)
+        ],
+        "continuum": None,
+    }
+    table = _table("node", "I\n[kg m²]", "k\n[N m/rad]", "c\n[N m s/rad]", "drag\n[N m s/rad]")
+    for i in range(n):
+        cells = (chain.inertias[i], chain.stiffnesses[i], dampings[i], drag[i])
+        table.add_row(str(i + 1), *(f"{value:.6g}" for value in cells))
+    note = Text(
+        "k_i and c_i join node i-1 and node i (node 0: the top drive); node "
+        f"{n} carries the bit. A lumped model given directly: no drill-string, "
+        "so no exact continuum to compare with.",
+        style="dim",
+    )
+    title = f"Lumped chain: {ctx.config.name or 'unnamed'}"
+    return ReportSection("chain", title, data, Group(table, note))
+
+
 def string_section(ctx: ReportContext) -> ReportSection:
-    """The drill-string: one row per section, then the lumped totals of Eq. 5."""
+    """The drill-string: one row per section, then the lumped totals of Eq. 5.
+
+    For a ``[chain]`` configuration, the chain instead (:func:`chain_section`).
+    """
     string = ctx.config.string
+    if string is None:
+        return chain_section(ctx)
     bottom = float(string.section_tops[-1] + string.bit.length)
     data = {
         "sections": [
@@ -143,9 +185,17 @@ def discretization_section(ctx: ReportContext) -> ReportSection:
     from torsio.plugins import get_discretizer
 
     model = ctx.model
+    string = ctx.config.string
+    if string is None:
+        text = "none: the lumped model is given directly ([chain])"
+        data_chain = {"strategy": model.strategy, "description": text, "dofs": model.dofs}
+        data_chain.update({"elements": {}, "parts": [], "lumped_mass": model.has_lumped_mass})
+        head = Text.assemble(("degrees of freedom ", "dim"), (str(model.dofs), "bold"))
+        body = Group(Text(f"discretization {text}"), head)
+        return ReportSection("discretization", "Discretization", data_chain, body)
     description = getattr(get_discretizer(model.strategy), "description", "")
     elements = dict(model.details.get("elements", {}))
-    lengths = {s.name or s.kind: s.length for s in ctx.config.string.flexible_sections}
+    lengths = {s.name or s.kind: s.length for s in string.flexible_sections}
     table = _table("part", "elements", "element length [m]", left=("part",))
     rows = []
     for part, count in elements.items():
@@ -206,6 +256,8 @@ def modes_section(ctx: ReportContext) -> ReportSection:
     C); the continuum of the whole flexible string is then given as well.
     """
     comparison = ctx.comparison
+    if comparison is None or ctx.config.string is None:
+        return _chain_modes_section(ctx)
     flexible = None
     if comparison.reference.rigid_bha:
         flexible = continuum_modes(ctx.config.string, comparison.count)
@@ -229,6 +281,26 @@ def modes_section(ctx: ReportContext) -> ReportSection:
         )
         body = Group(body, note)
     return ReportSection("modes", title, data, body)
+
+
+NO_CONTINUUM = "none: the model is a [chain] given directly, with no drill-string behind it"
+"""What reports and ``torsio modes`` say instead of a continuum reference for a chain."""
+
+
+def _chain_modes_section(ctx: ReportContext) -> ReportSection:
+    frequencies_hz = ctx.modal.frequencies_hz
+    data = {
+        "count": int(frequencies_hz.size),
+        "frequencies_hz": frequencies_hz.tolist(),
+        "continuum_hz": None,
+        "relative_error": None,
+        "continuum": NO_CONTINUUM,
+    }
+    table = _table("mode", "lumped\n[Hz]", "period\n[s]")
+    for i, f in enumerate(frequencies_hz):
+        table.add_row(str(i + 1), f"{f:.5f}", f"{1.0 / f:.4g}")
+    note = Text(f"exact continuum: {NO_CONTINUUM}", style="dim")
+    return ReportSection("modes", "Modes", data, Group(table, note))
 
 
 # --- damping ------------------------------------------------------------------------------

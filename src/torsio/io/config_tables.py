@@ -1,0 +1,91 @@
+"""Checks shared by the tables of the configuration file, and the drill-string tables.
+
+``[[section]]`` and ``[material]`` are read here; :mod:`torsio.io.config` reads the rest
+and assembles the :class:`~torsio.io.config.Config`. Every error names its key.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from torsio.errors import ConfigError
+from torsio.model.components import SECTION_KINDS, Material, Section
+from torsio.units import to_si
+
+SECTION_KEYS = {"kind", "od", "id", "length", "name", "bha", "material"}
+MATERIAL_KEYS = {"shear_modulus", "density"}
+
+
+# --- tables ---------------------------------------------------------------------------------
+def _table(value: Any, key: str, allowed: set[str]) -> Mapping[str, Any]:
+    if not isinstance(value, Mapping):
+        raise ConfigError(key, f"expected a table, got {value!r}")
+    unknown = sorted(set(value) - allowed)
+    if unknown:
+        where = f"{key}." if key else ""
+        raise ConfigError(
+            f"{where}{unknown[0]}", f"unknown key; expected one of {', '.join(sorted(allowed))}"
+        )
+    return value
+
+
+def _string(value: Any, key: str) -> str:
+    if not isinstance(value, str):
+        raise ConfigError(key, f"expected a string, got {value!r}")
+    return value
+
+
+def _material(value: Any, key: str, default: Material) -> Material:
+    if value is None:
+        return default
+    table = _table(value, key, MATERIAL_KEYS)
+    try:
+        return Material(
+            shear_modulus=to_si(
+                table.get("shear_modulus", default.shear_modulus),
+                "pressure",
+                key=f"{key}.shear_modulus",
+            ),
+            density=to_si(table.get("density", default.density), "density", key=f"{key}.density"),
+        )
+    except ConfigError as exc:
+        full_key = exc.key if exc.key.startswith(key) else f"{key}.{exc.key}"
+        raise ConfigError(full_key, exc.message) from None
+
+
+def _section(raw: Any, key: str, default_material: Material) -> Section:
+    table = _table(raw, key, SECTION_KEYS)
+    for required in ("kind", "od", "id", "length"):
+        if required not in table:
+            raise ConfigError(f"{key}.{required}", "missing required key")
+    kind = table["kind"]
+    if not isinstance(kind, str) or kind not in SECTION_KINDS:
+        raise ConfigError(
+            f"{key}.kind",
+            f"unknown section kind {kind!r}; expected one of {', '.join(SECTION_KINDS)}",
+        )
+    bha = table.get("bha")
+    if bha is not None and not isinstance(bha, bool):
+        raise ConfigError(f"{key}.bha", f"expected true or false, got {bha!r}")
+    values = {
+        name: to_si(table[name], "length", key=f"{key}.{name}") for name in ("od", "id", "length")
+    }
+    try:
+        return SECTION_KINDS[kind](
+            **values,
+            material=_material(table.get("material"), f"{key}.material", default_material),
+            name=_string(table.get("name", ""), f"{key}.name"),
+            bha=bha,
+        )
+    except ConfigError as exc:
+        raise ConfigError(f"{key}.{exc.key}", exc.message) from None
+
+
+def _positive_number(value: Any, key: str, dimension: str, allow_zero: bool = True) -> float:
+    number = to_si(value, dimension, key=key)
+    if number < 0 or (number == 0 and not allow_zero):
+        raise ConfigError(
+            key, f"expected a {'non-negative' if allow_zero else 'positive'} value, got {value!r}"
+        )
+    return number
