@@ -61,6 +61,9 @@ def test_chain_with_a_bit_law_builds_a_system():
     config = parse_config_text(TWO_NODES + BIT_ROCK + "[operation]\nwob = '50 kN'\nrpm = 60\n")
     system = System.from_config(config)
     assert system.model.dofs == 2 and system.bit_radius == 0.108 and system.string is None
+    with_dampers = TWO_NODES.replace("[chain]", "[chain]\ndampings = [1.0, 2.0]")
+    system = System.from_config(parse_config_text(with_dampers + BIT_ROCK))
+    assert isinstance(system.damping, ModelDamping)  # the chain's own dampers, not Rayleigh
 
 
 @pytest.mark.parametrize(

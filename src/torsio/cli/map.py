@@ -257,6 +257,14 @@ def _run(args: argparse.Namespace) -> int:
             ) from None
 
     config = load(args)
+    if args.rpm is not None and not config.top_drive.has_set_speed:
+        from torsio.errors import ConfigError
+
+        raise ConfigError(
+            "--rpm",
+            f"the top drive is {config.top_drive.kind!r} (top_drive.kind): its speed follows "
+            "from the torque balance, there is no rotary speed to set",
+        )
     system = System.from_config(
         config, **{k: v for k, v in discretization_overrides(args).items() if v is not None}
     )

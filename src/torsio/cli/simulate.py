@@ -64,6 +64,12 @@ def run(args: argparse.Namespace) -> int:
     from torsio.errors import ConfigError, TorsioError
 
     config = load(args)
+    if args.rpm is not None and not config.top_drive.has_set_speed:
+        raise ConfigError(
+            "--rpm",
+            f"the top drive is {config.top_drive.kind!r} (top_drive.kind): its speed follows "
+            "from the torque balance; remove --rpm, or change top_drive.torque",
+        )
     overrides: dict[str, Any] = {
         "duration": parse_time(args.duration, "--duration"),
         "steady_window": parse_time(args.window, "--window"),

@@ -37,6 +37,7 @@ from torsio.io.config_tables import (
     _string,
     _table,
 )
+from torsio.io.top_drive_config import TopDriveConfig, parse_top_drive
 from torsio.model.components import STEEL
 from torsio.model.drillstring import DrillString
 from torsio.units import RPM_TO_RAD_S, to_si
@@ -51,6 +52,7 @@ TOP_LEVEL_KEYS = {
     "discretization",
     "operation",
     "simulation",
+    "top_drive",
 }
 DISCRETIZATION_KEYS = {
     "strategy",
@@ -149,6 +151,7 @@ class Config:
     simulation: SimulationConfig
     source: str = ""
     chain: ChainConfig | None = None
+    top_drive: TopDriveConfig = attrs.field(factory=TopDriveConfig)
 
     def model(self, **overrides: Any) -> Any:
         """Discretize the string: the configured strategy, with ``overrides`` of its options.
@@ -197,7 +200,8 @@ class Config:
         """The :class:`torsio.physics.system.System` this configuration describes.
 
         ``discretization`` overrides the ``[discretization]`` options; the operating
-        point is ``[operation]`` (0 N and 60 rpm where absent).
+        point is ``[operation]`` (0 N and 60 rpm where absent); the top drive is
+        ``[top_drive]`` (held at constant speed where absent).
         """
         from torsio.physics.system import System
 
@@ -211,6 +215,7 @@ class Config:
             damping=damping,
             wob=op.wob if op.wob is not None else 0.0,
             rpm=op.rpm if op.rpm is not None else 60.0,
+            top=self.top_drive.build(),
             string=self.string,
         )
 
@@ -256,8 +261,23 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
     """Validate a configuration already read into a dict (as from ``tomllib``)."""
     table = _table(data, "", TOP_LEVEL_KEYS)
     name = _string(table.get("name", ""), "name")
-    if "chain" in table:
-        return _chain_config(table, name, source)
+    top_drive = parse_top_drive(table["top_drive"]) if "top_drive" in table else TopDriveConfig()
+    config = (
+        _chain_config(table, name, source)
+        if "chain" in table
+        else _string_config(table, name, source)
+    )
+    if not top_drive.has_set_speed and config.operation.rpm is not None:
+        raise ConfigError(
+            "operation.rpm",
+            f"the top drive is {top_drive.kind!r}: its speed follows from the torque balance, "
+            "so no rotary speed may be set; remove operation.rpm",
+        )
+    return attrs.evolve(config, top_drive=top_drive)
+
+
+def _string_config(table: Mapping[str, Any], name: str, source: str) -> Config:
+    """A configuration whose model is discretized from the ``[[section]]`` drill-string."""
     default_material = _material(table.get("material"), "material", STEEL)
     raw_sections = table.get("section", [])
     if not isinstance(raw_sections, list):

@@ -9,8 +9,9 @@ append it to :data:`SECTIONS`; :func:`report_data` and :func:`render` pick it up
 
 Sections now: the drill-string, its discretization, the first modes against
 the exact continuum, the Rayleigh damping ratios of those modes, the operating
-point, the dimensionless groups, the response there (S_SS, stick fraction) and
-its distance to the critical weight on bit.
+point, the top drive (gains, impedance at omega_1, reflection coefficient), the
+dimensionless groups, the response there (S_SS, stick fraction) and its distance
+to the critical weight on bit.
 
 Examples
 --------
@@ -18,7 +19,7 @@ Examples
 >>> data = report_data(builtin_config(), modes=3)
 >>> list(data)
 ['name', 'source', 'string', 'discretization', 'modes', 'damping', 'operation',
- 'dimensionless', 'response', 'critical']
+ 'top_drive', 'dimensionless', 'response', 'critical']
 >>> data["discretization"]["strategy"], data["discretization"]["dofs"]
 ('C', 5)
 >>> [round(f, 4) for f in data["modes"]["continuum_hz"]]  # rigid-BHA continuum, strategy C
@@ -62,6 +63,7 @@ from torsio.io.report_model import (
     string_section,
     string_table,
 )
+from torsio.io.report_top_drive import top_drive_section
 
 __all__ = [
     "CRITICAL_SEARCH",
@@ -83,6 +85,7 @@ __all__ = [
     "response_section",
     "string_section",
     "string_table",
+    "top_drive_section",
 ]
 
 
@@ -92,6 +95,7 @@ SECTIONS: list[Callable[[ReportContext], ReportSection | None]] = [
     modes_section,
     damping_section,
     operation_section,
+    top_drive_section,
     dimensionless_section,
     response_section,
     critical_section,
