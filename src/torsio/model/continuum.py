@@ -39,6 +39,7 @@ import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.model.drillstring import DrillString
+from torsio.model.shapes import normalize_shape
 
 _RELATIVE_WIDTH = 1e-14
 
@@ -145,10 +146,8 @@ class ContinuumModes:
         Depths below the last flexible section (in the rigid bit, or the rigid
         BHA) take the value at its bottom. Normalized like the lumped modes over the
         given samples: peak magnitude 1, positive near the surface
-        (:func:`torsio.model.modal.normalize_shape`).
+        (:func:`torsio.model.shapes.normalize_shape`).
         """
-        from torsio.model.modal import normalize_shape
-
         return normalize_shape(self.raw_shape(mode, depths))
 
     def raw_shape(self, mode: int, depths: Sequence[float] | np.ndarray) -> np.ndarray:
