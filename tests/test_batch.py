@@ -25,7 +25,7 @@ from torsio.errors import ConfigError
 from torsio.model.lumped import LumpedModel
 from torsio.physics.laws import ConstantTorque, TuckerWang
 from torsio.physics.system import System, builtin_config
-from torsio.solvers import batch
+from torsio.solvers import batch, numpy_engine, rodas
 
 TIGHT = {"method": "LSODA", "rtol": 1e-8, "atol": 1e-10}
 """Tolerances of the independent reference runs."""
@@ -41,11 +41,11 @@ def reference(system: System, wob: float, rpm: float, duration: float, window: f
 def test_extremes_of_cubic_are_exact_for_a_cubic() -> None:
     # p(x) = 1 + 3x - 4x^3: p' = 3 - 12 x^2 = 0 at x = 1/2, p(1/2) = 2, p(1) = 0, p(0.6) = 1.936
     u0, u1, d0, d1 = 1.0, 0.0, 3.0, -9.0
-    vmax, vmin = batch._extremes_of_cubic(u0, u1, d0, d1, 0.0, -np.inf, np.inf)
+    vmax, vmin = rodas.extremes_of_cubic(u0, u1, d0, d1, 0.0, -np.inf, np.inf)
     assert (vmax, vmin) == pytest.approx((2.0, 0.0), abs=1e-14)
-    vmax, vmin = batch._extremes_of_cubic(u0, u1, d0, d1, 0.6, -np.inf, np.inf)
+    vmax, vmin = rodas.extremes_of_cubic(u0, u1, d0, d1, 0.6, -np.inf, np.inf)
     assert (vmax, vmin) == pytest.approx((1.936, 0.0), abs=1e-14)
-    mx, mn = batch._extremes_numpy(*(np.array([x]) for x in (u0, u1, d0, d1, 0.6)))
+    mx, mn = numpy_engine.extremes_numpy(*(np.array([x]) for x in (u0, u1, d0, d1, 0.6)))
     assert (mx[0], mn[0]) == pytest.approx((1.936, 0.0), abs=1e-14)
 
 
@@ -167,7 +167,7 @@ def test_stiff_model_needs_no_tiny_steps() -> None:
 # --- engines, determinism, failures ----------------------------------------------------------
 def test_engines_agree(ten_dof: System) -> None:
     wob, rpm = np.array(POINTS[:2]).T
-    numba_result = batch.simulate_batch(ten_dof, wob, rpm, engine="numba")
+    numba_result = batch.simulate_batch(ten_dof, wob, rpm, engine="compiled")
     numpy_result = batch.simulate_batch(ten_dof, wob, rpm, engine="numpy")
     np.testing.assert_allclose(numpy_result.severity, numba_result.severity, atol=1e-3)
     scipy_result = batch.simulate_batch(ten_dof, wob[:1], rpm[:1], engine="scipy")
@@ -185,17 +185,25 @@ def test_results_do_not_depend_on_batch_composition_or_threads(ten_dof: System) 
 
 
 def test_law_without_compiled_kernel_uses_numpy(one_dof: System) -> None:
-    class Shifted(TuckerWang):  # a plugin-like law: not the built-in class
-        name = "shifted-tucker-wang"
+    class PlainTuckerWang:  # the documented contract only: no base class, no kernel
+        name = "plain-tucker-wang"
 
-    law = Shifted(a0=0.221, a1=0.2, a2=0.89, a3=0.06, speed_unit="rpm")
-    system = attrs.evolve(one_dof, law=law)
+        def __init__(self, **values: float) -> None:
+            self.law = TuckerWang(**values, speed_unit="rpm")
+
+        def torque(self, speed: object, wob: object, radius: object) -> np.ndarray:
+            return self.law.torque(speed, wob, radius)
+
+    system = attrs.evolve(one_dof, law=PlainTuckerWang(a0=0.221, a1=0.2, a2=0.89, a3=0.06))
     result = batch.simulate_batch(system, [150e3], [60.0])
     assert result.engine == "numpy"
     compiled = batch.simulate_batch(one_dof, [150e3], [60.0])
+    assert compiled.engine == "compiled"
+    # same law, same method: the engines agree to within the solver tolerance (the numpy
+    # engine takes a central-difference slope, the compiled one the analytic slope)
     assert abs(result.severity[0] - compiled.severity[0]) < 1e-3
     with pytest.raises(ConfigError, match="no compiled kernel"):
-        batch.simulate_batch(system, [150e3], [60.0], engine="numba")
+        batch.simulate_batch(system, [150e3], [60.0], engine="compiled")
 
 
 def test_failures_are_reported_not_hidden(one_dof: System) -> None:

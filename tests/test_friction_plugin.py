@@ -335,7 +335,8 @@ def test_guide_example_works(fresh_plugins):
     guide = (Path(__file__).resolve().parents[1] / "docs" / "plugins.md").read_text()
     module_code, usage_code = _python_blocks(guide)
     module = types.ModuleType("linear_weakening")
-    exec(compile(module_code, "docs/plugins.md", "exec"), module.__dict__)
+    # a file name that does not exist: nothing is cached next to the docs
+    exec(compile(module_code, "<docs/plugins.md>", "exec"), module.__dict__)
     plugin_manager().register(module, name="linear_weakening")
     law_cls = get_bit_law("saturating-weakening")
     law = law_cls(mu_static=0.8, weakening_speed=20.0, speed_unit="rpm")
@@ -346,5 +347,14 @@ def test_guide_example_works(fresh_plugins):
     assert np.allclose(law.torque(w, 1e5, 0.1), expected, rtol=1e-12)
     with pytest.raises(ConfigError, match=r"bit_rock\.mu_sliding.*0\.9"):
         law_cls(mu_static=0.8, mu_sliding=0.9)
+    # its compiled kernel is the same formula (torsio.solvers.law_kernels contract)
+    from torsio.solvers.law_kernels import law_kernel
+
+    kernel = law_kernel(law)
+    compiled = [kernel.torque(kernel.parameters, float(x), 1e5, 0.1) for x in w]
+    assert np.allclose(compiled, expected, rtol=1e-12)
+    # the analytic slope against a central difference of the torque (step 1e-6 rad/s)
+    ahead, behind = law.torque(w + 1e-6, 1e5, 0.1), law.torque(w - 1e-6, 1e5, 0.1)
+    assert np.allclose(law.slope(w, 1e5, 0.1), (ahead - behind) / 2e-6, rtol=1e-6)
     namespace: dict = {}
     exec(compile(usage_code, "docs/plugins.md", "exec"), namespace)

@@ -152,3 +152,75 @@ def get_discretizer(name: str) -> type[Any]:
             f"unknown strategy {name!r}; registered: {', '.join(sorted(found))}",
         )
     return found[name]
+
+
+def build_law(cls: type[Any], parameters: dict[str, Any], speed_unit: str = "rad/s") -> Any:
+    """A bit-rock law built from keyword ``parameters``; errors name the law and the key.
+
+    ``speed_unit`` reaches only a law whose constructor names it or that is a
+    :class:`torsio.physics.laws.BitRockLaw`; for a plain class following the contract,
+    the rad/s reading is the only one, and another unit is a ConfigError. Unknown or
+    missing parameters, and a constructor that raises TypeError or ValueError, become a
+    ConfigError naming the law and the key, never a traceback.
+
+    Examples
+    --------
+    >>> class Viscous:
+    ...     name = "viscous"
+    ...     def __init__(self, c):
+    ...         self.c = c
+    ...     def torque(self, speed, wob, radius):
+    ...         return self.c * speed
+    >>> build_law(Viscous, {"c": 2.0}).c
+    2.0
+    >>> build_law(Viscous, {"k": 2.0})
+    Traceback (most recent call last):
+    ...
+    torsio.errors.ConfigError: bit_rock.k: law 'viscous' has no parameter 'k'; its parameters are c
+    """
+    import inspect
+
+    from torsio.physics.laws import BitRockLaw
+
+    name = getattr(cls, "name", cls.__name__)
+    try:
+        signature = inspect.signature(cls)
+    except (TypeError, ValueError):  # a constructor without an inspectable signature
+        signature = None
+    values = dict(parameters)
+    if signature is not None:
+        accepted = signature.parameters
+        takes_any = any(p.kind is p.VAR_KEYWORD for p in accepted.values())
+        if "speed_unit" in accepted or issubclass(cls, BitRockLaw):
+            values["speed_unit"] = speed_unit
+        elif speed_unit != "rad/s":
+            raise ConfigError(
+                "bit_rock.speed_unit",
+                f"law {name!r} takes its parameters in the rad/s reading only; "
+                f"got speed_unit = {speed_unit!r}",
+            )
+        named = [
+            key
+            for key, p in accepted.items()
+            if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY) and key != "speed_unit"
+        ]
+        unknown = sorted(set(values) - set(accepted) - {"speed_unit"})
+        if unknown and not takes_any:
+            raise ConfigError(
+                f"bit_rock.{unknown[0]}",
+                f"law {name!r} has no parameter {unknown[0]!r}; its parameters are "
+                f"{', '.join(named) or 'none'}",
+            )
+        for key, p in accepted.items():
+            if p.default is p.empty and p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY):
+                if key not in values:
+                    raise ConfigError(f"bit_rock.{key}", f"law {name!r} needs parameter {key!r}")
+    try:
+        return cls(**values)
+    except ConfigError:
+        raise
+    except (TypeError, ValueError) as exc:
+        key = next((k for k in parameters if repr(k) in str(exc)), "law")
+        raise ConfigError(
+            f"bit_rock.{key}", f"law {name!r} rejected its parameters {parameters!r}: {exc}"
+        ) from None

@@ -48,6 +48,46 @@ def _check_order(law: BitRockLaw) -> None:
         )
 
 
+# --- the formulas, written once with numpy ufuncs: they take arrays (the laws' torque and
+# slope) and numba scalars (the compiled kernels of torsio's batch engine).
+# p = (mu_s, mu_c, w_s, eps, c_v[, delta]); speed w [rad/s], wob [N], radius [m].
+def _arrays(speed: Any, wob: Any, radius: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    return np.asarray(speed, dtype=float), np.asarray(wob), np.asarray(radius)
+
+
+def coulomb_stribeck_torque(p: Any, w: Any, wob: Any, radius: Any) -> Any:
+    """W R [mu_c + (mu_s - mu_c) exp(-|w|/w_s)] tanh(w/eps) + c_b w [N m]."""
+    mu = p[1] + (p[0] - p[1]) * np.exp(-np.abs(w) / p[2])
+    return wob * radius * mu * np.tanh(w / p[3]) + p[4] * w
+
+
+def coulomb_stribeck_slope(p: Any, w: Any, wob: Any, radius: Any) -> Any:
+    """d torque / d speed of :func:`coulomb_stribeck_torque` [N m s/rad]."""
+    weakening = (p[0] - p[1]) * np.exp(-np.abs(w) / p[2])
+    smooth_sign = np.tanh(w / p[3])
+    d_mu = -weakening / p[2]  # d mu / d|w|
+    mu = p[1] + weakening
+    return wob * radius * (d_mu * np.abs(smooth_sign) + mu * (1.0 - smooth_sign**2) / p[3]) + p[4]
+
+
+def generalized_stribeck_torque(p: Any, w: Any, wob: Any, radius: Any) -> Any:
+    """W R [mu_c + (mu_s - mu_c) exp(-|w/w_s|^delta)] tanh(w/eps) + c_v w [N m]."""
+    mu = p[1] + (p[0] - p[1]) * np.exp(-((np.abs(w) / p[2]) ** p[5]))
+    return wob * radius * mu * np.tanh(w / p[3]) + p[4] * w
+
+
+def generalized_stribeck_slope(p: Any, w: Any, wob: Any, radius: Any) -> Any:
+    """d torque / d speed of :func:`generalized_stribeck_torque` [N m s/rad]."""
+    ratio = np.abs(w) / p[2]
+    decay = (p[0] - p[1]) * np.exp(-(ratio ** p[5]))
+    d_mu = -decay * p[5] * ratio ** (p[5] - 1.0) / p[2]  # d mu / d|w|
+    smooth_sign = np.tanh(w / p[3])
+    return (
+        wob * radius * (d_mu * np.abs(smooth_sign) + (p[1] + decay) * (1.0 - smooth_sign**2) / p[3])
+        + p[4]
+    )
+
+
 class CoulombStribeck(BitRockLaw):
     """Regularized Coulomb friction with Stribeck weakening (Navarro-López and Cortés 2007).
 
@@ -117,27 +157,26 @@ class CoulombStribeck(BitRockLaw):
         super().__init__(**values)
         _check_order(self)
 
-    def _mu(self, w: np.ndarray) -> np.ndarray:
-        return self.mu_coulomb + (self.mu_static - self.mu_coulomb) * np.exp(
-            -np.abs(w) / self.stribeck_speed
-        )
-
     def torque(self, speed: Any, wob: Any, radius: Any) -> np.ndarray:
-        w = np.asarray(speed, dtype=float)
-        load = np.asarray(wob) * np.asarray(radius)
-        return load * self._mu(w) * np.tanh(w / self.smoothing) + self.viscous * w
+        return coulomb_stribeck_torque(self._vector(), *_arrays(speed, wob, radius))
 
     def slope(self, speed: Any, wob: Any, radius: Any) -> np.ndarray:
         """d torque / d speed [N m s/rad], analytic."""
-        w = np.asarray(speed, dtype=float)
-        load = np.asarray(wob) * np.asarray(radius)
-        smooth_sign = np.tanh(w / self.smoothing)
-        weakening = (self.mu_static - self.mu_coulomb) * np.exp(-np.abs(w) / self.stribeck_speed)
-        d_mu = -weakening / self.stribeck_speed  # d mu / d|w|
+        return coulomb_stribeck_slope(self._vector(), *_arrays(speed, wob, radius))
+
+    def _vector(self) -> np.ndarray:
+        return np.array(
+            [self.mu_static, self.mu_coulomb, self.stribeck_speed, self.smoothing, self.viscous]
+        )
+
+    def kernel(self) -> tuple[Any, Any, np.ndarray]:
+        """Compiled torque and slope for torsio's batch engine (the same formulas)."""
+        from torsio.solvers.law_kernels import compile_law_function
+
         return (
-            load
-            * (d_mu * np.abs(smooth_sign) + self._mu(w) * (1.0 - smooth_sign**2) / self.smoothing)
-            + self.viscous
+            compile_law_function(coulomb_stribeck_torque),
+            compile_law_function(coulomb_stribeck_slope),
+            self._vector(),
         )
 
 
@@ -201,28 +240,33 @@ class GeneralizedStribeck(BitRockLaw):
         super().__init__(**values)
         _check_order(self)
 
-    def _mu_and_derivative(self, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        ratio = np.abs(w) / self.stribeck_speed
-        decay = (self.mu_static - self.mu_coulomb) * np.exp(-(ratio**self.exponent))
-        derivative = -decay * self.exponent * ratio ** (self.exponent - 1.0) / self.stribeck_speed
-        return self.mu_coulomb + decay, derivative
-
     def torque(self, speed: Any, wob: Any, radius: Any) -> np.ndarray:
-        w = np.asarray(speed, dtype=float)
-        mu, _ = self._mu_and_derivative(w)
-        return np.asarray(wob) * np.asarray(radius) * mu * np.tanh(w / self.smoothing) + (
-            self.viscous * w
-        )
+        return generalized_stribeck_torque(self._vector(), *_arrays(speed, wob, radius))
 
     def slope(self, speed: Any, wob: Any, radius: Any) -> np.ndarray:
         """d torque / d speed [N m s/rad], analytic."""
-        w = np.asarray(speed, dtype=float)
-        mu, d_mu = self._mu_and_derivative(w)
-        smooth_sign = np.tanh(w / self.smoothing)
-        load = np.asarray(wob) * np.asarray(radius)
+        return generalized_stribeck_slope(self._vector(), *_arrays(speed, wob, radius))
+
+    def _vector(self) -> np.ndarray:
+        return np.array(
+            [
+                self.mu_static,
+                self.mu_coulomb,
+                self.stribeck_speed,
+                self.smoothing,
+                self.viscous,
+                self.exponent,
+            ]
+        )
+
+    def kernel(self) -> tuple[Any, Any, np.ndarray]:
+        """Compiled torque and slope for torsio's batch engine (the same formulas)."""
+        from torsio.solvers.law_kernels import compile_law_function
+
         return (
-            load * (d_mu * np.abs(smooth_sign) + mu * (1.0 - smooth_sign**2) / self.smoothing)
-            + self.viscous
+            compile_law_function(generalized_stribeck_torque),
+            compile_law_function(generalized_stribeck_slope),
+            self._vector(),
         )
 
 

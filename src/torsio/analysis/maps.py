@@ -160,6 +160,9 @@ class SeverityMap:
         Whether the map was asked for over (Pi_1, Pi_2) (plots use those axes).
     info : dict
         Model, options, timing and executor (plain data).
+    engine : str
+        The batch engine that ran: ``"compiled"``, ``"numpy"`` or ``"scipy"``
+        (:mod:`torsio.solvers.batch`; ``""`` in maps saved before it was recorded).
     """
 
     wob: np.ndarray
@@ -180,6 +183,7 @@ class SeverityMap:
     complete: bool = True
     dimensionless: bool = False
     info: dict[str, Any] = attrs.field(factory=dict)
+    engine: str = ""
 
     # --- derived ----------------------------------------------------------------------
     @property
@@ -268,6 +272,7 @@ class SeverityMap:
             "steps": self.steps.tolist(),
             "done": self.done.tolist(),
             "info": self.info,
+            "engine": self.engine,
         }
 
     @classmethod
@@ -316,6 +321,7 @@ class SeverityMap:
             complete=bool(data["complete"]),
             dimensionless=bool(data.get("dimensionless")),
             info=dict(data.get("info", {})),
+            engine=str(data.get("engine", "")),
         )
 
     def save(self, path: str | Path) -> Path:
@@ -849,7 +855,7 @@ def _build_map(
 
     from torsio.analysis.stability import stability_boundary
     from torsio.analysis.sweep import CONNECT_TIMEOUT
-    from torsio.solvers.batch import _times
+    from torsio.solvers.reference import run_times
 
     for key, value in (("threshold", threshold), ("stick_slip_threshold", stick_slip_threshold)):
         if isinstance(value, bool) or not (
@@ -872,7 +878,7 @@ def _build_map(
     ):
         raise ConfigError("chunk_size", f"expected a whole number >= 1, got {chunk_size!r}")
     check_grid_size(rpm.size, wob.size)
-    duration, steady_window = _times(system, duration, steady_window)
+    duration, steady_window = run_times(system, duration, steady_window)
     k_eq, omega1 = _scales(system)
     serial = executor is None or executor == "serial"
     options: dict[str, Any] = {
@@ -884,7 +890,7 @@ def _build_map(
         "threads": None if serial else 1,
     }
     # validate options (engine, tolerances) here rather than in every worker
-    simulate_batch(system, np.empty(0), np.empty(0), **options)
+    engine_name = simulate_batch(system, np.empty(0), np.empty(0), **options).engine
     points = rpm.size * wob.size
     size = chunk_size or _default_chunk_size(
         points, worker_count(executor), serial, system.model.dofs
@@ -951,6 +957,7 @@ def _build_map(
             complete=False,
             dimensionless=dimensionless,
             info={**info, "elapsed_s": time.perf_counter() - start},
+            engine=engine_name,
         )
 
     try:
@@ -1015,6 +1022,7 @@ def _build_map(
         complete=True,
         dimensionless=dimensionless,
         info=info,
+        engine=engine_name,
     )
 
 

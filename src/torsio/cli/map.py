@@ -368,7 +368,7 @@ def _print_summary(result: Any, written: dict[str, str]) -> None:
             f"runs of {info.get('duration', 0):.4g} s from rest, S_SS over the last "
             f"{info.get('steady_window', 0):.4g} s; {info.get('extra_runs', 0)} "
             f"extra runs for the critical curve; {info.get('elapsed_s', 0):.2f} s "
-            f"on {info.get('executor')}"
+            f"on {info.get('executor')}, {result.engine} engine"
         )
     )
     for key, path in written.items():

@@ -85,9 +85,9 @@ class BitRockConfig:
 
     def build(self) -> Any:
         """The bit-rock law object (looked up among the registered laws)."""
-        from torsio.plugins import get_bit_law
+        from torsio.plugins import build_law, get_bit_law
 
-        return get_bit_law(self.law)(speed_unit=self.speed_unit, **self.parameters)
+        return build_law(get_bit_law(self.law), dict(self.parameters), self.speed_unit)
 
 
 @attrs.frozen

@@ -174,6 +174,7 @@ def critical_section(ctx: ReportContext) -> ReportSection | None:
         "search_wob_n": [float(grid[0]), float(grid[-1])],
         "bracket_n": [float(w) for w in row.critical_bracket[0]],
         "linear_stability_wob_n": linear if np.isfinite(linear) else None,
+        "engine": row.engine,
     }
     table = Table.grid(padding=(0, 2))
     table.add_column(style="dim")
@@ -185,6 +186,7 @@ def critical_section(ctx: ReportContext) -> ReportSection | None:
     else:
         text = f"{critical / 1e3:.4g} kN (S_SS > 0.8 above it, from rest)"
     table.add_row(f"critical WOB at {op.rpm:.4g} rpm", Text(text))
+    table.add_row("batch engine", Text(row.engine))
     if margin is not None and status not in ("below_range",):
         side = "below" if margin > 0 else "above"
         style = "green" if margin > 0 else "bold red"

@@ -164,6 +164,33 @@ class BitRockLaw:
         }
 
 
+# --- the formulas, written once: numpy arrays here, numba scalars in the batch kernel -------
+def _arrays(speed: Any, wob: Any, radius: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    return np.asarray(speed, dtype=float), np.asarray(wob), np.asarray(radius)
+
+
+def tucker_wang_torque(p: Any, w: Any, wob: Any, radius: Any) -> Any:
+    """Tucker-Wang torque [N m] for parameters p = (a0, a1, a2, a3) in the rad/s reading."""
+    return wob * radius * p[0] * (np.tanh(p[1] * w) + p[2] * w / (1.0 + p[3] * w * w))
+
+
+def tucker_wang_slope(p: Any, w: Any, wob: Any, radius: Any) -> Any:
+    """d torque / d speed [N m s/rad] of :func:`tucker_wang_torque`."""
+    c = np.cosh(p[1] * w)
+    d = 1.0 + p[3] * w * w
+    return wob * radius * p[0] * (p[1] / (c * c) + p[2] * (1.0 - p[3] * w * w) / (d * d))
+
+
+def constant_torque(p: Any, w: Any, wob: Any, radius: Any) -> float:
+    """The constant torque p[0] [N m] (the compiled form of :class:`ConstantTorque`)."""
+    return p[0]
+
+
+def constant_slope(p: Any, w: Any, wob: Any, radius: Any) -> float:
+    """Zero: the constant torque does not depend on the speed."""
+    return 0.0
+
+
 class TuckerWang(BitRockLaw):
     """Tucker-Wang bit-rock law (paper Eq. 2).
 
@@ -190,26 +217,23 @@ class TuckerWang(BitRockLaw):
     a3: float
 
     def torque(self, speed: Any, wob: Any, radius: Any) -> np.ndarray:
-        w = np.asarray(speed, dtype=float)
-        return (
-            np.asarray(wob)
-            * np.asarray(radius)
-            * self.a0
-            * (np.tanh(self.a1 * w) + self.a2 * w / (1.0 + self.a3 * w * w))
-        )
+        return tucker_wang_torque(self._vector(), *_arrays(speed, wob, radius))
 
     def slope(self, speed: Any, wob: Any, radius: Any) -> np.ndarray:
         """d torque / d speed [N m s/rad], analytic."""
-        w = np.asarray(speed, dtype=float)
-        denominator = 1.0 + self.a3 * w * w
+        return tucker_wang_slope(self._vector(), *_arrays(speed, wob, radius))
+
+    def _vector(self) -> np.ndarray:
+        return np.array([self.a0, self.a1, self.a2, self.a3])
+
+    def kernel(self) -> tuple[Any, Any, np.ndarray]:
+        """Compiled torque and slope for the batch engine (:mod:`torsio.solvers.law_kernels`)."""
+        from torsio.solvers.law_kernels import compile_law_function
+
         return (
-            np.asarray(wob)
-            * np.asarray(radius)
-            * self.a0
-            * (
-                self.a1 / np.cosh(self.a1 * w) ** 2
-                + self.a2 * (1.0 - self.a3 * w * w) / denominator**2
-            )
+            compile_law_function(tucker_wang_torque),
+            compile_law_function(tucker_wang_slope),
+            self._vector(),
         )
 
 
@@ -228,6 +252,20 @@ class ConstantTorque(BitRockLaw):
         """The constant torque [N m], broadcast to the shape of the inputs."""
         shape = np.broadcast_shapes(np.shape(speed), np.shape(wob), np.shape(radius))
         return np.full(shape, self.torque_on_bit)
+
+    def slope(self, speed: Any, wob: Any, radius: Any) -> np.ndarray:
+        """Zero [N m s/rad], broadcast to the shape of the inputs."""
+        return self.torque(speed, wob, radius) * 0.0
+
+    def kernel(self) -> tuple[Any, Any, np.ndarray]:
+        """Compiled torque and slope for the batch engine (:mod:`torsio.solvers.law_kernels`)."""
+        from torsio.solvers.law_kernels import compile_law_function
+
+        return (
+            compile_law_function(constant_torque),
+            compile_law_function(constant_slope),
+            np.array([self.torque_on_bit]),
+        )
 
 
 BUILTIN_LAWS: tuple[type[BitRockLaw], ...] = (TuckerWang, ConstantTorque)

@@ -1,0 +1,136 @@
+"""Compiled bit-rock law kernels: the contract between a law and the compiled batch engine.
+
+A bit-rock law MAY provide a method ``kernel()`` returning
+``(torque_function, slope_function, parameters)``:
+
+* ``torque_function(parameters, speed, wob, radius)`` and
+  ``slope_function(parameters, speed, wob, radius)`` are numba functions compiled
+  with the explicit signature :data:`LAW_SIGNATURE`,
+  ``float64(float64[::1], float64, float64, float64)``: the law's parameter array,
+  the bit speed [rad/s], the weight on bit [N] and the bit radius [m]; they return
+  the torque on bit [N m] and its derivative with respect to the speed [N m s/rad];
+* ``parameters`` is a contiguous float64 array (the law's parameters in the rad/s
+  reading).
+
+The batch kernel takes the two functions as first-class function arguments
+(``numba.types.FunctionType``) in an explicit signature, so it is compiled and
+cached once for every law; a law only compiles its own two small functions.
+:func:`compile_law_function` compiles a plain Python function with that
+signature (lazily, cached on disk). Written with numpy ufuncs (``np.tanh``,
+``np.exp``, ``np.abs``), the same function also serves the law's vectorized
+``torque`` over arrays, so the formula is written once.
+
+A law without ``kernel()`` runs through the numpy engine.
+
+Examples
+--------
+>>> from torsio.physics.laws import TuckerWang
+>>> law = TuckerWang(a0=0.221, a1=0.2, a2=0.89, a3=0.06, speed_unit="rpm")
+>>> kernel = law_kernel(law)
+>>> kernel is not None and kernel.parameters.tolist() == [law.a0, law.a1, law.a2, law.a3]
+True
+>>> compiled = kernel.torque(kernel.parameters, 10.0, 100e3, 0.108)
+>>> abs(compiled - float(law.torque(10.0, 100e3, 0.108)))
+0.0
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from functools import cache
+from typing import Any
+
+import attrs
+import numpy as np
+
+from torsio.errors import ConfigError
+
+__all__ = ["LAW_SIGNATURE", "LawKernel", "compile_law_function", "law_kernel", "law_type"]
+
+LAW_SIGNATURE = "float64(float64[::1], float64, float64, float64)"
+"""numba signature of a law's torque and slope functions: (parameters, speed, wob, radius)."""
+
+
+def law_type() -> Any:
+    """The numba type of a law function (``FunctionType(LAW_SIGNATURE)``); needs numba."""
+    from numba import types
+
+    f8 = types.float64
+    return types.FunctionType(f8(f8[::1], f8, f8, f8))
+
+
+@cache
+def compile_law_function(function: Callable[..., float]) -> Any:
+    """``function`` compiled by numba with :data:`LAW_SIGNATURE` (cached on disk).
+
+    Compiles once per process (the on-disk cache makes later processes load it);
+    a ConfigError names the function if numba cannot compile it.
+    """
+    import numba
+
+    try:
+        try:
+            return numba.njit(LAW_SIGNATURE, cache=True)(function)
+        except RuntimeError as exc:  # no file to cache next to (exec'd code): compile only
+            if "no locator" not in str(exc):
+                raise
+            return numba.njit(LAW_SIGNATURE)(function)
+    except Exception as exc:  # numba's typing errors are long; say which function failed
+        name = getattr(function, "__qualname__", repr(function))
+        raise ConfigError(
+            "bit_rock.law",
+            f"the law function {name} does not compile with numba "
+            f"({LAW_SIGNATURE}): {type(exc).__name__}: {str(exc).splitlines()[0]}",
+        ) from None
+
+
+@attrs.frozen
+class LawKernel:
+    """A law's compiled torque and slope functions with their parameter array.
+
+    Attributes
+    ----------
+    torque, slope : numba function
+        (parameters, speed [rad/s], wob [N], radius [m]) -> N m and N m s/rad.
+    parameters : ndarray
+        Contiguous float64 parameters of the law.
+    """
+
+    torque: Any
+    slope: Any
+    parameters: np.ndarray
+
+
+def law_kernel(law: Any) -> LawKernel | None:
+    """The compiled kernel a law provides through ``kernel()``, or None if it has none.
+
+    A ``kernel()`` that returns something else than ``(torque, slope, parameters)``
+    with numba functions of :data:`LAW_SIGNATURE` is a ConfigError naming the law.
+    """
+    method = getattr(law, "kernel", None)
+    if method is None:
+        return None
+    name = getattr(law, "name", type(law).__name__)
+    provided = method()
+    if provided is None:
+        return None
+    if not (isinstance(provided, tuple) and len(provided) == 3):
+        raise ConfigError(
+            "bit_rock.law",
+            f"law {name!r}: kernel() must return (torque_function, slope_function, "
+            f"parameters), got {provided!r}",
+        )
+    torque, slope, parameters = provided
+    for label, function in (("torque", torque), ("slope", slope)):
+        signatures = getattr(function, "signatures", None)
+        if signatures is None or len(signatures) != 1:
+            raise ConfigError(
+                "bit_rock.law",
+                f"law {name!r}: the kernel's {label} function must be compiled by numba with "
+                f"the one signature {LAW_SIGNATURE} (torsio.solvers.law_kernels."
+                f"compile_law_function does it), got {function!r}",
+            )
+    array = np.ascontiguousarray(parameters, dtype=float).ravel()
+    if array.size == 0:
+        array = np.zeros(1)  # numba needs an array; a law without parameters ignores it
+    return LawKernel(torque, slope, array)
