@@ -131,16 +131,16 @@ def part_kernel(points: int, repeat: int) -> None:
     base = statistics.median(times["Tucker-Wang constant"])
     for name, values in times.items():
         steps = int(outputs[name][:, 2].sum())
-        print(
-            f"   {name:24s} {statistics.median(values):6.2f} s  x{statistics.median(values) / base:4.2f}"
-            f"  ({steps} steps)"
-        )
+        seconds = statistics.median(values)
+        print(f"   {name:24s} {seconds:6.2f} s  x{seconds / base:4.2f}  ({steps} steps)")
     same = np.array_equal(*(out[:, :2] for out in outputs.values()))
     print(f"   identical bit-speed extremes: {same}")
     start = time.perf_counter()
     numpy_run = batch.simulate_batch(system, wob, rr.ravel(), engine="numpy")
     seconds = time.perf_counter() - start
-    print(f"3. numpy engine, same grid: {seconds:6.2f} s  x{seconds / base:4.1f} ({numpy_run.engine})")
+    print(
+        f"3. numpy engine, same grid: {seconds:6.2f} s  x{seconds / base:4.1f} ({numpy_run.engine})"
+    )
 
 
 def main(argv: list[str] | None = None) -> None:

@@ -108,7 +108,7 @@ def engines(system: System) -> None:
     wob, rpm = grid(21)
     ww, rr = np.meshgrid(wob, rpm)
     rows = []
-    for engine, threads in (("numba", 1), ("numba", 2), ("numpy", None)):
+    for engine, threads in (("compiled", 1), ("compiled", 2), ("numpy", None)):
         result = batch.simulate_batch(
             system, ww, rr, duration=DURATION, steady_window=WINDOW, engine=engine, threads=threads
         )
@@ -118,7 +118,7 @@ def engines(system: System) -> None:
     reference = rows[0][2].severity
     for name, seconds, result in rows:
         print(
-            f"  {name:22s} {seconds:8.3f} s   max |dS| vs numba(1): "
+            f"  {name:22s} {seconds:8.3f} s   max |dS| vs compiled(1): "
             f"{np.nanmax(np.abs(result.severity - reference)):.1e}"
         )
 
@@ -195,7 +195,7 @@ def profile(system: System) -> None:
     profiler.disable()
     total = time.perf_counter() - start
     stats = pstats.Stats(profiler, stream=io.StringIO())
-    kernel = _cumulative(stats, "_run_numba") or _cumulative(stats, "_numpy_batch")
+    kernel = _cumulative(stats, "_run_compiled") or _cumulative(stats, "integrate_numpy")
     modal = _cumulative(stats, "modal_analysis")
     stability = _cumulative(stats, "stability_boundary")
     grid_runs = result.wob.size * result.rpm.size

@@ -889,6 +889,15 @@ def _build_map(
         "engine": engine,
         "threads": None if serial else 1,
     }
+    boundary = system.top.boundary(system)
+    if not boundary.held and not math.isfinite(boundary.set_speed):
+        raise ConfigError(
+            "rpm",
+            f"a map runs over rotary (set) speeds, and the top drive "
+            f"{getattr(system.top, 'name', system.top)!r} has none (its speed follows from "
+            "the torque balance); map with a speed-controlled top drive or run "
+            "torsio.solvers.batch.simulate_batch(system, wob) over weights on bit",
+        )
     # validate options (engine, tolerances) here rather than in every worker
     engine_name = simulate_batch(system, np.empty(0), np.empty(0), **options).engine
     points = rpm.size * wob.size

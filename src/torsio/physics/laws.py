@@ -182,7 +182,7 @@ def tucker_wang_slope(p: Any, w: Any, wob: Any, radius: Any) -> Any:
 
 
 def constant_torque(p: Any, w: Any, wob: Any, radius: Any) -> float:
-    """The constant torque p[0] [N m] (the compiled form of :class:`ConstantTorque`)."""
+    """The constant torque ``p[0]`` in N m (the compiled form of :class:`ConstantTorque`)."""
     return p[0]
 
 

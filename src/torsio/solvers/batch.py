@@ -91,23 +91,12 @@ STATUS_MESSAGES = {
 """What each per-point status code means."""
 
 
-def tridiagonal_bands(matrix: np.ndarray, key: str) -> tuple[np.ndarray, np.ndarray]:
-    """(diagonal, upper) of a symmetric tridiagonal matrix; a ConfigError otherwise."""
-    matrix = np.asarray(matrix, dtype=float)
-    upper = np.zeros(matrix.shape[0])
-    upper[:-1] = np.diag(matrix, 1)
-    if np.count_nonzero(np.triu(matrix, 2)) or np.count_nonzero(np.tril(matrix, -2)):
-        raise ConfigError(
-            key,
-            "the batch engine needs tridiagonal (chain) matrices [I], [K], "
-            "[C]; use engine='scipy' for other models",
-        )
-    return np.diag(matrix).copy(), upper
-
-
 @attrs.frozen(eq=False)
 class BatchModel:
     """A System's chain, top drive and law as the batch engines use them.
+
+    Derived from the one description of the dynamics (:class:`torsio.physics.dynamics.
+    Dynamics`): with a top drive that has inertia, node 0 is the top drive.
 
     Attributes
     ----------
@@ -116,11 +105,10 @@ class BatchModel:
         [C] = [C_rel] + diag(drag) diagonal and upper [N m s/rad], drag [N m s/rad]
         and applied torque [N m] per node (upper[i] couples nodes i and i+1).
     top : ndarray, shape (:data:`torsio.solvers.rodas.TOP_SIZE`,)
-        The top drive packed for the kernel (all zero: held top).
-    law : object
-        The bit-rock law.
-    bit_radius : float
-        R_bit [m].
+        The top drive packed for the kernel (all zero: held top) at the System's own
+        operating point (:meth:`top_at` gives it at another rotary speed).
+    system : System
+        The system (its top drive and law).
     torque_driven : bool
         Whether the top drive has no set speed (``torque``): Omega_ref from the torque
         balance, S_SS relative to the mean top-drive speed.
@@ -130,43 +118,57 @@ class BatchModel:
 
     chain: np.ndarray
     top: np.ndarray
-    law: Any
-    bit_radius: float
+    system: System
     torque_driven: bool
     first_frequency: float
     highest_frequency: float
-    system: System
 
     @classmethod
     def from_system(cls, system: System) -> BatchModel:
         """The chain of ``system`` (ConfigError if the model is not a chain)."""
         import scipy.linalg
 
-        model = system.model
-        damping = np.asarray(system.damping_matrix, dtype=float)
-        drag = np.asarray(system.drag_per_speed, dtype=float)
+        dynamics = system.dynamics()
+        if not dynamics.is_chain:
+            raise ConfigError(
+                "model",
+                "the batch engine needs tridiagonal (chain) matrices [I], [K], "
+                "[C]; use engine='scipy' for other models",
+            )
         chain = np.vstack(
             [
-                *tridiagonal_bands(model.inertia, "inertia"),
-                *tridiagonal_bands(model.stiffness, "stiffness"),
-                *tridiagonal_bands(damping, "damping"),
-                drag,
-                np.zeros(model.dofs),
+                dynamics.mass_diag,
+                dynamics.mass_upper,
+                dynamics.stiffness_diag,
+                dynamics.stiffness_upper,
+                dynamics.damping_diag + dynamics.drag,
+                dynamics.damping_upper,
+                dynamics.drag,
+                dynamics.applied,
             ]
         )
+        model = system.model
         eigenvalues = scipy.linalg.eigh(
             np.asarray(model.stiffness), np.asarray(model.inertia), eigvals_only=True
         )
         return cls(
-            np.ascontiguousarray(chain),
-            np.zeros(TOP_SIZE),
-            system.law,
-            float(system.bit_radius),
-            False,
+            np.ascontiguousarray(chain, dtype=float),
+            _top_vector(dynamics.top, chain),
+            system,
+            dynamics.has_top_node and not math.isfinite(dynamics.set_speed),
             float(np.sqrt(eigenvalues[0])),
             float(np.sqrt(eigenvalues[-1])),
-            system,
         )
+
+    @property
+    def law(self) -> Any:
+        """The bit-rock law."""
+        return self.system.law
+
+    @property
+    def bit_radius(self) -> float:
+        """R_bit [m]."""
+        return float(self.system.bit_radius)
 
     @property
     def dofs(self) -> int:
@@ -178,9 +180,43 @@ class BatchModel:
         """Whether [I] is diagonal."""
         return not np.any(self.chain[1])
 
+    def top_at(self, rpm: float) -> np.ndarray:
+        """The packed top drive at set speed ``rpm`` (a controller may depend on it)."""
+        if not self.top[0] or rpm == self.system.rpm:
+            return self.top
+        return _top_vector(self.system.top.boundary(self.system.at(rpm=rpm)), self.chain)
+
     def reference_speeds(self, wob: np.ndarray, omega: np.ndarray) -> np.ndarray:
-        """Omega_ref [rad/s] of each point: the set speed (the torque balance if none)."""
-        return omega.copy()
+        """Omega_ref [rad/s] of each point: the set speed, or the torque balance if none."""
+        if not self.torque_driven:
+            return omega.copy()
+        speeds = {w: self.system.at(wob=w).dynamics().reference_speed for w in set(wob.tolist())}
+        return np.array([speeds[w] for w in wob.tolist()])
+
+
+def _top_vector(boundary: Any, chain: np.ndarray) -> np.ndarray:
+    """The top drive packed for the kernel (:func:`torsio.solvers.rodas` layout)."""
+    top = np.zeros(TOP_SIZE)
+    if boundary.held:
+        return top
+    if boundary.states > 3:
+        raise ConfigError(
+            "top_drive",
+            f"the batch engine takes top-drive controllers with at most 3 states, "
+            f"got {boundary.states}; use engine='scipy'",
+        )
+    m = boundary.states
+    k1, c1 = -chain[3, 0], -chain[5, 0]  # the model's top spring and damper
+    top[:8] = (1.0, m, boundary.u0, boundary.max_torque, k1, c1, *np.asarray(boundary.d))
+    a = np.zeros((3, 3))
+    b = np.zeros((3, 2))
+    a[:m, :m] = boundary.a
+    b[:m] = boundary.b
+    top[8:17] = a.ravel()
+    top[17:23] = b.ravel()
+    top[23 : 23 + m] = boundary.c
+    top[26 : 26 + m] = boundary.w
+    return top
 
 
 @attrs.frozen
@@ -192,7 +228,7 @@ class BatchResults:
     wob : ndarray
         Weight on bit of each point [N].
     rpm : ndarray
-        Surface rotary speed (set speed) of each point [rpm].
+        Surface rotary speed (set speed) of each point [rpm]; NaN for a torque-driven top.
     severity : ndarray
         S_SS (Eq. 12) of each point; NaN where the solver failed.
     bit_speed_max, bit_speed_min : ndarray
@@ -294,7 +330,7 @@ def _check_points(wob: Any, rpm: Any) -> tuple[np.ndarray, np.ndarray]:
 def simulate_batch(
     system: System,
     wob: Any,
-    rpm: Any,
+    rpm: Any = None,
     duration: float | None = None,
     steady_window: float | None = None,
     rtol: float = DEFAULT_RTOL,
@@ -312,8 +348,10 @@ def simulate_batch(
         The model, damping, bit-rock law and top drive; its own operating point is ignored.
     wob : array_like
         Weights on bit [N], >= 0.
-    rpm : array_like
-        Surface rotary (set) speeds [rpm], > 0; broadcast against ``wob``.
+    rpm : array_like or None
+        Surface rotary (set) speeds [rpm], > 0; broadcast against ``wob``. None (and
+        only None) for a top drive without a set speed (``torque``): its speed follows
+        from the torque balance and S_SS is relative to its mean over the window.
     duration, steady_window : float, optional
         Run length and steady-state window [s]; defaults of
         :func:`torsio.analysis.severity.default_times` (40 and 15 first-mode periods).
@@ -336,7 +374,19 @@ def simulate_batch(
         Failed points have NaN severity and a non-zero status; they are never
         silently dropped.
     """
-    wob_arr, rpm_arr = _check_points(wob, rpm)
+    boundary = system.top.boundary(system)
+    torque_driven = not boundary.held and not math.isfinite(boundary.set_speed)
+    if torque_driven != (rpm is None):
+        raise ConfigError(
+            "rpm",
+            "a top drive without a set speed (kind 'torque') takes no rotary speeds (rpm=None);"
+            " S_SS is relative to its mean speed"
+            if torque_driven
+            else "expected rotary speeds in rpm",
+        )
+    wob_arr, rpm_arr = _check_points(wob, 60.0 if rpm is None else rpm)
+    if torque_driven:
+        rpm_arr = np.full_like(wob_arr, np.nan)
     for key, value in (("rtol", rtol), ("atol", atol)):
         if not (math.isfinite(value) and value > 0):
             raise ConfigError(key, f"expected a positive tolerance, got {value!r}")
@@ -354,7 +404,7 @@ def simulate_batch(
         max_step = period / 4.0
     if not (math.isfinite(max_step) and max_step > 0):
         raise ConfigError("max_step", f"expected a positive step in s, got {max_step!r}")
-    omega = rpm_arr * (math.pi / 30.0)
+    omega_set = rpm_arr * (math.pi / 30.0)
     h0 = min(1e-3 * period, max_step)
     settings = np.array(
         [duration, duration - steady_window, rtol, atol, h0, max_step, max_steps, 0.0]
@@ -363,29 +413,30 @@ def simulate_batch(
     out = np.zeros((wob_arr.size, OUT_COLUMNS))
     if name == "scipy":
         for k in range(wob_arr.size):
-            point = system.at(wob=float(wob_arr[k]), rpm=float(rpm_arr[k]))
+            at = {} if torque_driven else {"rpm": float(rpm_arr[k])}
+            point = system.at(wob=float(wob_arr[k]), **at)
             _, info = reference_severity(point, duration, steady_window, rtol=rtol, atol=atol)
-            top_mean = info.get("top_speed_mean", omega[k])
-            out[k] = (info["bit_speed_max"], info["bit_speed_min"], info["steps"], 0, 0, top_mean)
+            extremes = (info["bit_speed_max"], info["bit_speed_min"])
+            out[k] = (*extremes, info["steps"], 0, 0, info["top_speed_mean"])
     elif wob_arr.size:
         assert model is not None
         settings[7] = model.bit_radius
-        omega_ref = model.reference_speeds(wob_arr, omega)
-        omega_set = np.full_like(omega, np.nan) if model.torque_driven else omega
-        if name == "numpy":
-            from torsio.solvers.numpy_engine import integrate_numpy
+        omega_ref = model.reference_speeds(wob_arr, omega_set)
+        for top, rows in _groups(model, rpm_arr):
+            point_settings = (settings, wob_arr[rows], omega_ref[rows], omega_set[rows])
+            if name == "numpy":
+                from torsio.solvers.numpy_engine import integrate_numpy
 
-            out = integrate_numpy(
-                model.chain, model.top, model.law, settings, wob_arr, omega_ref, omega_set
-            )
-        else:
-            assert kernel is not None
-            arguments = (model.chain, model.top, kernel.torque, kernel.slope, kernel.parameters)
-            points = (settings, wob_arr, omega_ref, np.ascontiguousarray(omega_set), out)
-            _run_compiled(arguments + points, threads)
+                out[rows] = integrate_numpy(model.chain, top, model.law, *point_settings)
+            else:
+                assert kernel is not None
+                law = (kernel.torque, kernel.slope, kernel.parameters)
+                part = np.zeros((rows.size, OUT_COLUMNS))
+                _run_compiled((model.chain, top, *law, *point_settings, part), threads)
+                out[rows] = part
     elapsed = time.perf_counter() - start
     status = out[:, 4].astype(np.int64)
-    reference = out[:, 5] if model is not None and model.torque_driven else omega
+    reference = out[:, 5] if torque_driven else omega_set
     with np.errstate(invalid="ignore", divide="ignore"):
         severity = np.where(status == 0, (out[:, 0] - out[:, 1]) / (2.0 * reference), np.nan)
     return BatchResults(
@@ -405,6 +456,23 @@ def simulate_batch(
         float(atol),
         elapsed,
     )
+
+
+def _groups(model: BatchModel, rpm: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+    """(packed top drive, indices of its points): one group unless the controller
+    depends on the set speed beyond Omega_set itself."""
+    if not model.top[0] or np.isnan(rpm).all():
+        return [(model.top, np.arange(rpm.size))]
+    tops = {r: model.top_at(r) for r in set(rpm.tolist())}
+    groups: list[tuple[np.ndarray, list[int]]] = []
+    for k, r in enumerate(rpm.tolist()):
+        for top, rows in groups:
+            if np.array_equal(top, tops[r]):
+                rows.append(k)
+                break
+        else:
+            groups.append((tops[r], [k]))
+    return [(top, np.array(rows)) for top, rows in groups]
 
 
 def _run_compiled(arguments: tuple[Any, ...], threads: int | None) -> None:

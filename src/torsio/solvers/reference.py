@@ -31,14 +31,17 @@ def reference_severity(
     Jacobian for implicit methods) and reads the extremes of the bit speed from
     the dense output, sampled ``samples_per_step`` times in every step of the
     window. This is the per-point method the batch engine is measured against.
+    S_SS is relative to the set speed, or for a top drive without one (``torque``)
+    to the mean top-drive speed over the window.
 
     Returns
     -------
     severity : float
         S_SS.
     info : dict
-        ``nfev``, ``steps``, ``status`` and ``message`` of the solver, and the
-        extremes ``bit_speed_max``, ``bit_speed_min`` [rad/s] over the window.
+        ``nfev``, ``steps``, ``status`` and ``message`` of the solver, the
+        extremes ``bit_speed_max``, ``bit_speed_min`` and ``top_speed_mean`` [rad/s]
+        over the window.
     """
     from scipy.integrate import solve_ivp
 
@@ -60,7 +63,7 @@ def reference_severity(
         dense_output=True,
         **options,
     )
-    info = {
+    info: dict[str, Any] = {
         "nfev": int(solution.nfev),
         "steps": int(solution.t.size - 1),
         "status": int(solution.status),
@@ -78,10 +81,17 @@ def reference_severity(
     fractions = np.linspace(0.0, 1.0, samples_per_step + 1)[:-1]
     times = (edges[:-1, None] + np.diff(edges)[:, None] * fractions).ravel()
     times = np.append(times, duration)
-    bit_speed = solution.sol(times)[-1] + system.omega
+    dynamics = equations.dynamics
+    states = solution.sol(times)
+    bit_speed = states[-1] + dynamics.reference_speed
     info["bit_speed_max"] = float(bit_speed.max())
     info["bit_speed_min"] = float(bit_speed.min())
-    return float((bit_speed.max() - bit_speed.min()) / (2.0 * system.omega)), info
+    top_speed = states[dynamics.states + 1] + dynamics.reference_speed
+    if not dynamics.has_top_node:
+        top_speed = np.full_like(times, dynamics.reference_speed)
+    info["top_speed_mean"] = float(np.trapezoid(top_speed, times) / steady_window)
+    speed = dynamics.set_speed if np.isfinite(dynamics.set_speed) else info["top_speed_mean"]
+    return float((bit_speed.max() - bit_speed.min()) / (2.0 * speed)), info
 
 
 def run_times(
