@@ -31,10 +31,13 @@ def test_readme_python_example_runs(capsys):
     assert "0.1306" in printed  # the frequency the README shows in its comment
 
 
-def test_readme_quick_start_matches_ci():
+def test_readme_quick_start_is_what_ci_runs():
+    # .ci/run reads the README's two commands from the README and runs them in order
     commands = re.findall(r"```bash\n(pip install[^\n]*)\n```", README)
     assert len(commands) == 2
+    assert commands[0].startswith("pip install . ") and "torsio report" in commands[0]
+    assert "-e " in commands[1] and "pytest" in commands[1]
     ci = (Path(__file__).parents[1] / ".ci" / "run").read_text(encoding="utf-8")
-    test_command = commands[1].replace("pip install", "python -m pip install -q")
-    assert test_command in ci
+    assert 'first="$(readme_command 0)"' in ci and 'second="$(readme_command 1)"' in ci
+    assert ci.index('bash -c "$first"') < ci.index('bash -c "$second"')
     assert parse_config  # the module imports

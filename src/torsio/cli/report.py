@@ -30,7 +30,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--html",
         metavar="FILE",
-        help="also write the report as a standalone HTML page with its plots",
+        help="also write the report as a standalone HTML page with its plots "
+        "(the plots need matplotlib: the [plot] extra)",
     )
     parser.set_defaults(run=run)
 
@@ -48,13 +49,17 @@ def run(args: argparse.Namespace) -> int:
     if args.html:
         from pathlib import Path
 
-        from torsio.io.html_report import html_report
+        from torsio.io.html_report import NO_FIGURES_NOTE, have_matplotlib, html_report
 
         path = Path(args.html)
         try:
             path.write_text(html_report(ctx), encoding="utf-8")
         except OSError as exc:
             raise ConfigError("--html", f"cannot write {args.html!r}: {exc.strerror}") from None
+        if not have_matplotlib():
+            import sys
+
+            print(f"torsio report: {args.html} has no figures. {NO_FIGURES_NOTE}", file=sys.stderr)
     if args.json:
         print_json(report_data(ctx))
     else:

@@ -61,7 +61,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     """Run ``torsio simulate`` with parsed arguments; return the exit status."""
     from torsio.analysis.transient import simulate_config
-    from torsio.errors import ConfigError, TorsioError
+    from torsio.errors import ConfigError
 
     config = load(args)
     if args.rpm is not None and not config.top_drive.has_set_speed:
@@ -82,8 +82,8 @@ def run(args: argparse.Namespace) -> int:
         try:
             import matplotlib  # noqa: F401
         except ImportError:
-            raise TorsioError(
-                "--plot needs matplotlib, which is not installed; pip install 'torsio[plot]'"
+            raise ConfigError(
+                "--plot", "needs matplotlib, which is not installed; pip install 'torsio[plot]'"
             ) from None
     try:
         results = simulate_config(

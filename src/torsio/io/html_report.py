@@ -4,7 +4,8 @@ The page holds the same sections as the terminal report (rendered by rich with
 inline styles), followed by figures embedded as base64 PNG images: the first
 mode shapes against the exact continuum and, when the configuration has a
 bit-rock law and an operating point, the transient response there. Nothing is
-fetched when the page is opened.
+fetched when the page is opened. Without matplotlib (it comes with the ``[plot]``
+extra) the page has the report without figures and a note saying how to get them.
 
 Examples
 --------
@@ -41,6 +42,7 @@ pre.report {{ font-family: ui-monospace, Menlo, Consolas, monospace; font-size: 
 figure {{ margin: 1.5em 0; }}
 figure img {{ max-width: 100%; border: 1px solid #ddd; }}
 figcaption {{ color: #555; font-size: 0.9em; }}
+p.note {{ color: #555; border-left: 3px solid #ccc; padding-left: 0.8em; }}
 </style>
 </head>
 <body>
@@ -51,6 +53,20 @@ figcaption {{ color: #555; font-size: 0.9em; }}
 </body>
 </html>
 """
+
+
+#: Shown in place of the figures when matplotlib is not installed.
+NO_FIGURES_NOTE = (
+    "Figures need matplotlib, which is not installed: "
+    "pip install 'torsio[plot]' (or pip install matplotlib) and run the report again."
+)
+
+
+def have_matplotlib() -> bool:
+    """Whether matplotlib can be imported (the ``[plot]`` extra), without importing it."""
+    import importlib.util
+
+    return importlib.util.find_spec("matplotlib") is not None
 
 
 def _png(figure: Any) -> str:
@@ -104,7 +120,8 @@ def html_report(config: Config | ReportContext, **options: Any) -> str:
 
     ``options`` as for :func:`torsio.io.report.report_data` (``strategy``,
     ``dp_elements``, ``bha_elements``, ``modes``); a :class:`ReportContext` may be
-    passed instead, to reuse what it has computed. Needs matplotlib for the figures.
+    passed instead, to reuse what it has computed. Without matplotlib the page has
+    no figures and says so (:data:`NO_FIGURES_NOTE`).
     """
     ctx = config if isinstance(config, ReportContext) else ReportContext(config, **options)
     config = ctx.config
@@ -113,7 +130,12 @@ def html_report(config: Config | ReportContext, **options: Any) -> str:
         console.print(section)
     console.print(Text(""))
     report = console.export_html(inline_styles=True, code_format="{code}")
-    figures = "\n".join(_figure_html(figure, caption) for figure, caption in report_figures(ctx))
+    if have_matplotlib():
+        figures = "\n".join(
+            _figure_html(figure, caption) for figure, caption in report_figures(ctx)
+        )
+    else:
+        figures = f'<p class="note">{html.escape(NO_FIGURES_NOTE)}</p>'
     return PAGE.format(
         title=html.escape(config.name or "unnamed"),
         source=html.escape(config.source),

@@ -1,0 +1,95 @@
+"""What a new installation meets: no matplotlib, numba's cache folder, the first-compile note."""
+
+from __future__ import annotations
+
+import io
+import sys
+from pathlib import Path
+
+import pytest
+
+from torsio import kernel_cache
+from torsio.cli import main
+
+
+@pytest.fixture
+def no_matplotlib(monkeypatch: pytest.MonkeyPatch) -> None:
+    """matplotlib as if not installed (the README's first command installs no extras)."""
+    for name in list(sys.modules):
+        if name == "matplotlib" or name.startswith("matplotlib."):
+            monkeypatch.setitem(sys.modules, name, None)
+    monkeypatch.setitem(sys.modules, "matplotlib", None)
+
+
+def test_html_report_without_matplotlib(no_matplotlib, tmp_path: Path, capsys) -> None:
+    page = tmp_path / "out.html"
+    assert main(["report", "--strategy", "A", "--html", str(page)]) == 0
+    text = page.read_text(encoding="utf-8")
+    assert "data:image/png" not in text and "torsio[plot]" in text
+    assert "Distance to the critical weight" in text  # the report itself is all there
+    captured = capsys.readouterr()
+    assert "torsio[plot]" in captured.err and "Traceback" not in captured.err
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["simulate", "--strategy", "A", "--wob", "100 kN", "--rpm", "60", "--plot", "x.png"],
+        ["map", "--strategy", "A", "--wob", "25kN:225kN:2", "--rpm", "40:140:2", "--plot", "x.png"],
+    ],
+)
+def test_plot_options_without_matplotlib(no_matplotlib, argv, tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert "--plot" in err and "torsio[plot]" in err and "Traceback" not in err
+    assert not (tmp_path / "x.png").exists()
+
+
+def test_user_cache_dir_order() -> None:
+    # the XDG base directory specification, then the platforms' conventions
+    home = {"HOME": "/home/me"}
+    assert kernel_cache.user_cache_dir({**home, "TORSIO_CACHE_DIR": "/c"}, "linux") == Path("/c")
+    assert kernel_cache.user_cache_dir({**home, "XDG_CACHE_HOME": "/x"}, "linux") == Path(
+        "/x/torsio"
+    )
+    assert kernel_cache.user_cache_dir(home, "linux") == Path("/home/me/.cache/torsio")
+    assert kernel_cache.user_cache_dir(home, "darwin") == Path("/home/me/Library/Caches/torsio")
+    assert kernel_cache.user_cache_dir({**home, "LOCALAPPDATA": "/l"}, "win32") == Path(
+        "/l/torsio/Cache"
+    )
+
+
+def test_numba_cache_is_outside_the_package() -> None:
+    numba = pytest.importorskip("numba")
+    import torsio.solvers  # noqa: F401  (sets the folder)
+
+    package = Path(torsio.__file__).resolve().parent
+    folder = Path(numba.config.CACHE_DIR).resolve()
+    assert numba.config.CACHE_DIR and package not in (folder, *folder.parents)
+
+
+def test_a_users_numba_cache_dir_is_kept(monkeypatch: pytest.MonkeyPatch, tmp_path) -> None:
+    numba = pytest.importorskip("numba")
+    monkeypatch.setattr(numba.config, "CACHE_DIR", str(tmp_path))
+    kernel_cache.use_user_cache_dir()
+    assert numba.config.CACHE_DIR == str(tmp_path)
+
+
+def test_first_compile_is_announced_once(monkeypatch: pytest.MonkeyPatch, tmp_path) -> None:
+    pytest.importorskip("numba")
+    monkeypatch.setenv("TORSIO_CACHE_DIR", str(tmp_path))
+    monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
+    monkeypatch.delenv("TORSIO_COMPILE_ANNOUNCED", raising=False)
+    monkeypatch.setattr(kernel_cache.atexit, "register", lambda function: None)
+    import torsio.solvers.batch  # noqa: F401  (the engine this process would have used)
+
+    stream = io.StringIO()
+    assert kernel_cache.announce_first_compile(stream)
+    assert not kernel_cache.announce_first_compile(stream)  # once per process tree
+    assert stream.getvalue().count("compiling the batch engine once") == 1
+    # once the cache is marked, a new process says nothing
+    monkeypatch.delenv("TORSIO_COMPILE_ANNOUNCED")
+    kernel_cache._mark_cached()
+    assert kernel_cache.kernels_cached()
+    assert not kernel_cache.announce_first_compile(stream)
