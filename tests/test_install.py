@@ -93,3 +93,86 @@ def test_first_compile_is_announced_once(monkeypatch: pytest.MonkeyPatch, tmp_pa
     kernel_cache._mark_cached()
     assert kernel_cache.kernels_cached()
     assert not kernel_cache.announce_first_compile(stream)
+
+
+@pytest.mark.parametrize("argv", [["laws"], ["laws", "--json"], ["--help"]])
+def test_light_commands_load_no_heavy_module(argv: list[str]) -> None:
+    # start-up: `torsio laws` and `torsio --help` must not pay for scipy, numba or pint
+    # (seconds of imports; benchmarks/bench_startup.py times them against `import numpy`)
+    import subprocess
+
+    code = (
+        "import sys\n"
+        "from torsio.cli import main\n"
+        f"try:\n    main({argv!r})\nexcept SystemExit:\n    pass\n"
+        "heavy = [m for m in ('scipy', 'numba', 'pint', 'matplotlib') if m in sys.modules]\n"
+        "print('HEAVY', heavy, file=sys.stderr)\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    )
+    assert "HEAVY []" in result.stderr, result.stderr
+
+
+def test_bare_numbers_are_read_without_pint() -> None:
+    import subprocess
+
+    code = (
+        "import sys\n"
+        "from torsio.units import to_si\n"
+        "assert to_si('150', 'force', key='wob') == 150.0\n"
+        "assert to_si(' 1e5 ', 'force', key='wob') == 1e5\n"
+        "print('pint' in sys.modules)\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    )
+    assert result.stdout.strip() == "False"
+
+
+def test_init_writes_a_template_that_runs(tmp_path: Path, capsys) -> None:
+    import json
+    import warnings
+
+    from torsio.cli.init import template_text
+    from torsio.io.config import load_config
+
+    path = tmp_path / "new.toml"
+    assert main(["init", str(path)]) == 0
+    assert f"wrote {path}" in capsys.readouterr().out
+    assert path.read_text(encoding="utf-8") == template_text()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        config = load_config(path)
+    assert config.bit_rock is not None and config.operation.wob == 100e3  # "100 kN"
+    # every key of the template is explained: a comment on its line or naming it
+    lines = template_text().splitlines()
+    comments = " ".join(line.partition("#")[2] for line in lines)
+    keys = [line.partition("=")[0].strip() for line in lines if "=" in line[:30]]
+    keys = [key for key in keys if key and not key.startswith(("#", "["))]
+    with_comment = {line.partition("=")[0].strip() for line in lines if " # " in line}
+    for key in keys:
+        assert key in with_comment or key in comments, key
+    assert main(["modes", str(path), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["dofs"] == 10
+    # a second init keeps the file
+    assert main(["init", str(path)]) == 2
+    assert "--force" in capsys.readouterr().err
+    assert main(["init", str(path), "--force"]) == 0
+
+
+def test_missing_damping_is_a_warning_and_the_report_says_undamped(tmp_path, capsys) -> None:
+    from torsio.cli.init import template_text
+
+    text = template_text()
+    start = text.index("[damping]")
+    undamped = text[:start] + text[text.index("[discretization]") :]
+    path = tmp_path / "undamped.toml"
+    path.write_text(undamped, encoding="utf-8")
+    assert main(["report", str(path), "--strategy", "A", "--json"]) == 0
+    captured = capsys.readouterr()
+    assert "warning: " in captured.err and "undamped" in captured.err
+    assert "Traceback" not in captured.err
+    assert main(["report", str(path), "--strategy", "A"]) == 0
+    out = capsys.readouterr().out
+    assert "undamped" in out and "from the file" not in out

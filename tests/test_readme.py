@@ -41,3 +41,28 @@ def test_readme_quick_start_is_what_ci_runs():
     assert 'first="$(readme_command 0)"' in ci and 'second="$(readme_command 1)"' in ci
     assert ci.index('bash -c "$first"') < ci.index('bash -c "$second"')
     assert parse_config  # the module imports
+
+
+def test_readme_toml_example_runs_simulate_and_map(tmp_path, monkeypatch, capsys):
+    import json
+    import warnings
+
+    from torsio.cli import main
+
+    (text,) = blocks("toml")
+    path = tmp_path / "my.toml"
+    path.write_text(text, encoding="utf-8")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # complete as written: no warning (damping is given)
+        config = parse_config_text(text, source="README")
+    assert config.bit_rock is not None and config.damping.alpha == 0.35
+    argv = ["simulate", str(path), "--wob", "100 kN", "--rpm", "60", "--json"]
+    assert main(argv) == 0
+    captured = capsys.readouterr()
+    data = json.loads(captured.out)
+    assert data["wob"] == 100e3 and data["rpm"] == 60  # the options, in N and rpm
+    assert data["severity"] >= 0  # S_SS = (max - min)/(2 Omega) of the bit speed, Eq. 12
+    assert "warning" not in captured.err
+    argv = ["map", str(path), "--wob", "25kN:225kN:2", "--rpm", "40:140:2", "--json"]
+    assert main([*argv, "--refine", "0"]) == 0
+    assert len(json.loads(capsys.readouterr().out)["severity"]) == 2

@@ -6,72 +6,155 @@
 0.1344
 """
 
-from torsio.analysis.energy import EnergyBalance, energy_balance
-from torsio.analysis.transient import SimulationOptions, TransientResults, simulate, simulate_config
-from torsio.errors import ConfigError, PluginError, SolverError, TorsioError
-from torsio.examples import ritto2017_config, ritto2017_string
-from torsio.hookspecs import hookimpl
-from torsio.io.config import Config, builtin_config, load_config, parse_config
-from torsio.model.components import (
-    LWD,
-    MWD,
-    STEEL,
-    BHASection,
-    Bit,
-    DrillCollar,
-    DrillPipe,
-    HeavyWeightDrillPipe,
-    Material,
-    Section,
-    Stabilizer,
-)
-from torsio.model.continuum import ContinuumModes, continuum_modes
-from torsio.model.discretize import ConsistentMass, MixedMass, StrategyA, StrategyB, StrategyC
-from torsio.model.drillstring import DrillString
-from torsio.model.lumped import LumpedModel
-from torsio.model.modal import ModalResults, modal_analysis
-from torsio.physics.damping import RayleighDamping
-from torsio.physics.dimensionless import (
-    DimensionlessGroups,
-    dimensional_system,
-    dimensionless_groups,
-    dimensionless_system,
-)
-from torsio.physics.dynamics import Dynamics
-from torsio.physics.laws import BitRockLaw, Parameter, TuckerWang
-from torsio.physics.system import System
-from torsio.physics.top_drives import (
-    ConstantSpeedTop,
-    PITopDrive,
-    SoftTorqueTopDrive,
-    TopDriveBoundary,
-    TorqueTopDrive,
-    ZTorqueTopDrive,
-    top_drive_from_parameters,
-)
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
 
 __version__ = "0.1.0"
 
-# Severity maps and the batch engine load numba: imported on first use, not with torsio.
-_LAZY = {
-    "SeverityMap": "torsio.analysis.maps",
-    "severity_map": "torsio.analysis.maps",
-    "dimensionless_map": "torsio.analysis.maps",
-    "load_map": "torsio.analysis.maps",
-    "simulate_batch": "torsio.solvers.batch",
-    "StabilityBoundary": "torsio.analysis.stability",
-    "stability_boundary": "torsio.analysis.stability",
-    "critical_bit_damping": "torsio.analysis.stability",
+# Every public name, by the module it lives in. ``import torsio`` imports none of these
+# modules: each is imported on the first use of one of its names (PEP 562), so that the
+# command line starts fast (scipy, numba and pint are loaded only by what needs them).
+# To export a name, add it here, to the TYPE_CHECKING imports below and to __all__.
+_EXPORTS: dict[str, tuple[str, ...]] = {
+    "torsio.analysis.energy": ("EnergyBalance", "energy_balance"),
+    "torsio.analysis.transient": (
+        "SimulationOptions",
+        "TransientResults",
+        "simulate",
+        "simulate_config",
+    ),
+    "torsio.errors": ("ConfigError", "PluginError", "SolverError", "TorsioError"),
+    "torsio.examples": ("ritto2017_config", "ritto2017_string"),
+    "torsio.hookspecs": ("hookimpl",),
+    "torsio.io.config": ("Config", "builtin_config", "load_config", "parse_config"),
+    "torsio.model.components": (
+        "LWD",
+        "MWD",
+        "STEEL",
+        "BHASection",
+        "Bit",
+        "DrillCollar",
+        "DrillPipe",
+        "HeavyWeightDrillPipe",
+        "Material",
+        "Section",
+        "Stabilizer",
+    ),
+    "torsio.model.continuum": ("ContinuumModes", "continuum_modes"),
+    "torsio.model.discretize": (
+        "ConsistentMass",
+        "MixedMass",
+        "StrategyA",
+        "StrategyB",
+        "StrategyC",
+    ),
+    "torsio.model.drillstring": ("DrillString",),
+    "torsio.model.lumped": ("LumpedModel",),
+    "torsio.model.modal": ("ModalResults", "modal_analysis"),
+    "torsio.physics.damping": ("RayleighDamping",),
+    "torsio.physics.dimensionless": (
+        "DimensionlessGroups",
+        "dimensional_system",
+        "dimensionless_groups",
+        "dimensionless_system",
+    ),
+    "torsio.physics.laws": ("BitRockLaw", "Parameter", "TuckerWang"),
+    "torsio.physics.dynamics": ("Dynamics",),
+    "torsio.physics.system": ("System",),
+    "torsio.physics.top_drives": (
+        "ConstantSpeedTop",
+        "PITopDrive",
+        "SoftTorqueTopDrive",
+        "TopDriveBoundary",
+        "TorqueTopDrive",
+        "ZTorqueTopDrive",
+        "top_drive_from_parameters",
+    ),
+    "torsio.analysis.maps": ("SeverityMap", "severity_map", "dimensionless_map", "load_map"),
+    "torsio.solvers.batch": ("simulate_batch",),
+    "torsio.analysis.stability": (
+        "StabilityBoundary",
+        "stability_boundary",
+        "critical_bit_damping",
+    ),
 }
+_LAZY = {name: module for module, names in _EXPORTS.items() for name in names}
+_SUBPACKAGES = ("analysis", "cli", "io", "model", "physics", "solvers")
+
+if TYPE_CHECKING:  # for type checkers and editors; at run time see __getattr__
+    from torsio.analysis.energy import EnergyBalance, energy_balance
+    from torsio.analysis.maps import SeverityMap, dimensionless_map, load_map, severity_map
+    from torsio.analysis.stability import (
+        StabilityBoundary,
+        critical_bit_damping,
+        stability_boundary,
+    )
+    from torsio.analysis.transient import (
+        SimulationOptions,
+        TransientResults,
+        simulate,
+        simulate_config,
+    )
+    from torsio.errors import ConfigError, PluginError, SolverError, TorsioError
+    from torsio.examples import ritto2017_config, ritto2017_string
+    from torsio.hookspecs import hookimpl
+    from torsio.io.config import Config, builtin_config, load_config, parse_config
+    from torsio.model.components import (
+        LWD,
+        MWD,
+        STEEL,
+        BHASection,
+        Bit,
+        DrillCollar,
+        DrillPipe,
+        HeavyWeightDrillPipe,
+        Material,
+        Section,
+        Stabilizer,
+    )
+    from torsio.model.continuum import ContinuumModes, continuum_modes
+    from torsio.model.discretize import ConsistentMass, MixedMass, StrategyA, StrategyB, StrategyC
+    from torsio.model.drillstring import DrillString
+    from torsio.model.lumped import LumpedModel
+    from torsio.model.modal import ModalResults, modal_analysis
+    from torsio.physics.damping import RayleighDamping
+    from torsio.physics.dimensionless import (
+        DimensionlessGroups,
+        dimensional_system,
+        dimensionless_groups,
+        dimensionless_system,
+    )
+    from torsio.physics.dynamics import Dynamics
+    from torsio.physics.laws import BitRockLaw, Parameter, TuckerWang
+    from torsio.physics.system import System
+    from torsio.physics.top_drives import (
+        ConstantSpeedTop,
+        PITopDrive,
+        SoftTorqueTopDrive,
+        TopDriveBoundary,
+        TorqueTopDrive,
+        ZTorqueTopDrive,
+        top_drive_from_parameters,
+    )
+    from torsio.solvers.batch import simulate_batch
 
 
-def __getattr__(name: str) -> object:
-    module = _LAZY.get(name)
-    if module is None:
-        raise AttributeError(f"module 'torsio' has no attribute {name!r}")
+def __getattr__(name: str) -> Any:
     import importlib
 
-    return getattr(importlib.import_module(module), name)
+    module = _LAZY.get(name)
+    if module is not None:
+        value = getattr(importlib.import_module(module), name)
+        globals()[name] = value  # later uses skip this function
+        return value
+    if name in _SUBPACKAGES:
+        return importlib.import_module(f"torsio.{name}")
+    raise AttributeError(f"module 'torsio' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *_LAZY})
 
 
 __all__ = [

@@ -74,7 +74,10 @@ def to_si(value: Any, dimension: str, *, key: str) -> float:
     if isinstance(value, int | float):
         result = float(value)
     elif isinstance(value, str):
-        result = _parse(value, dimension, key)
+        try:  # a bare number in a string ("150"): SI, as a number, without loading pint
+            result = float(value)
+        except ValueError:
+            result = _parse(value, dimension, key)
     else:
         raise ConfigError(
             key, f"expected a number or a string with units, got {type(value).__name__} {value!r}"

@@ -10,11 +10,12 @@ from __future__ import annotations
 import argparse
 import sys
 import warnings
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from typing import Any
 
 from torsio.errors import TorsioError
 
-COMMANDS = ("report", "modes", "simulate", "map", "laws")
+COMMANDS = ("report", "modes", "simulate", "map", "laws", "init")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -41,6 +42,15 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _warning_printer(command: str) -> Callable[..., None]:
+    """Warnings as one line on stderr: ``torsio COMMAND: warning: message``."""
+
+    def show(message: Warning | str, category: type[Warning], *args: Any, **kwargs: Any) -> None:
+        print(f"torsio {command}: warning: {message}", file=sys.stderr)
+
+    return show
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``torsio`` console script; returns the exit status."""
     parser = build_parser()
@@ -48,6 +58,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("default")
+            warnings.showwarning = _warning_printer(args.command)
             status = args.run(args)
     except TorsioError as exc:
         print(f"torsio {args.command}: error: {exc}", file=sys.stderr)

@@ -6,9 +6,10 @@ import argparse
 import json
 import math
 import sys
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from torsio.io.config import Config, builtin_config, load_config
+if TYPE_CHECKING:
+    from torsio.io.config import Config
 
 
 def add_config_argument(parser: argparse.ArgumentParser) -> None:
@@ -53,6 +54,8 @@ def parse_time(value: str | None, key: str) -> float | None:
 
 def load(args: argparse.Namespace) -> Config:
     """The configuration named on the command line, or the built-in one."""
+    from torsio.io.config import builtin_config, load_config
+
     return builtin_config() if args.config is None else load_config(args.config)
 
 

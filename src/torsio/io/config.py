@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 import tomllib
+import warnings
 from collections.abc import Mapping
 from importlib import resources
 from pathlib import Path
@@ -293,6 +294,7 @@ def _string_config(table: Mapping[str, Any], name: str, source: str) -> Config:
             discretizer.element_counts(string)
         except ConfigError as exc:
             raise ConfigError(f"discretization.{exc.key}", exc.message) from None
+    _warn_if_undamped(table, source)
     return Config(
         name=name,
         string=string,
@@ -358,8 +360,30 @@ def _bit_rock(raw: Any) -> BitRockConfig:
     return config
 
 
+class UndampedWarning(UserWarning):
+    """A configuration without damping: the model has no structural damping at all."""
+
+
+def _warn_if_undamped(table: Mapping[str, Any], source: str) -> None:
+    """Warn when neither ``[damping]`` nor a chain's own dampers give any damping."""
+    chain = table.get("chain")
+    if table.get("damping") or (isinstance(chain, Mapping) and ("dampings" in chain)):
+        return
+    where = f"{source}: " if source else ""
+    warnings.warn(
+        UndampedWarning(
+            f"{where}no [damping] table: the model is undamped (no structural damping; "
+            "stick-slip then never decays). Add [damping] with alpha (1/s) and beta (s) "
+            "of Rayleigh damping, or ratios = [z1, z2] at modes = [1, 2]."
+        ),
+        stacklevel=3,
+    )
+
+
 def _damping(raw: Any) -> DampingConfig:
     table = _table(raw, "damping", DAMPING_KEYS)
+    if not table:  # no damping given: alpha and beta stay None (undamped, warned)
+        return DampingConfig()
     has_rayleigh = "alpha" in table or "beta" in table
     if has_rayleigh and "ratios" in table:
         raise ConfigError("damping.ratios", "give either alpha/beta or ratios, not both")

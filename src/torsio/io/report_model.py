@@ -332,7 +332,9 @@ def damping_section(ctx: ReportContext) -> ReportSection:
             f"{100 * beta * w / 2:.2f}",
             f"{100 * zeta:.2f}",
         )
-    if configured.ratios is None:
+    if configured.ratios is None and configured.alpha is None and configured.beta is None:
+        origin = "no [damping] in the file: undamped"
+    elif configured.ratios is None:
         origin = "from the file"
     else:
         targets = ", ".join(f"{100 * r:g} %" for r in configured.ratios)

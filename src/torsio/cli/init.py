@@ -1,0 +1,48 @@
+"""``torsio init``: write a commented template configuration that runs as it is."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+DEFAULT_PATH = "torsio.toml"
+
+
+def template_text() -> str:
+    """The template (``src/torsio/data/template.toml``): every table and key, commented."""
+    from importlib import resources
+
+    return resources.files("torsio").joinpath("data/template.toml").read_text(encoding="utf-8")
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add the ``init`` command to the ``torsio`` parser."""
+    parser = subparsers.add_parser(
+        "init",
+        help="write a commented template configuration (default: torsio.toml)",
+        description="Write a template configuration file with every table and key "
+        "explained; it runs as it is (torsio report PATH, torsio simulate PATH ...).",
+    )
+    parser.add_argument(
+        "path", nargs="?", default=DEFAULT_PATH, metavar="PATH", help=f"default {DEFAULT_PATH}"
+    )
+    parser.add_argument("--force", action="store_true", help="overwrite PATH if it exists")
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Write the template; an existing file is kept unless ``--force``."""
+    from torsio.errors import ConfigError
+
+    path = Path(args.path)
+    if path.exists() and not args.force:
+        raise ConfigError("PATH", f"{args.path!r} exists; give another path or --force")
+    try:
+        path.write_text(template_text(), encoding="utf-8")
+    except OSError as exc:
+        raise ConfigError("PATH", f"cannot write {args.path!r}: {exc.strerror}") from None
+    print(
+        f"wrote {path}; try: torsio report {path}   or   "
+        f'torsio simulate {path} --wob "100 kN" --rpm 60'
+    )
+    return 0
