@@ -2,7 +2,8 @@
 
 Inside torsio every quantity is a plain float in SI units (m, kg, s, N, Pa, rad).
 Strings with units are accepted only where input enters (configuration files,
-command line), and are converted here with `pint`. A bare number is taken as SI.
+command line), and are converted here: the common units of :data:`COMMON_UNITS` directly,
+any other with `pint` (loaded only then). A bare number is taken as SI.
 
 Examples
 --------
@@ -19,6 +20,7 @@ Examples
 from __future__ import annotations
 
 import math
+import re
 from functools import lru_cache
 from typing import Any
 
@@ -44,11 +46,43 @@ RPM_TO_RAD_S = math.pi / 30.0
 """Multiply a speed in rev/min by this to get rad/s."""
 
 
+#: Units read without pint (the common ones on a command line), as (dimension, factor to SI).
+#: Exact factors: 1 in = 0.0254 m, 1 ft = 0.3048 m, 1 lbf = 4.4482216152605 N.
+COMMON_UNITS: dict[str, tuple[str, float]] = {
+    "N": ("force", 1.0),
+    "kN": ("force", 1e3),
+    "MN": ("force", 1e6),
+    "lbf": ("force", 4.4482216152605),
+    "klbf": ("force", 4.4482216152605e3),
+    "m": ("length", 1.0),
+    "mm": ("length", 1e-3),
+    "cm": ("length", 1e-2),
+    "km": ("length", 1e3),
+    "in": ("length", 0.0254),
+    "ft": ("length", 0.3048),
+    "Pa": ("pressure", 1.0),
+    "kPa": ("pressure", 1e3),
+    "MPa": ("pressure", 1e6),
+    "GPa": ("pressure", 1e9),
+    "s": ("time", 1.0),
+    "min": ("time", 60.0),
+    "h": ("time", 3600.0),
+    "rpm": ("angular_speed", math.pi / 30.0),
+    "rad/s": ("angular_speed", 1.0),
+}
+_NUMBER_AND_UNIT = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A-Za-z/]+)\s*")
+
+
 @lru_cache(maxsize=1)
 def _registry() -> Any:
     import pint  # imported lazily: only strings with units need it
 
-    return pint.UnitRegistry()
+    from torsio.kernel_cache import user_cache_dir
+
+    try:  # pint's parsed definitions cached on disk: a registry in 0.1 s instead of 1 s
+        return pint.UnitRegistry(cache_folder=str(user_cache_dir() / "pint"))
+    except Exception:  # pragma: no cover - an unwritable cache: pint without it
+        return pint.UnitRegistry()
 
 
 def to_si(value: Any, dimension: str, *, key: str) -> float:
@@ -88,6 +122,9 @@ def to_si(value: Any, dimension: str, *, key: str) -> float:
 
 
 def _parse(text: str, dimension: str, key: str) -> float:
+    match = _NUMBER_AND_UNIT.fullmatch(text)
+    if match is not None and COMMON_UNITS.get(match[2], ("", 0.0))[0] == dimension:
+        return float(match[1]) * COMMON_UNITS[match[2]][1]  # "100 kN": no need for pint
     import pint
 
     ureg = _registry()
