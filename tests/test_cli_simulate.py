@@ -118,7 +118,7 @@ def test_plot_without_matplotlib(capsys, tmp_path, monkeypatch):
         "--plot",
         str(tmp_path / "x.png"),
     )
-    assert "--plot needs matplotlib" in err
+    assert "--plot: needs matplotlib" in err and "torsio[plot]" in err
     assert not (tmp_path / "x.png").exists()
 
 
