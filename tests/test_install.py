@@ -161,7 +161,7 @@ def test_init_writes_a_template_that_runs(tmp_path: Path, capsys) -> None:
     assert main(["init", str(path), "--force"]) == 0
 
 
-def test_missing_damping_is_a_warning_and_the_report_says_undamped(tmp_path, capsys) -> None:
+def test_missing_damping_is_a_warning_and_the_report_says_undamped(tmp_path) -> None:
     from torsio.cli.init import template_text
 
     text = template_text()
@@ -169,10 +169,28 @@ def test_missing_damping_is_a_warning_and_the_report_says_undamped(tmp_path, cap
     undamped = text[:start] + text[text.index("[discretization]") :]
     path = tmp_path / "undamped.toml"
     path.write_text(undamped, encoding="utf-8")
-    assert main(["report", str(path), "--strategy", "A", "--json"]) == 0
-    captured = capsys.readouterr()
-    assert "warning: " in captured.err and "undamped" in captured.err
-    assert "Traceback" not in captured.err
-    assert main(["report", str(path), "--strategy", "A"]) == 0
-    out = capsys.readouterr().out
+    import subprocess
+
+    # a new process, as a user runs it (pytest records warnings instead of printing them)
+    command = [sys.executable, "-m", "torsio.cli", "report", str(path), "--strategy", "A"]
+    result = subprocess.run(command, capture_output=True, text=True, check=True)
+    assert "warning: " in result.stderr and "undamped" in result.stderr
+    assert "Traceback" not in result.stderr
+    out = result.stdout
     assert "undamped" in out and "from the file" not in out
+
+
+def test_map_threads_option(capsys) -> None:
+    # each point is integrated alone: the map does not depend on the threads (bit for bit)
+    import json
+
+    args = ["map", "--strategy", "A", "--wob", "50kN:200kN:3", "--rpm", "50:120:2", "--json"]
+    assert main([*args, "--refine", "0", "--duration", "60", "--window", "20"]) == 0
+    default = json.loads(capsys.readouterr().out)
+    argv = [*args, "--refine", "0", "--duration", "60", "--window", "20", "--threads", "1"]
+    assert main(argv) == 0
+    assert json.loads(capsys.readouterr().out)["severity"] == default["severity"]
+    assert main([*args, "--threads", "0"]) == 2
+    assert "--threads" in capsys.readouterr().err
+    assert main([*args, "--threads", "2", "--workers", "2"]) == 2
+    assert "--threads" in capsys.readouterr().err

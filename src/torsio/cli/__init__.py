@@ -8,9 +8,10 @@ to stderr, name the offending key or value, and exit with status 2.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import sys
 import warnings
-from collections.abc import Callable, Sequence
+from collections.abc import Iterator, Sequence
 from typing import Any
 
 from torsio.errors import TorsioError
@@ -42,13 +43,19 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _warning_printer(command: str) -> Callable[..., None]:
-    """Warnings as one line on stderr: ``torsio COMMAND: warning: message``."""
+@contextlib.contextmanager
+def _warning_format(command: str) -> Iterator[None]:
+    """Warnings printed as one line on stderr: ``torsio COMMAND: warning: message``."""
+    original = warnings.formatwarning
 
-    def show(message: Warning | str, category: type[Warning], *args: Any, **kwargs: Any) -> None:
-        print(f"torsio {command}: warning: {message}", file=sys.stderr)
+    def one_line(message: Warning | str, category: type[Warning], *args: Any, **kw: Any) -> str:
+        return f"torsio {command}: warning: {message}\n"
 
-    return show
+    warnings.formatwarning = one_line
+    try:
+        yield
+    finally:
+        warnings.formatwarning = original
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -56,9 +63,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), _warning_format(args.command):
             warnings.simplefilter("default")
-            warnings.showwarning = _warning_printer(args.command)
             status = args.run(args)
     except TorsioError as exc:
         print(f"torsio {args.command}: error: {exc}", file=sys.stderr)

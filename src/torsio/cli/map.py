@@ -93,6 +93,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--engine", default="auto", help="batch engine: auto (default), numba, numpy, scipy"
     )
+    parser.add_argument(
+        "--threads",
+        type=int,
+        metavar="N",
+        help="threads of the compiled engine in this process (default: all cores)",
+    )
     parser.add_argument("--workers", type=int, metavar="N", help="run on N local worker processes")
     parser.add_argument(
         "--scheduler",
@@ -238,6 +244,12 @@ def _run(args: argparse.Namespace) -> int:
         raise ConfigError("--workers", "give either --workers or --scheduler, not both")
     if args.workers is not None and args.workers < 1:
         raise ConfigError("--workers", f"expected a number of processes >= 1, got {args.workers}")
+    if args.threads is not None:
+        if args.workers is not None or args.scheduler is not None:
+            raise ConfigError(
+                "--threads", "applies to this process; worker processes run one thread each"
+            )
+        _use_threads(args.threads)
     if dimensionless:
         x_start, x_stop, x_count = _range_bounds(args.pi1, "--pi1", "pi1")
         y_start, y_stop, y_count = _range_bounds(args.pi2, "--pi2", "pi2")
@@ -316,6 +328,20 @@ def _run(args: argparse.Namespace) -> int:
         return 0
     _print_summary(result, written)
     return 0
+
+
+def _use_threads(count: int) -> None:
+    """Threads of the compiled engine (numba's pool) for this process: 1 .. all cores."""
+    from torsio.errors import ConfigError
+
+    try:
+        import numba
+    except ImportError:  # pragma: no cover - the numpy engine has no threads
+        raise ConfigError("--threads", "needs numba (pip install numba)") from None
+    most = int(getattr(numba.config, "NUMBA_NUM_THREADS", 1))
+    if not 1 <= count <= most:
+        raise ConfigError("--threads", f"expected 1 to {most} threads (the cores), got {count}")
+    numba.set_num_threads(count)
 
 
 def _partial_path(path: Path) -> Path:
