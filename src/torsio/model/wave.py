@@ -1,0 +1,304 @@
+"""The distributed model: the stepped string as torsional wave lines on a characteristic grid.
+
+Each flexible section obeys the torsional wave equation
+
+    rho J theta_tt = G J theta_xx - d theta_t,      d = alpha rho J  (distributed drag)
+
+written for the angular velocity w = theta_t and the torque T = -G J theta_x that the
+section above transmits to the one below. With the impedance Z = J sqrt(G rho) and
+wave speed c = sqrt(G / rho), the Riemann invariants
+
+    p = T + Z w   (travels down at +c),        m = T - Z w   (travels up at -c)
+
+are constant along their characteristics when d = 0. The grid is matched to the wave
+speeds: one global time step dt and, in section i, cells of length c_i dt, so a wave
+moves exactly one cell per step and nothing is interpolated (no numerical dispersion).
+Section lengths are rounded to whole cells; :func:`wave_grid` chooses dt so that the
+largest relative change of a section's travel time L_i / c_i is below a tolerance and
+reports it (:attr:`WaveModel.travel_time_errors`).
+
+At a junction of sections 1 (above) and 2 (below) speed and torque are continuous, so an
+incoming wave splits exactly: a velocity wave is transmitted with 2 Z1 / (Z1 + Z2) and
+reflected with (Z1 - Z2) / (Z1 + Z2); in torque the factors are 2 Z2 / (Z1 + Z2) and
+(Z2 - Z1) / (Z1 + Z2).
+
+Damping: the mass-proportional part alpha [I] of Rayleigh damping is the lumped form of
+a distributed viscous drag d = alpha rho J per unit length (and alpha J_bit on the bit),
+which the wave model carries. The stiffness-proportional part beta [K] is a Kelvin-Voigt
+material damping, T = -G J (theta_x + beta theta_xt); it turns the wave equation into a
+wave-diffusion equation with no characteristics, and the wave model refuses it
+(``ConfigError`` on ``damping.beta``): compare lumped and distributed models with
+beta = 0.
+
+Examples
+--------
+>>> from torsio.examples import ritto2017_string
+>>> grid = WaveStrategy().discretize(ritto2017_string())
+>>> grid.cells, round(grid.time_step * 1e3, 4)
+((802, 29, 50), 1.7848)
+>>> float(grid.travel_time_errors.max()) < 1e-3
+True
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, ClassVar
+
+import attrs
+import numpy as np
+
+from torsio.errors import ConfigError
+from torsio.model.drillstring import DrillString
+
+DEFAULT_MAX_TIME_STEP = 5e-3
+"""Default largest time step of the characteristic grid [s]."""
+
+DEFAULT_TRAVEL_TIME_TOLERANCE = 1e-3
+"""Default largest relative change of a section's travel time by rounding to whole cells."""
+
+MAX_CELLS = 200_000
+"""Largest number of cells a wave grid may have (memory and run time grow with it)."""
+
+
+def _as_tuple(values: Any) -> tuple[Any, ...]:
+    return tuple(values)
+
+
+@attrs.frozen
+class WaveModel:
+    """The characteristic grid of a stepped string, returned by the ``wave`` strategy.
+
+    Attributes
+    ----------
+    string : DrillString
+        The string the grid follows.
+    time_step : float
+        Global time step dt [s]; a wave crosses one cell per step.
+    cells : tuple of int
+        Cells per flexible section, from the surface down.
+    impedances : ndarray
+        Z_i = J_i sqrt(G_i rho_i) of each flexible section [N m s/rad].
+    wave_speeds : ndarray
+        c_i = sqrt(G_i / rho_i) [m/s].
+    polar_moments : ndarray
+        J_i [m^4].
+    densities : ndarray
+        rho_i [kg/m^3].
+    bit_inertia : float
+        Inertia of the bit, a rigid body below the last section [kg m^2].
+    strategy : str
+        ``"wave"``.
+    """
+
+    string: DrillString
+    time_step: float
+    cells: tuple[int, ...] = attrs.field(converter=_as_tuple)
+    impedances: np.ndarray
+    wave_speeds: np.ndarray
+    polar_moments: np.ndarray
+    densities: np.ndarray
+    bit_inertia: float
+    strategy: str = "wave"
+    details: dict[str, Any] = attrs.field(factory=dict, eq=False)
+
+    @property
+    def travel_times(self) -> np.ndarray:
+        """Travel time L_i / c_i of each section of the string as given [s]."""
+        lengths = np.array([s.length for s in self.string.flexible_sections])
+        return lengths / self.wave_speeds
+
+    @property
+    def grid_travel_times(self) -> np.ndarray:
+        """Travel time of each section on the grid, cells_i dt [s]."""
+        return np.array(self.cells, dtype=float) * self.time_step
+
+    @property
+    def travel_time_errors(self) -> np.ndarray:
+        """Relative change of each section's travel time by rounding to whole cells."""
+        return np.abs(self.grid_travel_times - self.travel_times) / self.travel_times
+
+    @property
+    def cell_lengths(self) -> np.ndarray:
+        """Length of a cell in each section, c_i dt [m]."""
+        return self.wave_speeds * self.time_step
+
+    @property
+    def grid_lengths(self) -> np.ndarray:
+        """Length of each section on the grid, cells_i c_i dt [m]."""
+        return self.cell_lengths * np.array(self.cells)
+
+    @property
+    def dofs(self) -> int:
+        """Number of grid nodes (two invariants each), for reports."""
+        return int(sum(self.cells) + 1)
+
+    @property
+    def node_depths(self) -> np.ndarray:
+        """Depth of every grid node on the grid string [m] (interface nodes once)."""
+        depths = [np.zeros(1)]
+        top = 0.0
+        for n, dx in zip(self.cells, self.cell_lengths, strict=True):
+            depths.append(top + dx * np.arange(1, n + 1))
+            top += n * dx
+        return np.concatenate(depths)
+
+    def grid_string(self) -> DrillString:
+        """The string the grid represents exactly: each section's length rounded to whole cells.
+
+        Its continuum modes are the ones the wave model rings at.
+        """
+        sections = [
+            attrs.evolve(s, length=float(length))
+            for s, length in zip(self.string.flexible_sections, self.grid_lengths, strict=True)
+        ]
+        return self.string.with_sections([*sections, self.string.bit])
+
+    def describe(self) -> dict[str, Any]:
+        """Grid facts for reports and JSON."""
+        return {
+            "strategy": self.strategy,
+            "time_step_s": self.time_step,
+            "cells": list(self.cells),
+            "impedances_N_m_s": [float(z) for z in self.impedances],
+            "travel_time_errors": [float(e) for e in self.travel_time_errors],
+            "bit_inertia_kg_m2": self.bit_inertia,
+        }
+
+
+def interface_factors(upper: float, lower: float) -> dict[str, float]:
+    """Exact splitting of a wave arriving from impedance ``upper`` at impedance ``lower``.
+
+    >>> interface_factors(1.0, 3.0)
+    {'velocity_transmitted': 0.5, 'velocity_reflected': -0.5, 'torque_transmitted': 1.5, \
+'torque_reflected': 0.5}
+    """
+    total = upper + lower
+    return {
+        "velocity_transmitted": 2.0 * upper / total,
+        "velocity_reflected": (upper - lower) / total,
+        "torque_transmitted": 2.0 * lower / total,
+        "torque_reflected": (lower - upper) / total,
+    }
+
+
+def choose_time_step(
+    travel_times: np.ndarray, max_time_step: float, tolerance: float
+) -> tuple[float, np.ndarray]:
+    """The largest dt <= ``max_time_step`` whose rounding of travel times stays within tolerance.
+
+    Candidates make one section's travel time a whole number of steps (tau_k / n); among
+    those up to four times finer than ``max_time_step`` the largest meeting ``tolerance``
+    is taken, else the one with the smallest error. Returns (dt, cells per section).
+    """
+    taus = np.asarray(travel_times, dtype=float)
+    candidates = []
+    for tau in taus:
+        first = max(1, math.ceil(tau / max_time_step - 1e-12))
+        candidates.append(tau / np.arange(first, 4 * first + 8))
+    steps = np.sort(np.concatenate(candidates))[::-1]
+    steps = steps[steps <= max_time_step * (1 + 1e-12)]
+    cells = np.maximum(1, np.round(taus[None, :] / steps[:, None]))
+    errors = (np.abs(cells * steps[:, None] - taus[None, :]) / taus[None, :]).max(axis=1)
+    good = np.flatnonzero(errors <= tolerance)
+    index = int(good[0]) if good.size else int(np.argmin(errors))
+    return float(steps[index]), cells[index].astype(int)
+
+
+class WaveStrategy:
+    """The ``wave`` strategy: the distributed model on a characteristic grid.
+
+    Parameters
+    ----------
+    time_step : float, optional
+        Largest time step [s] (default :data:`DEFAULT_MAX_TIME_STEP`); the grid takes the
+        largest step below it that keeps every section's travel time within
+        ``travel_time_tolerance``.
+    travel_time_tolerance : float, optional
+        Largest relative change of a section's travel time L/c by rounding to whole cells
+        (default :data:`DEFAULT_TRAVEL_TIME_TOLERANCE`).
+    """
+
+    name: ClassVar[str] = "wave"
+    description: ClassVar[str] = "distributed model: wave equation along characteristics"
+
+    def __init__(
+        self,
+        time_step: float | None = None,
+        travel_time_tolerance: float | None = None,
+        **options: Any,
+    ) -> None:
+        for key, value in options.items():
+            if value is not None:
+                raise ConfigError(
+                    key,
+                    f"the wave strategy takes no option {key!r}: its grid follows the wave "
+                    "speeds; give time_step [s] and travel_time_tolerance instead",
+                )
+        self.time_step = _positive("time_step", time_step, DEFAULT_MAX_TIME_STEP)
+        self.travel_time_tolerance = _positive(
+            "travel_time_tolerance", travel_time_tolerance, DEFAULT_TRAVEL_TIME_TOLERANCE
+        )
+
+    def discretize(self, string: DrillString) -> WaveModel:
+        """The characteristic grid of ``string``."""
+        sections = string.flexible_sections
+        taus = np.array([s.wave_travel_time for s in sections])
+        if taus.sum() / self.time_step > MAX_CELLS:
+            raise ConfigError(
+                "time_step",
+                f"{taus.sum() / self.time_step:.0f} cells exceed the limit of {MAX_CELLS}; "
+                f"give a time step of at least {taus.sum() / MAX_CELLS:.3g} s",
+            )
+        dt, cells = choose_time_step(taus, self.time_step, self.travel_time_tolerance)
+        polar = np.array([s.polar_moment for s in sections])
+        density = np.array([s.material.density for s in sections])
+        speed = np.array([s.material.wave_speed for s in sections])
+        return WaveModel(
+            string=string,
+            time_step=dt,
+            cells=tuple(int(n) for n in cells),
+            impedances=polar * density * speed,
+            wave_speeds=speed,
+            polar_moments=polar,
+            densities=density,
+            bit_inertia=float(string.bit.inertia),
+            details={
+                "time_step_s": dt,
+                "cells": {s.name or s.kind: int(n) for s, n in zip(sections, cells, strict=True)},
+            },
+        )
+
+
+def _positive(key: str, value: Any, default: float) -> float:
+    if value is None:
+        return default
+    ok = isinstance(value, int | float) and not isinstance(value, bool)
+    if not ok or not (math.isfinite(value) and value > 0):
+        raise ConfigError(key, f"expected a positive number, got {value!r}")
+    return float(value)
+
+
+def is_wave_model(model: Any) -> bool:
+    """Whether ``model`` is the wave strategy's grid (not a lumped model)."""
+    return isinstance(model, WaveModel)
+
+
+def check_wave_damping(damping: Any) -> float:
+    """alpha [1/s] of a damping the wave model can carry; a clear error otherwise."""
+    alpha = getattr(damping, "alpha", None)
+    beta = getattr(damping, "beta", None)
+    if alpha is None or beta is None:
+        raise ConfigError(
+            "damping",
+            "the wave model needs Rayleigh damping of a drill-string "
+            f"(alpha as distributed drag), got {damping!r}",
+        )
+    if beta != 0.0:
+        raise ConfigError(
+            "damping.beta",
+            f"the wave model carries the mass-proportional part alpha as distributed drag "
+            f"but not stiffness-proportional (Kelvin-Voigt) damping; got beta = {beta!r} s, "
+            "expected 0",
+        )
+    return float(alpha)

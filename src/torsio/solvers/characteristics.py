@@ -1,0 +1,622 @@
+"""Time stepping of the distributed model along characteristics (:mod:`torsio.model.wave`).
+
+One step of length dt:
+
+1. **transport**: in every section the invariant p = T + Z w moves one node down and
+   m = T - Z w one node up (exact: the grid matches the wave speed);
+2. **junctions**: speed and torque continuous, so with the incoming p (from above) and
+   m (from below) ``w = (p - m) / (Z1 + Z2)``, ``T = (Z2 p + Z1 m) / (Z1 + Z2)`` and the
+   outgoing invariants follow (exact);
+3. **top**: held at Omega (outgoing p = m + 2 Z Omega, a reflection R = -1), or a top drive
+   (inertia and linear controller, :class:`torsio.physics.top_drives.TopDriveBoundary`)
+   integrated by the trapezoidal rule with the incoming m linear over the step; a motor
+   torque beyond ``max_torque`` is held at the limit for the step (back-calculation
+   anti-windup as the description gives it);
+4. **bit**: the bit's inertia J_b with torque on bit T_bit(w_b), drag alpha J_b and the
+   pipe torque p - Z w_b, by BDF2 (backward Euler on the first step), an L-stable
+   second-order rule: the bit's own time scale J_b / Z (about 2e-4 s for the Ritto
+   string) is far below dt. Each step solves one scalar equation
+   k w + T_bit(w) = r (k > 0) by bracketing from the previous speed in the direction of
+   motion and safeguarded Newton (to 1e-12 relative);
+5. **distributed drag** d = alpha rho J: the speed at every node decays by exp(-alpha dt)
+   with the torque unchanged, applied as half steps around 1-4 (Strang splitting,
+   second order; consecutive half steps are merged).
+
+The step is compiled with numba (cache=True) when the law brings a compiled kernel
+(:func:`torsio.solvers.law_kernels.law_kernel`); otherwise the same algorithm runs on
+numpy arrays with the law's Python ``torque`` and ``slope``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import attrs
+import numpy as np
+
+from torsio.errors import SolverError
+from torsio.model.wave import WaveModel
+
+try:  # numba is optional: without it the same steps run as plain Python (slowly)
+    from numba import njit
+except ImportError:  # pragma: no cover - exercised only without numba
+
+    def njit(*args: Any, **kwargs: Any) -> Any:
+        """Stands in for numba.njit: the function runs as plain Python."""
+        if len(args) == 1 and callable(args[0]) and not kwargs:
+            return args[0]
+        return lambda function: function
+
+RECORD_CHANNELS = ("bit_speed", "bit_torque", "surface_torque", "top_speed", "motor_torque")
+"""Columns of the recorded time series: rad/s, N m, N m, rad/s, N m."""
+
+SUMMARY_FIELDS = (
+    "bit_speed_min",
+    "bit_speed_max",
+    "top_speed_sum",
+    "window_steps",
+    "work_in",
+    "bit_dissipation",
+    "bit_drag_dissipation",
+    "string_drag_dissipation",
+    "top_drag_dissipation",
+    "failed_step",
+)
+"""Entries of the run summary: extremes and sums over the window; energies [J] over the run."""
+
+_NEWTON_TOLERANCE = 1e-12
+
+
+@attrs.frozen(eq=False)
+class TopArrays:
+    """The top boundary as arrays for the stepping kernel.
+
+    ``held``: the top turns at ``set_speed``. Otherwise the state x = [Omega_0, z] advances
+    by ``x1 = L[k] x0 + g[k] (m0 + m1) + q[k]`` (trapezoidal rule) in mode k = 0 (free),
+    1 (motor torque at +max) or 2 (at -max); the motor torque is
+    ``u_free = coefficients[0] + coefficients[1:-1] . x + coefficients[-1] m``.
+    """
+
+    held: bool
+    set_speed: float
+    inertia: float
+    drag: float
+    max_torque: float
+    propagator: np.ndarray  # (3, n, n)
+    forcing: np.ndarray  # (3, n)
+    constant: np.ndarray  # (3, n)
+    coefficients: np.ndarray  # (n + 2,)
+
+    @property
+    def states(self) -> int:
+        """Size of the top state [Omega_0, z] (0 when held)."""
+        return int(self.forcing.shape[1])
+
+
+def held_top(speed: float) -> TopArrays:
+    """A top held at ``speed`` [rad/s]."""
+    return TopArrays(
+        True, float(speed), 0.0, 0.0, math.inf, np.zeros((3, 1, 1)), np.zeros((3, 1)),
+        np.zeros((3, 1)), np.zeros(3),
+    )  # fmt: skip
+
+
+def top_arrays(boundary: Any, impedance: float, time_step: float, speed: float) -> TopArrays:
+    """Arrays of a top-drive description (``TopDriveBoundary``) on a pipe of ``impedance``.
+
+    ``speed`` is Omega_set for a held top. Derivation (module docstring of
+    :mod:`torsio.physics.top_drives`): with the incoming invariant m, T_pipe = m + Z Omega_0,
+    y = [Omega_set - Omega_0, T_pipe], u_free = u0 + c z + d y,
+    J Omega_0' = u - drag Omega_0 - T_pipe, z' = a z + b y + w (u - u_free).
+    """
+    if getattr(boundary, "held", True):
+        return held_top(speed)
+    a = np.atleast_2d(np.asarray(boundary.a, dtype=float)).reshape(-1, np.size(boundary.c))
+    b = np.asarray(boundary.b, dtype=float).reshape(-1, 2)
+    c = np.asarray(boundary.c, dtype=float).ravel()
+    d = np.asarray(boundary.d, dtype=float).ravel()
+    w = np.asarray(boundary.w, dtype=float).ravel()
+    m = c.size
+    n = m + 1
+    inertia, drag, z_pipe = float(boundary.inertia), float(boundary.drag), float(impedance)
+    set_speed = float(boundary.set_speed)
+    set_term = 0.0 if math.isnan(set_speed) else set_speed
+    # u_free = u0 + d0 set + [(-d0 + d1 Z), c] . x + d1 m
+    coefficients = np.concatenate(
+        [[boundary.u0 + d[0] * set_term, -d[0] + d[1] * z_pipe], c, [d[1]]]
+    )
+    propagator = np.zeros((3, n, n))
+    forcing = np.zeros((3, n))
+    constant = np.zeros((3, n))
+    max_torque = float(boundary.max_torque)
+    for mode, limit in enumerate((None, max_torque, -max_torque)):
+        A = np.zeros((n, n))
+        B = np.zeros(n)
+        f = np.zeros(n)
+        # z' = a z + b0 (set - Omega) + b1 (m + Z Omega)   [+ w (u - u_free) when limited]
+        A[1:, 1:] = a
+        A[1:, 0] = -b[:, 0] + b[:, 1] * z_pipe
+        B[1:] = b[:, 1]
+        f[1:] = b[:, 0] * set_term
+        if limit is None:  # u = u_free
+            A[0, :] = coefficients[1:-1]
+            B[0] = coefficients[-1]
+            f[0] = coefficients[0]
+        elif math.isfinite(limit):
+            f[0] = limit
+            A[1:, :] -= np.outer(w, coefficients[1:-1])
+            B[1:] -= w * coefficients[-1]
+            f[1:] += w * (limit - coefficients[0])
+        A[0, 0] -= drag + z_pipe
+        B[0] -= 1.0
+        A[0, :] /= inertia
+        B[0] /= inertia
+        f[0] /= inertia
+        left = np.eye(n) - 0.5 * time_step * A
+        propagator[mode] = np.linalg.solve(left, np.eye(n) + 0.5 * time_step * A)
+        forcing[mode] = np.linalg.solve(left, 0.5 * time_step * B)
+        constant[mode] = np.linalg.solve(left, time_step * f)
+    return TopArrays(
+        False, set_speed, inertia, drag, max_torque, propagator, forcing, constant, coefficients
+    )
+
+
+@attrs.frozen(eq=False)
+class WaveState:
+    """State of the distributed model: invariants at every node, top and bit states.
+
+    ``p`` and ``m`` hold every section's nodes (a junction node once per section),
+    section s at ``offsets[s] .. offsets[s] + cells[s]``. ``bit`` = [w_b, w_b one step
+    earlier, steps taken]. ``top`` = [Omega_0, z...] (empty when held).
+    """
+
+    p: np.ndarray
+    m: np.ndarray
+    top: np.ndarray
+    bit: np.ndarray
+
+    def copy(self) -> WaveState:
+        """An independent copy."""
+        return WaveState(self.p.copy(), self.m.copy(), self.top.copy(), self.bit.copy())
+
+
+def node_offsets(grid: WaveModel) -> np.ndarray:
+    """Start of each section's node block in the state arrays, and the total size."""
+    return np.concatenate([[0], np.cumsum(np.array(grid.cells) + 1)]).astype(np.int64)
+
+
+def rest_state(grid: WaveModel, top: TopArrays) -> WaveState:
+    """Everything at rest: zero speed and torque along the string, top and bit still."""
+    size = int(node_offsets(grid)[-1])
+    return WaveState(np.zeros(size), np.zeros(size), np.zeros(max(top.states, 1)), np.zeros(3))
+
+
+def state_from_fields(
+    grid: WaveModel, speed: np.ndarray, torque: np.ndarray, top: TopArrays
+) -> WaveState:
+    """A state with angular speed [rad/s] and torque [N m] given at every node.
+
+    ``speed`` and ``torque`` follow the state layout (:func:`node_offsets`); the bit
+    starts at the speed of the last node.
+    """
+    state = rest_state(grid, top)
+    z = np.repeat(grid.impedances, np.array(grid.cells) + 1)
+    state.p[:] = torque + z * speed
+    state.m[:] = torque - z * speed
+    state.bit[:2] = speed[-1]
+    if not top.held:
+        state.top[0] = speed[0]
+    return state
+
+
+# --- the compiled step ----------------------------------------------------------------------
+@njit(cache=True)
+def _solve_bit(k, rhs, guess, torque, slope, parameters, wob, radius):  # type: ignore[no-untyped-def]
+    """Root of k w + T_bit(w) = rhs nearest ``guess`` in the direction of motion."""
+    f0 = k * guess + torque(parameters, guess, wob, radius) - rhs
+    if f0 == 0.0:
+        return guess
+    direction = -1.0 if f0 > 0.0 else 1.0
+    low = guess
+    f_low = f0
+    step = abs(f0) / k + 1e-9 * (abs(guess) + 1.0)
+    high = guess + direction * step
+    f_high = k * high + torque(parameters, high, wob, radius) - rhs
+    tries = 0
+    while (f_high > 0.0) == (f0 > 0.0):
+        low, f_low = high, f_high
+        step *= 2.0
+        high = low + direction * step
+        f_high = k * high + torque(parameters, high, wob, radius) - rhs
+        tries += 1
+        if tries > 200:
+            return math.nan
+    # safeguarded Newton in the bracket [low, high]
+    w = high if abs(f_high) < abs(f_low) else low
+    for _ in range(100):
+        f = k * w + torque(parameters, w, wob, radius) - rhs
+        if f == 0.0:
+            return w
+        if (f > 0.0) == (f_low > 0.0):
+            low, f_low = w, f
+        else:
+            high = w
+        derivative = k + slope(parameters, w, wob, radius)
+        candidate = w - f / derivative if derivative != 0.0 else math.nan
+        lo, hi = (low, high) if low < high else (high, low)
+        if not (lo < candidate < hi):
+            candidate = 0.5 * (low + high)
+        if abs(candidate - w) <= _NEWTON_TOLERANCE * (abs(w) + 1e-6):
+            return candidate
+        w = candidate
+    return w
+
+
+@njit(cache=True)
+def _march(  # type: ignore[no-untyped-def]
+    offsets, impedance, settings, p, m, top_state, bit_state,
+    propagator, forcing, constant, coefficients,
+    torque, slope, parameters, records, field, summary,
+):  # fmt: skip
+    """Advance ``settings[9]`` steps; see the module docstring. Works in place."""
+    dt = settings[0]
+    decay = settings[1]
+    bit_inertia = settings[2]
+    alpha = settings[3]
+    wob = settings[4]
+    radius = settings[5]
+    held = settings[6] != 0.0
+    set_speed = settings[7]
+    max_torque = settings[8]
+    steps = int(settings[9])
+    window_start = int(settings[10])
+    record_every = int(settings[11])
+    field_every = int(settings[12])
+    top_drag = settings[13]
+    sections = impedance.size
+    last = offsets[sections] - 1
+    z_top = impedance[0]
+    z_bit = impedance[sections - 1]
+    n_top = top_state.size
+    half_plus = 0.5 * (1.0 + decay)
+    half_minus = 0.5 * (1.0 - decay)
+    # power at the previous step (trapezoidal energies)
+    previous = np.zeros(5)
+    previous[:] = summary[10:15]
+    mode_x = np.zeros(n_top)
+    p_next = np.empty_like(p)
+    m_next = np.empty_like(m)
+    track_energy = settings[14] != 0.0
+    for step in range(steps):
+        m_top_old = m[0]
+        # 1. drag (merged half steps) fused with the transport: the stored state is half a
+        # drag step behind the sampled one, so this is the Strang splitting D(1/2) T D(1/2)
+        for s in range(sections):
+            start = offsets[s]
+            stop = offsets[s + 1] - 1
+            for j in range(start + 1, stop + 1):
+                p_next[j] = half_plus * p[j - 1] + half_minus * m[j - 1]
+            for j in range(start, stop):
+                m_next[j] = half_minus * p[j + 1] + half_plus * m[j + 1]
+        p, p_next = p_next, p
+        m, m_next = m_next, m
+        # 2. junctions
+        for s in range(sections - 1):
+            a = offsets[s + 1] - 1
+            b = offsets[s + 1]
+            z1 = impedance[s]
+            z2 = impedance[s + 1]
+            speed = (p[a] - m[b]) / (z1 + z2)
+            tq = (z2 * p[a] + z1 * m[b]) / (z1 + z2)
+            m[a] = tq - z1 * speed
+            p[b] = tq + z2 * speed
+        # 3. top
+        m_in = m[0]
+        if held:
+            top_speed = set_speed
+            motor = m_in + z_top * set_speed
+        else:
+            chosen = 0
+            for mode in range(3):
+                for i in range(n_top):
+                    acc = constant[mode, i] + forcing[mode, i] * (m_top_old + m_in)
+                    for j in range(n_top):
+                        acc += propagator[mode, i, j] * top_state[j]
+                    mode_x[i] = acc
+                u_free = coefficients[0] + coefficients[n_top + 1] * m_in
+                for i in range(n_top):
+                    u_free += coefficients[1 + i] * mode_x[i]
+                if mode == 0:
+                    if u_free > max_torque:
+                        continue
+                    if u_free < -max_torque:
+                        continue
+                    chosen = 0
+                    break
+                if mode == 1 and u_free >= max_torque:
+                    chosen = 1
+                    break
+                if mode == 2:
+                    chosen = 2
+            if chosen == 0:
+                motor = u_free
+            elif chosen == 1:
+                motor = max_torque
+            else:
+                motor = -max_torque
+            for i in range(n_top):
+                top_state[i] = mode_x[i]
+            top_speed = top_state[0]
+        p[0] = m_in + 2.0 * z_top * top_speed
+        surface_torque = m_in + z_top * top_speed
+        # 4. bit
+        p_in = p[last]
+        w_now = bit_state[0]
+        if bit_state[2] < 1.0:
+            k = bit_inertia / dt + z_bit + alpha * bit_inertia
+            rhs = bit_inertia * w_now / dt + p_in
+        else:
+            k = 1.5 * bit_inertia / dt + z_bit + alpha * bit_inertia
+            rhs = bit_inertia * (4.0 * w_now - bit_state[1]) / (2.0 * dt) + p_in
+        w_bit = _solve_bit(k, rhs, w_now, torque, slope, parameters, wob, radius)
+        if not math.isfinite(w_bit):
+            summary[9] = step + 1.0
+            return
+        bit_state[1] = w_now
+        bit_state[0] = w_bit
+        bit_state[2] += 1.0
+        m[last] = p_in - 2.0 * z_bit * w_bit
+        bit_torque = torque(parameters, w_bit, wob, radius)
+        # 5. the string's drag power alpha rho J dx w^2 = alpha dt (p - m)^2 / (4 Z) at this
+        # step (the state is half a drag step ahead: w^2 times exp(-alpha dt) ... undone)
+        drag_power = 0.0
+        if track_energy and alpha > 0.0:
+            for s in range(sections):
+                start = offsets[s]
+                stop = offsets[s + 1] - 1
+                acc = 0.0
+                for j in range(start, stop + 1):
+                    difference = p[j] - m[j]
+                    acc += difference * difference
+                d0 = p[start] - m[start]
+                d1 = p[stop] - m[stop]
+                acc -= 0.5 * (d0 * d0 + d1 * d1)
+                drag_power += alpha * dt * acc / (4.0 * impedance[s])
+            drag_power *= decay
+        # energies (trapezoidal in time)
+        power_in = motor * top_speed if not held else surface_torque * top_speed
+        power_bit = bit_torque * w_bit
+        power_bit_drag = alpha * bit_inertia * w_bit * w_bit
+        power_top_drag = top_drag * top_speed * top_speed
+        summary[4] += 0.5 * dt * (previous[0] + power_in)
+        summary[5] += 0.5 * dt * (previous[1] + power_bit)
+        summary[6] += 0.5 * dt * (previous[2] + power_bit_drag)
+        summary[7] += 0.5 * dt * (previous[3] + drag_power)
+        summary[8] += 0.5 * dt * (previous[4] + power_top_drag)
+        previous[0] = power_in
+        previous[1] = power_bit
+        previous[2] = power_bit_drag
+        previous[3] = drag_power
+        previous[4] = power_top_drag
+        # window extremes and records
+        absolute = int(summary[15]) + step + 1
+        if absolute >= window_start:
+            if w_bit < summary[0]:
+                summary[0] = w_bit
+            if w_bit > summary[1]:
+                summary[1] = w_bit
+            summary[2] += top_speed
+            summary[3] += 1.0
+        if record_every > 0 and absolute % record_every == 0:
+            row = absolute // record_every
+            if row < records.shape[0]:
+                records[row, 0] = w_bit
+                records[row, 1] = bit_torque
+                records[row, 2] = surface_torque
+                records[row, 3] = top_speed
+                records[row, 4] = motor
+        if field_every > 0 and absolute % field_every == 0:
+            row = absolute // field_every
+            if row < field.shape[0]:
+                root_decay = math.sqrt(decay)
+                for s in range(sections):
+                    z = impedance[s]
+                    for j in range(offsets[s], offsets[s + 1]):
+                        field[row, j] = root_decay * (p[j] - m[j]) / (2.0 * z)
+    summary[10] = previous[0]
+    summary[11] = previous[1]
+    summary[12] = previous[2]
+    summary[13] = previous[3]
+    summary[14] = previous[4]
+    summary[15] += steps
+    if steps % 2 == 1:  # the buffers were swapped an odd number of times
+        p_next[:] = p
+        m_next[:] = m
+
+
+# --- driver ---------------------------------------------------------------------------------
+@attrs.frozen(eq=False)
+class WaveRun:
+    """What :func:`march` produced.
+
+    Attributes
+    ----------
+    time : ndarray
+        Record times [s] (multiples of the record step, from 0).
+    records : ndarray, shape (len(time), 5)
+        :data:`RECORD_CHANNELS` at those times.
+    field_time : ndarray
+        Times of the speed snapshots [s].
+    field : ndarray, shape (len(field_time), nodes)
+        Angular speed at every node [rad/s] (state layout, :func:`node_offsets`).
+    summary : dict
+        :data:`SUMMARY_FIELDS` (energies in J over the run).
+    state : WaveState
+        Final state (between drag half steps undone: the state at the final time).
+    engine : str
+        ``"numba"`` or ``"python"``.
+    """
+
+    time: np.ndarray
+    records: np.ndarray
+    field_time: np.ndarray
+    field: np.ndarray
+    summary: dict[str, float]
+    state: WaveState
+    engine: str
+
+
+def law_functions(law: Any) -> tuple[Any, Any, np.ndarray, str]:
+    """(torque, slope, parameters, engine) of a law: its compiled kernel when it has one.
+
+    Without a kernel (or without numba) the law's Python ``torque``/``slope`` are wrapped
+    to the kernel's call convention and the steps run as plain Python (slow: minutes for a
+    default run).
+    """
+    try:
+        from torsio.solvers.law_kernels import law_kernel
+    except ImportError:  # pragma: no cover - older layouts
+        kernel = None
+    else:
+        kernel = law_kernel(law)
+    if kernel is not None:
+        return kernel.torque, kernel.slope, kernel.parameters, "numba"
+
+    def torque(parameters: np.ndarray, speed: float, wob: float, radius: float) -> float:
+        return float(law.torque(speed, wob, radius))
+
+    def slope(parameters: np.ndarray, speed: float, wob: float, radius: float) -> float:
+        return float(law.slope(speed, wob, radius))
+
+    return torque, slope, np.zeros(1), "python"
+
+
+def _apply_drag(grid: WaveModel, state: WaveState, factor: float) -> None:
+    """Scale the speed at every node by ``factor`` with the torque unchanged."""
+    z = np.repeat(grid.impedances, np.array(grid.cells) + 1)
+    torque = 0.5 * (state.p + state.m)
+    speed = (state.p - state.m) / (2.0 * z) * factor
+    state.p[:] = torque + z * speed
+    state.m[:] = torque - z * speed
+
+
+def string_energy(grid: WaveModel, state: WaveState) -> float:
+    """Kinetic plus strain energy of the string [J]: sum of (p^2 + m^2) dt / (4 Z), trapezoidal."""
+    offsets = node_offsets(grid)
+    total = 0.0
+    for s, z in enumerate(grid.impedances):
+        p = state.p[offsets[s] : offsets[s + 1]]
+        m = state.m[offsets[s] : offsets[s + 1]]
+        density = p * p + m * m
+        total += (density.sum() - 0.5 * (density[0] + density[-1])) * grid.time_step / (4.0 * z)
+    return float(total)
+
+
+def march(
+    grid: WaveModel,
+    top: TopArrays,
+    law: Any,
+    wob: float,
+    radius: float,
+    alpha: float,
+    steps: int,
+    *,
+    window_start: int = 0,
+    record_every: int = 0,
+    field_every: int = 0,
+    state: WaveState | None = None,
+    kernel: tuple[Any, Any, np.ndarray] | None = None,
+    track_energy: bool = True,
+) -> WaveRun:
+    """Advance the distributed model ``steps`` time steps from ``state`` (default: rest).
+
+    Parameters
+    ----------
+    grid : WaveModel
+    top : TopArrays
+        :func:`held_top` or :func:`top_arrays`.
+    law : bit-rock law
+        Its compiled kernel is used when it has one (``kernel`` overrides it).
+    wob, radius : float
+        Weight on bit [N], bit radius [m].
+    alpha : float
+        Distributed drag per unit inertia [1/s] (Rayleigh alpha).
+    steps : int
+    window_start : int
+        First step of the window over which bit-speed extremes are taken.
+    record_every, field_every : int
+        Record the signals / the speed along the string every so many steps (0: never).
+    """
+    dt = grid.time_step
+    decay = math.exp(-alpha * dt)
+    if kernel is not None:
+        torque, slope, parameters = kernel
+        engine = "numba"
+    else:
+        torque, slope, parameters, engine = law_functions(law)
+    offsets = node_offsets(grid)
+    state = rest_state(grid, top) if state is None else state.copy()
+    if top.held and state.top.size == 0:
+        state = WaveState(state.p, state.m, np.zeros(1), state.bit)
+    summary = np.zeros(16)
+    summary[0], summary[1] = math.inf, -math.inf
+    # powers at t = 0 for the trapezoidal energies
+    speed0 = state.top[0] if not top.held else top.set_speed
+    if not top.held:
+        x0 = state.top
+        u0 = top.coefficients[0] + top.coefficients[1:-1] @ x0 + top.coefficients[-1] * state.m[0]
+        summary[10] = float(np.clip(u0, -top.max_torque, top.max_torque)) * speed0
+    else:
+        summary[10] = (state.m[0] + grid.impedances[0] * speed0) * speed0
+    w_bit = state.bit[0]
+    summary[11] = float(law.torque(w_bit, wob, radius)) * w_bit
+    summary[12] = alpha * grid.bit_inertia * w_bit * w_bit
+    z = np.repeat(grid.impedances, np.array(grid.cells) + 1)
+    weights = np.ones_like(z)
+    weights[offsets[:-1]] = 0.5
+    weights[offsets[1:] - 1] = 0.5
+    summary[13] = float(alpha * dt * np.sum(weights * (state.p - state.m) ** 2 / (4.0 * z)))
+    summary[14] = top.drag * speed0 * speed0
+    _apply_drag(grid, state, 1.0 / math.sqrt(decay))  # the kernel keeps it half a drag behind
+    records = np.full((steps // record_every + 1 if record_every else 0, 5), np.nan)
+    field = np.full((steps // field_every + 1 if field_every else 0, z.size), np.nan)
+    if record_every:
+        records[0] = [
+            state.bit[0], float(law.torque(state.bit[0], wob, radius)),
+            state.m[0] + grid.impedances[0] * speed0, speed0, summary[10] / speed0
+            if speed0 else 0.0,
+        ]  # fmt: skip
+    if field_every:
+        field[0] = (state.p - state.m) / (2.0 * z) * math.sqrt(decay)
+    settings = np.array(
+        [
+            dt, decay, grid.bit_inertia, alpha, wob, radius, 1.0 if top.held else 0.0,
+            top.set_speed, top.max_torque, steps, window_start, record_every, field_every,
+            top.drag, 1.0 if track_energy else 0.0,
+        ]
+    )  # fmt: skip
+    arguments = (
+        offsets, np.ascontiguousarray(grid.impedances, dtype=float), settings, state.p, state.m,
+        state.top, state.bit, top.propagator, top.forcing, top.constant, top.coefficients,
+        torque, slope, parameters, records, field, summary,
+    )  # fmt: skip
+    if engine == "numba":
+        _march(*arguments)
+    else:
+        getattr(_march, "py_func", _march)(*arguments)
+    if summary[9]:
+        raise SolverError(
+            f"the bit equation has no solution at step {int(summary[9])} "
+            f"(t = {summary[9] * dt:.6g} s): the torque on bit is not finite there"
+        )
+    _apply_drag(grid, state, math.sqrt(decay))
+    return WaveRun(
+        time=np.arange(records.shape[0]) * dt * record_every,
+        records=records,
+        field_time=np.arange(field.shape[0]) * dt * field_every,
+        field=field,
+        summary=dict(zip(SUMMARY_FIELDS, summary[:10].tolist(), strict=True)),
+        state=state,
+        engine=engine,
+    )
