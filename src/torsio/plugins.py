@@ -8,7 +8,7 @@ the other plugins keep working.
 Examples
 --------
 >>> sorted(discretizers())
-['A', 'B', 'C', 'consistent', 'mixed']
+['A', 'B', 'C', 'consistent', 'mixed', 'wave']
 >>> "tucker-wang" in bit_laws()
 True
 >>> sorted(top_drives())
@@ -34,7 +34,7 @@ class PluginWarning(UserWarning):
 @lru_cache(maxsize=1)
 def plugin_manager() -> pluggy.PluginManager:
     """The process-wide plugin manager, built on first use."""
-    from torsio.model import discretize
+    from torsio.model import discretize, wave
     from torsio.physics import laws, top_drives
 
     manager = pluggy.PluginManager("torsio")
@@ -42,6 +42,7 @@ def plugin_manager() -> pluggy.PluginManager:
     manager.register(laws, name="torsio.physics.laws")
     manager.register(top_drives, name="torsio.physics.top_drives")
     manager.register(discretize, name="torsio.model.discretize")
+    manager.register(wave, name="torsio.model.wave")
     _load_entry_points(manager)
     return manager
 

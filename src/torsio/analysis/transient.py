@@ -523,6 +523,15 @@ def simulate(
         If the integrator fails or the solution is not finite; the message gives
         the solver's message and the time reached.
     """
+    from torsio.model.wave import is_wave_model
+
+    if is_wave_model(system.model):  # the distributed model: torsio.analysis.wave
+        from torsio.analysis.wave import wave_response
+
+        return wave_response(
+            system, duration, steady_window, output_step, stick_threshold,
+            initial_state=initial_state,
+        ).transient  # fmt: skip
     options = SimulationOptions(
         duration=duration,
         steady_window=steady_window,

@@ -46,6 +46,10 @@ def run(args: argparse.Namespace) -> int:
     model = config.model(**discretization_overrides(args))
     if args.count is not None and args.count < 1:
         raise ConfigError("--count", f"expected a whole number of modes >= 1, got {args.count}")
+    from torsio.model.wave import is_wave_model
+
+    if is_wave_model(model):
+        return _wave_modes(model, args.count or 10, args.json)
     count = args.count if args.count is not None else min(model.dofs, 10)
     results = modal_analysis(model, count, string=config.string)
     if config.string is None:  # a [chain]: no continuum reference
@@ -82,4 +86,36 @@ def _print_chain_modes(results: Any, as_json: bool) -> int:
     console = Console()
     console.print(table)
     console.print(f"exact continuum: {NO_CONTINUUM}")
+    return 0
+
+
+def _wave_modes(model: Any, count: int, as_json: bool) -> int:
+    """The wave model rings at the exact continuum of its grid string (section lengths
+    rounded to whole cells); ``continuum_hz`` is the string as given."""
+    from rich.console import Console
+    from rich.table import Table
+
+    from torsio.model.continuum import continuum_modes
+
+    grid = continuum_modes(model.grid_string(), count).frequencies_hz
+    exact = continuum_modes(model.string, count).frequencies_hz
+    if as_json:
+        print_json(
+            {
+                "strategy": "wave",
+                "dofs": model.dofs,
+                "frequencies_hz": grid.tolist(),
+                "continuum_hz": exact.tolist(),
+                "count": count,
+                "time_step_s": model.time_step,
+                "travel_time_errors": model.travel_time_errors.tolist(),
+            }
+        )
+        return 0
+    table = Table(title=f"Wave model (dt = {model.time_step * 1e3:.4g} ms, cells {model.cells})")
+    for name in ("mode", "wave model [Hz]", "continuum [Hz]", "error [%]"):
+        table.add_column(name, justify="right")
+    for i, (f, e) in enumerate(zip(grid, exact, strict=True), start=1):
+        table.add_row(str(i), f"{f:.6g}", f"{e:.6g}", f"{100 * (f - e) / e:+.2e}")
+    Console().print(table)
     return 0

@@ -61,6 +61,8 @@ DISCRETIZATION_KEYS = {
     "bha_elements",
     "section_elements",
     "max_element_length",
+    "time_step",
+    "travel_time_tolerance",
 }
 DAMPING_KEYS = {"alpha", "beta", "ratios", "modes"}
 OPERATION_KEYS = {"wob", "rpm"}
@@ -424,6 +426,10 @@ def _discretization(raw: Any) -> DiscretizationConfig:
             "discretization.max_element_length",
             "length",
             allow_zero=False,
+        )
+    if "time_step" in options:
+        options["time_step"] = _positive_number(
+            options["time_step"], "discretization.time_step", "time", allow_zero=False
         )
     try:
         DiscretizationConfig(strategy, options).build()

@@ -35,18 +35,28 @@ from typing import Any
 import attrs
 import numpy as np
 
-from torsio.errors import SolverError
 from torsio.model.wave import WaveModel
+from torsio.solvers.wave_top import TopArrays
 
 try:  # numba is optional: without it the same steps run as plain Python (slowly)
-    from numba import njit
-except ImportError:  # pragma: no cover - exercised only without numba
+    from numba import njit, types
 
-    def njit(*args: Any, **kwargs: Any) -> Any:
+    _F8 = types.float64
+    _VECTOR = types.float64[::1]
+    _LAW = types.FunctionType(_F8(_VECTOR, _F8, _F8, _F8))
+    _SOLVE_SIGNATURE: Any = _F8(_F8, _F8, _F8, _LAW, _LAW, _VECTOR, _F8, _F8)
+    _MARCH_SIGNATURE: Any = types.void(
+        types.int64[::1], _VECTOR, _VECTOR, _VECTOR, _VECTOR, _VECTOR, _VECTOR,
+        types.float64[:, :, ::1], types.float64[:, ::1], types.float64[:, ::1], _VECTOR,
+        _LAW, _LAW, _VECTOR, types.float64[:, ::1], types.float64[:, ::1], _VECTOR,
+    )  # fmt: skip
+except ImportError:  # pragma: no cover - exercised only without numba
+    _SOLVE_SIGNATURE = _MARCH_SIGNATURE = None
+
+    def njit(*args: Any, **kwargs: Any) -> Any:  # type: ignore[no-redef]
         """Stands in for numba.njit: the function runs as plain Python."""
-        if len(args) == 1 and callable(args[0]) and not kwargs:
-            return args[0]
         return lambda function: function
+
 
 RECORD_CHANNELS = ("bit_speed", "bit_torque", "surface_torque", "top_speed", "motor_torque")
 """Columns of the recorded time series: rad/s, N m, N m, rad/s, N m."""
@@ -66,100 +76,6 @@ SUMMARY_FIELDS = (
 """Entries of the run summary: extremes and sums over the window; energies [J] over the run."""
 
 _NEWTON_TOLERANCE = 1e-12
-
-
-@attrs.frozen(eq=False)
-class TopArrays:
-    """The top boundary as arrays for the stepping kernel.
-
-    ``held``: the top turns at ``set_speed``. Otherwise the state x = [Omega_0, z] advances
-    by ``x1 = L[k] x0 + g[k] (m0 + m1) + q[k]`` (trapezoidal rule) in mode k = 0 (free),
-    1 (motor torque at +max) or 2 (at -max); the motor torque is
-    ``u_free = coefficients[0] + coefficients[1:-1] . x + coefficients[-1] m``.
-    """
-
-    held: bool
-    set_speed: float
-    inertia: float
-    drag: float
-    max_torque: float
-    propagator: np.ndarray  # (3, n, n)
-    forcing: np.ndarray  # (3, n)
-    constant: np.ndarray  # (3, n)
-    coefficients: np.ndarray  # (n + 2,)
-
-    @property
-    def states(self) -> int:
-        """Size of the top state [Omega_0, z] (0 when held)."""
-        return int(self.forcing.shape[1])
-
-
-def held_top(speed: float) -> TopArrays:
-    """A top held at ``speed`` [rad/s]."""
-    return TopArrays(
-        True, float(speed), 0.0, 0.0, math.inf, np.zeros((3, 1, 1)), np.zeros((3, 1)),
-        np.zeros((3, 1)), np.zeros(3),
-    )  # fmt: skip
-
-
-def top_arrays(boundary: Any, impedance: float, time_step: float, speed: float) -> TopArrays:
-    """Arrays of a top-drive description (``TopDriveBoundary``) on a pipe of ``impedance``.
-
-    ``speed`` is Omega_set for a held top. Derivation (module docstring of
-    :mod:`torsio.physics.top_drives`): with the incoming invariant m, T_pipe = m + Z Omega_0,
-    y = [Omega_set - Omega_0, T_pipe], u_free = u0 + c z + d y,
-    J Omega_0' = u - drag Omega_0 - T_pipe, z' = a z + b y + w (u - u_free).
-    """
-    if getattr(boundary, "held", True):
-        return held_top(speed)
-    a = np.atleast_2d(np.asarray(boundary.a, dtype=float)).reshape(-1, np.size(boundary.c))
-    b = np.asarray(boundary.b, dtype=float).reshape(-1, 2)
-    c = np.asarray(boundary.c, dtype=float).ravel()
-    d = np.asarray(boundary.d, dtype=float).ravel()
-    w = np.asarray(boundary.w, dtype=float).ravel()
-    m = c.size
-    n = m + 1
-    inertia, drag, z_pipe = float(boundary.inertia), float(boundary.drag), float(impedance)
-    set_speed = float(boundary.set_speed)
-    set_term = 0.0 if math.isnan(set_speed) else set_speed
-    # u_free = u0 + d0 set + [(-d0 + d1 Z), c] . x + d1 m
-    coefficients = np.concatenate(
-        [[boundary.u0 + d[0] * set_term, -d[0] + d[1] * z_pipe], c, [d[1]]]
-    )
-    propagator = np.zeros((3, n, n))
-    forcing = np.zeros((3, n))
-    constant = np.zeros((3, n))
-    max_torque = float(boundary.max_torque)
-    for mode, limit in enumerate((None, max_torque, -max_torque)):
-        A = np.zeros((n, n))
-        B = np.zeros(n)
-        f = np.zeros(n)
-        # z' = a z + b0 (set - Omega) + b1 (m + Z Omega)   [+ w (u - u_free) when limited]
-        A[1:, 1:] = a
-        A[1:, 0] = -b[:, 0] + b[:, 1] * z_pipe
-        B[1:] = b[:, 1]
-        f[1:] = b[:, 0] * set_term
-        if limit is None:  # u = u_free
-            A[0, :] = coefficients[1:-1]
-            B[0] = coefficients[-1]
-            f[0] = coefficients[0]
-        elif math.isfinite(limit):
-            f[0] = limit
-            A[1:, :] -= np.outer(w, coefficients[1:-1])
-            B[1:] -= w * coefficients[-1]
-            f[1:] += w * (limit - coefficients[0])
-        A[0, 0] -= drag + z_pipe
-        B[0] -= 1.0
-        A[0, :] /= inertia
-        B[0] /= inertia
-        f[0] /= inertia
-        left = np.eye(n) - 0.5 * time_step * A
-        propagator[mode] = np.linalg.solve(left, np.eye(n) + 0.5 * time_step * A)
-        forcing[mode] = np.linalg.solve(left, 0.5 * time_step * B)
-        constant[mode] = np.linalg.solve(left, time_step * f)
-    return TopArrays(
-        False, set_speed, inertia, drag, max_torque, propagator, forcing, constant, coefficients
-    )
 
 
 @attrs.frozen(eq=False)
@@ -211,8 +127,8 @@ def state_from_fields(
 
 
 # --- the compiled step ----------------------------------------------------------------------
-@njit(cache=True)
-def _solve_bit(k, rhs, guess, torque, slope, parameters, wob, radius):  # type: ignore[no-untyped-def]
+@njit(_SOLVE_SIGNATURE, cache=True)
+def _solve_bit(k, rhs, guess, torque, slope, parameters, wob, radius):  # type: ignore[no-untyped-def,unused-ignore]
     """Root of k w + T_bit(w) = rhs nearest ``guess`` in the direction of motion."""
     f0 = k * guess + torque(parameters, guess, wob, radius) - rhs
     if f0 == 0.0:
@@ -253,8 +169,8 @@ def _solve_bit(k, rhs, guess, torque, slope, parameters, wob, radius):  # type: 
     return w
 
 
-@njit(cache=True)
-def _march(  # type: ignore[no-untyped-def]
+@njit(_MARCH_SIGNATURE, cache=True)
+def _march(  # type: ignore[no-untyped-def,unused-ignore]
     offsets, impedance, settings, p, m, top_state, bit_state,
     propagator, forcing, constant, coefficients,
     torque, slope, parameters, records, field, summary,
@@ -433,190 +349,3 @@ def _march(  # type: ignore[no-untyped-def]
     if steps % 2 == 1:  # the buffers were swapped an odd number of times
         p_next[:] = p
         m_next[:] = m
-
-
-# --- driver ---------------------------------------------------------------------------------
-@attrs.frozen(eq=False)
-class WaveRun:
-    """What :func:`march` produced.
-
-    Attributes
-    ----------
-    time : ndarray
-        Record times [s] (multiples of the record step, from 0).
-    records : ndarray, shape (len(time), 5)
-        :data:`RECORD_CHANNELS` at those times.
-    field_time : ndarray
-        Times of the speed snapshots [s].
-    field : ndarray, shape (len(field_time), nodes)
-        Angular speed at every node [rad/s] (state layout, :func:`node_offsets`).
-    summary : dict
-        :data:`SUMMARY_FIELDS` (energies in J over the run).
-    state : WaveState
-        Final state (between drag half steps undone: the state at the final time).
-    engine : str
-        ``"numba"`` or ``"python"``.
-    """
-
-    time: np.ndarray
-    records: np.ndarray
-    field_time: np.ndarray
-    field: np.ndarray
-    summary: dict[str, float]
-    state: WaveState
-    engine: str
-
-
-def law_functions(law: Any) -> tuple[Any, Any, np.ndarray, str]:
-    """(torque, slope, parameters, engine) of a law: its compiled kernel when it has one.
-
-    Without a kernel (or without numba) the law's Python ``torque``/``slope`` are wrapped
-    to the kernel's call convention and the steps run as plain Python (slow: minutes for a
-    default run).
-    """
-    try:
-        from torsio.solvers.law_kernels import law_kernel
-    except ImportError:  # pragma: no cover - older layouts
-        kernel = None
-    else:
-        kernel = law_kernel(law)
-    if kernel is not None:
-        return kernel.torque, kernel.slope, kernel.parameters, "numba"
-
-    def torque(parameters: np.ndarray, speed: float, wob: float, radius: float) -> float:
-        return float(law.torque(speed, wob, radius))
-
-    def slope(parameters: np.ndarray, speed: float, wob: float, radius: float) -> float:
-        return float(law.slope(speed, wob, radius))
-
-    return torque, slope, np.zeros(1), "python"
-
-
-def _apply_drag(grid: WaveModel, state: WaveState, factor: float) -> None:
-    """Scale the speed at every node by ``factor`` with the torque unchanged."""
-    z = np.repeat(grid.impedances, np.array(grid.cells) + 1)
-    torque = 0.5 * (state.p + state.m)
-    speed = (state.p - state.m) / (2.0 * z) * factor
-    state.p[:] = torque + z * speed
-    state.m[:] = torque - z * speed
-
-
-def string_energy(grid: WaveModel, state: WaveState) -> float:
-    """Kinetic plus strain energy of the string [J]: sum of (p^2 + m^2) dt / (4 Z), trapezoidal."""
-    offsets = node_offsets(grid)
-    total = 0.0
-    for s, z in enumerate(grid.impedances):
-        p = state.p[offsets[s] : offsets[s + 1]]
-        m = state.m[offsets[s] : offsets[s + 1]]
-        density = p * p + m * m
-        total += (density.sum() - 0.5 * (density[0] + density[-1])) * grid.time_step / (4.0 * z)
-    return float(total)
-
-
-def march(
-    grid: WaveModel,
-    top: TopArrays,
-    law: Any,
-    wob: float,
-    radius: float,
-    alpha: float,
-    steps: int,
-    *,
-    window_start: int = 0,
-    record_every: int = 0,
-    field_every: int = 0,
-    state: WaveState | None = None,
-    kernel: tuple[Any, Any, np.ndarray] | None = None,
-    track_energy: bool = True,
-) -> WaveRun:
-    """Advance the distributed model ``steps`` time steps from ``state`` (default: rest).
-
-    Parameters
-    ----------
-    grid : WaveModel
-    top : TopArrays
-        :func:`held_top` or :func:`top_arrays`.
-    law : bit-rock law
-        Its compiled kernel is used when it has one (``kernel`` overrides it).
-    wob, radius : float
-        Weight on bit [N], bit radius [m].
-    alpha : float
-        Distributed drag per unit inertia [1/s] (Rayleigh alpha).
-    steps : int
-    window_start : int
-        First step of the window over which bit-speed extremes are taken.
-    record_every, field_every : int
-        Record the signals / the speed along the string every so many steps (0: never).
-    """
-    dt = grid.time_step
-    decay = math.exp(-alpha * dt)
-    if kernel is not None:
-        torque, slope, parameters = kernel
-        engine = "numba"
-    else:
-        torque, slope, parameters, engine = law_functions(law)
-    offsets = node_offsets(grid)
-    state = rest_state(grid, top) if state is None else state.copy()
-    if top.held and state.top.size == 0:
-        state = WaveState(state.p, state.m, np.zeros(1), state.bit)
-    summary = np.zeros(16)
-    summary[0], summary[1] = math.inf, -math.inf
-    # powers at t = 0 for the trapezoidal energies
-    speed0 = state.top[0] if not top.held else top.set_speed
-    if not top.held:
-        x0 = state.top
-        u0 = top.coefficients[0] + top.coefficients[1:-1] @ x0 + top.coefficients[-1] * state.m[0]
-        summary[10] = float(np.clip(u0, -top.max_torque, top.max_torque)) * speed0
-    else:
-        summary[10] = (state.m[0] + grid.impedances[0] * speed0) * speed0
-    w_bit = state.bit[0]
-    summary[11] = float(law.torque(w_bit, wob, radius)) * w_bit
-    summary[12] = alpha * grid.bit_inertia * w_bit * w_bit
-    z = np.repeat(grid.impedances, np.array(grid.cells) + 1)
-    weights = np.ones_like(z)
-    weights[offsets[:-1]] = 0.5
-    weights[offsets[1:] - 1] = 0.5
-    summary[13] = float(alpha * dt * np.sum(weights * (state.p - state.m) ** 2 / (4.0 * z)))
-    summary[14] = top.drag * speed0 * speed0
-    _apply_drag(grid, state, 1.0 / math.sqrt(decay))  # the kernel keeps it half a drag behind
-    records = np.full((steps // record_every + 1 if record_every else 0, 5), np.nan)
-    field = np.full((steps // field_every + 1 if field_every else 0, z.size), np.nan)
-    if record_every:
-        records[0] = [
-            state.bit[0], float(law.torque(state.bit[0], wob, radius)),
-            state.m[0] + grid.impedances[0] * speed0, speed0, summary[10] / speed0
-            if speed0 else 0.0,
-        ]  # fmt: skip
-    if field_every:
-        field[0] = (state.p - state.m) / (2.0 * z) * math.sqrt(decay)
-    settings = np.array(
-        [
-            dt, decay, grid.bit_inertia, alpha, wob, radius, 1.0 if top.held else 0.0,
-            top.set_speed, top.max_torque, steps, window_start, record_every, field_every,
-            top.drag, 1.0 if track_energy else 0.0,
-        ]
-    )  # fmt: skip
-    arguments = (
-        offsets, np.ascontiguousarray(grid.impedances, dtype=float), settings, state.p, state.m,
-        state.top, state.bit, top.propagator, top.forcing, top.constant, top.coefficients,
-        torque, slope, parameters, records, field, summary,
-    )  # fmt: skip
-    if engine == "numba":
-        _march(*arguments)
-    else:
-        getattr(_march, "py_func", _march)(*arguments)
-    if summary[9]:
-        raise SolverError(
-            f"the bit equation has no solution at step {int(summary[9])} "
-            f"(t = {summary[9] * dt:.6g} s): the torque on bit is not finite there"
-        )
-    _apply_drag(grid, state, math.sqrt(decay))
-    return WaveRun(
-        time=np.arange(records.shape[0]) * dt * record_every,
-        records=records,
-        field_time=np.arange(field.shape[0]) * dt * field_every,
-        field=field,
-        summary=dict(zip(SUMMARY_FIELDS, summary[:10].tolist(), strict=True)),
-        state=state,
-        engine=engine,
-    )

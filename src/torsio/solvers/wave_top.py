@@ -1,0 +1,113 @@
+"""The top of the distributed model as arrays for the stepping kernel.
+
+A held top turns at Omega: the outgoing invariant is p = m + 2 Z Omega, a velocity
+reflection R = -1. A top drive (:class:`torsio.physics.top_drives.TopDriveBoundary`:
+inertia J, drag, linear controller with states z) sees the pipe torque
+T_pipe = m + Z Omega_0; its state x = [Omega_0, z] obeys a linear ODE driven by the
+incoming invariant m, integrated by the trapezoidal rule with m linear over the step.
+For small motions of a PI top drive with no inertia and no integral gain this gives the
+reflection R = (Z - kp) / (Z + kp); in general R = (Z - Z_td) / (Z + Z_td) with the top
+drive's impedance Z_td(i omega) (``TopDriveBoundary.impedance``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import attrs
+import numpy as np
+
+
+@attrs.frozen(eq=False)
+class TopArrays:
+    """The top boundary as arrays for the stepping kernel.
+
+    ``held``: the top turns at ``set_speed``. Otherwise the state x = [Omega_0, z] advances
+    by ``x1 = L[k] x0 + g[k] (m0 + m1) + q[k]`` (trapezoidal rule) in mode k = 0 (free),
+    1 (motor torque at +max) or 2 (at -max); the motor torque is
+    ``u_free = coefficients[0] + coefficients[1:-1] . x + coefficients[-1] m``.
+    """
+
+    held: bool
+    set_speed: float
+    inertia: float
+    drag: float
+    max_torque: float
+    propagator: np.ndarray  # (3, n, n)
+    forcing: np.ndarray  # (3, n)
+    constant: np.ndarray  # (3, n)
+    coefficients: np.ndarray  # (n + 2,)
+
+    @property
+    def states(self) -> int:
+        """Size of the top state [Omega_0, z] (0 when held)."""
+        return int(self.forcing.shape[1])
+
+
+def held_top(speed: float) -> TopArrays:
+    """A top held at ``speed`` [rad/s]."""
+    return TopArrays(
+        True, float(speed), 0.0, 0.0, math.inf, np.zeros((3, 1, 1)), np.zeros((3, 1)),
+        np.zeros((3, 1)), np.zeros(3),
+    )  # fmt: skip
+
+
+def top_arrays(boundary: Any, impedance: float, time_step: float, speed: float) -> TopArrays:
+    """Arrays of a top-drive description (``TopDriveBoundary``) on a pipe of ``impedance``.
+
+    ``speed`` is Omega_set for a held top. Derivation (module docstring of
+    :mod:`torsio.physics.top_drives`): with the incoming invariant m, T_pipe = m + Z Omega_0,
+    y = [Omega_set - Omega_0, T_pipe], u_free = u0 + c z + d y,
+    J Omega_0' = u - drag Omega_0 - T_pipe, z' = a z + b y + w (u - u_free).
+    """
+    if getattr(boundary, "held", True):
+        return held_top(speed)
+    a = np.atleast_2d(np.asarray(boundary.a, dtype=float)).reshape(-1, np.size(boundary.c))
+    b = np.asarray(boundary.b, dtype=float).reshape(-1, 2)
+    c = np.asarray(boundary.c, dtype=float).ravel()
+    d = np.asarray(boundary.d, dtype=float).ravel()
+    w = np.asarray(boundary.w, dtype=float).ravel()
+    m = c.size
+    n = m + 1
+    inertia, drag, z_pipe = float(boundary.inertia), float(boundary.drag), float(impedance)
+    set_speed = float(boundary.set_speed)
+    set_term = 0.0 if math.isnan(set_speed) else set_speed
+    # u_free = u0 + d0 set + [(-d0 + d1 Z), c] . x + d1 m
+    coefficients = np.concatenate(
+        [[boundary.u0 + d[0] * set_term, -d[0] + d[1] * z_pipe], c, [d[1]]]
+    )
+    propagator = np.zeros((3, n, n))
+    forcing = np.zeros((3, n))
+    constant = np.zeros((3, n))
+    max_torque = float(boundary.max_torque)
+    for mode, limit in enumerate((None, max_torque, -max_torque)):
+        A = np.zeros((n, n))
+        B = np.zeros(n)
+        f = np.zeros(n)
+        # z' = a z + b0 (set - Omega) + b1 (m + Z Omega)   [+ w (u - u_free) when limited]
+        A[1:, 1:] = a
+        A[1:, 0] = -b[:, 0] + b[:, 1] * z_pipe
+        B[1:] = b[:, 1]
+        f[1:] = b[:, 0] * set_term
+        if limit is None:  # u = u_free
+            A[0, :] = coefficients[1:-1]
+            B[0] = coefficients[-1]
+            f[0] = coefficients[0]
+        elif math.isfinite(limit):
+            f[0] = limit
+            A[1:, :] -= np.outer(w, coefficients[1:-1])
+            B[1:] -= w * coefficients[-1]
+            f[1:] += w * (limit - coefficients[0])
+        A[0, 0] -= drag + z_pipe
+        B[0] -= 1.0
+        A[0, :] /= inertia
+        B[0] /= inertia
+        f[0] /= inertia
+        left = np.eye(n) - 0.5 * time_step * A
+        propagator[mode] = np.linalg.solve(left, np.eye(n) + 0.5 * time_step * A)
+        forcing[mode] = np.linalg.solve(left, 0.5 * time_step * B)
+        constant[mode] = np.linalg.solve(left, time_step * f)
+    return TopArrays(
+        False, set_speed, inertia, drag, max_torque, propagator, forcing, constant, coefficients
+    )

@@ -1,0 +1,205 @@
+"""The distributed model (wave equation along characteristics) against exact results."""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import attrs
+import numpy as np
+import pytest
+from scipy.optimize import minimize_scalar
+
+from torsio.errors import ConfigError
+from torsio.examples import ritto2017_string
+from torsio.io.config import builtin_config
+from torsio.model.components import Bit, DrillCollar, DrillPipe
+from torsio.model.continuum import continuum_modes
+from torsio.model.drillstring import DrillString
+from torsio.model.wave import WaveStrategy, choose_time_step, interface_factors
+from torsio.physics.damping import RayleighDamping
+from torsio.physics.laws import ConstantTorque
+from torsio.physics.top_drives import PITopDrive
+from torsio.solvers.characteristics import node_offsets, state_from_fields
+from torsio.solvers.wave_march import march, string_energy
+from torsio.solvers.wave_top import held_top, top_arrays
+
+numba = pytest.importorskip("numba")
+SIGNATURE = "float64(float64[::1], float64, float64, float64)"
+
+
+@numba.njit(SIGNATURE, cache=True)
+def _linear_torque(parameters, speed, wob, radius):  # type: ignore[no-untyped-def]
+    return parameters[0] + parameters[1] * speed
+
+
+@numba.njit(SIGNATURE, cache=True)
+def _linear_slope(parameters, speed, wob, radius):  # type: ignore[no-untyped-def]
+    return parameters[1]
+
+
+def free_bit(torque: float = 0.0, damping: float = 0.0) -> tuple:
+    """Kernel of a bit law T = torque + damping * speed (0: a free bit)."""
+    return (_linear_torque, _linear_slope, np.array([torque, damping]))
+
+
+NO_LAW = ConstantTorque(torque_on_bit=0.0)
+
+
+def peak_frequency(time: np.ndarray, signal: np.ndarray, guess: float) -> float:
+    """Frequency [Hz] of the Hann-windowed spectral peak nearest ``guess``, refined."""
+    window = np.hanning(signal.size) * (signal - signal.mean())
+
+    def minus_magnitude(f: float) -> float:
+        return -abs(np.sum(window * np.exp(-2j * np.pi * f * time)))
+
+    bin_width = 1.0 / (time[-1] - time[0])
+    found = minimize_scalar(
+        minus_magnitude, bounds=(guess - 2 * bin_width, guess + 2 * bin_width), method="bounded",
+        options={"xatol": 1e-12},
+    )  # fmt: skip
+    return float(found.x)
+
+
+def test_grid_rounding_is_within_tolerance_and_reported() -> None:
+    # the grid string is the given one with each section rounded to whole cells
+    grid = WaveStrategy(time_step=2e-3, travel_time_tolerance=1e-4).discretize(ritto2017_string())
+    assert grid.time_step <= 2e-3
+    assert grid.travel_time_errors.max() <= 1e-4
+    lengths = np.array([s.length for s in grid.grid_string().flexible_sections])
+    np.testing.assert_allclose(lengths, grid.grid_lengths, rtol=1e-15)
+    dt, cells = choose_time_step(np.array([1.0, 0.25]), 0.1, 1e-9)
+    assert (dt, cells.tolist()) == (1 / 12, [12, 3])  # the largest step <= 0.1 exact for both
+
+
+def test_rings_at_the_exact_continuum_frequencies() -> None:
+    # top held, no damping, no bit torque, released from a uniform static torque: the
+    # free vibration holds only natural modes; reference: the exact continuum
+    # (torsio.model.continuum, Wittrick-Williams), 0.13075 Hz first for the paper's string
+    string = ritto2017_string()
+    grid = WaveStrategy(time_step=2e-3, travel_time_tolerance=5e-5).discretize(string)
+    top = held_top(0.0)
+    size = int(node_offsets(grid)[-1])
+    state = state_from_fields(grid, np.zeros(size), np.full(size, 1e3), top)
+    steps = int(200.0 / grid.time_step)
+    run = march(grid, top, NO_LAW, 0.0, 0.1, 0.0, steps, record_every=1, state=state,
+                kernel=free_bit())  # fmt: skip
+    exact_grid = continuum_modes(grid.grid_string(), count=3).frequencies_hz
+    exact = continuum_modes(string, count=3).frequencies_hz
+    assert round(float(exact[0]), 5) == 0.13075
+    for f_grid, f_exact in zip(exact_grid, exact, strict=True):
+        measured = peak_frequency(run.time, run.records[:, 0], f_grid)
+        assert abs(measured - f_exact) / f_exact < 1e-4
+        assert abs(measured - f_grid) / f_grid < 1e-6  # the grid string's own modes
+
+
+def test_step_in_top_speed_arrives_after_the_travel_time() -> None:
+    # d'Alembert: nothing moves at the bit before L/c = sum of the section travel times
+    grid = WaveStrategy(time_step=2e-3, travel_time_tolerance=1e-4).discretize(ritto2017_string())
+    steps = sum(grid.cells) + 5
+    run = march(grid, held_top(1.0), NO_LAW, 0.0, 0.1, 0.0, steps, record_every=1,
+                kernel=free_bit())  # fmt: skip
+    moving = np.flatnonzero(run.records[:, 0] != 0.0)
+    arrival = run.time[moving[0]]
+    travel = grid.travel_times.sum()
+    assert abs(arrival - travel) <= grid.time_step * (1 + 1e-9)
+    assert moving[0] == sum(grid.cells)
+
+
+def _two_section_string() -> DrillString:
+    return DrillString(
+        [DrillPipe(od=0.127, id=0.1086, length=1000.0),
+         DrillCollar(od=0.2032, id=0.0714, length=500.0), Bit(od=0.2159, id=0.05, length=0.3)]
+    )  # fmt: skip
+
+
+def test_interface_splits_a_wave_exactly() -> None:
+    # impedance junction: velocity transmitted 2 Z1/(Z1+Z2), reflected (Z1-Z2)/(Z1+Z2)
+    # (torque: 2 Z2/(Z1+Z2), (Z2-Z1)/(Z1+Z2)); reference: continuity of speed and torque
+    grid = WaveStrategy(time_step=1e-3).discretize(_two_section_string())
+    z1, z2 = grid.impedances
+    upper, lower = grid.cells
+    steps = upper + lower // 2  # the front is halfway down the collars, nothing back yet
+    run = march(grid, held_top(1.0), NO_LAW, 0.0, 0.1, 0.0, steps, field_every=steps,
+                kernel=free_bit())  # fmt: skip
+    speed = run.field[-1]
+    factors = interface_factors(z1, z2)
+    reflected_region = speed[upper - lower // 2 + 2 : upper]  # above the junction
+    transmitted_region = speed[upper + 2 : upper + lower // 2 - 2]
+    np.testing.assert_allclose(reflected_region, 1.0 + factors["velocity_reflected"], rtol=1e-14)
+    np.testing.assert_allclose(transmitted_region, factors["velocity_transmitted"], rtol=1e-14)
+    assert math.isclose(1 + factors["torque_reflected"], factors["torque_transmitted"])
+
+
+def test_pi_top_drive_reflects_zeta_minus_kp_over_zeta_plus_kp() -> None:
+    # a plateau of upgoing velocity hits a PI top drive (ki = 0): once its inertia has
+    # settled (J/(Z+kp) = 3 dt), the reflection is R = (Z - kp)/(Z + kp) exactly
+    # (small-signal impedance of the top drive: kp; torsio.physics.top_drives)
+    string = DrillString([DrillPipe(od=0.127, id=0.1086, length=6000.0), Bit(od=0.2, id=0.05,
+                          length=0.3)])  # fmt: skip
+    grid = WaveStrategy(time_step=1e-3).discretize(string)
+    zeta = float(grid.impedances[0])
+    kp = 3.0 * zeta
+    inertia = 3 * grid.time_step * (zeta + kp)
+    boundary = PITopDrive(inertia=inertia, kp=kp, ki=0.0).boundary(SimpleNamespace(omega=0.0))
+    top = top_arrays(boundary, zeta, grid.time_step, 0.0)
+    size = int(node_offsets(grid)[-1])
+    incoming = np.zeros(size)
+    incoming[200:1200] = 1.0  # upgoing: torque = -Z * speed
+    state = state_from_fields(grid, incoming, -zeta * incoming, top)
+    steps = 1000  # the plateau's top part has been reflected and travelled down 800 cells
+    run = march(grid, top, NO_LAW, 0.0, 0.1, 0.0, steps, field_every=steps, state=state,
+                kernel=free_bit())  # fmt: skip
+    reflected = run.field[-1][300:700]  # only the reflected wave is there now
+    expected = (zeta - kp) / (zeta + kp)
+    np.testing.assert_allclose(reflected, expected, rtol=1e-12)
+
+
+def test_lossless_free_vibration_keeps_its_energy() -> None:
+    # no damping, no bit torque, top held still: energy is conserved by exact transport and
+    # junctions; only the bit's BDF2 step (inertia 0.4 kg m^2) can lose any
+    grid = WaveStrategy(time_step=2e-3, travel_time_tolerance=1e-3).discretize(ritto2017_string())
+    top = held_top(0.0)
+    size = int(node_offsets(grid)[-1])
+    state = state_from_fields(grid, np.zeros(size), np.full(size, 1e3), top)
+    start = string_energy(grid, state)
+    run = march(grid, top, NO_LAW, 0.0, 0.1, 0.0, 20000, state=state, kernel=free_bit())
+    end = string_energy(grid, run.state) + 0.5 * grid.bit_inertia * run.state.bit[0] ** 2
+    assert run.summary["work_in"] == 0.0
+    assert abs(end - start) / start < 1e-3
+
+
+@pytest.mark.parametrize(("alpha", "largest", "min_order"), [(0.0, 2e-5, 0.3), (0.35, 5e-4, 0.9)])
+def test_energy_balance_converges_with_the_step(
+    alpha: float, largest: float, min_order: float
+) -> None:
+    # work in = stored + dissipated (reference: the energy balance of the wave equation);
+    # the residual is the quadrature error of the step, so it shrinks with the step: first
+    # order with drag (the trapezoidal drag power against the split drag step), slower
+    # without (the step fronts are discontinuous at the stiff bit)
+    residuals = []
+    for dt in (4e-3, 2e-3):
+        grid = WaveStrategy(time_step=dt, travel_time_tolerance=1.0).discretize(ritto2017_string())
+        grid = attrs.evolve(grid, time_step=dt, cells=grid.cells)
+        run = march(grid, held_top(5.0), NO_LAW, 0.0, 0.1, alpha, int(20.0 / dt),
+                    kernel=free_bit(damping=500.0))  # fmt: skip
+        s = run.summary
+        stored = s["stored_final"] - s["stored_initial"]
+        dissipated = s["bit_dissipation"] + s["bit_drag_dissipation"] + s["string_drag_dissipation"]
+        residuals.append((s["work_in"] - stored - dissipated) / s["work_in"])
+    assert 0 < residuals[0] < largest
+    assert math.log2(residuals[0] / residuals[1]) > min_order
+
+
+def test_wave_strategy_refuses_what_it_cannot_represent() -> None:
+    config = builtin_config()
+    system = config.system(strategy="wave")  # the paper's beta = 0.06 s
+    from torsio.analysis.wave import wave_response
+
+    with pytest.raises(ConfigError, match="damping.beta"):
+        wave_response(system, duration=1.0)
+    with pytest.raises(ConfigError, match="dp_elements"):
+        WaveStrategy(dp_elements=5)
+    with pytest.raises(ConfigError, match="time_step"):
+        WaveStrategy(time_step=-1.0)
+    assert attrs.evolve(system, damping=RayleighDamping(alpha=0.35)).model.strategy == "wave"
