@@ -578,6 +578,12 @@ def _chunk_task(
 
 def _scales(system: System) -> tuple[float, float]:
     from torsio.model.modal import modal_analysis
+    from torsio.model.wave import is_wave_model
+
+    if is_wave_model(system.model):
+        from torsio.solvers.wave_batch import wave_scales
+
+        return wave_scales(system.model)
 
     omega1 = float(modal_analysis(system.model, 1).frequencies_rad[0])
     return float(system.model.equivalent_stiffness), omega1
@@ -1011,7 +1017,12 @@ def _build_map(
         )
     info["elapsed_s"] = time.perf_counter() - start
     info["extra_runs"] = runner.done_points - points
-    boundary = stability_boundary(system, rpm)
+    from torsio.model.wave import is_wave_model
+
+    if is_wave_model(system.model):  # no linearization of the distributed model (yet)
+        linear_wob = np.full(rpm.shape, np.nan)
+    else:
+        linear_wob = stability_boundary(system, rpm).critical_wob
     return SeverityMap(
         wob,
         rpm,
@@ -1019,7 +1030,7 @@ def _build_map(
         critical,
         crit_status,
         bracket,
-        boundary.critical_wob,
+        linear_wob,
         float(threshold),
         float(stick_slip_threshold),
         k_eq,

@@ -374,6 +374,12 @@ def simulate_batch(
         Failed points have NaN severity and a non-zero status; they are never
         silently dropped.
     """
+    from torsio.model.wave import is_wave_model
+
+    if is_wave_model(system.model):  # the distributed model: its own stepping
+        from torsio.solvers.wave_batch import simulate_wave_batch
+
+        return simulate_wave_batch(system, wob, rpm, duration, steady_window, rtol, atol)
     boundary = system.top.boundary(system)
     torque_driven = not boundary.held and not math.isfinite(boundary.set_speed)
     if torque_driven != (rpm is None):

@@ -101,7 +101,14 @@ def run_times(
     from torsio.model.modal import modal_analysis
 
     if duration is None or steady_window is None:
-        omega1 = float(modal_analysis(system.model, 1).frequencies_rad[0])
+        from torsio.model.wave import is_wave_model
+
+        if is_wave_model(system.model):
+            from torsio.solvers.wave_batch import wave_scales
+
+            omega1 = wave_scales(system.model)[1]
+        else:
+            omega1 = float(modal_analysis(system.model, 1).frequencies_rad[0])
         default_duration, default_window = default_times(omega1)
         duration = default_duration if duration is None else duration
         steady_window = default_window if steady_window is None else steady_window
