@@ -231,3 +231,23 @@ def test_wave_strategy_from_the_cli_simulate_and_map(tmp_path, capsys) -> None: 
     mapped = json.loads(capsys.readouterr().out)
     assert mapped["severity"][0][0] == pytest.approx(simulated["severity"], rel=1e-12)
     assert simulated["severity"] > 0.8  # stick-slip at the paper's low speed, high WOB
+
+
+@pytest.mark.slow
+def test_strategy_c_severity_converges_to_the_wave_model() -> None:
+    # S_SS of strategy C (lumped mass, rigid BHA) approaches the distributed model's as
+    # the drill pipes get more elements, at the paper's stick-slip point 150 kN, 60 rpm;
+    # reference: the wave model on its default grid (default run length and window)
+    from torsio.solvers.batch import simulate_batch
+
+    damping = RayleighDamping(alpha=0.35)
+    config = builtin_config()
+    wave = attrs.evolve(config.system(strategy="wave"), damping=damping)
+    reference = float(simulate_batch(wave, [150e3], [60.0]).severity[0])
+    errors = []
+    for elements in (2, 8, 32):
+        lumped = attrs.evolve(config.system(strategy="C", dp_elements=elements), damping=damping)
+        errors.append(abs(float(simulate_batch(lumped, [150e3], [60.0]).severity[0]) - reference))
+    print("S_SS errors of C against the wave model:", errors)
+    assert errors[-1] < errors[0]
+    assert errors[-1] < 0.05
