@@ -251,3 +251,20 @@ def test_strategy_c_severity_converges_to_the_wave_model() -> None:
     print("S_SS errors of C against the wave model:", errors)
     assert errors[-1] < errors[0]
     assert errors[-1] < 0.05
+
+
+def test_soft_torque_top_drive_runs_on_the_wave_model() -> None:
+    # SoftTorque's default gains need omega_1: for the wave model, the exact continuum of
+    # its grid (torsio.analysis.wave.first_frequency); the energy balance closes
+    # (reference: the energy balance of the wave equation with the top drive's inertia)
+    from torsio.analysis.wave import first_frequency, wave_response
+    from torsio.physics.top_drives import SoftTorqueTopDrive
+
+    system = attrs.evolve(builtin_config().system(strategy="wave"), damping=RayleighDamping(0.35))
+    system = system.with_top(SoftTorqueTopDrive(inertia=2900.0)).at(wob=150e3, rpm=60)
+    kp, ki = system.top.gains(system)
+    assert ki == pytest.approx(first_frequency(system.model) ** 2 * 2900.0, rel=1e-12)
+    response = wave_response(system, duration=20.0, steady_window=5.0)
+    energy = response.energy
+    assert abs(energy["residual"]) < 1e-3 * energy["work_in"]
+    assert response.run.records[-1, 3] > 0.0  # the top drive turns

@@ -189,7 +189,12 @@ def top_pipe_impedance(system: Any) -> float:
 
 def _first_frequency(system: Any) -> float:
     from torsio.model.modal import modal_analysis
+    from torsio.model.wave import is_wave_model
 
+    if is_wave_model(system.model):  # the distributed model: its exact continuum
+        from torsio.analysis.wave import first_frequency
+
+        return first_frequency(system.model)
     return float(modal_analysis(system.model, 1).frequencies_rad[0])
 
 
