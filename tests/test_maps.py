@@ -24,7 +24,7 @@ import math
 import numpy as np
 import pytest
 
-from torsio.analysis import maps
+from torsio.analysis import map_runs, maps
 from torsio.analysis.maps import (
     MapInterrupted,
     SeverityMap,
@@ -260,7 +260,7 @@ def test_solver_failures_raise_or_are_marked(one_dof: System, monkeypatch) -> No
     def few_steps(*args, **kwargs):
         return original(*args, **{**kwargs, "max_steps": 500})
 
-    monkeypatch.setattr(maps, "simulate_batch", few_steps)
+    monkeypatch.setattr(map_runs, "simulate_batch", few_steps)  # what each chunk calls
     with pytest.raises(SolverError, match="wob=150000 N, rpm=60: too many steps"):
         severity_map(one_dof, [50e3, 150e3], [60.0])
     with pytest.warns(RuntimeWarning, match="failed at 1 points"):

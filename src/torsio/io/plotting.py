@@ -14,7 +14,8 @@ that they compose into multi-panel figures:
   :func:`plot_reference_lines`, :func:`shade_bha`; :func:`save_figure`
   writes and closes a figure; :func:`pyplot` gives ``matplotlib.pyplot``
   (Agg backend when there is no display) or a clear error if matplotlib is
-  missing.
+  missing (these two live in :mod:`torsio.io.figures`, the convergence plots in
+  :mod:`torsio.io.convergence_plots`; all are importable from here).
 
 Depth is measured from the surface [m] and increases downward, as in the
 paper's figures. Mode shapes are normalized to a peak magnitude of 1
@@ -33,15 +34,18 @@ Examples
 
 from __future__ import annotations
 
-import os
-import sys
 from collections.abc import Sequence
-from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from torsio.errors import TorsioError
+from torsio.io.convergence_plots import (
+    plot_convergence,
+    plot_convergence_error,
+    plot_reference_lines,
+)
+from torsio.io.figures import _axes, pyplot, save_figure
 
 if TYPE_CHECKING:
     from torsio.model.continuum import ContinuumModes
@@ -65,89 +69,6 @@ SHAPE_SAMPLES = 801
 
 MAX_MARKERS = 80
 """Above this many nodes, a lumped shape marks only every k-th node (the line joins them all)."""
-
-
-def pyplot() -> Any:
-    """``matplotlib.pyplot``, with the Agg backend when there is no display.
-
-    Raises
-    ------
-    TorsioError
-        If matplotlib is not installed.
-    """
-    try:
-        import matplotlib
-    except ImportError:
-        raise TorsioError(
-            "plotting needs matplotlib, which is not installed; "
-            "install it with: pip install 'torsio[plot]'"
-        ) from None
-    headless = sys.platform.startswith("linux") and not (
-        os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")
-    )
-    if headless and "MPLBACKEND" not in os.environ and "matplotlib.pyplot" not in sys.modules:
-        matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
-def save_figure(
-    figure: Any, path: str | os.PathLike[str], dpi: float = 100.0, palette: bool = False
-) -> Path:
-    """Save a figure (creating its folder), close it and return the path written.
-
-    Parameters
-    ----------
-    figure : matplotlib Figure
-    path : str or path-like
-        File to write; the format follows the suffix (``.png``, ``.svg``, ...).
-    dpi : float
-        Resolution of raster formats [dots per inch].
-    palette : bool
-        For PNG: store at most 256 colours (an indexed PNG, typically a third of
-        the size; line plots look the same).
-
-    Examples
-    --------
-    >>> import tempfile, pathlib
-    >>> figure = pyplot().figure(figsize=(2, 2))
-    >>> with tempfile.TemporaryDirectory() as folder:
-    ...     path = save_figure(figure, pathlib.Path(folder) / "sub" / "empty.png", palette=True)
-    ...     path.stat().st_size > 0
-    True
-    """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    if palette and path.suffix.lower() == ".png":
-        from io import BytesIO
-
-        from PIL import Image  # a dependency of matplotlib
-
-        buffer = BytesIO()
-        figure.savefig(buffer, format="png", dpi=dpi, bbox_inches="tight")
-        buffer.seek(0)
-        with Image.open(buffer) as image:
-            indexed = image.convert("RGB").quantize(colors=256, dither=Image.Dither.NONE)
-            indexed.save(path, optimize=True)
-    else:
-        figure.savefig(path, dpi=dpi, bbox_inches="tight")
-    pyplot().close(figure)
-    return path
-
-
-def _ticker() -> Any:
-    pyplot()
-    import matplotlib.ticker
-
-    return matplotlib.ticker
-
-
-def _axes(ax: Any) -> Any:
-    if ax is not None:
-        return ax
-    _, ax = pyplot().subplots()
-    return ax
 
 
 def _dofs(count: int) -> str:
@@ -352,193 +273,3 @@ def _style_shape_axes(ax: Any) -> None:
         ax.invert_yaxis()
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize="small")
-
-
-def plot_reference_lines(
-    values_hz: Sequence[float],
-    ax: Any = None,
-    *,
-    labels: Sequence[str | None] | None = None,
-    colors: Sequence[Any] | None = None,
-    linestyle: str = "--",
-) -> Any:
-    """Horizontal lines (dashed by default) at reference frequencies [Hz], e.g. the continuum.
-
-    Parameters
-    ----------
-    values_hz : sequence of float
-        Reference frequencies [Hz].
-    ax : matplotlib Axes, optional
-        Where to draw; a new figure if omitted.
-    labels : sequence of str or None, optional
-        Legend entry of each line (None: no entry).
-    colors : sequence, optional
-        Colour of each line (default grey).
-    linestyle : str
-        Matplotlib line style.
-
-    Returns
-    -------
-    matplotlib Axes
-    """
-    ax = _axes(ax)
-    for i, value in enumerate(values_hz):
-        ax.axhline(
-            float(value),
-            linestyle=linestyle,
-            linewidth=1.0,
-            color=colors[i] if colors is not None else "0.35",
-            label=labels[i] if labels is not None else None,
-        )
-    return ax
-
-
-def _columns(values: Any, rows: int) -> np.ndarray:
-    array = np.asarray(values, dtype=float)
-    if array.ndim == 1:
-        array = array[:, None]
-    if array.ndim != 2 or array.shape[0] != rows:
-        raise TorsioError(
-            f"expected {rows} values per curve (one per model), got shape {np.shape(values)}"
-        )
-    return array
-
-
-def plot_convergence(
-    dofs: Sequence[int] | np.ndarray,
-    frequencies_hz: Any,
-    reference_hz: Sequence[float | None] | None = None,
-    *,
-    labels: Sequence[str] | None = None,
-    ax: Any = None,
-    colors: Sequence[Any] | None = None,
-    marker: str = "o",
-    linestyle: str = "-",
-    reference_label: str = "continuum",
-    xlabel: str = "degrees of freedom",
-) -> Any:
-    """Natural frequency [Hz] against the number of degrees of freedom.
-
-    Parameters
-    ----------
-    dofs : sequence of int, shape (n,)
-        Degrees of freedom of each model (the x axis).
-    frequencies_hz : array_like, shape (n,) or (n, m)
-        Frequency of each model [Hz]; column j is one curve (e.g. one mode).
-        NaN where a model has no such mode.
-    reference_hz : sequence of float or None, optional
-        One exact value per curve [Hz], drawn as a dashed horizontal line in the
-        curve's colour (``None`` for no line).
-    labels : sequence of str, optional
-        Legend entry of each curve.
-    ax : matplotlib Axes, optional
-        Where to draw; a new figure if omitted. Call again on the same axes
-        to overlay another discretizer (with another ``marker``/``linestyle``).
-    colors, marker, linestyle
-        Matplotlib styling; colours default to C0, C1, ...
-    reference_label : str
-        Legend text of the reference lines.
-    xlabel : str
-        Label of the x axis.
-
-    Returns
-    -------
-    matplotlib Axes
-
-    Examples
-    --------
-    >>> ax = plot_convergence([1, 2, 4], [0.1306, 0.1309, 0.1310], [0.13102],
-    ...                       labels=["mode 1"])
-    >>> ax.get_ylabel()
-    'natural frequency [Hz]'
-    """
-    ax = _axes(ax)
-    x = np.asarray(dofs, dtype=float)
-    curves = _columns(frequencies_hz, x.size)
-    for j in range(curves.shape[1]):
-        color = colors[j] if colors is not None else f"C{j}"
-        ax.plot(
-            x,
-            curves[:, j],
-            marker=marker,
-            markersize=4,
-            linestyle=linestyle,
-            linewidth=1.0,
-            color=color,
-            label=labels[j] if labels is not None else None,
-        )
-        reference = reference_hz[j] if reference_hz is not None and j < len(reference_hz) else None
-        if reference is not None:
-            ax.axhline(
-                float(reference),
-                linestyle="--",
-                linewidth=1.0,
-                color=color,
-                label=f"{reference_label}" if j == 0 else None,
-            )
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel("natural frequency [Hz]")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize="small")
-    return ax
-
-
-def plot_convergence_error(
-    dofs: Sequence[int] | np.ndarray,
-    relative_errors: Any,
-    *,
-    labels: Sequence[str] | None = None,
-    ax: Any = None,
-    colors: Sequence[Any] | None = None,
-    marker: str = "o",
-    linestyle: str = "-",
-    xlabel: str = "degrees of freedom",
-) -> Any:
-    """Magnitude of the relative frequency error [%] against DOFs, log-log.
-
-    Parameters
-    ----------
-    dofs : sequence of int, shape (n,)
-        Degrees of freedom of each model.
-    relative_errors : array_like, shape (n,) or (n, m)
-        (lumped - exact) / exact [-]; column j is one curve. NaN is skipped.
-    labels, ax, colors, marker, linestyle, xlabel
-        As for :func:`plot_convergence`.
-
-    Returns
-    -------
-    matplotlib Axes
-        A convergence of order p is a straight line of slope -p.
-
-    Examples
-    --------
-    >>> ax = plot_convergence_error([10, 20, 40], [-4e-3, -1e-3, -2.5e-4])
-    >>> ax.get_yscale(), ax.get_ylabel()
-    ('log', '|relative error| [%]')
-    """
-    ax = _axes(ax)
-    x = np.asarray(dofs, dtype=float)
-    curves = 100.0 * np.abs(_columns(relative_errors, x.size))
-    for j in range(curves.shape[1]):
-        ax.plot(
-            x,
-            curves[:, j],
-            marker=marker,
-            markersize=4,
-            linestyle=linestyle,
-            linewidth=1.0,
-            color=colors[j] if colors is not None else f"C{j}",
-            label=labels[j] if labels is not None else None,
-        )
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ticker = _ticker()
-    ax.xaxis.set_major_locator(ticker.LogLocator(subs=(1.0, 2.0, 5.0)))
-    ax.xaxis.set_major_formatter(ticker.FormatStrFormatter("%g"))
-    ax.xaxis.set_minor_formatter(ticker.NullFormatter())
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel("|relative error| [%]")
-    ax.grid(True, which="both", alpha=0.3)
-    if labels is not None:
-        ax.legend(fontsize="small")
-    return ax

@@ -1,0 +1,80 @@
+"""The critical weight on bit of each rotary speed of a severity map (the paper's Fig. 6).
+
+:func:`locate_critical_wob` finds, on each row of the grid, the lowest weight on bit
+above which every point is severe, and narrows the cell it falls in by bisection with
+extra runs (conventions in :mod:`torsio.analysis.maps`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from torsio.analysis.map_runs import PointRunner
+from torsio.errors import SolverError
+from torsio.solvers.batch import STATUS_MESSAGES
+
+__all__ = ["locate_critical_wob"]
+
+
+def locate_critical_wob(
+    runner: PointRunner,
+    wob: np.ndarray,
+    rpm: np.ndarray,
+    severity: np.ndarray,
+    threshold: float,
+    refine: int,
+    on_failure: str,
+) -> tuple[np.ndarray, tuple[str, ...], np.ndarray]:
+    rows = severity.shape[0]
+    critical = np.full(rows, np.nan)
+    bracket = np.full((rows, 2), np.nan)
+    labels: list[str] = []
+    low = np.full(rows, np.nan)
+    high = np.full(rows, np.nan)
+    for i in range(rows):
+        s = severity[i]
+        if not np.isfinite(s).all():
+            labels.append("unresolved")
+            continue
+        severe = s > threshold
+        if not severe[-1]:
+            labels.append("none")
+            continue
+        tail = np.flatnonzero(~severe)
+        first = 0 if tail.size == 0 else int(tail[-1]) + 1
+        if first == 0:
+            labels.append("below_range")
+            critical[i] = wob[0]
+            continue
+        low[i], high[i] = wob[first - 1], wob[first]
+        labels.append("bisected" if refine else "grid")
+    active = np.flatnonzero(np.isfinite(low))
+    for _ in range(refine):
+        if active.size == 0:
+            break
+        middle = 0.5 * (low[active] + high[active])
+        speeds = rpm[active]
+        result = runner.run(middle, speeds)
+        values = result[:, 0]
+        failed = result[:, 1] != 0
+        if failed.any() and on_failure == "raise":
+            k = int(np.argmax(failed))
+            raise SolverError(
+                f"the batch solver failed at wob={middle[k]:g} N, "
+                f"rpm={speeds[k]:g} while bisecting the critical weight on bit: "
+                f"{STATUS_MESSAGES.get(int(result[k, 1]))}"
+            )
+        is_severe = values > threshold
+        high[active] = np.where(is_severe, middle, high[active])
+        low[active] = np.where(is_severe, low[active], middle)
+        for index in np.flatnonzero(failed):
+            labels[active[index]] = "unresolved"
+            low[active[index]] = np.nan
+        active = active[~failed]
+    for i in range(rows):
+        if math.isfinite(low[i]):
+            bracket[i] = (low[i], high[i])
+            critical[i] = 0.5 * (low[i] + high[i])
+    return critical, tuple(labels), bracket

@@ -1,0 +1,392 @@
+"""The results of a severity map: :class:`SeverityMap`, its files and :func:`load_map`.
+
+A :class:`SeverityMap` holds S_SS over a grid of rotary speed x weight on bit, the
+classification of each point, the critical weight on bit per rotary speed and the
+linear stability boundary (see :mod:`torsio.analysis.maps` for the conventions). It
+describes itself (table rows, a dict for JSON, CSV, a plot) and never recomputes
+anything. Built by :func:`torsio.analysis.maps.severity_map`; everything here is also
+importable from :mod:`torsio.analysis.maps`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import uuid
+from pathlib import Path
+from typing import Any
+
+import attrs
+import numpy as np
+
+from torsio.errors import ConfigError
+from torsio.solvers.batch import STATUS_MESSAGES
+from torsio.units import RPM_TO_RAD_S
+
+__all__ = [
+    "CLASSES",
+    "FORMAT",
+    "MapInterrupted",
+    "STICK_SLIP_THRESHOLD",
+    "SeverityMap",
+    "load_map",
+]
+
+STICK_SLIP_THRESHOLD = 0.05
+"""S_SS above which a point is a sustained torsional oscillation ("stick-slip")."""
+
+CLASSES = ("stable", "stick-slip", "severe")
+"""Class names, in increasing severity (``"failed"`` marks a point the solver failed on)."""
+
+
+FORMAT = "torsio-severity-map"
+"""The ``format`` key of saved maps (version :data:`FORMAT_VERSION`)."""
+
+FORMAT_VERSION = 1
+
+
+class MapInterrupted(KeyboardInterrupt):
+    """Ctrl-C during a map: ``partial`` is the map so far, with ``complete = False``."""
+
+    def __init__(self, partial: SeverityMap) -> None:
+        done = int(partial.done.sum())
+        super().__init__(f"map interrupted: {done} of {partial.done.size} points computed")
+        self.partial = partial
+
+
+def _float_list(values: np.ndarray) -> list[Any]:
+    return [None if not math.isfinite(float(v)) else float(v) for v in np.ravel(values)]
+
+
+@attrs.frozen(eq=False)
+class SeverityMap:
+    """S_SS over a grid of rotary speed x weight on bit, with its critical curve.
+
+    Attributes
+    ----------
+    wob : ndarray, shape (m,)
+        Weights on bit [N], increasing.
+    rpm : ndarray, shape (n,)
+        Surface rotary speeds [rpm], increasing.
+    severity : ndarray, shape (n, m)
+        S_SS at (rpm[i], wob[j]); NaN where not computed or failed.
+    critical_wob : ndarray, shape (n,)
+        W_ob,cr per rpm [N]; NaN where none (see the module documentation).
+    critical_status : tuple of str
+        Per rpm: "bisected", "grid", "below_range", "none" or "unresolved".
+    critical_bracket : ndarray, shape (n, 2)
+        Final bisection bracket [N] (NaN where not bracketed).
+    stability_wob : ndarray, shape (n,)
+        Critical weight on bit of linear instability [N] (NaN where none).
+    threshold : float
+        S_SS above which a point is severe.
+    stick_slip_threshold : float
+        S_SS above which a point is a sustained oscillation.
+    k_eq, omega1, bit_radius : float
+        Equivalent stiffness [N m/rad], first natural frequency [rad/s] and bit
+        radius [m]: the scales of Pi_1 and Pi_2.
+    status : ndarray of int, shape (n, m)
+        Solver status per point (0 ok; see :data:`torsio.solvers.batch.STATUS_MESSAGES`).
+    steps : ndarray of int, shape (n, m)
+        Accepted steps per point.
+    done : ndarray of bool, shape (n, m)
+        Whether each point was computed (all True for a complete map).
+    complete : bool
+        False for a map interrupted before the end.
+    dimensionless : bool
+        Whether the map was asked for over (Pi_1, Pi_2) (plots use those axes).
+    info : dict
+        Model, options, timing and executor (plain data).
+    engine : str
+        The batch engine that ran: ``"compiled"``, ``"numpy"`` or ``"scipy"``
+        (:mod:`torsio.solvers.batch`; ``""`` in maps saved before it was recorded).
+    """
+
+    wob: np.ndarray
+    rpm: np.ndarray
+    severity: np.ndarray
+    critical_wob: np.ndarray
+    critical_status: tuple[str, ...]
+    critical_bracket: np.ndarray
+    stability_wob: np.ndarray
+    threshold: float
+    stick_slip_threshold: float
+    k_eq: float
+    omega1: float
+    bit_radius: float
+    status: np.ndarray
+    steps: np.ndarray
+    done: np.ndarray
+    complete: bool = True
+    dimensionless: bool = False
+    info: dict[str, Any] = attrs.field(factory=dict)
+    engine: str = ""
+
+    # --- derived ----------------------------------------------------------------------
+    @property
+    def shape(self) -> tuple[int, int]:
+        """(number of rpm, number of wob)."""
+        return (self.rpm.size, self.wob.size)
+
+    @property
+    def pi1(self) -> np.ndarray:
+        """Pi_1 = Omega / omega_1 of each rpm."""
+        return self.rpm * RPM_TO_RAD_S / self.omega1
+
+    @property
+    def pi2(self) -> np.ndarray:
+        """Pi_2 = W_ob R_bit / k_eq of each wob."""
+        return self.wob * self.bit_radius / self.k_eq
+
+    @property
+    def critical_pi2(self) -> np.ndarray:
+        """Critical Pi_2 per rpm (NaN where none)."""
+        return self.critical_wob * self.bit_radius / self.k_eq
+
+    @property
+    def stability_pi2(self) -> np.ndarray:
+        """Pi_2 of the linear stability boundary per rpm."""
+        return self.stability_wob * self.bit_radius / self.k_eq
+
+    def classification(self) -> np.ndarray:
+        """Class of each point (see the module documentation), shape (n, m), dtype str."""
+        labels = np.full(self.severity.shape, "failed", dtype=object)
+        s = self.severity
+        ok = np.isfinite(s)
+        labels[ok & (s <= self.stick_slip_threshold)] = "stable"
+        labels[ok & (s > self.stick_slip_threshold) & (s <= self.threshold)] = "stick-slip"
+        labels[ok & (s > self.threshold)] = "severe"
+        labels[~self.done] = "missing"
+        return labels.astype(str)
+
+    def counts(self) -> dict[str, int]:
+        """Number of points of each class."""
+        labels = self.classification()
+        names = (*CLASSES, "failed", "missing")
+        return {
+            name: int((labels == name).sum())
+            for name in names
+            if (labels == name).any() or name in CLASSES
+        }
+
+    def failures(self) -> list[str]:
+        """One line per point the solver failed on."""
+        rows = []
+        for i, j in zip(*np.nonzero(self.done & (self.status != 0)), strict=True):
+            reason = STATUS_MESSAGES.get(int(self.status[i, j]), f"status {self.status[i, j]}")
+            rows.append(f"wob={self.wob[j]:g} N, rpm={self.rpm[i]:g}: {reason}")
+        return rows
+
+    # --- output -----------------------------------------------------------------------
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data for JSON: the keys of ``torsio map --json`` and the rest of the map.
+
+        ``severity[i][j]`` is at ``rpm[i]``, ``wob[j]``; missing values are None.
+        """
+        return {
+            "format": FORMAT,
+            "version": FORMAT_VERSION,
+            "complete": self.complete,
+            "wob": self.wob.tolist(),
+            "rpm": self.rpm.tolist(),
+            "severity": [_float_list(row) for row in self.severity],
+            "critical_wob": _float_list(self.critical_wob),
+            "critical_status": list(self.critical_status),
+            "critical_bracket": [_float_list(row) for row in self.critical_bracket],
+            "critical_pi2": _float_list(self.critical_pi2),
+            "stability_wob": _float_list(self.stability_wob),
+            "classification": self.classification().tolist(),
+            "threshold": self.threshold,
+            "stick_slip_threshold": self.stick_slip_threshold,
+            "pi1": self.pi1.tolist(),
+            "pi2": self.pi2.tolist(),
+            "k_eq": self.k_eq,
+            "omega1": self.omega1,
+            "bit_radius": self.bit_radius,
+            "dimensionless": self.dimensionless,
+            "counts": self.counts(),
+            "status": self.status.tolist(),
+            "steps": self.steps.tolist(),
+            "done": self.done.tolist(),
+            "info": self.info,
+            "engine": self.engine,
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> SeverityMap:
+        """Rebuild a map from :meth:`to_dict` output."""
+        if data.get("format") != FORMAT:
+            raise ConfigError(
+                "format", f"expected a {FORMAT!r} file, got format {data.get('format')!r}"
+            )
+        if int(data.get("version", 0)) > FORMAT_VERSION:
+            raise ConfigError(
+                "version",
+                f"this torsio reads map format version "
+                f"<= {FORMAT_VERSION}, got {data.get('version')!r}",
+            )
+
+        def array(key: str, dtype: Any = float) -> np.ndarray:
+            value = data[key]
+            if dtype is float:
+                return np.array(
+                    [[np.nan if x is None else x for x in row] for row in value]
+                    if value and isinstance(value[0], list)
+                    else [np.nan if x is None else x for x in value],
+                    dtype=float,
+                )
+            return np.array(value, dtype=dtype)
+
+        wob = array("wob")
+        rpm = array("rpm")
+        return cls(
+            wob=wob,
+            rpm=rpm,
+            severity=array("severity").reshape(rpm.size, wob.size),
+            critical_wob=array("critical_wob"),
+            critical_status=tuple(data["critical_status"]),
+            critical_bracket=array("critical_bracket").reshape(rpm.size, 2),
+            stability_wob=array("stability_wob"),
+            threshold=float(data["threshold"]),
+            stick_slip_threshold=float(data["stick_slip_threshold"]),
+            k_eq=float(data["k_eq"]),
+            omega1=float(data["omega1"]),
+            bit_radius=float(data["bit_radius"]),
+            status=array("status", np.int64).reshape(rpm.size, wob.size),
+            steps=array("steps", np.int64).reshape(rpm.size, wob.size),
+            done=array("done", bool).reshape(rpm.size, wob.size),
+            complete=bool(data["complete"]),
+            dimensionless=bool(data.get("dimensionless")),
+            info=dict(data.get("info", {})),
+            engine=str(data.get("engine", "")),
+        )
+
+    def save(self, path: str | Path) -> Path:
+        """Write the map: JSON (``.json``, any other suffix) or numpy ``.npz``.
+
+        JSON holds :meth:`to_dict`; ``.npz`` holds the same as arrays plus a
+        ``metadata`` JSON string. The file is written to a temporary name and
+        renamed, so an interrupted write never leaves a truncated file.
+        An incomplete map is saved with ``"complete": false``.
+        """
+        path = Path(path)
+        data = self.to_dict()
+        directory = path.parent if str(path.parent) else Path(".")
+        if not directory.is_dir():
+            raise ConfigError("out", f"directory {str(directory)!r} does not exist")
+        temporary = directory / f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp"
+        try:
+            with open(temporary, "xb") as stream:  # ordinary permissions (umask)
+                if path.suffix == ".npz":
+                    arrays: dict[str, Any] = {
+                        key: np.array(
+                            value,
+                            dtype=float
+                            if key
+                            not in ("status", "steps", "done", "classification", "critical_status")
+                            else None,
+                        )
+                        for key, value in data.items()
+                        if key
+                        in (
+                            "wob",
+                            "rpm",
+                            "critical_wob",
+                            "critical_pi2",
+                            "stability_wob",
+                            "status",
+                            "steps",
+                            "done",
+                            "pi1",
+                            "pi2",
+                            "classification",
+                            "critical_status",
+                        )
+                    }
+                    arrays["severity"] = self.severity
+                    arrays["critical_bracket"] = self.critical_bracket
+                    meta = {k: v for k, v in data.items() if k not in arrays}
+                    np.savez_compressed(stream, metadata=np.array(json.dumps(meta)), **arrays)
+                else:
+                    stream.write(json.dumps(data, indent=1).encode("utf-8"))
+            os.replace(temporary, path)
+        except BaseException:
+            Path(temporary).unlink(missing_ok=True)
+            raise
+        return path
+
+    def to_csv(self, path: str | Path) -> Path:
+        """One row per grid point: rpm, wob [N], Pi_1, Pi_2, S_SS, class, solver status."""
+        import csv
+
+        path = Path(path)
+        labels = self.classification()
+        pi1, pi2 = self.pi1, self.pi2
+        with path.open("w", newline="", encoding="utf-8") as stream:
+            writer = csv.writer(stream)
+            writer.writerow(["rpm", "wob_N", "pi1", "pi2", "severity", "class", "status"])
+            for i in range(self.rpm.size):
+                for j in range(self.wob.size):
+                    s = self.severity[i, j]
+                    writer.writerow(
+                        [
+                            repr(float(self.rpm[i])),
+                            repr(float(self.wob[j])),
+                            repr(float(pi1[i])),
+                            repr(float(pi2[j])),
+                            "" if not math.isfinite(s) else repr(float(s)),
+                            labels[i, j],
+                            int(self.status[i, j]),
+                        ]
+                    )
+        return path
+
+    def critical_rows(self) -> list[tuple[float, float | None, str, float | None]]:
+        """(rpm, W_ob,cr [N] or None, status, linear-stability W_ob [N] or None) per rpm."""
+        return [
+            (
+                float(r),
+                None if not math.isfinite(w) else float(w),
+                s,
+                None if not math.isfinite(lin) else float(lin),
+            )
+            for r, w, s, lin in zip(
+                self.rpm, self.critical_wob, self.critical_status, self.stability_wob, strict=True
+            )
+        ]
+
+    def plot(
+        self, path: str | Path | None = None, ax: Any = None, dimensionless: bool | None = None
+    ) -> Any:
+        """Heat map of S_SS with the critical curve and the linear stability boundary.
+
+        Rotary speed on the x axis, weight on bit on the y axis (Pi_1 and Pi_2
+        when ``dimensionless``; default: as the map was asked for). Needs
+        matplotlib. Writes a PNG when ``path`` is given; returns the axes
+        (:func:`torsio.io.map_plot.plot_severity_map`).
+        """
+        from torsio.io.map_plot import plot_severity_map
+
+        return plot_severity_map(self, path=path, ax=ax, dimensionless=dimensionless)
+
+
+def load_map(path: str | Path) -> SeverityMap:
+    """Read a map written by :meth:`SeverityMap.save` (JSON or ``.npz``)."""
+    path = Path(path)
+    try:
+        if path.suffix == ".npz":
+            with np.load(path, allow_pickle=False) as archive:
+                data = json.loads(str(archive["metadata"]))
+                for key in archive.files:
+                    if key != "metadata":
+                        data[key] = archive[key].tolist()
+        else:
+            data = json.loads(path.read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise ConfigError(
+            "path", f"cannot read map file {str(path)!r}: {exc.strerror or exc}"
+        ) from None
+    except (ValueError, KeyError) as exc:
+        raise ConfigError("path", f"{str(path)!r} is not a saved severity map ({exc})") from None
+    return SeverityMap.from_dict(data)

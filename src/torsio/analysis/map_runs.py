@@ -1,0 +1,205 @@
+"""The grid of a severity map and how its points run.
+
+Axis checks and the memory bound of a grid (:func:`check_grid_size`), the chunks of
+points sent to an executor (:class:`PointRunner`), and the progress bar.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from torsio.analysis.sweep import SweepInterrupted, run_tasks_on
+from torsio.errors import ConfigError
+from torsio.physics.system import System
+from torsio.solvers.batch import STATUS_MESSAGES, simulate_batch
+
+__all__ = ["BYTES_PER_POINT", "PointRunner", "check_grid_size"]
+
+BYTES_PER_POINT = 256
+"""Memory a grid point costs, results and their JSON text included (an upper estimate)."""
+
+
+def _axis(key: str, values: Any, positive: bool) -> np.ndarray:
+    array = np.atleast_1d(np.asarray(values, dtype=float))
+    if array.ndim != 1 or array.size == 0:
+        raise ConfigError(
+            key, f"expected a non-empty 1-D sequence of values, got shape {array.shape}"
+        )
+    bad = ~np.isfinite(array) | ((array <= 0) if positive else (array < 0))
+    if bad.any():
+        what = "positive" if positive else "non-negative"
+        raise ConfigError(key, f"expected {what} finite values, got {array[bad][0]!r}")
+    if array.size > 1 and not (np.diff(array) > 0).all():
+        k = int(np.argmin(np.diff(array) > 0))
+        raise ConfigError(
+            key, f"expected strictly increasing values, got {array[k]!r} then {array[k + 1]!r}"
+        )
+    return array
+
+
+def _available_memory() -> float | None:
+    try:
+        return float(os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
+    except (AttributeError, ValueError, OSError):  # pragma: no cover - not POSIX
+        return None
+
+
+def check_grid_size(rows: int, columns: int, memory: float | None = None) -> None:
+    """ConfigError if a rows x columns grid's results would not fit in memory.
+
+    Parameters
+    ----------
+    rows, columns : int
+        Number of rotary speeds and of weights on bit.
+    memory : float, optional
+        Bytes available (default: free physical memory); the results may use half.
+    """
+    points = int(rows) * int(columns)
+    needed = points * BYTES_PER_POINT
+    memory = _available_memory() if memory is None else memory
+    if memory is not None and needed > 0.5 * memory:
+        raise ConfigError(
+            "grid",
+            f"a grid of {rows:,} rpm x {columns:,} wob = {points:,} "
+            f"points needs about {_bytes(needed)} for its results; "
+            f"{_bytes(memory)} of memory is available (split the map "
+            f"or use fewer points)",
+        )
+
+
+def _bytes(value: float) -> str:
+    for unit in ("B", "kB", "MB", "GB", "TB", "PB"):
+        if value < 1000 or unit == "PB":
+            return f"{value:.3g} {unit}"
+        value /= 1000.0
+    return f"{value:.3g} PB"  # pragma: no cover
+
+
+def _chunk_task(
+    system: System, wob: np.ndarray, rpm: np.ndarray, options: dict[str, Any]
+) -> np.ndarray:
+    """Worker side: S_SS and diagnostics of a chunk of points, shape (k, 4)."""
+    result = simulate_batch(system, wob, rpm, **options)
+    return np.column_stack([result.severity, result.status, result.steps, result.rejected])
+
+
+class PointRunner:
+    """Runs lists of points through a sweep, in chunks, with one shared progress count.
+
+    Parameters
+    ----------
+    system : System
+        The model every point runs.
+    handle : object
+        An open executor (:func:`torsio.analysis.sweep.open_executor`).
+    options : dict
+        Keyword options of :func:`torsio.solvers.batch.simulate_batch`.
+    chunk_size : int
+        Points per task.
+    retries : int
+        Resubmissions of a chunk whose worker died.
+    progress : callable, optional
+        ``progress(done_points, total_points)``.
+    """
+
+    def __init__(
+        self,
+        system: System,
+        handle: Any,
+        options: dict[str, Any],
+        chunk_size: int,
+        retries: int,
+        progress: Callable[[int, int], None] | None,
+    ) -> None:
+        self.system = system
+        self.handle = handle
+        self.options = options
+        self.chunk_size = chunk_size
+        self.retries = retries
+        self.progress = progress
+        self.done_points = 0
+        self.total_points = 0
+        self.retried = 0
+
+    def run(
+        self,
+        wob: np.ndarray,
+        rpm: np.ndarray,
+        on_partial: Callable[[list[tuple[tuple[int, int], np.ndarray]]], None] | None = None,
+    ) -> np.ndarray:
+        """Rows (severity, status, steps, rejected) of the points (wob[k], rpm[k])."""
+        count = wob.size
+        size = self.chunk_size
+        bounds = [(k, min(k + size, count)) for k in range(0, count, size)]
+        tasks = [(self.system, wob[a:b], rpm[a:b], self.options) for a, b in bounds]
+        base = self.done_points
+        self.total_points += count
+        progress = self.progress
+
+        def report(done: int, total: int) -> None:
+            if progress is not None:
+                progress(
+                    base + (count if done == total else min(done * size, count)), self.total_points
+                )
+
+        try:
+            outcome = run_tasks_on(
+                self.handle, _chunk_task, tasks, retries=self.retries, progress=report
+            )
+        except SweepInterrupted as exc:
+            if on_partial is not None:
+                on_partial([(bounds[k], r) for k, r in enumerate(exc.results) if r is not None])
+            raise
+        self.retried += outcome.retries
+        self.done_points += count
+        return np.concatenate(outcome.results) if outcome.results else np.empty((0, 4))
+
+
+def _default_chunk_size(points: int, workers: int, serial: bool, dofs: int) -> int:
+    largest = max(8, 4096 // max(1, dofs))  # about a second of work per chunk at most
+    if serial:
+        return max(1, min(points, 2 * largest))
+    return max(1, min(largest, math.ceil(points / (4 * workers))))
+
+
+def _rich_progress() -> tuple[Callable[[int, int], None], Callable[[], None]]:
+    from rich.console import Console
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    bar = Progress(
+        TextColumn("severity map"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TextColumn("points"),
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+        transient=True,
+        console=Console(stderr=True),
+    )
+    task = bar.add_task("map", total=None)
+    bar.start()
+
+    def update(done: int, total: int) -> None:
+        bar.update(task, completed=done, total=total)
+
+    return update, bar.stop
+
+
+def _failure_lines(wob: np.ndarray, rpm: np.ndarray, status: np.ndarray) -> list[str]:
+    return [
+        f"wob={wob[j]:g} N, rpm={rpm[i]:g}: "
+        f"{STATUS_MESSAGES.get(int(status[i, j]), f'status {status[i, j]}')}"
+        for i, j in zip(*np.nonzero(status), strict=True)
+    ]
