@@ -106,9 +106,12 @@ def test_critical_rule_statuses(one_dof: System) -> None:
     result = severity_map(one_dof, [150e3, 190e3, 225e3], [40.0, 140.0], refine=0)
     # 40 rpm: severe over the whole row; 140 rpm: never severe (21 x 21 map above)
     assert result.critical_status == ("below_range", "none")
-    assert result.critical_wob[0] == 150e3
-    assert math.isnan(result.critical_wob[1])
-    assert result.to_dict()["critical_wob"] == [150e3, None]
+    # off the grid: no value (JSON null, DESIGN.md), only the side it lies on
+    assert math.isnan(result.critical_wob[0]) and math.isnan(result.critical_wob[1])
+    assert result.to_dict()["critical_wob"] == [None, None]
+    assert result.to_dict()["critical_wob_bound"] == ["below", "above"]
+    assert result.critical_wob_texts() == ["≤ 150", "> 225"]
+    assert math.isnan(result.critical_pi2[0])
 
 
 def test_critical_rule_on_given_severities() -> None:
@@ -124,7 +127,37 @@ def test_critical_rule_on_given_severities() -> None:
     critical, status, bracket = maps._critical_wob(None, wob, np.ones(4), severity, 0.8, 0, "mark")
     assert status == ("grid", "none", "below_range", "unresolved")
     assert critical[0] == 35.0 and tuple(bracket[0]) == (30.0, 40.0)
-    assert math.isnan(critical[1]) and critical[2] == 10.0 and math.isnan(critical[3])
+    assert math.isnan(critical[1]) and math.isnan(critical[2]) and math.isnan(critical[3])
+
+
+def test_off_grid_critical_wob_is_marked_not_drawn(tmp_path) -> None:
+    # the rows of test_critical_rule_on_given_severities, as a map
+    wob = np.array([10e3, 20e3, 30e3, 40e3])
+    severity = np.array([[0.0, 0.0, 1.0, 1.1], [0.0, 0.0, 0.0, 0.5], [0.9, 1.0, 1.1, 1.2]])
+    critical, status, bracket = maps._critical_wob(None, wob, np.ones(3), severity, 0.8, 0, "mark")
+    ones = np.ones(severity.shape)
+    result = SeverityMap(
+        wob, np.array([40.0, 90.0, 140.0]), severity, critical, status, bracket,
+        np.full(3, np.nan), 0.8, 0.05, 1e4, 1.0, 0.1,
+        (0 * ones).astype(int), ones.astype(int), ones.astype(bool),
+    )  # fmt: skip
+    assert result.critical_wob_bound == (None, "above", "below")
+    assert result.critical_wob_texts() == ["25", "> 40", "≤ 10"]
+    # a saved map of an older torsio gave wob[0] below the range: read back as no value
+    data = result.to_dict()
+    data["critical_wob"][2] = 10e3
+    assert math.isnan(SeverityMap.from_dict(data).critical_wob[2])
+    assert "SeverityMap(" in repr(result) and "3 rpm x 4 wob points" in repr(result)
+    pytest.importorskip("matplotlib")
+    from torsio.io.map_plot import OFF_GRID_LABELS
+
+    ax = result.plot(tmp_path / "map.png")
+    lines = {line.get_label(): line for line in ax.get_lines()}
+    up, down = lines[OFF_GRID_LABELS["above"]], lines[OFF_GRID_LABELS["below"]]
+    assert up.get_xdata().tolist() == [90.0] and up.get_ydata().tolist() == [40.0]  # kN
+    assert down.get_xdata().tolist() == [140.0] and down.get_ydata().tolist() == [10.0]
+    curve = lines[next(label for label in lines if label.startswith("critical WOB ($"))]
+    assert np.isnan(curve.get_ydata()[1:]).all()  # the curve is not drawn along the edges
 
 
 def test_classification_thresholds(one_dof: System) -> None:

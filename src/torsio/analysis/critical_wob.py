@@ -27,6 +27,34 @@ def locate_critical_wob(
     refine: int,
     on_failure: str,
 ) -> tuple[np.ndarray, tuple[str, ...], np.ndarray]:
+    """W_ob,cr of each row of ``severity``, with extra runs to bisect its grid cell.
+
+    Parameters
+    ----------
+    runner : PointRunner
+        Runs the bisection points (unused when ``refine`` is 0).
+    wob, rpm : ndarray
+        Axes of the grid [N], [rpm].
+    severity : ndarray, shape (len(rpm), len(wob))
+        S_SS of the grid.
+    threshold : float
+        S_SS above which a point is severe.
+    refine : int
+        Bisection steps.
+    on_failure : {"raise", "mark"}
+        On a failed bisection run: raise, or mark the row ``"unresolved"``.
+
+    Returns
+    -------
+    critical : ndarray, shape (n,)
+        W_ob,cr [N]; NaN where it is not inside the grid (status ``"none"``: above
+        the largest weight on bit if anywhere; ``"below_range"``: at or below the
+        smallest; ``"unresolved"``).
+    status : tuple of str
+        ``"bisected"``, ``"grid"``, ``"below_range"``, ``"none"`` or ``"unresolved"``.
+    bracket : ndarray, shape (n, 2)
+        Final bracket [N] (NaN where not bracketed).
+    """
     rows = severity.shape[0]
     critical = np.full(rows, np.nan)
     bracket = np.full((rows, 2), np.nan)
@@ -45,8 +73,7 @@ def locate_critical_wob(
         tail = np.flatnonzero(~severe)
         first = 0 if tail.size == 0 else int(tail[-1]) + 1
         if first == 0:
-            labels.append("below_range")
-            critical[i] = wob[0]
+            labels.append("below_range")  # W_ob,cr <= wob[0]: no value is invented
             continue
         low[i], high[i] = wob[first - 1], wob[first]
         labels.append("bisected" if refine else "grid")

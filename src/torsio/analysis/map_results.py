@@ -25,11 +25,13 @@ from torsio.solvers.batch import STATUS_MESSAGES
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = [
+    "BOUNDS",
     "CLASSES",
     "FORMAT",
     "MapInterrupted",
     "STICK_SLIP_THRESHOLD",
     "SeverityMap",
+    "critical_wob_text",
     "load_map",
 ]
 
@@ -59,7 +61,48 @@ def _float_list(values: np.ndarray) -> list[Any]:
     return [None if not math.isfinite(float(v)) else float(v) for v in np.ravel(values)]
 
 
-@attrs.frozen(eq=False)
+def critical_wob_text(
+    value: float, bound: str | None, status: str, edge: tuple[float, float], scale: float = 1e3
+) -> str:
+    """W_ob,cr as table text: ``"181.4"``, ``"> 225"``, ``"≤ 25"`` or the status.
+
+    Parameters
+    ----------
+    value : float
+        W_ob,cr [N] (NaN where off the grid or unresolved).
+    bound : {"above", "below"} or None
+        Where W_ob,cr lies when off the grid (:attr:`SeverityMap.critical_wob_bound`).
+    status : str
+        The row's status, shown when there is neither a value nor a bound.
+    edge : (float, float)
+        Smallest and largest weight on bit of the grid [N].
+    scale : float
+        Divisor of the printed numbers (1e3: kN).
+
+    Examples
+    --------
+    >>> critical_wob_text(float("nan"), "above", "none", (25e3, 225e3))
+    '> 225'
+    >>> critical_wob_text(float("nan"), "below", "below_range", (25e3, 225e3))
+    '≤ 25'
+    >>> critical_wob_text(181.4e3, None, "bisected", (25e3, 225e3))
+    '181.4'
+    """
+    if bound == "above":
+        return f"> {edge[1] / scale:.4g}"
+    if bound == "below":
+        return f"≤ {edge[0] / scale:.4g}"
+    if math.isfinite(value):
+        return f"{value / scale:.4g}"
+    return status
+
+
+BOUNDS = {"none": "above", "below_range": "below"}
+"""Where W_ob,cr lies for each off-grid status: above the largest, at or below the smallest
+weight on bit of the grid."""
+
+
+@attrs.frozen(eq=False, repr=False)
 class SeverityMap:
     """S_SS over a grid of rotary speed x weight on bit, with its critical curve.
 
@@ -72,7 +115,8 @@ class SeverityMap:
     severity : ndarray, shape (n, m)
         S_SS at (rpm[i], wob[j]); NaN where not computed or failed.
     critical_wob : ndarray, shape (n,)
-        W_ob,cr per rpm [N]; NaN where none (see the module documentation).
+        W_ob,cr per rpm [N]; NaN where it is not inside the grid (see
+        :attr:`critical_wob_bound` and the module documentation).
     critical_status : tuple of str
         Per rpm: "bisected", "grid", "below_range", "none" or "unresolved".
     critical_bracket : ndarray, shape (n, 2)
@@ -193,6 +237,7 @@ class SeverityMap:
             "severity": [_float_list(row) for row in self.severity],
             "critical_wob": _float_list(self.critical_wob),
             "critical_status": list(self.critical_status),
+            "critical_wob_bound": list(self.critical_wob_bound),
             "critical_bracket": [_float_list(row) for row in self.critical_bracket],
             "critical_pi2": _float_list(self.critical_pi2),
             "stability_wob": _float_list(self.stability_wob),
@@ -240,12 +285,16 @@ class SeverityMap:
 
         wob = array("wob")
         rpm = array("rpm")
+        critical_status = tuple(data["critical_status"])
+        critical_wob = array("critical_wob")
+        # files of torsio <= 0.x gave wob[0] for a row severe throughout: not a value
+        critical_wob[np.array([s == "below_range" for s in critical_status], dtype=bool)] = np.nan
         return cls(
             wob=wob,
             rpm=rpm,
             severity=array("severity").reshape(rpm.size, wob.size),
-            critical_wob=array("critical_wob"),
-            critical_status=tuple(data["critical_status"]),
+            critical_wob=critical_wob,
+            critical_status=critical_status,
             critical_bracket=array("critical_bracket").reshape(rpm.size, 2),
             stability_wob=array("stability_wob"),
             threshold=float(data["threshold"]),
@@ -341,6 +390,36 @@ class SeverityMap:
                         ]
                     )
         return path
+
+    def __repr__(self) -> str:
+        model = self.info.get("model", {})
+        counts = ", ".join(f"{n} {name}" for name, n in self.counts().items())
+        return (
+            f"SeverityMap({model.get('name') or 'model'!r}, {model.get('strategy')}, "
+            f"{model.get('dofs')} DOFs: {self.rpm.size} rpm x {self.wob.size} wob points, "
+            f"rpm {self.rpm[0]:g}..{self.rpm[-1]:g}, wob {self.wob[0] / 1e3:g}.."
+            f"{self.wob[-1] / 1e3:g} kN; {counts}" + ("" if self.complete else "; incomplete") + ")"
+        )
+
+    @property
+    def critical_wob_bound(self) -> tuple[str | None, ...]:
+        """Per rpm, where W_ob,cr lies when it is off the grid, else None.
+
+        ``"above"``: no severe point at the largest weight on bit (status ``"none"``),
+        so W_ob,cr, if any, exceeds ``wob[-1]``; ``"below"``: severe over the whole row
+        (status ``"below_range"``), so W_ob,cr <= ``wob[0]``.
+        """
+        return tuple(BOUNDS.get(status) for status in self.critical_status)
+
+    def critical_wob_texts(self, scale: float = 1e3) -> list[str]:
+        """Per rpm, W_ob,cr as text divided by ``scale`` (``"> 225"``, ``"≤ 25"``, ``"181.4"``)."""
+        edge = (float(self.wob[0]), float(self.wob[-1]))
+        return [
+            critical_wob_text(float(w), bound, status, edge, scale)
+            for w, bound, status in zip(
+                self.critical_wob, self.critical_wob_bound, self.critical_status, strict=True
+            )
+        ]
 
     def critical_rows(self) -> list[tuple[float, float | None, str, float | None]]:
         """(rpm, W_ob,cr [N] or None, status, linear-stability W_ob [N] or None) per rpm."""

@@ -25,9 +25,10 @@ the lowest weight on bit above which the vibration is severe. On the grid row,
 j* is the first index from which every point up to the largest weight on bit is
 severe. Then
 
-* no severe point at the largest weight on bit: none (``null``, status ``"none"``);
-* j* = 0 (severe over the whole row): W_ob,cr <= wob[0]; reported as wob[0] with
-  status ``"below_range"``;
+* no severe point at the largest weight on bit: W_ob,cr, if any, is above the grid
+  (``null``, status ``"none"``, bound ``"above"``, shown as "> wob[-1]");
+* j* = 0 (severe over the whole row): W_ob,cr <= wob[0] (``null``, status
+  ``"below_range"``, bound ``"below"``, shown as "≤ wob[0]"); no value is invented;
 * otherwise the cell [wob[j*-1], wob[j*]] is bisected ``refine`` times with extra
   runs (mid-point severe: keep the lower half, else the upper half) and
   W_ob,cr is the middle of the final bracket, within +- (wob[j*] - wob[j*-1]) /

@@ -364,24 +364,28 @@ def _print_summary(result: Any, written: dict[str, str]) -> None:
     )
     for name in ("rpm", "Pi_1", "critical WOB [kN]", "critical Pi_2", "linear stability WOB [kN]"):
         table.add_column(escape(name), justify="right")
-    for (rpm, wob, status, linear), pi1, pi2 in zip(
-        result.critical_rows(), result.pi1, result.critical_pi2, strict=True
+    # off the grid: "> largest" / "≤ smallest" (no value invented), the status otherwise
+    wob_texts = result.critical_wob_texts(1e3)
+    pi_texts = result.critical_wob_texts(result.k_eq / result.bit_radius)
+    for (rpm, _, _, linear), pi1, wob_text, pi_text in zip(
+        result.critical_rows(), result.pi1, wob_texts, pi_texts, strict=True
     ):
-        if wob is None:
-            text = "none" if status == "none" else status
-            pi_text = "-"
-        else:
-            text = f"<= {wob / 1e3:.4g}" if status == "below_range" else f"{wob / 1e3:.4g}"
-            pi_text = f"{pi2:.4g}"
         table.add_row(
             f"{rpm:.4g}",
             f"{pi1:.4g}",
-            text,
+            wob_text,
             pi_text,
             "-" if linear is None else f"{linear / 1e3:.4g}",
         )
     console = Console()
     console.print(table)
+    if any(result.critical_wob_bound):
+        console.print(
+            escape(
+                f"critical WOB off the grid: '> {result.wob[-1] / 1e3:.4g}' = not severe at the "
+                f"largest weight on bit; '≤ {result.wob[0] / 1e3:.4g}' = severe over the whole row"
+            )
+        )
     counts = ", ".join(f"{n} {name}" for name, n in result.counts().items())
     console.print(
         escape(

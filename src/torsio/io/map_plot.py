@@ -17,7 +17,7 @@ from torsio.errors import ConfigError
 if TYPE_CHECKING:
     from torsio.analysis.map_results import SeverityMap
 
-__all__ = ["plot_severity_map"]
+__all__ = ["OFF_GRID_LABELS", "plot_severity_map"]
 
 
 def plot_severity_map(
@@ -82,6 +82,7 @@ def plot_severity_map(
         ax.plot(
             x, crit, "w-o", ms=3, lw=2, label=f"critical WOB ($S_{{SS}}$ > {result.threshold:g})"
         )
+    _mark_off_grid(ax, result, x, y)
     if np.isfinite(lin).any():
         ax.plot(x, lin, "r--", lw=1.5, label="linear stability boundary")
     ax.set_xlim(x.min() - 0.5 * _spacing(x), x.max() + 0.5 * _spacing(x))
@@ -97,6 +98,32 @@ def plot_severity_map(
         if figure is not None:
             plt.close(figure)
     return ax
+
+
+OFF_GRID_LABELS = {
+    "above": "critical WOB above the grid (if any)",
+    "below": "critical WOB at or below the grid",
+}
+"""Legend entries of the off-grid marks (:attr:`SeverityMap.critical_wob_bound`)."""
+
+
+def _mark_off_grid(ax: Any, result: SeverityMap, x: np.ndarray, y: np.ndarray) -> None:
+    """Triangles on the grid's edge row where W_ob,cr lies outside the grid: no value drawn."""
+    bounds = np.array([b or "" for b in result.critical_wob_bound])
+    for side, marker, edge in (("above", "^", y[-1]), ("below", "v", y[0])):
+        rows = bounds == side
+        if rows.any():
+            ax.plot(
+                x[rows],
+                np.full(int(rows.sum()), edge),
+                linestyle="none",
+                marker=marker,
+                ms=7,
+                markerfacecolor="none",
+                markeredgecolor="white",
+                markeredgewidth=1.5,
+                label=OFF_GRID_LABELS[side],
+            )
 
 
 def _spacing(values: np.ndarray) -> float:

@@ -164,11 +164,13 @@ def critical_section(ctx: ReportContext) -> ReportSection | None:
     status = row.critical_status[0]
     linear = float(row.stability_wob[0])
     margin = critical - op.wob if np.isfinite(critical) else None
+    bound = row.critical_wob_bound[0]
     data = {
         "rpm": op.rpm,
         "wob_n": op.wob,
         "critical_wob_n": critical if np.isfinite(critical) else None,
         "status": status,
+        "critical_wob_bound": bound,
         "margin_n": margin,
         "margin_fraction": None if margin is None else margin / op.wob,
         "search_wob_n": [float(grid[0]), float(grid[-1])],
@@ -179,23 +181,72 @@ def critical_section(ctx: ReportContext) -> ReportSection | None:
     table = Table.grid(padding=(0, 2))
     table.add_column(style="dim")
     table.add_column()
-    if status == "none":
-        text = f"none up to {grid[-1] / 1e3:.4g} kN (no severe point in the search)"
-    elif status == "below_range":
-        text = f"at or below {grid[0] / 1e3:.4g} kN (severe over the whole search)"
-    else:
-        text = f"{critical / 1e3:.4g} kN (S_SS > 0.8 above it, from rest)"
-    table.add_row(f"critical WOB at {op.rpm:.4g} rpm", Text(text))
+    text, style = margin_text(op.rpm, op.wob, critical, bound, (float(grid[0]), float(grid[-1])))
+    table.add_row("operating point", Text(text, style=style))
+    table.add_row(
+        "criterion",
+        Text(f"severe (S_SS > {row.threshold:g}) above the critical WOB; runs from rest"),
+    )
     table.add_row("batch engine", Text(row.engine))
-    if margin is not None and status not in ("below_range",):
-        side = "below" if margin > 0 else "above"
-        style = "green" if margin > 0 else "bold red"
-        table.add_row(
-            "operating point",
-            Text(f"{abs(margin) / 1e3:.4g} kN ({abs(margin) / op.wob:.0%}) {side} it", style=style),
-        )
     if np.isfinite(linear):
         table.add_row(
             "linear stability", Text(f"steady rotation unstable above {linear / 1e3:.4g} kN")
         )
     return ReportSection("critical", "Distance to the critical weight on bit", data, table)
+
+
+def margin_text(
+    rpm: float, wob: float, critical: float, bound: str | None, search: tuple[float, float]
+) -> tuple[str, str]:
+    """The critical weight on bit and the operating point's distance to it, in words.
+
+    Parameters
+    ----------
+    rpm, wob : float
+        Operating point [rpm], [N].
+    critical : float
+        W_ob,cr [N] (NaN when off the search grid).
+    bound : {"above", "below"} or None
+        Where W_ob,cr lies when off the grid.
+    search : (float, float)
+        Smallest and largest weight on bit of the search [N].
+
+    Returns
+    -------
+    text, style : str
+        The sentence and a rich style (green: the operating point is below the
+        critical weight on bit; bold red: at or above it).
+
+    Examples
+    --------
+    >>> print(margin_text(100.0, 100e3, 181.37e3, None, (25e3, 400e3))[0])
+    the critical WOB at 100 rpm is 181.4 kN: 81.37 kN (81 %) above the operating 100 kN
+    >>> print(margin_text(100.0, 100e3, float("nan"), "above", (25e3, 400e3))[0])
+    the critical WOB at 100 rpm is above 400 kN (no severe point up to there):
+    more than 300 kN (300 %) above the operating 100 kN
+    """
+    head = f"the critical WOB at {rpm:.4g} rpm is"
+    operating = f"the operating {wob / 1e3:.4g} kN"
+
+    def amount(gap: float) -> str:
+        return f"{abs(gap) / 1e3:.4g} kN ({100.0 * abs(gap) / wob:.0f} %)"
+
+    if bound == "above":
+        return (
+            f"{head} above {search[1] / 1e3:.4g} kN (no severe point up to there): "
+            f"more than {amount(search[1] - wob)} above {operating}",
+            "green",
+        )
+    if bound == "below":
+        return (
+            f"{head} at or below {search[0] / 1e3:.4g} kN (severe over the whole search): "
+            f"at least {amount(wob - search[0])} below {operating}",
+            "bold red",
+        )
+    if not np.isfinite(critical):
+        return f"{head} unresolved (a run of the search failed)", "yellow"
+    side = "above" if critical > wob else "below"
+    return (
+        f"{head} {critical / 1e3:.4g} kN: {amount(critical - wob)} {side} {operating}",
+        "green" if critical > wob else "bold red",
+    )
