@@ -114,6 +114,21 @@ def test_critical_rule_statuses(one_dof: System) -> None:
     assert math.isnan(result.critical_pi2[0])
 
 
+def test_progress_total_is_fixed_from_the_start(one_dof: System) -> None:
+    # 3 rpm x 3 wob grid + refine (2) bisection runs per rpm = 15 runs, by construction;
+    # 40 rpm is severe over the row and 140 rpm never (test_critical_rule_statuses), so only
+    # 90 rpm is bisected and the other rows' planned runs are counted as done
+    calls: list[tuple[int, int]] = []
+    result = severity_map(
+        one_dof, [25e3, 150e3, 225e3], [40.0, 90.0, 140.0], refine=2, chunk_size=2,
+        progress=lambda done, total: calls.append((done, total)),
+    )  # fmt: skip
+    assert {total for _, total in calls} == {9 + 2 * 3}
+    done = [d for d, _ in calls]
+    assert done == sorted(done) and done[-1] == 15
+    assert result.info["extra_runs"] == 2 * result.critical_status.count("bisected")
+
+
 def test_critical_rule_on_given_severities() -> None:
     wob = np.array([10.0, 20.0, 30.0, 40.0])
     severity = np.array(

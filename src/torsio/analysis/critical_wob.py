@@ -78,7 +78,9 @@ def locate_critical_wob(
         low[i], high[i] = wob[first - 1], wob[first]
         labels.append("bisected" if refine else "grid")
     active = np.flatnonzero(np.isfinite(low))
-    for _ in range(refine):
+    if runner is not None:  # rows not bisected: their planned runs are done
+        runner.skip(refine * (rows - active.size))
+    for step in range(refine):
         if active.size == 0:
             break
         middle = 0.5 * (low[active] + high[active])
@@ -100,6 +102,8 @@ def locate_critical_wob(
             labels[active[index]] = "unresolved"
             low[active[index]] = np.nan
         active = active[~failed]
+        if runner is not None:  # rows given up: their remaining runs are done
+            runner.skip((refine - step - 1) * int(failed.sum()))
     for i in range(rows):
         if math.isfinite(low[i]):
             bracket[i] = (low[i], high[i])

@@ -105,6 +105,11 @@ class PointRunner:
         Resubmissions of a chunk whose worker died.
     progress : callable, optional
         ``progress(done_points, total_points)``.
+    total : int, optional
+        Points the whole job may run, known up front (a map: its grid plus every
+        possible bisection run), so that a progress bar's total never changes;
+        runs found unnecessary are counted as done with :meth:`skip`. Default: the
+        total grows with each :meth:`run`.
     """
 
     def __init__(
@@ -115,6 +120,7 @@ class PointRunner:
         chunk_size: int,
         retries: int,
         progress: Callable[[int, int], None] | None,
+        total: int | None = None,
     ) -> None:
         self.system = system
         self.handle = handle
@@ -123,8 +129,18 @@ class PointRunner:
         self.retries = retries
         self.progress = progress
         self.done_points = 0
-        self.total_points = 0
+        self.total_points = 0 if total is None else int(total)
+        self.fixed_total = total is not None
+        self.runs = 0
         self.retried = 0
+
+    def skip(self, count: int) -> None:
+        """Count ``count`` planned points as done without running them (progress only)."""
+        if count <= 0:
+            return
+        self.done_points = min(self.done_points + int(count), self.total_points)
+        if self.progress is not None:
+            self.progress(self.done_points, self.total_points)
 
     def run(
         self,
@@ -138,7 +154,8 @@ class PointRunner:
         bounds = [(k, min(k + size, count)) for k in range(0, count, size)]
         tasks = [(self.system, wob[a:b], rpm[a:b], self.options) for a, b in bounds]
         base = self.done_points
-        self.total_points += count
+        if not self.fixed_total or base + count > self.total_points:
+            self.total_points = max(self.total_points, base) + count
         progress = self.progress
 
         def report(done: int, total: int) -> None:
@@ -157,6 +174,7 @@ class PointRunner:
             raise
         self.retried += outcome.retries
         self.done_points += count
+        self.runs += count
         return np.concatenate(outcome.results) if outcome.results else np.empty((0, 4))
 
 
@@ -182,7 +200,7 @@ def _rich_progress() -> tuple[Callable[[int, int], None], Callable[[], None]]:
         TextColumn("severity map"),
         BarColumn(),
         MofNCompleteColumn(),
-        TextColumn("points"),
+        TextColumn("runs"),
         TimeElapsedColumn(),
         TimeRemainingColumn(),
         transient=True,

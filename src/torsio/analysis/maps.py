@@ -165,8 +165,10 @@ def severity_map(
         Grid points per task (default: about four tasks per worker, or one task
         serially, each at most 4096/DOFs points, 8192/DOFs serially).
     progress : bool or callable, optional
-        ``progress(done_points, total_points)`` after each chunk; True shows a
-        rich progress bar on stderr.
+        ``progress(done_runs, total_runs)`` after each chunk; True shows a
+        rich progress bar on stderr. The total is fixed from the start: the grid
+        points plus ``refine`` bisection runs per rpm (runs a row turns out not
+        to need are counted as done when that is known).
     threshold : float
         S_SS above which a point is severe (paper: 0.8).
     stick_slip_threshold : float
@@ -422,7 +424,10 @@ def _build_map(
     try:
         with open_executor(executor, CONNECT_TIMEOUT if timeout is None else timeout) as handle:
             info["executor"] = handle.name
-            runner = PointRunner(system, handle, options, size, retries, callback)
+            # a fixed progress total: the grid and every possible bisection run
+            runner = PointRunner(
+                system, handle, options, size, retries, callback, total=points + refine * rpm.size
+            )
             indices = np.arange(points)
 
             def keep_partial(chunks: list[Any]) -> None:
@@ -460,7 +465,7 @@ def _build_map(
             stacklevel=3,
         )
     info["elapsed_s"] = time.perf_counter() - start
-    info["extra_runs"] = runner.done_points - points
+    info["extra_runs"] = runner.runs - points
     from torsio.model.wave import is_wave_model
 
     if is_wave_model(system.model):  # no linearization of the distributed model (yet)
