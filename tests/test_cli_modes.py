@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import json
+import math
 import subprocess
 import sys
 
 import pytest
+from scipy.optimize import brentq
 
 from torsio.cli import main
 
@@ -24,6 +26,28 @@ def test_modes_json_keys_and_values(capsys):
     assert data["strategy"] == "A" and data["dofs"] == 1
     assert round(data["frequencies_hz"][0], 4) == 0.1344
     assert len(data["continuum_hz"]) == len(data["frequencies_hz"]) == 1
+    # continuum_hz is the string as given, flexible BHA (DESIGN.md): paper FEM 0.1307 Hz;
+    # the exact root of the stepped shaft is 0.13075 Hz, so strategy A is +2.8 % (paper)
+    assert round(data["continuum_hz"][0], 5) == 0.13075
+    assert round(100 * data["relative_error"][0], 1) == 2.8
+    # the rigid-BHA continuum (strategy A's limit) under its own key. Independent value: a
+    # uniform shaft fixed at the top with a rigid tip inertia, x tan x = I_DP / I_BHA with
+    # x = omega L / c (ERRATA 1: I_DP = 665.61, I_BHA = 233.78 kg m^2, L = 4733.6 m; Table 1)
+    x = brentq(lambda x: x * math.tan(x) - 665.61 / 233.78, 1e-6, math.pi / 2 - 1e-9)
+    rigid_hz = x * math.sqrt(85.3e9 / 7800.0) / 4733.6 / (2 * math.pi)
+    assert data["continuum_rigid_bha_hz"][0] == pytest.approx(rigid_hz, rel=1e-5)
+
+
+def test_modes_header_and_note_when_count_is_cut(capsys):
+    data = run_json(capsys, "modes", "--strategy", "A", "--count", "3", "--json")
+    assert data["count"] == 1 and data["count_requested"] == 3
+    assert main(["modes", "--strategy", "A", "--count", "3"]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "strategy A, 1 DOF" in out and "string as given (flexible BHA)" in out
+    assert "1 mode shown of the 3 asked: strategy A has 1 degree of freedom" in out
+    assert main(["modes", "--strategy", "B", "--count", "3"]) == 0
+    out = capsys.readouterr().out
+    assert "asked" not in out and "rigid BHA" not in out  # strategy B: flexible BHA only
 
 
 def test_modes_overrides_and_count(capsys):

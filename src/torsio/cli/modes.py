@@ -37,6 +37,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     """Run ``torsio modes`` with parsed arguments; return the exit status."""
     from rich.console import Console
+    from rich.markup import escape
 
     from torsio.errors import ConfigError
     from torsio.io.report import modes_table
@@ -55,13 +56,35 @@ def run(args: argparse.Namespace) -> int:
     if config.string is None:  # a [chain]: no continuum reference
         return _print_chain_modes(results, args.json)
     comparison = results.compare()
+    shown = int(results.frequencies_rad.size)
+    cut = None
+    if args.count is not None and shown < args.count:
+        cut = (
+            f"{shown} mode{'s' if shown != 1 else ''} shown of the {args.count} asked: "
+            f"strategy {model.strategy} has {model.dofs} "
+            f"degree{'s' if model.dofs != 1 else ''} of freedom"
+        )
     if args.json:
         data = results.to_dict()
         data.update(comparison.to_dict())
-        data["count"] = int(results.frequencies_rad.size)
+        data["count"] = shown
+        if args.count is not None:
+            data["count_requested"] = args.count
         print_json(data)
         return 0
-    Console().print(modes_table(comparison))
+    console = Console()
+    rigid = comparison.reference.rigid_bha
+    console.print(
+        escape(
+            f"strategy {model.strategy}, {model.dofs} DOF{'s' if model.dofs != 1 else ''}"
+            f" ({config.string.name if config.string is not None else 'model'}); "
+            "continuum: the exact solution of the string as given (flexible BHA)"
+            + ("; rigid BHA: the same with the BHA rigid, this strategy's limit" if rigid else "")
+        )
+    )
+    console.print(modes_table(comparison))
+    if cut is not None:
+        console.print(escape(f"note: {cut}"))
     return 0
 
 

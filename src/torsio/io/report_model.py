@@ -226,25 +226,33 @@ def discretization_section(ctx: ReportContext) -> ReportSection:
 def modes_table(comparison: ModalComparison, flexible: ContinuumModes | None = None) -> Table:
     """Lumped frequencies against the exact continuum, mode by mode.
 
+    The continuum of the string as given (flexible BHA) comes first; when the
+    model keeps the BHA rigid (strategies A and C), the rigid-BHA continuum (the
+    limit of its discretization) follows in two more columns.
+
     Parameters
     ----------
     comparison : ModalComparison
         The modes against their reference continuum.
     flexible : ContinuumModes, optional
-        When the reference keeps the BHA rigid: the continuum of the whole
-        flexible string, shown in two more columns (the error of the model
-        itself, not only of its discretization).
+        The continuum of the flexible string when the reference keeps the BHA rigid
+        (default: ``comparison.flexible``).
     """
+    rigid = comparison.reference.rigid_bha
+    given = comparison.as_given if flexible is None or not rigid else flexible
     columns = ["mode", "lumped\n[Hz]", "continuum\n[Hz]", "error\n[%]"]
-    if flexible is not None:
-        columns = ["mode", "lumped\n[Hz]", "rigid BHA\n[Hz]", "error\n[%]"]
-        columns += ["flexible\n[Hz]", "error\n[%]"]
+    if rigid:
+        columns += ["rigid BHA\n[Hz]", "error\n[%]"]
     table = _table(*columns, "period\n[s]")
     for i, (mode, lumped, exact, error) in enumerate(comparison.rows()):
-        cells = [str(mode), f"{lumped:.5f}", f"{exact:.5f}", f"{100 * error:+.3f}"]
-        if flexible is not None:
-            full = float(flexible.frequencies_hz[i])
+        cells = [str(mode), f"{lumped:.5f}"]
+        if given is not None:
+            full = float(given.frequencies_hz[i])
             cells += [f"{full:.5f}", f"{100 * (lumped / full - 1):+.3f}"]
+        else:
+            cells += ["-", "-"]
+        if rigid:
+            cells += [f"{exact:.5f}", f"{100 * error:+.3f}"]
         table.add_row(*cells, f"{1.0 / lumped:.4g}")
     return table
 
@@ -252,17 +260,17 @@ def modes_table(comparison: ModalComparison, flexible: ContinuumModes | None = N
 def modes_section(ctx: ReportContext) -> ReportSection:
     """The first natural frequencies against the exact stepped-shaft continuum.
 
-    The reference keeps the BHA rigid when the model does (strategies A and
-    C); the continuum of the whole flexible string is then given as well.
+    The reference is the continuum of the string as given (flexible BHA); when the
+    model keeps the BHA rigid (strategies A and C) the rigid-BHA continuum, the
+    limit of its discretization, is given as well.
     """
     comparison = ctx.comparison
     if comparison is None or ctx.config.string is None:
         return _chain_modes_section(ctx)
-    flexible = None
-    if comparison.reference.rigid_bha:
-        flexible = continuum_modes(ctx.config.string, comparison.count)
-    full = flexible if flexible is not None else comparison.reference
-    full_hz = full.frequencies_hz[: comparison.count]
+    given = comparison.as_given
+    if given is None:
+        given = continuum_modes(ctx.config.string, comparison.count)
+    full_hz = given.frequencies_hz[: comparison.count]
     data = {
         "count": comparison.count,
         "frequencies_hz": comparison.frequencies_hz.tolist(),
@@ -270,13 +278,11 @@ def modes_section(ctx: ReportContext) -> ReportSection:
         "flexible_continuum_hz": full_hz.tolist(),
         "flexible_relative_error": (comparison.frequencies_hz / full_hz - 1.0).tolist(),
     }
-    title = "Modes against the exact continuum"
-    if flexible is None:
-        title += " (flexible BHA)"
-    body: RenderableType = modes_table(comparison, flexible)
-    if flexible is not None:
+    title = "Modes against the exact continuum (the string as given, flexible BHA)"
+    body: RenderableType = modes_table(comparison, given)
+    if comparison.reference.rigid_bha:
         note = Text(
-            "exact continuum with the BHA rigid (this strategy's limit) and flexible",
+            "rigid BHA: the exact continuum with the BHA rigid, this strategy's limit",
             style="dim",
         )
         body = Group(body, note)

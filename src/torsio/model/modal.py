@@ -31,7 +31,7 @@ from torsio.model.lumped import LumpedModel
 from torsio.model.shapes import normalize_shape
 
 
-@attrs.frozen
+@attrs.frozen(repr=False)
 class ModalResults:
     """Natural frequencies and mode shapes of a lumped model.
 
@@ -73,7 +73,9 @@ class ModalResults:
         """Compare with the exact continuum, mode by mode (same index).
 
         Without ``reference``, the continuum of the string the model came from is
-        used, with the BHA rigid if the model's strategy keeps it rigid (A, C).
+        used, with the BHA rigid if the model's strategy keeps it rigid (A, C); the
+        continuum of the string as given (flexible BHA) is then kept as well
+        (:attr:`ModalComparison.as_given`).
         """
         if reference is None:
             if self.string is None:
@@ -83,6 +85,10 @@ class ModalResults:
                 )
             rigid = bool(self.model.details.get("elements", {}).get("BHA") == "rigid")
             reference = continuum_modes(self.string, self.frequencies_rad.size, rigid)
+            if rigid:  # the string as given as well: the reference of the paper and of JSON
+                flexible = continuum_modes(self.string, self.frequencies_rad.size, False)
+                count = min(reference.frequencies_rad.size, self.frequencies_rad.size)
+                return ModalComparison(self, reference, count, flexible)
         count = min(reference.frequencies_rad.size, self.frequencies_rad.size)
         return ModalComparison(self, reference, count)
 
@@ -96,6 +102,14 @@ class ModalResults:
             "node_depths_m": self.node_depths.tolist(),
         }
 
+    def __repr__(self) -> str:
+        hz = ", ".join(f"{f:.4g}" for f in self.frequencies_hz[:5])
+        more = ", ..." if self.frequencies_hz.size > 5 else ""
+        return (
+            f"ModalResults(strategy {self.model.strategy}, {self.model.dofs} DOFs, "
+            f"{self.frequencies_hz.size} modes: [{hz}{more}] Hz)"
+        )
+
     def plot(self, modes: tuple[int, ...] = (1,), ax: Any = None, reference: bool = True) -> Any:
         """Plot mode shapes against depth (matplotlib); the continuum as lines if known."""
         from torsio.io.plotting import plot_mode_shapes
@@ -103,13 +117,36 @@ class ModalResults:
         return plot_mode_shapes(self, modes, ax=ax, reference=reference)
 
 
-@attrs.frozen
+@attrs.frozen(repr=False)
 class ModalComparison:
-    """Lumped frequencies against the exact continuum, mode by mode."""
+    """Lumped frequencies against the exact continuum, mode by mode.
+
+    Attributes
+    ----------
+    modal : ModalResults
+    reference : ContinuumModes
+        The continuum compared mode by mode (rigid BHA for strategies A and C:
+        the limit of the discretization).
+    count : int
+        Number of compared modes.
+    flexible : ContinuumModes or None
+        When ``reference`` keeps the BHA rigid: the continuum of the string as given.
+    """
 
     modal: ModalResults
     reference: ContinuumModes
     count: int
+    flexible: ContinuumModes | None = None
+
+    def __repr__(self) -> str:
+        errors = ", ".join(f"{100 * e:+.3g} %" for e in self.relative_error[:5])
+        which = "rigid-BHA" if self.reference.rigid_bha else "flexible"
+        return f"ModalComparison({self.count} modes against the {which} continuum: [{errors}])"
+
+    @property
+    def as_given(self) -> ContinuumModes | None:
+        """The continuum of the string as given (flexible BHA), if known."""
+        return self.flexible if self.reference.rigid_bha else self.reference
 
     @property
     def frequencies_hz(self) -> np.ndarray:
@@ -136,12 +173,23 @@ class ModalComparison:
         ]
 
     def to_dict(self) -> dict[str, Any]:
-        """Plain data for JSON."""
-        return {
-            "continuum_hz": self.reference_hz.tolist(),
-            "relative_error": self.relative_error.tolist(),
-            "continuum_rigid_bha": self.reference.rigid_bha,
-        }
+        """Plain data for JSON.
+
+        ``continuum_hz`` and ``relative_error`` are always against the string as given
+        (flexible BHA; DESIGN.md); a rigid-BHA reference has keys of its own,
+        ``continuum_rigid_bha_hz`` and ``relative_error_rigid_bha``.
+        """
+        data: dict[str, Any] = {}
+        given = self.as_given
+        if given is not None:
+            given_hz = given.frequencies_hz[: self.count]
+            data["continuum_hz"] = given_hz.tolist()
+            data["relative_error"] = (self.frequencies_hz / given_hz - 1.0).tolist()
+        data["continuum_rigid_bha"] = self.reference.rigid_bha
+        if self.reference.rigid_bha:
+            data["continuum_rigid_bha_hz"] = self.reference_hz.tolist()
+            data["relative_error_rigid_bha"] = self.relative_error.tolist()
+        return data
 
 
 def _is_tridiagonal(matrix: np.ndarray) -> bool:
