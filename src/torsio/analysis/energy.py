@@ -73,7 +73,7 @@ def _cumulative(power: np.ndarray, time_grid: np.ndarray) -> np.ndarray:
     return np.asarray(scipy.integrate.cumulative_simpson(power, x=time_grid, initial=0.0))
 
 
-@attrs.frozen(eq=False)
+@attrs.frozen(eq=False, repr=False)
 class EnergyBalance:
     """Cumulative works and stored energies of a transient run, sample by sample [J].
 
@@ -105,6 +105,12 @@ class EnergyBalance:
     work_bit: np.ndarray
     kinetic: np.ndarray
     potential: np.ndarray
+
+    def __repr__(self) -> str:  # short: totals, no time series
+        return (
+            f"EnergyBalance({self.time.size} samples over {self.time[-1]:g} s, work in "
+            f"{self.work_in[-1]:.4g}, relative residual {self.relative_residual:.2g})"
+        )
 
     @property
     def dissipated(self) -> np.ndarray:

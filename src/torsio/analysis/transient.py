@@ -182,7 +182,7 @@ class SimulationOptions:
         return attrs.asdict(self)
 
 
-@attrs.frozen(eq=False)
+@attrs.frozen(eq=False, repr=False)
 class TransientResults:
     """The sampled transient response of a System (returned by :func:`simulate`).
 
@@ -233,6 +233,13 @@ class TransientResults:
     stick_threshold: float
     solver: dict[str, Any]
     system: System
+
+    def __repr__(self) -> str:  # short: no time series
+        return (
+            f"TransientResults({self.time.size} samples over {self.time[-1]:g} s, "
+            f"S_SS {self.severity:.4g} over the last {self.steady_window:g} s, "
+            f"{self.solver.get('method')} rtol {self.solver.get('rtol')}; {self.system!r})"
+        )
 
     # --- derived views (no recomputation of the analysis) ---------------------------------
     @property

@@ -25,7 +25,7 @@ def _to_tuple(sections: Iterable[Section]) -> tuple[Section, ...]:
     return tuple(sections)
 
 
-@attrs.frozen
+@attrs.frozen(repr=False)
 class DrillString:
     """Sections listed from the surface down to the bit.
 
@@ -47,6 +47,11 @@ class DrillString:
 
     sections: tuple[Section, ...] = attrs.field(converter=_to_tuple)
     name: str = attrs.field(default="", converter=str)
+
+    def __repr__(self) -> str:  # short: section names, not every field
+        names = ", ".join(repr(s.name or type(s).__name__) for s in self.sections)
+        length = sum(s.length for s in self.sections)
+        return f"DrillString({self.name!r}, {len(self.sections)} sections, {length:g} m: {names})"
 
     def __attrs_post_init__(self) -> None:
         sections = self.sections

@@ -68,7 +68,7 @@ def chain_matrix(springs: np.ndarray) -> np.ndarray:
     return matrix
 
 
-@attrs.frozen
+@attrs.frozen(repr=False)
 class LumpedModel:
     """Inertia and stiffness matrices of a torsional chain fixed at the top.
 
@@ -106,6 +106,16 @@ class LumpedModel:
         default=None, converter=attrs.converters.optional(_as_vector)
     )
     details: dict[str, Any] = attrs.field(factory=dict, eq=False)
+
+    def __repr__(self) -> str:  # short: no matrices
+        depths = self.node_depths
+        return (
+            f"LumpedModel(strategy {self.strategy!r}, {self.dofs} DOFs at "
+            f"{depths[0]:g}..{depths[-1]:g} m, total inertia {np.trace(self.inertia):.5g} kg m^2"
+            + ("" if self.has_lumped_mass else ", consistent mass")
+            + ("" if self.damping is None else ", own dampers")
+            + ")"
+        )
 
     def __attrs_post_init__(self) -> None:
         n = self.inertia.shape[0]

@@ -72,7 +72,7 @@ def _check_operating_value(key: str, value: float, positive: bool) -> None:
         raise ConfigError(key, f"expected a {what} finite value, got {value!r}")
 
 
-@attrs.frozen
+@attrs.frozen(repr=False)
 class System:
     """A damped lumped model with a bit-rock law, top drive and operating point.
 
@@ -103,6 +103,14 @@ class System:
     rpm: float = attrs.field(default=60.0, converter=float)
     top: Any = attrs.field(factory=ConstantSpeedTop, validator=_check_top)
     string: Any = attrs.field(default=None, eq=False)
+
+    def __repr__(self) -> str:  # short: no matrices (the model has its own repr)
+        name = getattr(self.string, "name", "") or "model"
+        return (
+            f"System({name!r}, strategy {self.model.strategy}, {self.model.dofs} DOFs; "
+            f"{self.law!r}, R_bit {self.bit_radius:g} m; {self.damping!r}; {self.top!r}; "
+            f"wob {self.wob / 1e3:g} kN, {self.rpm:g} rpm)"
+        )
 
     def __attrs_post_init__(self) -> None:
         _check_operating_value("operation.wob", self.wob, positive=False)

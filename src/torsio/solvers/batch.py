@@ -219,7 +219,7 @@ def _top_vector(boundary: Any, chain: np.ndarray) -> np.ndarray:
     return top
 
 
-@attrs.frozen
+@attrs.frozen(repr=False)
 class BatchResults:
     """S_SS of a batch of operating points.
 
@@ -264,6 +264,12 @@ class BatchResults:
     rtol: float
     atol: float
     elapsed: float
+
+    def __repr__(self) -> str:  # short: counts, no arrays
+        return (
+            f"BatchResults({self.severity.size} points, {int(np.sum(self.status != 0))} failed, "
+            f"engine {self.engine!r}, rtol {self.rtol:g}, {self.elapsed:.3g} s)"
+        )
 
     @property
     def ok(self) -> np.ndarray:
