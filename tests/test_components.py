@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+import attrs
 import pytest
 
 from torsio import (
@@ -104,3 +105,31 @@ def test_series_stiffness_of_two_pipe_grades():
     string = DrillString([a, b, Bit(od=0.2, id=0.05, length=0.3)])
     assert string.drill_pipe_stiffness == pytest.approx(1 / (1 / a.stiffness + 1 / b.stiffness))
     assert string.flexible_length == 3500.0
+
+
+def test_constructors_take_unit_strings_like_the_toml():
+    # Exact factors: 1 in = 0.0254 m, 1 ft = 0.3048 m (international inch/foot); G in GPa.
+    steel = Material(shear_modulus="79.3 GPa", density="7800 kg/m^3")
+    assert steel.shear_modulus == pytest.approx(79.3e9, rel=1e-15)
+    pipe = DrillPipe(od="5 in", id="4.276 in", length="31 ft", material=steel)
+    assert pipe.od == pytest.approx(0.127, rel=1e-15)
+    assert pipe.id == pytest.approx(4.276 * 0.0254, rel=1e-15)
+    assert pipe.length == pytest.approx(31 * 0.3048, rel=1e-15)
+    assert DrillPipe(od=0.127, id=0.1086, length=9.4488).od == 0.127  # bare numbers: SI
+    with pytest.raises(ConfigError, match="od") as info:
+        DrillPipe(od="5 kg", id=0.1, length=10.0)
+    assert "'5 kg' is not a length" in str(info.value)
+    with pytest.raises(ConfigError, match="must be smaller than the outer diameter"):
+        DrillPipe(od="4 in", id="5 in", length=10.0)
+
+
+def test_system_and_damping_take_unit_strings(one_dof):
+    from torsio.physics.damping import RayleighDamping
+
+    # 1 rpm = pi/30 rad/s; 1 in = 0.0254 m
+    system = one_dof.at(wob="100 kN", rpm="120 rpm")
+    assert system.wob == 100e3 and system.rpm == pytest.approx(120.0, rel=1e-15)
+    assert one_dof.at(rpm=f"{4 * math.pi} rad/s").rpm == pytest.approx(120.0, rel=1e-15)
+    assert attrs.evolve(one_dof, bit_radius="4.25 in").bit_radius == pytest.approx(0.10795)
+    damping = RayleighDamping(alpha="0.35 1/s", beta="60 ms")
+    assert (damping.alpha, damping.beta) == (pytest.approx(0.35), pytest.approx(0.06))

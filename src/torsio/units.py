@@ -146,3 +146,48 @@ def _parse(text: str, dimension: str, key: str) -> float:
         raise ConfigError(
             key, f"{text!r} is not a {dimension.replace('_', ' ')} (expected units like {target})"
         ) from None
+
+
+def as_si(value: Any, dimension: str, key: str) -> float:
+    """A string with units to SI (:func:`to_si`), anything else to float: for attrs converters.
+
+    Lets Python constructors take what a configuration file takes, e.g.
+    ``DrillPipe(od="5 in", ...)`` or ``Material(shear_modulus="79.3 GPa", ...)``;
+    bare numbers stay SI (range checks are left to the class's validators).
+
+    Examples
+    --------
+    >>> as_si("5 in", "length", "od")
+    0.127
+    >>> as_si(0.127, "length", "od")
+    0.127
+    """
+    if isinstance(value, str):
+        return to_si(value, dimension, key=key)
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise ConfigError(key, f"expected a number or a string with units, got {value!r}") from None
+
+
+def as_rpm(value: Any, key: str = "rpm") -> float:
+    """A rotary speed in rpm from ``"120 rpm"``, ``"12.6 rad/s"`` or a number (rpm).
+
+    Examples
+    --------
+    >>> as_rpm("12.566370614359172 rad/s")
+    120.0
+    >>> as_rpm(60)
+    60.0
+    """
+    if isinstance(value, str):
+        try:  # a bare number in a string is rpm, as everywhere for this key
+            return float(value)
+        except ValueError:
+            return to_si(value, "angular_speed", key=key) / RPM_TO_RAD_S
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise ConfigError(
+            key, f"expected a number (rpm) or a speed with units, got {value!r}"
+        ) from None

@@ -26,6 +26,7 @@ from typing import Any, ClassVar
 import attrs
 
 from torsio.errors import ConfigError
+from torsio.units import as_si
 
 
 def _positive_finite(instance: Any, attribute: attrs.Attribute[Any], value: float) -> None:
@@ -46,16 +47,36 @@ def _non_negative_finite(instance: Any, attribute: attrs.Attribute[Any], value: 
         )
 
 
+def _shear_modulus_si(value: Any) -> float:
+    return as_si(value, "pressure", "shear_modulus")
+
+
+def _density_si(value: Any) -> float:
+    return as_si(value, "density", "density")
+
+
+def _od_si(value: Any) -> float:
+    return as_si(value, "length", "od")
+
+
+def _id_si(value: Any) -> float:
+    return as_si(value, "length", "id")
+
+
+def _length_si(value: Any) -> float:
+    return as_si(value, "length", "length")
+
+
 @attrs.frozen
 class Material:
     """Elastic material of a section.
 
     Parameters
     ----------
-    shear_modulus : float
-        Shear modulus G [Pa].
-    density : float
-        Density rho [kg/m^3].
+    shear_modulus : float or str
+        Shear modulus G [Pa], or a string with units (``"79.3 GPa"``).
+    density : float or str
+        Density rho [kg/m^3], or a string with units (``"7.8 g/cm^3"``).
 
     Examples
     --------
@@ -63,8 +84,8 @@ class Material:
     3306.9...
     """
 
-    shear_modulus: float = attrs.field(converter=float, validator=_positive_finite)
-    density: float = attrs.field(converter=float, validator=_positive_finite)
+    shear_modulus: float = attrs.field(converter=_shear_modulus_si, validator=_positive_finite)
+    density: float = attrs.field(converter=_density_si, validator=_positive_finite)
 
     @property
     def wave_speed(self) -> float:
@@ -96,10 +117,11 @@ class Section:
 
     Parameters
     ----------
-    od, id : float
-        Outer and inner diameter [m]; ``0 <= id < od``.
-    length : float
-        Length along the string [m].
+    od, id : float or str
+        Outer and inner diameter [m]; ``0 <= id < od``. Strings with units are
+        accepted as in configuration files (``"5 in"``).
+    length : float or str
+        Length along the string [m] (or e.g. ``"30 ft"``).
     material : Material
         Defaults to :data:`STEEL`.
     name : str
@@ -112,9 +134,9 @@ class Section:
     kind: ClassVar[str] = "section"
     default_bha: ClassVar[bool] = True
 
-    od: float = attrs.field(converter=float, validator=_positive_finite)
-    id: float = attrs.field(converter=float, validator=_check_inner_diameter)
-    length: float = attrs.field(converter=float, validator=_positive_finite)
+    od: float = attrs.field(converter=_od_si, validator=_positive_finite)
+    id: float = attrs.field(converter=_id_si, validator=_check_inner_diameter)
+    length: float = attrs.field(converter=_length_si, validator=_positive_finite)
     material: Material = attrs.field(
         default=STEEL, validator=attrs.validators.instance_of(Material)
     )

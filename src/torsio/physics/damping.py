@@ -18,12 +18,14 @@ torsio.errors.ConfigError: damping.modes: expected two different mode numbers, g
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import attrs
 import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.model.lumped import LumpedModel
+from torsio.units import as_si
 
 
 def _non_negative(instance: object, attribute: attrs.Attribute[float], value: float) -> None:
@@ -33,20 +35,28 @@ def _non_negative(instance: object, attribute: attrs.Attribute[float], value: fl
         )
 
 
+def _alpha_si(value: Any) -> float:
+    return as_si(value, "inverse_time", "alpha")
+
+
+def _beta_si(value: Any) -> float:
+    return as_si(value, "time", "beta")
+
+
 @attrs.frozen
 class RayleighDamping:
     """[C] = alpha [I] + beta [K].
 
     Parameters
     ----------
-    alpha : float
-        Mass-proportional coefficient [1/s].
-    beta : float
-        Stiffness-proportional coefficient [s].
+    alpha : float or str
+        Mass-proportional coefficient [1/s] (or e.g. ``"0.35 1/s"``).
+    beta : float or str
+        Stiffness-proportional coefficient [s] (or e.g. ``"60 ms"``).
     """
 
-    alpha: float = attrs.field(default=0.0, converter=float, validator=_non_negative)
-    beta: float = attrs.field(default=0.0, converter=float, validator=_non_negative)
+    alpha: float = attrs.field(default=0.0, converter=_alpha_si, validator=_non_negative)
+    beta: float = attrs.field(default=0.0, converter=_beta_si, validator=_non_negative)
 
     def matrix(self, model: LumpedModel) -> np.ndarray:
         """[C], in N m s/rad."""

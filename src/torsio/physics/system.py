@@ -39,7 +39,7 @@ from torsio.errors import ConfigError
 from torsio.model.lumped import LumpedModel
 from torsio.physics.damping import ModelDamping, RayleighDamping
 from torsio.physics.top_drives import ConstantSpeedTop
-from torsio.units import RPM_TO_RAD_S
+from torsio.units import RPM_TO_RAD_S, as_rpm, as_si
 
 __all__ = ["ConstantSpeedTop", "System"]
 
@@ -72,6 +72,14 @@ def _check_operating_value(key: str, value: float, positive: bool) -> None:
         raise ConfigError(key, f"expected a {what} finite value, got {value!r}")
 
 
+def _bit_radius_si(value: Any) -> float:
+    return as_si(value, "length", "bit_radius")
+
+
+def _wob_si(value: Any) -> float:
+    return as_si(value, "force", "wob")
+
+
 @attrs.frozen(repr=False)
 class System:
     """A damped lumped model with a bit-rock law, top drive and operating point.
@@ -81,13 +89,13 @@ class System:
     model : LumpedModel
     law : BitRockLaw
         Any object with ``torque(speed, wob, radius)``.
-    bit_radius : float
-        R_bit [m].
+    bit_radius : float or str
+        R_bit [m] (or e.g. ``"4.25 in"``).
     damping : RayleighDamping | ModelDamping
-    wob : float
-        Weight on bit W_ob [N], >= 0.
-    rpm : float
-        Surface rotary speed [rpm], > 0.
+    wob : float or str
+        Weight on bit W_ob [N], >= 0 (or e.g. ``"100 kN"``).
+    rpm : float or str
+        Surface rotary speed [rpm], > 0 (or e.g. ``"120 rpm"``, ``"12 rad/s"``).
     top : top drive
         Any registered top drive (:mod:`torsio.physics.top_drives`); default
         :class:`ConstantSpeedTop`.
@@ -97,10 +105,10 @@ class System:
 
     model: LumpedModel
     law: Any
-    bit_radius: float = attrs.field(converter=float)
+    bit_radius: float = attrs.field(converter=_bit_radius_si)
     damping: RayleighDamping | ModelDamping = attrs.field(factory=RayleighDamping)
-    wob: float = attrs.field(default=0.0, converter=float)
-    rpm: float = attrs.field(default=60.0, converter=float)
+    wob: float = attrs.field(default=0.0, converter=_wob_si)
+    rpm: float = attrs.field(default=60.0, converter=as_rpm)
     top: Any = attrs.field(factory=ConstantSpeedTop, validator=_check_top)
     string: Any = attrs.field(default=None, eq=False)
 
