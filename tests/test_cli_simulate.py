@@ -226,3 +226,13 @@ def test_console_entry_point():
     assert result.returncode == 0, result.stderr
     data = json.loads(result.stdout)
     assert data["wob"] == 150000.0 and data["severity"] > 0.8
+
+
+def test_small_bare_wob_warns_on_stderr(capsys):
+    # bare numbers are N (DESIGN.md: bare numbers are SI); 150 N is no drilling load
+    assert main(["simulate", *FAST, "--wob", "150", "--rpm", "100", "--json"]) == 0
+    captured = capsys.readouterr()
+    assert json.loads(captured.out)["wob"] == 150.0  # taken as given, not rescaled
+    assert "--wob 150 is 150 N (bare numbers are N); did you mean '150 kN'?" in captured.err
+    assert main(["simulate", *FAST, "--wob", "150 kN", "--rpm", "100", "--json"]) == 0
+    assert "warning" not in capsys.readouterr().err

@@ -52,6 +52,40 @@ def parse_time(value: str | None, key: str) -> float | None:
         return to_si(value, "time", key=key)
 
 
+SMALL_BARE_WOB = 1000.0
+"""A bare ``--wob`` below this many newtons gets a warning: drilling loads are kN."""
+
+
+def warn_small_bare_wob(text: str | None, option: str = "--wob") -> None:
+    """Warn on stderr when a bare number for a weight on bit is implausibly small.
+
+    Bare numbers are newtons (SI), so ``--wob 150`` is 150 N, not 150 kN; below
+    :data:`SMALL_BARE_WOB` the warning asks whether kN was meant. Strings with units
+    and zero are never warned about.
+
+    Examples
+    --------
+    >>> import contextlib, io
+    >>> stream = io.StringIO()
+    >>> with contextlib.redirect_stderr(stream):
+    ...     warn_small_bare_wob("150")
+    >>> print(stream.getvalue().strip())
+    warning: --wob 150 is 150 N (bare numbers are N); did you mean '150 kN'?
+    """
+    if text is None:
+        return
+    try:
+        value = float(text)
+    except (TypeError, ValueError):
+        return  # a string with units says what it means
+    if 0.0 < value < SMALL_BARE_WOB:
+        print(
+            f"warning: {option} {text} is {value:g} N (bare numbers are N); "
+            f"did you mean '{text} kN'?",
+            file=sys.stderr,
+        )
+
+
 def load(args: argparse.Namespace) -> Config:
     """The configuration named on the command line, or the built-in one."""
     from torsio.io.config import builtin_config, load_config

@@ -21,6 +21,7 @@ from torsio.cli.common import (
     load,
     parse_time,
     print_json,
+    warn_small_bare_wob,
 )
 
 DEFAULT_WOB = "25kN:225kN:21"
@@ -161,6 +162,7 @@ def _range_bounds(text: str, option: str, kind: str) -> tuple[float, float, int]
         if not part:
             raise ConfigError(option, f"expected START:STOP:N, got {text!r}")
         if kind == "wob":
+            warn_small_bare_wob(part, option)
             value = to_si(part, "force", key=option)
             if value < 0:
                 raise ConfigError(option, f"expected non-negative weights on bit, got {part!r}")

@@ -12,6 +12,7 @@ from torsio.cli.common import (
     load,
     parse_time,
     print_json,
+    warn_small_bare_wob,
 )
 
 
@@ -85,6 +86,7 @@ def run(args: argparse.Namespace) -> int:
             raise ConfigError(
                 "--plot", "needs matplotlib, which is not installed; pip install 'torsio[plot]'"
             ) from None
+    warn_small_bare_wob(args.wob)
     try:
         results = simulate_config(
             config,
