@@ -61,9 +61,19 @@ def test_report_html_is_standalone_with_embedded_figures(tmp_path, capsys):
     assert "S_SS" in capsys.readouterr().out  # the terminal report is still printed
     page = path.read_text(encoding="utf-8")
     assert page.startswith("<!DOCTYPE html>")
-    assert page.count("data:image/png;base64,") == 2  # mode shapes and transient
+    assert page.count("data:image/png;base64,") == 3  # mode shapes, severity map, transient
     assert "http://" not in page and "https://" not in page  # nothing fetched on opening
     assert "Dimensionless groups" in page and "0.13438" in page
+    # version, date and the configuration as TOML text (the built-in file, HTML-escaped)
+    import re
+
+    from torsio import __version__
+
+    assert f"torsio {__version__}, " in page
+    assert re.search(r"\d{4}-\d\d-\d\d \d\d:\d\d UTC", page)
+    assert "Configuration (TOML)" in page and "kind = &quot;drill_pipe&quot;" in page
+    assert "overridden by strategy = A" in page
+    assert "Severity map: S_SS over 9 rotary speeds x 9 weights on bit" in page
 
 
 def test_report_html_unwritable_path_is_a_clear_error(capsys):

@@ -1,17 +1,21 @@
 """The report as one standalone HTML page, its plots embedded (``torsio report --html``).
 
-The page holds the same sections as the terminal report (rendered by rich with
+The page starts with the torsio version, the date (UTC) and the configuration as
+TOML text; then the same sections as the terminal report (rendered by rich with
 inline styles), followed by figures embedded as base64 PNG images: the first
 mode shapes against the exact continuum and, when the configuration has a
-bit-rock law and an operating point, the transient response there. Nothing is
-fetched when the page is opened. Without matplotlib (it comes with the ``[plot]``
-extra) the page has the report without figures and a note saying how to get them.
+bit-rock law and an operating point, the transient response there and a severity
+map around it (:data:`MAP_GRID`). Nothing is fetched when the page is opened. Without
+matplotlib (it comes with the ``[plot]`` extra) the page has the report without figures
+and a note saying how to get them.
 
 Examples
 --------
 >>> from torsio.io.config import builtin_config
 >>> page = html_report(builtin_config(), strategy="A")
->>> page.startswith("<!DOCTYPE html>") and page.count("data:image/png;base64,") == 2
+>>> page.startswith("<!DOCTYPE html>") and page.count("data:image/png;base64,") == 3
+True
+>>> "[[section]]" in page and "Severity map" in page
 True
 """
 
@@ -20,6 +24,7 @@ from __future__ import annotations
 import base64
 import html
 import io
+from datetime import UTC
 from typing import Any
 
 from rich.console import Console
@@ -43,11 +48,14 @@ figure {{ margin: 1.5em 0; }}
 figure img {{ max-width: 100%; border: 1px solid #ddd; }}
 figcaption {{ color: #555; font-size: 0.9em; }}
 p.note {{ color: #555; border-left: 3px solid #ccc; padding-left: 0.8em; }}
+details pre {{ font-size: 13px; background: #fafafa; padding: 1em; border: 1px solid #ddd;
+              overflow-x: auto; }}
 </style>
 </head>
 <body>
 <h1>torsio report: {title}</h1>
-<p>Configuration: <code>{source}</code></p>
+<p>torsio {version}, {date}. Configuration: <code>{source}</code>{overrides}</p>
+{configuration}
 <pre class="report">{report}</pre>
 {figures}
 </body>
@@ -100,6 +108,9 @@ def report_figures(ctx: ReportContext) -> list[tuple[Any, str]]:
             "continuum (lines).",
         )
     )
+    severity_map = map_figure(ctx)
+    if severity_map is not None:
+        figures.append(severity_map)
     results = ctx.transient
     if results is not None:
         figure = Figure(figsize=(8.0, 7.0))
@@ -113,6 +124,69 @@ def report_figures(ctx: ReportContext) -> list[tuple[Any, str]]:
             )
         )
     return figures
+
+
+MAP_GRID = ((0.25, 2.25, 9), (0.4, 1.4, 9), 2)
+"""Severity map of the HTML report: (weight on bit, rotary speed) ranges as multiples of the
+operating point with their point counts, and bisection steps of the critical curve
+(the paper's 25-225 kN x 40-140 rpm around 100 kN, 100 rpm)."""
+
+
+def map_figure(ctx: ReportContext) -> tuple[Any, str] | None:
+    """The severity map around the operating point, or None without a bit law or point.
+
+    The grid is :data:`MAP_GRID`; every point starts from rest
+    (:func:`torsio.analysis.maps.severity_map`). The operating point is marked.
+    """
+    system = ctx.system
+    op = ctx.config.operation
+    if system is None or op.wob is None or op.rpm is None or op.wob <= 0:
+        return None
+    import numpy as np
+    from matplotlib.figure import Figure
+
+    from torsio.analysis.maps import severity_map
+
+    (w0, w1, wn), (r0, r1, rn), refine = MAP_GRID
+    result = severity_map(
+        system,
+        wob=np.linspace(w0 * op.wob, w1 * op.wob, wn),
+        rpm=np.linspace(r0 * op.rpm, r1 * op.rpm, rn),
+        refine=refine,
+    )
+    figure = Figure(figsize=(7.0, 5.0), constrained_layout=True)
+    ax = result.plot(ax=figure.add_subplot())
+    ax.plot([op.rpm], [op.wob / 1e3], "r*", ms=14, mec="white", label="operating point")
+    ax.legend(loc="upper left", fontsize=8, framealpha=0.8)
+    info = result.info
+    caption = (
+        f"Severity map: S_SS over {rn} rotary speeds x {wn} weights on bit around the "
+        f"operating point (star), each run from rest for {info['duration']:.4g} s, S_SS over "
+        f"the last {info['steady_window']:.4g} s (rtol {info['rtol']:g}); the critical "
+        f"weight on bit (S_SS > {result.threshold:g} above it) bisected {refine} times; "
+        "triangles: critical weight on bit off the grid."
+    )
+    return figure, caption
+
+
+def configuration_text(config: Config) -> str | None:
+    """The TOML text of the configuration: its file, or the built-in example; None otherwise.
+
+    The file is read again when the page is written.
+    """
+    from importlib import resources
+    from pathlib import Path
+
+    source = config.source
+    if source.startswith("built-in "):
+        name = source.removeprefix("built-in ")
+        resource = resources.files("torsio").joinpath(f"data/{name}")
+        return resource.read_text(encoding="utf-8") if resource.is_file() else None
+    path = Path(source)
+    try:
+        return path.read_text(encoding="utf-8") if path.is_file() else None
+    except OSError:
+        return None
 
 
 def html_report(config: Config | ReportContext, **options: Any) -> str:
@@ -136,9 +210,30 @@ def html_report(config: Config | ReportContext, **options: Any) -> str:
         )
     else:
         figures = f'<p class="note">{html.escape(NO_FIGURES_NOTE)}</p>'
+    from datetime import datetime
+
+    from torsio import __version__
+
+    text = configuration_text(config)
+    configuration = (
+        "<p>(the configuration was given in Python: no TOML text)</p>"
+        if text is None
+        else "<details open><summary>Configuration (TOML)</summary>"
+        f"<pre>{html.escape(text)}</pre></details>"
+    )
+    given = {k: v for k, v in ctx.overrides.items() if v is not None}
+    overrides = (
+        ", overridden by " + html.escape(", ".join(f"{k} = {v}" for k, v in given.items()))
+        if given
+        else ""
+    )
     return PAGE.format(
         title=html.escape(config.name or "unnamed"),
+        version=html.escape(__version__),
+        date=datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"),
         source=html.escape(config.source),
+        overrides=overrides,
+        configuration=configuration,
         report=report,
         figures=figures,
     )
