@@ -429,6 +429,33 @@ def map_point_against_single_run() -> Check:
     )
 
 
+ROUND_OFF_FRACTION = 1e-3
+"""Differences below this fraction of the tolerance are printed as a bound, not a value."""
+
+
+def difference_text(row: Check) -> str:
+    """The relative difference in percent, as the page prints it.
+
+    Differences far below the tolerance (under :data:`ROUND_OFF_FRACTION` of it) are
+    round-off, whose digits depend on the CPU and the BLAS; they are printed as a bound
+    (a power of ten) that is the same on every machine.
+
+    Examples
+    --------
+    >>> difference_text(Check("q", "s", 2.0, 2.0 + 1e-15, 1e-6))
+    '< 1e-7 %'
+    >>> difference_text(Check("q", "s", 2.0, 2.01, 0.05))
+    '+0.5 %'
+    """
+    if row.source_value == 0:
+        return "-"
+    if abs(row.value - row.source_value) < ROUND_OFF_FRACTION * row.tolerance:
+        bound = 100.0 * ROUND_OFF_FRACTION * row.tolerance / abs(row.source_value)
+        exponent = math.ceil(math.log10(bound))
+        return f"< 1e{exponent} %"
+    return f"{100 * row.difference:+.3g} %"
+
+
 def table(rows: list[Check]) -> str:
     """The checks as a Markdown table."""
     lines = [
@@ -436,7 +463,7 @@ def table(rows: list[Check]) -> str:
         "|---|---|---:|---:|---:|---:|",
     ]
     for row in rows:
-        diff = "-" if row.source_value == 0 else f"{100 * row.difference:+.3g} %"
+        diff = difference_text(row)
         lines.append(
             f"| {row.quantity} | {row.source} | {row.source_value:.6g} | "
             f"{row.value:.6g} | {diff} | {row.tolerance:.2g} ({row.note}) |"
@@ -450,7 +477,9 @@ Every number torsio is checked against, with its source. This page is generated 
 `python -m torsio.io.validation --write docs/validation.md` from the same checks the test
 suite runs (`tests/test_validation.py`); a test fails if this page differs from a fresh
 generation. *difference* is (torsio − source)/|source|; a check passes when
-|torsio − source| is within the tolerance, whose reason is given in brackets.
+|torsio − source| is within the tolerance, whose reason is given in brackets. A difference
+under a thousandth of the tolerance is round-off, whose digits change with the CPU and the
+linear-algebra library: it is shown as a bound ("< 1e-7 %").
 
 """
 
@@ -480,4 +509,13 @@ if __name__ == "__main__":  # pragma: no cover
     raise SystemExit(main())
 
 
-__all__ = ["CHECKS", "Check", "check", "main", "page", "table"]
+__all__ = [
+    "CHECKS",
+    "ROUND_OFF_FRACTION",
+    "Check",
+    "check",
+    "difference_text",
+    "main",
+    "page",
+    "table",
+]
