@@ -108,6 +108,9 @@ def test_a_torque_driven_top_has_no_rotary_speed(tmp_path, capsys):
     assert main(["simulate", str(path), "--rpm", "60", "--json"]) == 2
     err = capsys.readouterr().err
     assert "--rpm" in err and "torque" in err
+    assert main(["map", str(path), "--rpm", "60:60:1", "--wob", "50kN:60kN:2", "--json"]) == 2
+    err = capsys.readouterr().err
+    assert "--rpm" in err and "torque" in err
 
 
 def test_soft_torque_on_a_chain_needs_kp():
