@@ -350,6 +350,9 @@ def system_from_config(
         wob = to_si(wob, "force", key="wob")
         if wob < 0:
             raise ConfigError("wob", f"expected a non-negative weight on bit, got {text!r}")
+    options = {k: v for k, v in (discretization or {}).items() if v is not None}
+    if rpm is None and not config.top_drive.has_set_speed:  # e.g. a torque-driven top
+        return System.from_config(config, **options).at(wob=wob)
     if rpm is None:
         rpm = config.operation.rpm
         if rpm is None:
