@@ -108,6 +108,9 @@ def test_a_torque_driven_top_has_no_rotary_speed(tmp_path, capsys):
     assert main(["simulate", str(path), "--rpm", "60", "--json"]) == 2
     err = capsys.readouterr().err
     assert "--rpm" in err and "torque" in err
+    assert main(["map", str(path), "--rpm", "60:60:1", "--wob", "50kN:60kN:2", "--json"]) == 2
+    err = capsys.readouterr().err
+    assert "--rpm" in err and "torque" in err
 
 
 def test_soft_torque_on_a_chain_needs_kp():
@@ -176,4 +179,7 @@ def test_report_of_the_navarro_lopez_cortes_chain():
     assert impedance["real"] == pytest.approx(425.0, rel=1e-12)
     assert impedance["imag"] == pytest.approx(930.0 * omega1, rel=1e-12)
     assert ctx_data["modes"]["continuum_hz"] is None
+    # Stick-slip at 97,347 N (Navarro-Lopez and Cortes 2007), S_SS relative to the mean
+    # table speed; no critical-WOB search without a set speed.
+    assert ctx_data["response"]["severity"] > 0.8 and "critical" not in ctx_data
     assert math.isfinite(omega1)

@@ -23,13 +23,25 @@ damping C_rel = beta [K] and D = alpha [I]: the alpha part damps absolute
 rotation, so steady rotation at Omega already costs alpha Omega^2 1^T [I] 1. For
 a model's own chain damping D is its diagonal drag, ``diag([C] 1 - c_t)``.
 
+With a top drive that has inertia (node 0 of :class:`torsio.physics.dynamics.Dynamics`)
+the same balance holds for the extended chain, with
+
+* P_in = u Omega_0                 power of the motor torque u [W]
+* E_kin including 1/2 J Omega_0^2  the top drive's kinetic energy (also given alone)
+* P_drag including drag_td Omega_0^2, and E_pot and P_rel including the spring and
+  damper between the top drive and the string.
+
+Every term is computed from the run's states through the System's one description
+of the dynamics (the same object the integrator used).
+
 The powers are integrated over the sampled output with the cumulative Simpson
 rule, so the balance holds to the quadrature error of the output grid (the
 solver's own error is smaller at the default tolerances).
 
 Examples
 --------
->>> from torsio.physics.system import System, builtin_config
+>>> from torsio.io.config import builtin_config
+>>> from torsio.physics.system import System
 >>> from torsio.analysis.transient import simulate
 >>> system = System.from_config(builtin_config(), strategy="A").at(wob=100e3, rpm=60)
 >>> balance = energy_balance(simulate(system))
@@ -46,6 +58,7 @@ import numpy as np
 import scipy.integrate
 
 from torsio.physics.damping import RayleighDamping
+from torsio.physics.dynamics import Dynamics
 from torsio.physics.system import System
 
 __all__ = ["EnergyBalance", "damping_split", "energy_balance"]
@@ -84,7 +97,8 @@ class EnergyBalance:
     time : ndarray
         Sample times [s].
     work_in : ndarray
-        Work done by the top drive since t = 0, integral of Omega T_s.
+        Work done by the top drive since t = 0: integral of Omega T_s (held top) or of
+        the motor power u Omega_0 (top drive with inertia).
     dissipated_relative : ndarray
         Dissipated by the dampers across the springs (beta [K]), the one to the
         top included.
@@ -93,9 +107,11 @@ class EnergyBalance:
     work_bit : ndarray
         Work done on the rock at the bit, integral of T_bit theta_N'.
     kinetic : ndarray
-        Kinetic energy 1/2 theta'^T [I] theta'.
+        Kinetic energy 1/2 theta'^T [I] theta' (the top drive's included).
     potential : ndarray
         Strain energy 1/2 phi^T [K] phi.
+    kinetic_top : ndarray
+        Kinetic energy of the top drive alone, 1/2 J Omega_0^2 (zero for a held top).
     """
 
     time: np.ndarray
@@ -105,6 +121,7 @@ class EnergyBalance:
     work_bit: np.ndarray
     kinetic: np.ndarray
     potential: np.ndarray
+    kinetic_top: np.ndarray
 
     def __repr__(self) -> str:  # short: totals, no time series
         return (
@@ -148,9 +165,18 @@ class EnergyBalance:
             "work_bit": float(self.work_bit[-1]),
             "kinetic_change": float(self.kinetic[-1] - self.kinetic[0]),
             "potential_change": float(self.potential[-1] - self.potential[0]),
+            "top_kinetic_change": float(self.kinetic_top[-1] - self.kinetic_top[0]),
             "residual": float(self.residual[-1]),
             "relative_residual": self.relative_residual,
         }
+
+
+def _with_top_node(matrix: np.ndarray, top: float, link: float) -> np.ndarray:
+    n = matrix.shape[0]
+    out = np.zeros((n + 1, n + 1))
+    out[1:, 1:] = matrix
+    out[0, 0], out[0, 1], out[1, 0] = top, link, link
+    return out
 
 
 def energy_balance(results: Any) -> EnergyBalance:
@@ -159,26 +185,35 @@ def energy_balance(results: Any) -> EnergyBalance:
     Uses only the sampled response (no re-integration of the equations of motion).
     """
     system: System = results.system
-    model = system.model
-    inertia = np.asarray(model.inertia)
-    stiffness = np.asarray(model.stiffness)
+    dynamics = Dynamics.from_system(system)
     relative_damping, drag = damping_split(system)
+    if dynamics.has_top_node:
+        c1 = float(system.top_damping[0])
+        relative_damping = _with_top_node(relative_damping, c1, -c1)
+        drag = _with_top_node(drag, float(dynamics.top.drag), 0.0)
     time_grid = np.asarray(results.time)
-    speeds = np.asarray(results.node_speeds)
-    twists = np.asarray(results.node_twists)
-    relative = speeds - system.omega
-    power_in = system.omega * np.asarray(results.surface_torque)
-    power_relative = np.einsum("ti,ij,tj->t", relative, relative_damping, relative)
-    power_drag = np.einsum("ti,ij,tj->t", speeds, drag, speeds)
-    power_bit = np.asarray(results.bit_torque) * np.asarray(results.bit_speed)
-    kinetic = 0.5 * np.einsum("ti,ij,tj->t", speeds, inertia, speeds)
-    potential = 0.5 * np.einsum("ti,ij,tj->t", twists, stiffness, twists)
+    states = np.asarray(results.states).T
+    z, twists, relative = dynamics.split(states)
+    speeds = relative + dynamics.reference_speed
+    if dynamics.has_top_node:
+        motor = np.asarray(dynamics.motor_torque(z, twists, relative)[0], dtype=float)
+        power_in = motor * speeds[0]
+        kinetic_top = 0.5 * dynamics.top.inertia * speeds[0] ** 2
+    else:
+        power_in = dynamics.reference_speed * np.asarray(dynamics.pipe_torque(twists, relative))
+        kinetic_top = np.zeros(time_grid.shape)
+    power_relative = np.einsum("it,ij,jt->t", relative, relative_damping, relative)
+    power_drag = np.einsum("it,ij,jt->t", speeds, drag, speeds)
+    power_bit = np.asarray(dynamics.bit_torque(speeds[-1]), dtype=float) * speeds[-1]
+    kinetic = 0.5 * np.einsum("it,ij,jt->t", speeds, dynamics.mass_matrix, speeds)
+    potential = 0.5 * np.einsum("it,ij,jt->t", twists, dynamics.stiffness_matrix, twists)
     return EnergyBalance(
         time=time_grid,
-        work_in=_cumulative(power_in, time_grid),
+        work_in=_cumulative(np.broadcast_to(power_in, time_grid.shape), time_grid),
         dissipated_relative=_cumulative(power_relative, time_grid),
         dissipated_drag=_cumulative(power_drag, time_grid),
-        work_bit=_cumulative(power_bit, time_grid),
+        work_bit=_cumulative(np.broadcast_to(power_bit, time_grid.shape), time_grid),
         kinetic=kinetic,
         potential=potential,
+        kinetic_top=kinetic_top,
     )

@@ -6,12 +6,24 @@ over a steady-state window at the end of a run started from rest. S_SS = 0 for
 steady rotation; S_SS >= 1 means the bit stops (sticks); the paper calls
 S_SS > 0.8 severe.
 
+This module is the one place for the defaults every analyzer shares (single
+runs, batch maps, reports): the first natural frequency omega_1
+(:func:`first_natural_frequency`), the run length and steady window
+(:func:`run_times`), the output sampling, the stick and severe thresholds.
+
 Default run length and window (the paper states neither): the run lasts
 ``DEFAULT_DURATION_PERIODS`` periods of the first natural mode and S_SS is read
-over the last ``DEFAULT_WINDOW_PERIODS``. A stick-slip cycle lasts about one to
+over the last ``DEFAULT_WINDOW_PERIODS``, or over at most the second half of the
+run when a shorter run is asked for. A stick-slip cycle lasts about one to
 two such periods, so the window holds about 7 to 15 cycles, and the first 25
 periods (about 185 s for the Ritto et al. 2017 string, T1 = 7.4 s) let the
-start-up transient die out (modal damping ratio >= 0.2 there).
+start-up transient die out (modal damping ratio >= 0.2 there). omega_1 is always
+that of the model with the top held (a top drive with inertia does not change
+the default times).
+
+For a top drive with a set speed (constant speed, PI kinds) Omega in S_SS is the
+set speed; for a torque-driven top drive it is the mean top-drive speed over the
+steady window.
 
 Examples
 --------
@@ -24,6 +36,7 @@ Examples
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -37,6 +50,53 @@ DEFAULT_WINDOW_PERIODS = 15.0
 
 SEVERE_THRESHOLD = 0.8
 """S_SS above which the paper calls the vibration severe."""
+
+DEFAULT_SAMPLES_PER_PERIOD = 200
+"""Default output samples per period 2 pi / omega_1 of the first natural mode."""
+
+DEFAULT_STICK_THRESHOLD = 0.1
+"""Default stick threshold, as a fraction of Omega: the bit sticks while
+``|bit speed| < 0.1 Omega``. With a regularized law (Tucker-Wang's tanh) the bit
+creeps at a few per cent of Omega instead of stopping exactly."""
+
+
+def first_natural_frequency(system: Any) -> float:
+    """omega_1 [rad/s] of a System's (or a model's) structure, top held, undamped.
+
+    For the distributed model, the first frequency of its exact continuum.
+    """
+    from torsio.model.wave import is_wave_model
+
+    model = getattr(system, "model", system)
+    if is_wave_model(model):
+        from torsio.solvers.wave_batch import wave_scales
+
+        return float(wave_scales(model)[1])
+    from torsio.model.modal import modal_analysis
+
+    return float(modal_analysis(model, 1).frequencies_rad[0])
+
+
+def run_times(
+    system: Any, duration: float | None = None, steady_window: float | None = None
+) -> tuple[float, float]:
+    """(run length, steady window) [s] with the defaults of this module, checked.
+
+    Without ``duration``: :data:`DEFAULT_DURATION_PERIODS` periods of omega_1.
+    Without ``steady_window``: :data:`DEFAULT_WINDOW_PERIODS` periods, but at most
+    half of a run whose length was given. ``system`` is a System or LumpedModel
+    (only read when a default is needed). Every analyzer uses this function.
+    """
+    if duration is None or steady_window is None:
+        default_duration, default_window = default_times(first_natural_frequency(system))
+        if steady_window is None:
+            steady_window = (
+                default_window if duration is None else min(default_window, 0.5 * duration)
+            )
+        if duration is None:
+            duration = default_duration
+    check_window(float(duration), float(steady_window))
+    return float(duration), float(steady_window)
 
 
 def severity(bit_speed: np.ndarray, omega: float) -> float:

@@ -30,9 +30,20 @@ normalized law, and the critical weight on bit of linear instability is
 For the 1-DOF model s_c = -c with c = [C]_11 = alpha I + beta k, i.e. the analytic
 condition c + W_ob R_bit T'(Omega) = 0.
 
+A top drive with inertia and a controller (:mod:`torsio.physics.top_drives`) is
+part of the linear system: the linearization is the Jacobian of the one
+description of the dynamics (:class:`torsio.physics.dynamics.Dynamics`) about
+steady rotation, top-drive node and controller states included, and the bit
+receptance sees the top drive through its impedance Z(i omega) (node 0 of the
+chain with dynamic stiffness i omega Z). So the boundary moves with the tuning.
+A top drive without a speed loop (``torque``) leaves a rigid-body mode damped
+only by the drag: steady rotation is then also lost through a real eigenvalue
+at omega = 0 when s < -(total drag seen at the bit).
+
 Examples
 --------
->>> from torsio.physics.system import System, builtin_config
+>>> from torsio.io.config import builtin_config
+>>> from torsio.physics.system import System
 >>> system = System.from_config(builtin_config(), strategy="A")
 >>> c = system.damping_matrix[0, 0]                     # alpha I + beta k
 >>> round(float(critical_bit_damping(system).slope / c), 9)   # s_c = -c for one DOF
@@ -55,6 +66,7 @@ import scipy.linalg
 import scipy.optimize
 
 from torsio.errors import ConfigError
+from torsio.physics.dynamics import Dynamics, bit_slope
 from torsio.physics.system import System
 from torsio.units import RPM_TO_RAD_S
 
@@ -71,40 +83,30 @@ __all__ = [
 
 
 def _bit_slope(system: System, speed: Any, wob: Any) -> np.ndarray:
-    law = system.law
-    if hasattr(law, "slope"):
-        return np.asarray(law.slope(speed, wob, system.bit_radius), dtype=float)
-    w = np.asarray(speed, dtype=float)
-    step = 1e-6 * np.maximum(1.0, np.abs(w))
-    return (
-        np.asarray(law.torque(w + step, wob, system.bit_radius))
-        - np.asarray(law.torque(w - step, wob, system.bit_radius))
-    ) / (2.0 * step)
+    return bit_slope(system.law, speed, wob, system.bit_radius)
 
 
 def linearized_matrix(system: System, bit_slope: float | None = None) -> np.ndarray:
     """First-order matrix of small perturbations about steady rotation.
 
-    State ``[dphi_1..dphi_N, dv_1..dv_N]`` (twists [rad], then speeds [rad/s]).
+    State ``[dphi_0..dphi_(n-1), dv_0..dv_(n-1), dz_0..dz_(m-1)]`` (twists [rad], speeds
+    [rad/s], then the top drive's controller states), n the chain nodes of
+    :class:`torsio.physics.dynamics.Dynamics` (node 0 the top drive when it has
+    inertia). It is the Jacobian of the same right-hand side the integrators use,
+    reordered.
 
     Parameters
     ----------
     system : System
-        Model, damping and law; its operating point sets the slope.
+        Model, damping, law and top drive; its operating point sets the slope.
     bit_slope : float, optional
-        s [N m s/rad] to use instead of the law's slope at the system's speed.
+        s [N m s/rad] to use instead of the law's slope at the steady bit speed.
     """
-    model = system.model
-    n = model.dofs
-    s = float(_bit_slope(system, system.omega, system.wob)) if bit_slope is None else bit_slope
-    damping = np.array(system.damping_matrix, dtype=float)
-    damping[-1, -1] += s
-    inertia = np.asarray(model.inertia)
-    matrix = np.zeros((2 * n, 2 * n))
-    matrix[:n, n:] = np.eye(n)
-    matrix[n:, :n] = -np.linalg.solve(inertia, model.stiffness)
-    matrix[n:, n:] = -np.linalg.solve(inertia, damping)
-    return matrix
+    dynamics = Dynamics.from_system(system)
+    jacobian = dynamics.linearized(bit_slope)
+    m, n = dynamics.states, dynamics.dofs
+    order = np.concatenate([m + 2 * np.arange(n), m + 1 + 2 * np.arange(n), np.arange(m)])
+    return jacobian[np.ix_(order, order)]
 
 
 def eigenvalues(system: System, bit_slope: float | None = None) -> np.ndarray:
@@ -119,20 +121,31 @@ def growth_rate(system: System, bit_slope: float | None = None) -> float:
 
 
 def bit_receptance(system: System, omega: Any) -> np.ndarray:
-    """G(omega) = [(K - omega^2 I + i omega C)^-1]_NN [rad/(N m)] at frequencies omega [rad/s].
+    """G(omega) = [D(i omega)^-1]_NN [rad/(N m)] at frequencies omega [rad/s].
 
-    The angle at the bit per unit harmonic torque at the bit, with the top held
-    at constant speed. Vectorized over ``omega``.
+    The angle at the bit per unit harmonic torque at the bit, with the System's top
+    drive: held at constant speed, D = K - omega^2 I + i omega C; with inertia the
+    top drive is node 0 with dynamic stiffness i omega Z(i omega) (its impedance)
+    plus the top spring and damper. Vectorized over ``omega``.
     """
+    return _receptance(Dynamics.from_system(system), omega)
+
+
+def _receptance(dynamics: Dynamics, omega: Any) -> np.ndarray:
     w = np.atleast_1d(np.asarray(omega, dtype=float))
-    model = system.model
-    k = np.asarray(model.stiffness)
-    m = np.asarray(model.inertia)
-    c = np.asarray(system.damping_matrix)
-    n = model.dofs
+    k = dynamics.stiffness_matrix
+    m = dynamics.mass_matrix
+    c = dynamics.damping_matrix
+    n = dynamics.dofs
+    top_term = np.zeros(w.shape, dtype=complex)
+    if dynamics.has_top_node:
+        # node 0's own inertia and drag are inside Z: remove them from the chain matrices
+        top_impedance = np.asarray(dynamics.top.impedance(w), dtype=complex)
+        top_term = 1j * w * (top_impedance - dynamics.top.drag) + w**2 * dynamics.top.inertia
     if _is_tridiagonal(k) and _is_tridiagonal(m) and _is_tridiagonal(c):
         ww = w[:, None]
         diag = np.diag(k) - ww**2 * np.diag(m) + 1j * ww * np.diag(c)
+        diag[:, 0] += top_term
         if n == 1:
             return 1.0 / diag[:, 0]
         off = np.diag(k, 1) - ww**2 * np.diag(m, 1) + 1j * ww * np.diag(c, 1)
@@ -141,6 +154,7 @@ def bit_receptance(system: System, omega: Any) -> np.ndarray:
             pivot = diag[:, i] - off[:, i - 1] ** 2 / pivot
         return 1.0 / pivot
     dynamic = k[None] - w[:, None, None] ** 2 * m[None] + 1j * w[:, None, None] * c[None]
+    dynamic[:, 0, 0] += top_term
     unit = np.zeros(n, dtype=complex)
     unit[-1] = 1.0
     return np.linalg.solve(dynamic, np.broadcast_to(unit, (w.size, n))[..., None])[:, -1, 0]
@@ -176,20 +190,25 @@ def critical_bit_damping(system: System) -> CriticalDamping:
     has no damping at all (any negative slope destabilizes it).
     """
     model = system.model
-    damping = np.asarray(system.damping_matrix)
+    dynamics = Dynamics.from_system(system)
     natural = np.sqrt(np.abs(scipy.linalg.eigh(model.stiffness, model.inertia, eigvals_only=True)))
-    if not np.any(damping):
+    if not np.any(dynamics.damping_matrix) and dynamics.top.states == 0:
         return CriticalDamping(0.0, float(natural[0]))
     low, high = natural[0] / 1000.0, natural[-1] * 10.0
     grid = [np.geomspace(low, high, 4000)]
     for w in natural:
         grid.append(w * np.linspace(0.8, 1.25, 61))
     omegas = np.unique(np.concatenate(grid))
-    receptance = bit_receptance(system, omegas)
+    receptance = _receptance(dynamics, omegas)
     real = receptance.real
     changes = np.flatnonzero(np.sign(real[:-1]) * np.sign(real[1:]) < 0)
+    best = CriticalDamping(-math.inf, math.nan)
+    if dynamics.has_top_node:  # a real eigenvalue through 0 (rigid rotation, no speed loop)
+        static = _static_critical_slope(dynamics)
+        if static < 0:
+            best = CriticalDamping(static, 0.0)
     if changes.size == 0:
-        return CriticalDamping(-math.inf, math.nan)
+        return best
     # estimate s at each sign change by linear interpolation, refine the best few exactly
     fraction = real[changes] / (real[changes] - real[changes + 1])
     w_est = omegas[changes] + fraction * (omegas[changes + 1] - omegas[changes])
@@ -199,19 +218,34 @@ def critical_bit_damping(system: System) -> CriticalDamping:
     with np.errstate(divide="ignore"):
         s_est = 1.0 / (w_est * g_est)
     order = np.argsort(np.where(s_est < 0, -s_est, np.inf))[:4]
-    best = CriticalDamping(-math.inf, math.nan)
     for index in order:
         if not s_est[index] < 0:
             continue
         a, b = omegas[changes[index]], omegas[changes[index] + 1]
         root = scipy.optimize.brentq(
-            lambda x: float(bit_receptance(system, x)[0].real), a, b, xtol=1e-14 * b, rtol=1e-13
+            lambda x: float(_receptance(dynamics, x)[0].real), a, b, xtol=1e-14 * b, rtol=1e-13
         )
-        g = complex(bit_receptance(system, root)[0])
+        g = complex(_receptance(dynamics, root)[0])
         s = 1.0 / (root * g.imag)
         if s < 0 and s > best.slope:
             best = CriticalDamping(float(s), float(root))
     return best
+
+
+def _static_critical_slope(dynamics: Dynamics) -> float:
+    """The slope s at which an eigenvalue of the linearization passes through 0 (-inf: none).
+
+    The slope enters one entry of the Jacobian, so det A(s) is affine in s:
+    s* = -det A(0) / (det A(1) - det A(0)), from log-determinants.
+    """
+    sign0, log0 = np.linalg.slogdet(dynamics.linearized(0.0))
+    sign1, log1 = np.linalg.slogdet(dynamics.linearized(1.0))
+    if sign0 == 0:
+        return 0.0
+    ratio = sign1 * sign0 * math.exp(log1 - log0) if sign1 != 0 else 0.0
+    if abs(ratio - 1.0) < 1e-9:
+        return -math.inf
+    return -1.0 / (ratio - 1.0)
 
 
 @attrs.frozen

@@ -9,22 +9,25 @@ Defaults (the paper states none; see ``docs/dynamics.md``):
 * **Initial condition**: start-up from rest, every angle and speed zero at t = 0
   while the top turns at Omega from t = 0 (the forcing ``c1 Omega + k1 Omega t`` of
   Eq. 3 implies it).
-* **Run length and steady window**: :data:`torsio.analysis.severity.DEFAULT_DURATION_PERIODS`
-  (40) periods of the first natural mode, S_SS read over the last
-  :data:`torsio.analysis.severity.DEFAULT_WINDOW_PERIODS` (15), or over the second half of
-  the run when a shorter run is asked for.
+* **Run length and steady window**: :func:`torsio.analysis.severity.run_times`, the one
+  place every analyzer takes them from: 40 periods of the first natural mode, S_SS
+  read over the last 15, or over at most the second half of a run whose length is given.
+* **Top drive**: any top drive of the System (:mod:`torsio.physics.top_drives`); the
+  equations are those of :class:`torsio.physics.dynamics.Dynamics`. For a torque-driven
+  top S_SS is read relative to the mean top-drive speed over the steady window.
 * **Integrator**: LSODA (switches between a non-stiff Adams method and a stiff BDF
   method by itself; the bit law makes the equations stiff during sticking and not
   otherwise) with the analytic Jacobian in banded form, rtol = 1e-6, atol = 1e-9.
   Radau and BDF get the sparse Jacobian; explicit methods need none.
-* **Output step**: :data:`DEFAULT_SAMPLES_PER_PERIOD` (200) samples per period of
-  the first mode. S_SS reads the extrema of the sampled bit speed; at the stick-slip
-  points of the Ritto et al. (2017) string checked, this step changes S_SS by at most
-  1.4e-5 against a ten times finer grid.
+* **Output step**: :data:`torsio.analysis.severity.DEFAULT_SAMPLES_PER_PERIOD` (200)
+  samples per period of the first mode. S_SS reads the extrema of the sampled bit
+  speed; at the stick-slip points of the Ritto et al. (2017) string checked, this
+  step changes S_SS by at most 1.4e-5 against a ten times finer grid.
 
 Examples
 --------
->>> from torsio.physics.system import System, builtin_config
+>>> from torsio.io.config import builtin_config
+>>> from torsio.physics.system import System
 >>> system = System.from_config(builtin_config(), strategy="A").at(wob=175e3, rpm=100)
 >>> results = simulate(system)
 >>> round(results.severity, 3), results.severe
@@ -39,25 +42,30 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Mapping
-from pathlib import Path
 from typing import Any
 
-import attrs
 import numpy as np
 import scipy.integrate
-import scipy.sparse
 
 from torsio.analysis.severity import (
+    DEFAULT_SAMPLES_PER_PERIOD,
+    DEFAULT_STICK_THRESHOLD,
     SEVERE_THRESHOLD,
-    check_window,
-    default_times,
+    first_natural_frequency,
+    run_times,
     severity,
 )
+from torsio.analysis.simulation_options import (
+    IMPLICIT_METHODS,
+    METHODS,
+    MIN_WINDOW_SAMPLES,
+    SimulationOptions,
+)
+from torsio.analysis.transient_results import TransientResults, window_mask
 from torsio.errors import ConfigError, SolverError
 from torsio.io.config import Config
-from torsio.physics.equations import TwistEquations
+from torsio.physics.dynamics import Dynamics
 from torsio.physics.system import System
-from torsio.units import RPM_TO_RAD_S
 
 __all__ = [
     "DEFAULT_SAMPLES_PER_PERIOD",
@@ -72,369 +80,11 @@ __all__ = [
     "system_from_config",
 ]
 
-METHODS = ("LSODA", "RK45", "RK23", "DOP853", "Radau", "BDF")
-"""The integrators of ``scipy.integrate.solve_ivp`` accepted by name."""
 
-IMPLICIT_METHODS = ("Radau", "BDF")
-"""Methods that take the (sparse) Jacobian."""
-
-DEFAULT_SAMPLES_PER_PERIOD = 200
-"""Default output samples per period 2 pi / omega_1 of the first natural mode."""
-
-MIN_WINDOW_SAMPLES = 10
-"""Fewest output samples the steady-state window may hold."""
-
-DEFAULT_STICK_THRESHOLD = 0.1
-"""Default stick threshold, as a fraction of Omega: the bit sticks while
-``|bit speed| < 0.1 Omega``. With a regularized law (Tucker-Wang's tanh) the bit
-creeps at a few per cent of Omega instead of stopping exactly."""
-
-
-def _positive(key: str, value: Any, what: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
-        raise ConfigError(f"simulation.{key}", f"expected {what}, got {value!r}")
-    number = float(value)
-    if not (math.isfinite(number) and number > 0):
-        raise ConfigError(f"simulation.{key}", f"expected {what}, got {value!r}")
-    return number
-
-
-def _check_method(method: Any) -> Any:
-    if isinstance(method, str):
-        if method not in METHODS:
-            raise ConfigError(
-                "simulation.method",
-                f"unknown integrator {method!r}; expected one of {', '.join(METHODS)}",
-            )
-        return method
-    if isinstance(method, type) and issubclass(method, scipy.integrate.OdeSolver):
-        return method
-    raise ConfigError(
-        "simulation.method",
-        f"expected one of {', '.join(METHODS)} or a scipy OdeSolver class, got {method!r}",
-    )
-
-
-def _optional_positive(key: str, value: Any, what: str) -> float | None:
-    return None if value is None else _positive(key, value, what)
-
-
-@attrs.frozen
-class SimulationOptions:
-    """Options of the transient analyzer, as the ``[simulation]`` table gives them.
-
-    Every field has the meaning of the :func:`simulate` argument of the same name;
-    ``None`` means the documented default. Values are validated on construction
-    and errors name the ``simulation.<key>``.
-
-    Examples
-    --------
-    >>> SimulationOptions(rtol=1e-8).replace(duration=100.0, rtol=None).rtol
-    1e-08
-    >>> SimulationOptions(method="Euler")
-    Traceback (most recent call last):
-    ...
-    torsio.errors.ConfigError: simulation.method: unknown integrator 'Euler'; expected one of ...
-    """
-
-    duration: float | None = attrs.field(
-        default=None, converter=lambda v: _optional_positive("duration", v, "a positive time in s")
-    )
-    steady_window: float | None = attrs.field(
-        default=None,
-        converter=lambda v: _optional_positive("steady_window", v, "a positive time in s"),
-    )
-    method: Any = attrs.field(default="LSODA", converter=_check_method)
-    rtol: float = attrs.field(
-        default=1e-6, converter=lambda v: _positive("rtol", v, "a positive tolerance")
-    )
-    atol: float = attrs.field(
-        default=1e-9, converter=lambda v: _positive("atol", v, "a positive tolerance")
-    )
-    output_step: float | None = attrs.field(
-        default=None,
-        converter=lambda v: _optional_positive("output_step", v, "a positive time in s"),
-    )
-    stick_threshold: float | None = attrs.field(
-        default=None,
-        converter=lambda v: _optional_positive(
-            "stick_threshold", v, "a positive fraction of Omega"
-        ),
-    )
-
-    @classmethod
-    def from_config(cls, config: Config) -> SimulationOptions:
-        """The options of a configuration's ``[simulation]`` table (defaults elsewhere)."""
-        return cls(**dict(config.simulation.options))
-
-    def replace(self, **overrides: Any) -> SimulationOptions:
-        """These options with ``overrides`` applied; ``None`` values are ignored."""
-        unknown = sorted(set(overrides) - set(attrs.fields_dict(type(self))))
-        if unknown:
-            raise ConfigError(
-                f"simulation.{unknown[0]}",
-                f"unknown option; expected one of {', '.join(attrs.fields_dict(type(self)))}",
-            )
-        return attrs.evolve(self, **{k: v for k, v in overrides.items() if v is not None})
-
-    def kwargs(self) -> dict[str, Any]:
-        """Keyword arguments of :func:`simulate`."""
-        return attrs.asdict(self)
-
-
-@attrs.frozen(eq=False, repr=False)
-class TransientResults:
-    """The sampled transient response of a System (returned by :func:`simulate`).
-
-    Attributes
-    ----------
-    time : ndarray, shape (m,)
-        Sample times [s] (uniform grid from 0 to the run length).
-    bit_speed : ndarray, shape (m,)
-        Absolute bit speed theta_N' [rad/s].
-    bit_angle : ndarray, shape (m,)
-        Absolute bit angle theta_N [rad].
-    node_speeds : ndarray, shape (m, dofs)
-        Absolute speed of every degree of freedom [rad/s] (the last is the bit).
-    node_twists : ndarray, shape (m, dofs)
-        Twist phi = theta - Omega t of every degree of freedom [rad]: its angle
-        relative to the top drive (negative: lagging behind the top).
-    bit_torque : ndarray, shape (m,)
-        Torque on bit T_bit from the bit-rock law [N m].
-    surface_torque : ndarray, shape (m,)
-        Torque the top drive applies to the string [N m],
-        ``k1 (Omega t - theta_1) + c1 (Omega - theta_1')`` for a chain, in general
-        ``-k_t . phi - c_t . v``.
-    severity : float
-        S_SS (Eq. 12) over the steady window.
-    stick_fraction : float
-        Fraction of the steady window during which ``|bit speed| < stick_threshold Omega``.
-    steady_window : float
-        Length of the steady-state window at the end of the run [s].
-    stick_threshold : float
-        Stick threshold as a fraction of Omega.
-    solver : dict
-        ``method``, ``rtol``, ``atol``, ``nfev``, ``njev``, ``nlu``, ``status``,
-        ``message``, ``wall_time_s``.
-    system : System
-        The system that was integrated.
-    """
-
-    time: np.ndarray
-    bit_speed: np.ndarray
-    bit_angle: np.ndarray
-    node_speeds: np.ndarray
-    node_twists: np.ndarray
-    bit_torque: np.ndarray
-    surface_torque: np.ndarray
-    severity: float
-    stick_fraction: float
-    steady_window: float
-    stick_threshold: float
-    solver: dict[str, Any]
-    system: System
-
-    def __repr__(self) -> str:  # short: no time series
-        return (
-            f"TransientResults({self.time.size} samples over {self.time[-1]:g} s, "
-            f"S_SS {self.severity:.4g} over the last {self.steady_window:g} s, "
-            f"{self.solver.get('method')} rtol {self.solver.get('rtol')}; {self.system!r})"
-        )
-
-    # --- derived views (no recomputation of the analysis) ---------------------------------
-    @property
-    def omega(self) -> float:
-        """Surface speed Omega [rad/s] (for a dimensionless system: Pi_1)."""
-        return self.system.omega
-
-    @property
-    def duration(self) -> float:
-        """Run length [s]."""
-        return float(self.time[-1])
-
-    @property
-    def output_step(self) -> float:
-        """Sampling step of the output grid [s]."""
-        return float(self.time[1] - self.time[0])
-
-    @property
-    def window_start(self) -> float:
-        """Start of the steady-state window [s]."""
-        return self.duration - self.steady_window
-
-    @property
-    def window_mask(self) -> np.ndarray:
-        """Boolean mask of the samples in the steady-state window."""
-        return _window_mask(self.time, self.steady_window)
-
-    @property
-    def node_angles(self) -> np.ndarray:
-        """Absolute angle of every degree of freedom [rad], shape (m, dofs)."""
-        return self.node_twists + self.omega * self.time[:, None]
-
-    @property
-    def bit_twist(self) -> np.ndarray:
-        """Twist of the bit against the top, theta_N - Omega t [rad]."""
-        return self.node_twists[:, -1]
-
-    @property
-    def severe(self) -> bool:
-        """Whether S_SS exceeds the paper's 0.8 threshold."""
-        return bool(self.severity > SEVERE_THRESHOLD)
-
-    @property
-    def dimensionless(self) -> bool:
-        """Whether the system is a dimensionless one (time is tau = omega_1 t)."""
-        return bool(getattr(self.system.law, "dimensionless", False))
-
-    # --- output ---------------------------------------------------------------------------
-    def to_dict(self, series: bool = False) -> dict[str, Any]:
-        """Plain data for JSON: operating point, S_SS, window, solver statistics.
-
-        Keys ``wob`` [N], ``rpm`` and ``severity`` are always present. For a
-        dimensionless system ``wob`` and ``rpm`` are those of its System (Pi_2 and
-        Pi_1 in rpm form) and ``pi1``, ``pi2`` are added. ``series=True`` adds the
-        time series.
-        """
-        window = self.window_mask
-        system = self.system
-        data: dict[str, Any] = {
-            "wob": float(system.wob),
-            "rpm": float(system.rpm),
-            "severity": float(self.severity),
-            "severe": self.severe,
-            "stick_fraction": float(self.stick_fraction),
-            "stick_threshold": float(self.stick_threshold),
-            "omega_rad_s": float(self.omega),
-            "bit_speed_min": float(self.bit_speed[window].min()),
-            "bit_speed_max": float(self.bit_speed[window].max()),
-            "mean_bit_torque": float(self.bit_torque[window].mean()),
-            "mean_surface_torque": float(self.surface_torque[window].mean()),
-            "duration_s": self.duration,
-            "steady_window_s": float(self.steady_window),
-            "output_step_s": self.output_step,
-            "samples": int(self.time.size),
-            "dofs": int(system.model.dofs),
-            "strategy": system.model.strategy,
-            "law": getattr(system.law, "name", type(system.law).__name__),
-            "bit_radius": float(system.bit_radius),
-            "dimensionless": self.dimensionless,
-            "solver": dict(self.solver),
-        }
-        if self.dimensionless:
-            data["pi1"] = float(self.omega)
-            data["pi2"] = float(system.wob * system.bit_radius)
-        if series:
-            data["series"] = {
-                "time": self.time.tolist(),
-                "bit_speed": self.bit_speed.tolist(),
-                "bit_torque": self.bit_torque.tolist(),
-                "surface_torque": self.surface_torque.tolist(),
-            }
-        return data
-
-    def to_csv(self, path: str | Path) -> Path:
-        """Write the time series as CSV: time, bit speed/angle, torques, node speeds.
-
-        Columns: ``time_s, bit_speed_rad_s, bit_angle_rad, bit_torque_Nm,
-        surface_torque_Nm, node_speed_1_rad_s, ...``. Returns the path written.
-        """
-        path = Path(path)
-        columns = [self.time, self.bit_speed, self.bit_angle, self.bit_torque, self.surface_torque]
-        names = ["time_s", "bit_speed_rad_s", "bit_angle_rad", "bit_torque_Nm", "surface_torque_Nm"]
-        for j in range(self.node_speeds.shape[1]):
-            columns.append(self.node_speeds[:, j])
-            names.append(f"node_speed_{j + 1}_rad_s")
-        try:
-            np.savetxt(
-                path,
-                np.column_stack(columns),
-                delimiter=",",
-                header=",".join(names),
-                comments="",
-                fmt="%.10g",
-            )
-        except OSError as exc:
-            raise ConfigError("csv", f"cannot write {str(path)!r}: {exc.strerror or exc}") from None
-        return path
-
-    def plot(self, path: str | Path | None = None, axes: Any = None) -> Any:
-        """Bit speed, surface torque and torque on bit against time (matplotlib).
-
-        The steady-state window is shaded. ``path`` writes the figure (PNG by
-        extension); ``axes`` (three matplotlib axes) draws into existing ones.
-        Returns the figure.
-
-        Raises
-        ------
-        ImportError
-            If matplotlib is not installed (``pip install 'torsio[plot]'``).
-        """
-        try:
-            from matplotlib.figure import Figure
-        except ImportError as exc:  # pragma: no cover - depends on the environment
-            raise ImportError(
-                "plotting needs matplotlib, which is not installed: pip install 'torsio[plot]'"
-            ) from exc
-        if axes is not None:
-            fig = axes[0].figure
-        elif path is not None:  # no pyplot: no GUI backend, nothing left open
-            fig = Figure(figsize=(8.0, 7.0))
-            axes = fig.subplots(3, 1, sharex=True)
-        else:
-            import matplotlib.pyplot as plt
-
-            fig, axes = plt.subplots(3, 1, sharex=True, figsize=(8.0, 7.0))
-        time_label = "tau = omega_1 t [-]" if self.dimensionless else "time [s]"
-        speed_unit = "-" if self.dimensionless else "rpm"
-        scale = 1.0 if self.dimensionless else 1.0 / RPM_TO_RAD_S
-        torque_unit = "-" if self.dimensionless else "kN m"
-        torque_scale = 1.0 if self.dimensionless else 1e-3
-        axes[0].plot(self.time, self.bit_speed * scale, lw=0.8, label="bit")
-        axes[0].axhline(self.omega * scale, color="k", lw=0.6, ls="--", label="top")
-        axes[0].set_ylabel(f"bit speed [{speed_unit}]")
-        axes[0].legend(loc="upper right", fontsize="small")
-        axes[1].plot(self.time, self.surface_torque * torque_scale, lw=0.8, color="C1")
-        axes[1].set_ylabel(f"surface torque [{torque_unit}]")
-        axes[2].plot(self.time, self.bit_torque * torque_scale, lw=0.8, color="C2")
-        axes[2].set_ylabel(f"torque on bit [{torque_unit}]")
-        axes[2].set_xlabel(time_label)
-        for ax in axes:
-            ax.axvspan(self.window_start, self.duration, color="0.9", zorder=0)
-            ax.grid(True, lw=0.3)
-        op = (
-            f"Pi1 = {self.omega:.4g}, Pi2 = {self.system.wob * self.system.bit_radius:.4g}"
-            if self.dimensionless
-            else f"WOB = {self.system.wob / 1e3:.4g} kN, {self.system.rpm:.4g} rpm"
-        )
-        axes[0].set_title(f"{op}: S_SS = {self.severity:.3f} (steady window shaded)")
-        fig.tight_layout()
-        if path is not None:
-            try:
-                fig.savefig(path, dpi=120)
-            except OSError as exc:
-                raise ConfigError(
-                    "plot", f"cannot write {str(path)!r}: {exc.strerror or exc}"
-                ) from None
-        return fig
-
-
-def _window_mask(time_grid: np.ndarray, window: float) -> np.ndarray:
-    start = time_grid[-1] - window
-    return np.asarray(time_grid >= start - 1e-9 * max(1.0, abs(time_grid[-1])))
-
-
-def first_natural_frequency(system: System) -> float:
-    """omega_1 [rad/s] of the system's lumped model (undamped)."""
-    from torsio.model.modal import modal_analysis
-
-    return float(modal_analysis(system.model, 1).frequencies_rad[0])
-
-
-def _initial_state(equations: TwistEquations, initial_state: Any) -> np.ndarray:
-    n = equations.dofs
+def _initial_state(dynamics: Dynamics, initial_state: Any) -> np.ndarray:
+    n = dynamics.dofs
     if initial_state is None:
-        return equations.rest_state()
+        return dynamics.rest_state()
     if isinstance(initial_state, tuple):
         if len(initial_state) != 2:
             raise ConfigError(
@@ -452,26 +102,26 @@ def _initial_state(equations: TwistEquations, initial_state: Any) -> np.ndarray:
                 angles = values
             else:
                 speeds = values
-        y0 = equations.state(angles, speeds)  # at t = 0 the twist is the angle
+        y0 = dynamics.state(angles, speeds)  # at t = 0 the twist is the angle
     else:
         y0 = np.array(initial_state, dtype=float).reshape(-1)
-        if y0.size != 2 * n:
+        if y0.size != dynamics.size:
             raise ConfigError(
                 "initial_state",
-                f"expected the interleaved twist state [phi_1, v_1, ..., phi_N, v_N] of "
-                f"{2 * n} values, got {y0.size}",
+                f"expected the state [z, phi_0, v_0, ..., phi_(n-1), v_(n-1)] of "
+                f"{dynamics.size} values, got {y0.size}",
             )
     if not np.all(np.isfinite(y0)):
         raise ConfigError("initial_state", "expected finite values")
     return y0
 
 
-def _band_jacobian(equations: TwistEquations, lower: int, upper: int) -> Any:
+def _band_jacobian(dynamics: Dynamics, lower: int, upper: int) -> Any:
     """The Jacobian in LSODA's packed banded format: packed[upper + i - j, j] = J[i, j]."""
-    size = 2 * equations.dofs
+    size = dynamics.size
 
     def jac(t: float, y: np.ndarray) -> np.ndarray:
-        coo = equations.jacobian(t, y).tocoo()
+        coo = dynamics.jacobian(t, y).tocoo()
         packed = np.zeros((lower + upper + 1, size))
         packed[upper + coo.row - coo.col, coo.col] = coo.data
         return packed
@@ -495,7 +145,7 @@ def simulate(
     Parameters
     ----------
     system : System
-        Model, damping, bit-rock law and operating point.
+        Model, damping, bit-rock law, top drive and operating point.
     duration : float, optional
         Run length [s]; default 40 periods of the first natural mode.
     steady_window : float, optional
@@ -512,8 +162,9 @@ def simulate(
         (rounded down so that the grid ends exactly at ``duration``).
     initial_state : ndarray or tuple, optional
         Default: start-up from rest. A tuple ``(angles, speeds)`` gives absolute
-        angles [rad] and speeds [rad/s] of every DOF at t = 0; an array gives
-        the interleaved twist state of :class:`torsio.physics.equations.TwistEquations`.
+        angles [rad] and speeds [rad/s] of every chain node at t = 0 (the top drive
+        first when it has inertia; controller states zero); an array gives the
+        state of :class:`torsio.physics.dynamics.Dynamics`.
     stick_threshold : float, optional
         The bit sticks while ``|bit speed| < stick_threshold * Omega``; default
         :data:`DEFAULT_STICK_THRESHOLD`.
@@ -548,31 +199,17 @@ def simulate(
         output_step=output_step,
         stick_threshold=stick_threshold,
     )
-    omega = system.omega
-    if not (math.isfinite(omega) and omega > 0):  # System validates this; S_SS divides by it
+    if not (math.isfinite(system.omega) and system.omega > 0):  # System validates this
         raise ConfigError("operation.rpm", f"expected a positive rotary speed, got {system.rpm!r}")
-    needs_frequency = options.duration is None or options.steady_window is None
-    needs_frequency = needs_frequency or options.output_step is None
-    omega1 = first_natural_frequency(system) if needs_frequency else math.nan
-    default_duration, default_window = (
-        default_times(omega1) if needs_frequency else (math.nan, math.nan)
-    )
-    run = options.duration if options.duration is not None else default_duration
-    if options.steady_window is not None:
-        window = options.steady_window
-    elif options.duration is None:
-        window = default_window
-    else:
-        window = min(default_window, 0.5 * run)
-    check_window(run, window)
+    run, window = run_times(system, options.duration, options.steady_window)
     step = (
         options.output_step
         if options.output_step is not None
-        else 2.0 * math.pi / omega1 / DEFAULT_SAMPLES_PER_PERIOD
+        else 2.0 * math.pi / first_natural_frequency(system) / DEFAULT_SAMPLES_PER_PERIOD
     )
     intervals = max(1, math.ceil(run / step * (1.0 - 1e-12)))
     time_grid = np.linspace(0.0, run, intervals + 1)
-    in_window = _window_mask(time_grid, window)
+    in_window = window_mask(time_grid, window)
     if step > window / MIN_WINDOW_SAMPLES:
         raise ConfigError(
             "simulation.output_step",
@@ -584,44 +221,9 @@ def simulate(
         options.stick_threshold if options.stick_threshold is not None else DEFAULT_STICK_THRESHOLD
     )
 
-    equations = TwistEquations(system)
-    y0 = _initial_state(equations, initial_state)
-    solver_kwargs: dict[str, Any] = {}
-    chosen = options.method
-    name = chosen if isinstance(chosen, str) else chosen.__name__
-    bands = equations.jacobian_bands
-    if chosen == "LSODA":
-        if bands is not None:
-            lower, upper = bands
-            solver_kwargs.update(
-                lband=lower, uband=upper, jac=_band_jacobian(equations, lower, upper)
-            )
-        else:
-            solver_kwargs["jac"] = lambda t, y: equations.jacobian(t, y).toarray()
-    elif chosen in IMPLICIT_METHODS or (
-        isinstance(chosen, type) and issubclass(chosen, scipy.integrate.Radau | scipy.integrate.BDF)
-    ):
-        solver_kwargs["jac"] = equations.jacobian
-    start = time.perf_counter()
-    with np.errstate(all="ignore"):
-        solution = scipy.integrate.solve_ivp(
-            equations.rhs,
-            (0.0, run),
-            y0,
-            method=chosen,
-            t_eval=time_grid,
-            rtol=options.rtol,
-            atol=options.atol,
-            **solver_kwargs,
-        )
-    elapsed = time.perf_counter() - start
-    reached = float(solution.t[-1]) if solution.t.size else 0.0
-    if solution.status < 0 or solution.y.shape[1] != time_grid.size:
-        raise SolverError(
-            f"the {name} integrator failed at t = {reached:.6g} s of {run:.6g} s: "
-            f"{solution.message} (operating point WOB = {system.wob:g} N, "
-            f"{system.rpm:g} rpm; try another method or tighter tolerances)"
-        )
+    dynamics = Dynamics.from_system(system)
+    y0 = _initial_state(dynamics, initial_state)
+    solution, name, elapsed = _integrate(dynamics, y0, time_grid, options)
     states = solution.y
     finite = np.all(np.isfinite(states), axis=0)
     if not finite.all():
@@ -630,19 +232,26 @@ def simulate(
             f"the {name} integrator returned non-finite values from t = {bad:.6g} s "
             f"(of {run:.6g} s): {solution.message}"
         )
-    twists = states[0::2].T.copy()
-    relative_speeds = states[1::2].T
-    node_speeds = relative_speeds + omega
-    bit_speed = node_speeds[:, -1].copy()
+    z, twists_by_node, relative_by_node = dynamics.split(states)
+    reference = dynamics.reference_speed
+    speeds_by_node = relative_by_node + reference
+    bit_speed = speeds_by_node[-1].copy()
     with np.errstate(all="ignore"):
         bit_torque = np.broadcast_to(
-            np.asarray(system.law.torque(bit_speed, system.wob, system.bit_radius), dtype=float),
-            bit_speed.shape,
+            np.asarray(dynamics.bit_torque(bit_speed), dtype=float), bit_speed.shape
         ).copy()
     if not np.all(np.isfinite(bit_torque)):
         bad = float(time_grid[int(np.argmin(np.isfinite(bit_torque)))])
         raise SolverError(f"the bit-rock law returned a non-finite torque at t = {bad:.6g} s")
-    surface_torque = -(twists @ system.model.top_stiffness) - relative_speeds @ system.top_damping
+    surface_torque = np.asarray(dynamics.pipe_torque(twists_by_node, relative_by_node), float)
+    motor_torque = np.broadcast_to(
+        np.asarray(dynamics.motor_torque(z, twists_by_node, relative_by_node)[0], float),
+        bit_speed.shape,
+    ).copy()
+    first = 1 if dynamics.has_top_node else 0  # the model's own nodes
+    top_speed = speeds_by_node[0].copy() if first else np.full(bit_speed.shape, reference)
+    mean_top_speed = float(top_speed[in_window].mean())
+    omega = dynamics.set_speed if math.isfinite(dynamics.set_speed) else mean_top_speed
     window_speeds = bit_speed[in_window]
     stick = float(np.mean(np.abs(window_speeds) < threshold * omega))
     solver_info = {
@@ -656,11 +265,12 @@ def simulate(
         "message": str(solution.message),
         "wall_time_s": elapsed,
     }
+    twists = twists_by_node[first:].T.copy()
     return TransientResults(
         time=time_grid,
         bit_speed=bit_speed,
-        bit_angle=twists[:, -1] + omega * time_grid,
-        node_speeds=node_speeds,
+        bit_angle=twists[:, -1] + reference * time_grid,
+        node_speeds=speeds_by_node[first:].T.copy(),
         node_twists=twists,
         bit_torque=bit_torque,
         surface_torque=surface_torque,
@@ -670,7 +280,55 @@ def simulate(
         stick_threshold=float(threshold),
         solver=solver_info,
         system=system,
+        top_speed=top_speed,
+        motor_torque=motor_torque,
+        states=states.T.copy(),
+        reference_speed=float(reference),
+        severity_speed=float(omega),
     )
+
+
+def _integrate(
+    dynamics: Dynamics, y0: np.ndarray, time_grid: np.ndarray, options: SimulationOptions
+) -> tuple[Any, str, float]:
+    """solve_ivp over the grid with the Jacobian each method can use; errors never hidden."""
+    solver_kwargs: dict[str, Any] = {}
+    chosen = options.method
+    name = chosen if isinstance(chosen, str) else chosen.__name__
+    bands = dynamics.jacobian_bands
+    if chosen == "LSODA":
+        if bands is not None:
+            lower, upper = bands
+            solver_kwargs.update(
+                lband=lower, uband=upper, jac=_band_jacobian(dynamics, lower, upper)
+            )
+        else:
+            solver_kwargs["jac"] = lambda t, y: dynamics.jacobian(t, y).toarray()
+    elif chosen in IMPLICIT_METHODS or (
+        isinstance(chosen, type) and issubclass(chosen, scipy.integrate.Radau | scipy.integrate.BDF)
+    ):
+        solver_kwargs["jac"] = dynamics.jacobian
+    run = float(time_grid[-1])
+    start = time.perf_counter()
+    with np.errstate(all="ignore"):
+        solution = scipy.integrate.solve_ivp(
+            dynamics.rhs,
+            (0.0, run),
+            y0,
+            method=chosen,
+            t_eval=time_grid,
+            rtol=options.rtol,
+            atol=options.atol,
+            **solver_kwargs,
+        )
+    elapsed = time.perf_counter() - start
+    reached = float(solution.t[-1]) if solution.t.size else 0.0
+    if solution.status < 0 or solution.y.shape[1] != time_grid.size:
+        raise SolverError(
+            f"the {name} integrator failed at t = {reached:.6g} s of {run:.6g} s: "
+            f"{solution.message} (try another method or tighter tolerances)"
+        )
+    return solution, name, elapsed
 
 
 def system_from_config(
@@ -701,6 +359,9 @@ def system_from_config(
         wob = to_si(wob, "force", key="wob")
         if wob < 0:
             raise ConfigError("wob", f"expected a non-negative weight on bit, got {text!r}")
+    options = {k: v for k, v in (discretization or {}).items() if v is not None}
+    if rpm is None and not config.top_drive.has_set_speed:  # e.g. a torque-driven top
+        return System.from_config(config, **options).at(wob=wob)
     if rpm is None:
         rpm = config.operation.rpm
         if rpm is None:

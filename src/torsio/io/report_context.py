@@ -98,7 +98,8 @@ class ReportContext:
     def transient(self) -> Any:
         """The transient response at the operating point (None without law or operating point)."""
         op = self.config.operation
-        if self.system is None or op.wob is None or op.rpm is None:
+        no_speed = op.rpm is None and self.config.top_drive.has_set_speed
+        if self.system is None or op.wob is None or no_speed:
             return None
         from torsio.analysis.transient import simulate_config
 

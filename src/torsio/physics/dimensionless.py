@@ -20,6 +20,14 @@ this is Pi_2 b0 (tanh(b1 theta') + b2 theta' / (1 + b3 theta'^2)) with
 b0 = a0, b1 = omega_1 a1, **b2 = omega_1 a2** (ERRATA 2; the paper prints
 b2 = a2, which is not dimensionless) and b3 = omega_1^2 a3.
 
+A top drive with inertia (:mod:`torsio.physics.top_drives`) adds its own groups
+(:func:`top_drive_groups`): J / I_eq (its inertia against the string's),
+kp / (omega_1 I_eq) (its damping; kp / zeta compares it with the pipe impedance,
+the reflection coefficient R = (zeta - kp)/(zeta + kp)), ki / k_eq (its integral
+stiffness against the string's), and drag omega_1 / k_eq. Its controller is
+rescaled exactly (:class:`torsio.physics.top_drives.ScaledTopDrive`), so a
+dimensionless run with a top drive is the dimensional run in tau.
+
 A dimensionless system is an ordinary :class:`torsio.physics.system.System` whose model
 matrices are the dimensionless ones, whose surface speed is Pi_1 (its ``omega``),
 whose ``wob * bit_radius`` is Pi_2 (``wob = Pi_2``, ``bit_radius = 1``) and whose
@@ -28,7 +36,8 @@ tau. Its first natural frequency and its k_eq are 1.
 
 Examples
 --------
->>> from torsio.physics.system import System, builtin_config
+>>> from torsio.io.config import builtin_config
+>>> from torsio.physics.system import System
 >>> system = System.from_config(builtin_config(), strategy="A").at(wob=100e3, rpm=60)
 >>> groups = dimensionless_groups(system)
 >>> round(groups.k_eq, 2), round(groups.omega1, 4), round(groups.pi1, 4), round(groups.pi2, 2)
@@ -53,6 +62,7 @@ from torsio.model.lumped import LumpedModel
 from torsio.physics.damping import ModelDamping, RayleighDamping
 from torsio.physics.laws import TuckerWang
 from torsio.physics.system import System
+from torsio.physics.top_drives import ConstantSpeedTop, ScaledTopDrive
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = [
@@ -61,6 +71,7 @@ __all__ = [
     "dimensional_system",
     "dimensionless_groups",
     "dimensionless_system",
+    "top_drive_groups",
 ]
 
 
@@ -233,6 +244,29 @@ class DimensionlessTuckerWang(TuckerWang):
     dimensionless = True
 
 
+def top_drive_groups(system: System) -> dict[str, float]:
+    """The dimensionless groups a top drive with inertia adds (empty for a held top).
+
+    ``inertia_ratio`` J / I_eq, ``damping_ratio`` kp / (omega_1 I_eq) (= kp omega_1 / k_eq),
+    ``integral_ratio`` ki / k_eq, ``drag_ratio`` drag omega_1 / k_eq, for a PI-type
+    controller (kp, ki: the speed-error gains d_e and c_e of its boundary).
+    """
+    boundary = system.top.boundary(system)
+    if boundary.held:
+        return {}
+    groups = dimensionless_groups(system)
+    omega1, k_eq, i_eq = groups.omega1, groups.k_eq, groups.i_eq
+    data = {
+        "inertia_ratio": boundary.inertia / i_eq,
+        "drag_ratio": boundary.drag * omega1 / k_eq,
+    }
+    if boundary.d[0]:
+        data["damping_ratio"] = float(boundary.d[0]) / (omega1 * i_eq)
+    if boundary.states and np.asarray(boundary.b)[0, 0]:
+        data["integral_ratio"] = float(np.asarray(boundary.c)[0]) / k_eq
+    return data
+
+
 def dimensionless_system(
     system: System, pi1: float | None = None, pi2: float | None = None
 ) -> System:
@@ -265,6 +299,13 @@ def dimensionless_system(
         top_damping=top_damping,
         details={**model.details, "dimensionless": True},
     )
+    top: Any = system.top
+    boundary = system.top.boundary(system)
+    if not boundary.held:
+        name = getattr(system.top, "name", type(system.top).__name__)
+        top = ScaledTopDrive.from_boundary(name, boundary, omega1, k_eq)
+    elif not isinstance(top, ConstantSpeedTop):
+        top = ConstantSpeedTop()
     law: Any
     if groups.tucker_wang is not None:
         b0, b1, b2, b3 = groups.tucker_wang
@@ -278,7 +319,7 @@ def dimensionless_system(
         damping=damping,
         wob=pi2,
         rpm=pi1 / RPM_TO_RAD_S,
-        top=system.top,
+        top=top,
         string=system.string,
     )
 

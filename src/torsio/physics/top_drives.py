@@ -56,6 +56,7 @@ from torsio.hookspecs import hookimpl
 __all__ = [
     "ConstantSpeedTop",
     "PITopDrive",
+    "ScaledTopDrive",
     "SoftTorqueTopDrive",
     "TopDriveBoundary",
     "TorqueTopDrive",
@@ -460,6 +461,55 @@ class ZTorqueTopDrive:
             w=np.array([1.0 / kp, 0.0]),
             max_torque=self.max_torque,
         )
+
+
+@attrs.frozen
+class ScaledTopDrive:
+    """A top drive in the dimensionless formulation: a fixed, rescaled boundary.
+
+    Built by :func:`torsio.physics.dimensionless.dimensionless_system` from any top
+    drive: with time tau = omega_1 t, speeds over omega_1 and torques over k_eq,
+
+        J/I_eq, drag omega_1/k_eq, u0/k_eq, max_torque/k_eq,
+        a/omega_1, b diag(omega_1, k_eq)/omega_1, c/k_eq, d diag(omega_1, k_eq)/k_eq,
+        w k_eq/omega_1
+
+    (controller states keep their units). The set speed follows the System's
+    Pi_1 (its ``omega``); a torque-driven top keeps none. Not registered: it is
+    made, never named in a configuration.
+    """
+
+    name: ClassVar[str] = "scaled"
+    source: str
+    scaled: TopDriveBoundary
+
+    @classmethod
+    def from_boundary(
+        cls, source: str, boundary: TopDriveBoundary, omega1: float, k_eq: float
+    ) -> ScaledTopDrive:
+        """The rescaled form of ``boundary`` for frequency omega_1 [rad/s] and k_eq [N m/rad]."""
+        i_eq = k_eq / omega1**2
+        outputs = np.array([omega1, k_eq])
+        return cls(
+            source,
+            TopDriveBoundary(
+                inertia=boundary.inertia / i_eq,
+                drag=boundary.drag * omega1 / k_eq,
+                set_speed=boundary.set_speed / omega1,
+                u0=boundary.u0 / k_eq,
+                a=np.asarray(boundary.a) / omega1,
+                b=np.asarray(boundary.b) * outputs / omega1,
+                c=np.asarray(boundary.c) / k_eq,
+                d=np.asarray(boundary.d) * outputs / k_eq,
+                w=np.asarray(boundary.w) * k_eq / omega1,
+                max_torque=boundary.max_torque / k_eq,
+            ),
+        )
+
+    def boundary(self, system: Any) -> TopDriveBoundary:
+        """The rescaled boundary, aiming at the System's Pi_1."""
+        speed = float(system.omega) if math.isfinite(self.scaled.set_speed) else math.nan
+        return attrs.evolve(self.scaled, set_speed=speed)
 
 
 BUILTIN_TOP_DRIVES: tuple[type[Any], ...] = (

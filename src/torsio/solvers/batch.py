@@ -360,7 +360,8 @@ def simulate_batch(
         from the torque balance and S_SS is relative to its mean over the window.
     duration, steady_window : float, optional
         Run length and steady-state window [s]; defaults of
-        :func:`torsio.analysis.severity.default_times` (40 and 15 first-mode periods).
+        :func:`torsio.analysis.severity.run_times` (40 and 15 first-mode periods; the
+        window at most half of a given run, as for a single run).
     rtol, atol : float
         Per-point local error tolerances (relative; absolute in rad, rad/s and the
         controller states' units).

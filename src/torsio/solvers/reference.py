@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from torsio.analysis.severity import check_window, default_times
+from torsio.analysis.severity import run_times as severity_run_times
 from torsio.errors import SolverError
 from torsio.physics.system import System
 
@@ -97,20 +97,9 @@ def reference_severity(
 def run_times(
     system: System, duration: float | None, steady_window: float | None
 ) -> tuple[float, float]:
-    """(duration, steady window) [s]: the given values, else 40 and 15 first-mode periods."""
-    from torsio.model.modal import modal_analysis
+    """(duration, steady window) [s]: :func:`torsio.analysis.severity.run_times`, the one rule.
 
-    if duration is None or steady_window is None:
-        from torsio.model.wave import is_wave_model
-
-        if is_wave_model(system.model):
-            from torsio.solvers.wave_batch import wave_scales
-
-            omega1 = wave_scales(system.model)[1]
-        else:
-            omega1 = float(modal_analysis(system.model, 1).frequencies_rad[0])
-        default_duration, default_window = default_times(omega1)
-        duration = default_duration if duration is None else duration
-        steady_window = default_window if steady_window is None else steady_window
-    check_window(float(duration), float(steady_window))
-    return float(duration), float(steady_window)
+    The given values, else 40 and 15 first-mode periods, the window at most half of a
+    run whose length is given (as for a single run).
+    """
+    return severity_run_times(system, duration, steady_window)

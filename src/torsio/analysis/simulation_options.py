@@ -1,0 +1,121 @@
+"""Options of the transient analyzer (the ``[simulation]`` table), validated.
+
+Every field has the meaning of the :func:`torsio.analysis.transient.simulate`
+argument of the same name; defaults shared with the other analyzers live in
+:mod:`torsio.analysis.severity`.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import attrs
+import numpy as np
+import scipy.integrate
+
+from torsio.errors import ConfigError
+from torsio.io.config import Config
+
+__all__ = ["IMPLICIT_METHODS", "METHODS", "MIN_WINDOW_SAMPLES", "SimulationOptions"]
+
+METHODS = ("LSODA", "RK45", "RK23", "DOP853", "Radau", "BDF")
+"""The integrators of ``scipy.integrate.solve_ivp`` accepted by name."""
+
+IMPLICIT_METHODS = ("Radau", "BDF")
+"""Methods that take the (sparse) Jacobian."""
+
+MIN_WINDOW_SAMPLES = 10
+"""Fewest output samples the steady-state window may hold."""
+
+
+def _positive(key: str, value: Any, what: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+        raise ConfigError(f"simulation.{key}", f"expected {what}, got {value!r}")
+    number = float(value)
+    if not (math.isfinite(number) and number > 0):
+        raise ConfigError(f"simulation.{key}", f"expected {what}, got {value!r}")
+    return number
+
+
+def _check_method(method: Any) -> Any:
+    if isinstance(method, str):
+        if method not in METHODS:
+            raise ConfigError(
+                "simulation.method",
+                f"unknown integrator {method!r}; expected one of {', '.join(METHODS)}",
+            )
+        return method
+    if isinstance(method, type) and issubclass(method, scipy.integrate.OdeSolver):
+        return method
+    raise ConfigError(
+        "simulation.method",
+        f"expected one of {', '.join(METHODS)} or a scipy OdeSolver class, got {method!r}",
+    )
+
+
+def _optional_positive(key: str, value: Any, what: str) -> float | None:
+    return None if value is None else _positive(key, value, what)
+
+
+@attrs.frozen
+class SimulationOptions:
+    """Options of the transient analyzer, as the ``[simulation]`` table gives them.
+
+    Every field has the meaning of the :func:`simulate` argument of the same name;
+    ``None`` means the documented default. Values are validated on construction
+    and errors name the ``simulation.<key>``.
+
+    Examples
+    --------
+    >>> SimulationOptions(rtol=1e-8).replace(duration=100.0, rtol=None).rtol
+    1e-08
+    >>> SimulationOptions(method="Euler")
+    Traceback (most recent call last):
+    ...
+    torsio.errors.ConfigError: simulation.method: unknown integrator 'Euler'; expected one of ...
+    """
+
+    duration: float | None = attrs.field(
+        default=None, converter=lambda v: _optional_positive("duration", v, "a positive time in s")
+    )
+    steady_window: float | None = attrs.field(
+        default=None,
+        converter=lambda v: _optional_positive("steady_window", v, "a positive time in s"),
+    )
+    method: Any = attrs.field(default="LSODA", converter=_check_method)
+    rtol: float = attrs.field(
+        default=1e-6, converter=lambda v: _positive("rtol", v, "a positive tolerance")
+    )
+    atol: float = attrs.field(
+        default=1e-9, converter=lambda v: _positive("atol", v, "a positive tolerance")
+    )
+    output_step: float | None = attrs.field(
+        default=None,
+        converter=lambda v: _optional_positive("output_step", v, "a positive time in s"),
+    )
+    stick_threshold: float | None = attrs.field(
+        default=None,
+        converter=lambda v: _optional_positive(
+            "stick_threshold", v, "a positive fraction of Omega"
+        ),
+    )
+
+    @classmethod
+    def from_config(cls, config: Config) -> SimulationOptions:
+        """The options of a configuration's ``[simulation]`` table (defaults elsewhere)."""
+        return cls(**dict(config.simulation.options))
+
+    def replace(self, **overrides: Any) -> SimulationOptions:
+        """These options with ``overrides`` applied; ``None`` values are ignored."""
+        unknown = sorted(set(overrides) - set(attrs.fields_dict(type(self))))
+        if unknown:
+            raise ConfigError(
+                f"simulation.{unknown[0]}",
+                f"unknown option; expected one of {', '.join(attrs.fields_dict(type(self)))}",
+            )
+        return attrs.evolve(self, **{k: v for k, v in overrides.items() if v is not None})
+
+    def kwargs(self) -> dict[str, Any]:
+        """Keyword arguments of :func:`simulate`."""
+        return attrs.asdict(self)
