@@ -52,6 +52,7 @@ import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.hookspecs import hookimpl
+from torsio.physics.top_drive_boundary import ScaledTopDrive, TopDriveBoundary, top_pipe_impedance
 
 __all__ = [
     "ConstantSpeedTop",
@@ -101,91 +102,6 @@ def _to_float(value: Any) -> Any:
 
 def _max_torque(value: Any) -> Any:
     return math.inf if value is None else _to_float(value)
-
-
-@attrs.frozen
-class TopDriveBoundary:
-    """The top drive as the dynamics sees it: node 0 and a linear controller.
-
-    Attributes
-    ----------
-    inertia : float
-        J [kg m^2]; 0 means the top is held at ``set_speed`` (no node, no state).
-    drag : float
-        Torque per unit absolute speed of the top drive to the ground [N m s/rad].
-    set_speed : float
-        Omega_set [rad/s], the speed the controller aims at (for ``torque``: none, NaN).
-    u0 : float
-        Constant part of the motor torque [N m].
-    a, b, c, d, w : ndarray
-        Controller matrices, shapes (m, m), (m, 2), (m,), (2,), (m,), with
-        y = [e, T_pipe] (see the module documentation).
-    max_torque : float
-        |u| limit [N m] (inf: none).
-    """
-
-    inertia: float
-    drag: float = 0.0
-    set_speed: float = math.nan
-    u0: float = 0.0
-    a: np.ndarray = attrs.field(factory=lambda: np.zeros((0, 0)), eq=False)
-    b: np.ndarray = attrs.field(factory=lambda: np.zeros((0, 2)), eq=False)
-    c: np.ndarray = attrs.field(factory=lambda: np.zeros(0), eq=False)
-    d: np.ndarray = attrs.field(factory=lambda: np.zeros(2), eq=False)
-    w: np.ndarray = attrs.field(factory=lambda: np.zeros(0), eq=False)
-    max_torque: float = math.inf
-
-    @property
-    def held(self) -> bool:
-        """Whether the top is held at the set speed (no top-drive node)."""
-        return self.inertia == 0.0
-
-    @property
-    def states(self) -> int:
-        """Number m of controller states."""
-        return int(np.asarray(self.c).size)
-
-    def transfer(self, s: complex) -> np.ndarray:
-        """H(s) = c (s I - a)^-1 b + d: motor torque per unit (e, T_pipe), shape (2,)."""
-        m = self.states
-        h = np.asarray(self.d, dtype=complex).copy()
-        if m:
-            h += np.asarray(self.c) @ np.linalg.solve(s * np.eye(m) - self.a, self.b)
-        return h
-
-    def impedance(self, omega: Any) -> np.ndarray:
-        """Z(i omega) = -T_pipe / Omega_0 of the small motions [N m s/rad], unsaturated.
-
-        From J s dOmega = du - drag dOmega - dT and du = H_e (-dOmega) + H_T dT:
-        Z = (J s + drag + H_e(s)) / (1 - H_T(s)), s = i omega.
-        """
-        w = np.atleast_1d(np.asarray(omega, dtype=float))
-        values = []
-        for frequency in w:
-            s = 1j * frequency
-            h = self.transfer(s)
-            values.append((self.inertia * s + self.drag + h[0]) / (1.0 - h[1]))
-        result = np.asarray(values)
-        return result if np.ndim(omega) else result[0]
-
-
-def top_pipe_impedance(system: Any) -> float:
-    """zeta = J_p sqrt(G rho) of the top section of the system's string [N m s/rad].
-
-    The characteristic impedance of the drill pipe at the top: the torque per unit
-    speed a torsional wave carries. A clear error if the system has no string
-    (a ``[chain]`` model): then give ``kp`` (or ``zeta``) explicitly.
-    """
-    string = getattr(system, "string", None)
-    if string is None:
-        raise ConfigError(
-            "top_drive.kp",
-            "the default tuning needs the drill-pipe impedance zeta = J_p sqrt(G rho) of a "
-            "drill string, and this model is a chain without one; give kp (and zeta) explicitly",
-        )
-    section = string.sections[0]
-    material = section.material
-    return float(section.polar_moment * math.sqrt(material.shear_modulus * material.density))
 
 
 def _first_frequency(system: Any) -> float:
@@ -461,55 +377,6 @@ class ZTorqueTopDrive:
             w=np.array([1.0 / kp, 0.0]),
             max_torque=self.max_torque,
         )
-
-
-@attrs.frozen
-class ScaledTopDrive:
-    """A top drive in the dimensionless formulation: a fixed, rescaled boundary.
-
-    Built by :func:`torsio.physics.dimensionless.dimensionless_system` from any top
-    drive: with time tau = omega_1 t, speeds over omega_1 and torques over k_eq,
-
-        J/I_eq, drag omega_1/k_eq, u0/k_eq, max_torque/k_eq,
-        a/omega_1, b diag(omega_1, k_eq)/omega_1, c/k_eq, d diag(omega_1, k_eq)/k_eq,
-        w k_eq/omega_1
-
-    (controller states keep their units). The set speed follows the System's
-    Pi_1 (its ``omega``); a torque-driven top keeps none. Not registered: it is
-    made, never named in a configuration.
-    """
-
-    name: ClassVar[str] = "scaled"
-    source: str
-    scaled: TopDriveBoundary
-
-    @classmethod
-    def from_boundary(
-        cls, source: str, boundary: TopDriveBoundary, omega1: float, k_eq: float
-    ) -> ScaledTopDrive:
-        """The rescaled form of ``boundary`` for frequency omega_1 [rad/s] and k_eq [N m/rad]."""
-        i_eq = k_eq / omega1**2
-        outputs = np.array([omega1, k_eq])
-        return cls(
-            source,
-            TopDriveBoundary(
-                inertia=boundary.inertia / i_eq,
-                drag=boundary.drag * omega1 / k_eq,
-                set_speed=boundary.set_speed / omega1,
-                u0=boundary.u0 / k_eq,
-                a=np.asarray(boundary.a) / omega1,
-                b=np.asarray(boundary.b) * outputs / omega1,
-                c=np.asarray(boundary.c) / k_eq,
-                d=np.asarray(boundary.d) * outputs / k_eq,
-                w=np.asarray(boundary.w) * k_eq / omega1,
-                max_torque=boundary.max_torque / k_eq,
-            ),
-        )
-
-    def boundary(self, system: Any) -> TopDriveBoundary:
-        """The rescaled boundary, aiming at the System's Pi_1."""
-        speed = float(system.omega) if math.isfinite(self.scaled.set_speed) else math.nan
-        return attrs.evolve(self.scaled, set_speed=speed)
 
 
 BUILTIN_TOP_DRIVES: tuple[type[Any], ...] = (
