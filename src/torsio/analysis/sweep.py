@@ -37,6 +37,7 @@ Examples
 from __future__ import annotations
 
 import concurrent.futures as cf
+import math
 import os
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
@@ -179,6 +180,7 @@ class _Handle:
 def open_executor(spec: ExecutorSpec, timeout: float = CONNECT_TIMEOUT) -> Iterator[_Handle]:
     """The executor ``spec`` names (see the module documentation), closed at exit if owned."""
     name = describe_executor(spec)
+    check_timeout(timeout)
     if spec is None or spec == "serial":
         yield _Handle(SerialExecutor(), name, serial=True)
         return
@@ -219,6 +221,15 @@ def open_executor(spec: ExecutorSpec, timeout: float = CONNECT_TIMEOUT) -> Itera
         f"expected None, a number of processes, a Dask scheduler "
         f"address or a concurrent.futures.Executor, got {spec!r}",
     )
+
+
+def check_timeout(timeout: Any, key: str = "timeout") -> float:
+    """``timeout`` [s] as a float, or a ConfigError unless it is a positive finite number."""
+    if isinstance(timeout, bool) or not isinstance(timeout, int | float):
+        raise ConfigError(key, f"expected a positive number of seconds, got {timeout!r}")
+    if not (math.isfinite(timeout) and timeout > 0):
+        raise ConfigError(key, f"expected a positive finite number of seconds, got {timeout!r}")
+    return float(timeout)
 
 
 def connect_dask(address: str, timeout: float = CONNECT_TIMEOUT) -> Any:

@@ -47,6 +47,13 @@ import numpy as np
 import scipy.integrate
 import scipy.sparse
 
+from torsio.analysis.budget import (
+    BudgetExceeded,
+    EvaluationBudget,
+    check_law_time_scale,
+    check_output_size,
+    check_rtol,
+)
 from torsio.analysis.severity import (
     SEVERE_THRESHOLD,
     check_window,
@@ -145,9 +152,7 @@ class SimulationOptions:
         converter=lambda v: _optional_positive("steady_window", v, "a positive time in s"),
     )
     method: Any = attrs.field(default="LSODA", converter=_check_method)
-    rtol: float = attrs.field(
-        default=1e-6, converter=lambda v: _positive("rtol", v, "a positive tolerance")
-    )
+    rtol: float = attrs.field(default=1e-6, converter=lambda v: check_rtol(v, "simulation.rtol"))
     atol: float = attrs.field(
         default=1e-9, converter=lambda v: _positive("atol", v, "a positive tolerance")
     )
@@ -563,7 +568,8 @@ def simulate(
         if options.output_step is not None
         else 2.0 * math.pi / omega1 / DEFAULT_SAMPLES_PER_PERIOD
     )
-    intervals = max(1, math.ceil(run / step * (1.0 - 1e-12)))
+    intervals = check_output_size(run, step, 3 * system.model.dofs + 4)
+    check_law_time_scale(system, system.wob, run)
     time_grid = np.linspace(0.0, run, intervals + 1)
     in_window = _window_mask(time_grid, window)
     if step > window / MIN_WINDOW_SAMPLES:
@@ -595,27 +601,33 @@ def simulate(
         isinstance(chosen, type) and issubclass(chosen, scipy.integrate.Radau | scipy.integrate.BDF)
     ):
         solver_kwargs["jac"] = equations.jacobian
+    budget = EvaluationBudget.for_samples(intervals)
     start = time.perf_counter()
     with np.errstate(all="ignore"):
-        solution = scipy.integrate.solve_ivp(
-            equations.rhs,
-            (0.0, run),
-            y0,
-            method=chosen,
-            t_eval=time_grid,
-            rtol=options.rtol,
-            atol=options.atol,
-            **solver_kwargs,
-        )
+        try:
+            solution = scipy.integrate.solve_ivp(
+                budget.wrap(equations.rhs),
+                (0.0, run),
+                y0,
+                method=chosen,
+                t_eval=time_grid,
+                rtol=options.rtol,
+                atol=options.atol,
+                **solver_kwargs,
+            )
+        except BudgetExceeded:
+            where = f"WOB = {system.wob:g} N, {system.rpm:g} rpm"
+            raise budget.error(name, run, where) from None
     elapsed = time.perf_counter() - start
-    reached = float(solution.t[-1]) if solution.t.size else 0.0
-    if solution.status < 0 or solution.y.shape[1] != time_grid.size:
+    solution_times = np.asarray(solution.t, dtype=float)
+    reached = float(solution_times[-1]) if solution_times.size else 0.0
+    states = np.asarray(solution.y, dtype=float)
+    if solution.status < 0 or states.ndim != 2 or states.shape[1] != time_grid.size:
         raise SolverError(
             f"the {name} integrator failed at t = {reached:.6g} s of {run:.6g} s: "
             f"{solution.message} (operating point WOB = {system.wob:g} N, "
             f"{system.rpm:g} rpm; try another method or tighter tolerances)"
         )
-    states = solution.y
     finite = np.all(np.isfinite(states), axis=0)
     if not finite.all():
         bad = float(time_grid[int(np.argmin(finite))])
@@ -634,7 +646,11 @@ def simulate(
         ).copy()
     if not np.all(np.isfinite(bit_torque)):
         bad = float(time_grid[int(np.argmin(np.isfinite(bit_torque)))])
-        raise SolverError(f"the bit-rock law returned a non-finite torque at t = {bad:.6g} s")
+        raise SolverError(
+            f"the bit-rock law {_law_name(system.law)} returned a non-finite torque at "
+            f"t = {bad:.6g} s (bit speed {bit_speed[int(np.argmin(np.isfinite(bit_torque)))]:.6g}"
+            " rad/s)"
+        )
     surface_torque = -(twists @ system.model.top_stiffness) - relative_speeds @ system.top_damping
     window_speeds = bit_speed[in_window]
     stick = float(np.mean(np.abs(window_speeds) < threshold * omega))
@@ -664,6 +680,17 @@ def simulate(
         solver=solver_info,
         system=system,
     )
+
+
+def _law_name(law: Any) -> str:
+    from torsio.plugins import bit_law_origin
+
+    name = getattr(law, "name", "") or type(law).__name__
+    try:
+        origin = bit_law_origin(name)
+    except Exception:  # naming must never hide the error being reported
+        return repr(name)
+    return f"{name!r} ({origin})"
 
 
 def system_from_config(

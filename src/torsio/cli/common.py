@@ -8,6 +8,8 @@ import math
 import sys
 from typing import TYPE_CHECKING, Any
 
+from torsio.errors import ConfigError
+
 if TYPE_CHECKING:
     from torsio.io.config import Config
 
@@ -47,9 +49,23 @@ def parse_time(value: str | None, key: str) -> float | None:
     if value is None:
         return None
     try:
-        return float(value)
+        number = float(value)
     except ValueError:
-        return to_si(value, "time", key=key)
+        number = to_si(value, "time", key=key)
+    if not (math.isfinite(number) and number > 0):
+        raise ConfigError(key, f"expected a positive finite time, got {value!r}")
+    return number
+
+
+def finite_float(text: str) -> float:
+    """argparse type of a number option: a finite float (``nan`` and ``inf`` are refused)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"expected a finite number, got {text!r}")
+    return value
 
 
 def load(args: argparse.Namespace) -> Config:

@@ -19,6 +19,7 @@ from torsio.cli.common import (
     add_discretization_arguments,
     discretization_overrides,
     load,
+    finite_float,
     parse_time,
     print_json,
 )
@@ -73,7 +74,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument(
         "--threshold",
-        type=float,
+        type=finite_float,
         default=None,
         help="S_SS above which a point is severe (default 0.8)",
     )
@@ -86,7 +87,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument(
         "--rtol",
-        type=float,
+        type=finite_float,
         default=None,
         help="relative tolerance of the batch engine (default 1e-5)",
     )
@@ -107,7 +108,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument(
         "--timeout",
-        type=float,
+        type=finite_float,
         default=None,
         metavar="S",
         help="seconds to wait for the Dask scheduler (default 10)",

@@ -10,6 +10,7 @@ from torsio.cli.common import (
     add_discretization_arguments,
     discretization_overrides,
     load,
+    finite_float,
     parse_time,
     print_json,
 )
@@ -45,8 +46,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--method", help="solve_ivp integrator: LSODA (default), Radau, BDF, RK45, DOP853, RK23"
     )
-    parser.add_argument("--rtol", type=float, help="relative tolerance (default 1e-6)")
-    parser.add_argument("--atol", type=float, help="absolute tolerance (default 1e-9)")
+    parser.add_argument("--rtol", type=finite_float, help="relative tolerance (default 1e-6)")
+    parser.add_argument("--atol", type=finite_float, help="absolute tolerance (default 1e-9)")
     parser.add_argument("--output-step", metavar="T", help="output sampling step: s or with units")
     parser.add_argument("--csv", metavar="FILE", help="write the time series to a CSV file")
     parser.add_argument(
