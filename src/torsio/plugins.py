@@ -72,9 +72,7 @@ def _collect(hook_name: str, kind: str) -> dict[str, type[Any]]:
     return _collect_with_owners(hook_name, kind)[0]
 
 
-def _collect_with_owners(
-    hook_name: str, kind: str
-) -> tuple[dict[str, type[Any]], dict[str, str]]:
+def _collect_with_owners(hook_name: str, kind: str) -> tuple[dict[str, type[Any]], dict[str, str]]:
     manager = plugin_manager()
     found: dict[str, type[Any]] = {}
     owner: dict[str, str] = {}

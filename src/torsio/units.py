@@ -18,7 +18,7 @@ Examples
 >>> to_si("5 dimensionless", "length", key="od")
 Traceback (most recent call last):
 ...
-torsio.errors.ConfigError: od: '5 dimensionless' is a pure number, not a length (expected units like m)
+torsio.errors.ConfigError: od: '5 dimensionless' is a pure number, not a length ...
 """
 
 from __future__ import annotations

@@ -185,7 +185,10 @@ def law_slope_at_rest(law: Any, wob: float, radius: float) -> float:
         else:
             step = 1e-6
             slope = float(
-                (np.asarray(law.torque(step, wob, radius)) - np.asarray(law.torque(-step, wob, radius)))
+                (
+                    np.asarray(law.torque(step, wob, radius))
+                    - np.asarray(law.torque(-step, wob, radius))
+                )
                 / (2 * step)
             )
     return abs(slope) if not math.isnan(slope) else math.inf

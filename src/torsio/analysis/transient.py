@@ -633,7 +633,8 @@ def simulate(
         bad = float(time_grid[int(np.argmin(finite))])
         raise SolverError(
             f"the {name} integrator returned non-finite values from t = {bad:.6g} s "
-            f"(of {run:.6g} s): {solution.message}"
+            f"(of {run:.6g} s) with the bit-rock law {_law_name(system.law)}: a law torque "
+            f"that is NaN or infinite, or an unstable model ({solution.message})"
         )
     twists = states[0::2].T.copy()
     relative_speeds = states[1::2].T

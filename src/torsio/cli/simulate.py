@@ -8,9 +8,10 @@ from typing import Any
 from torsio.cli.common import (
     add_config_argument,
     add_discretization_arguments,
+    check_outputs,
     discretization_overrides,
-    load,
     finite_float,
+    load,
     parse_time,
     print_json,
 )
@@ -64,6 +65,7 @@ def run(args: argparse.Namespace) -> int:
     from torsio.analysis.transient import simulate_config
     from torsio.errors import ConfigError
 
+    outputs = check_outputs(args, ("csv", "plot"))
     config = load(args)
     if args.rpm is not None and not config.top_drive.has_set_speed:
         raise ConfigError(
@@ -96,16 +98,13 @@ def run(args: argparse.Namespace) -> int:
         )
     except ConfigError as exc:
         raise ConfigError(_option_name(exc.key), exc.message) from None
-    if args.csv is not None:
-        results.to_csv(args.csv)
-    if args.plot is not None:
-        results.plot(args.plot)
+    if "csv" in outputs:
+        results.to_csv(outputs["csv"])
+    if "plot" in outputs:
+        results.plot(outputs["plot"])
     if args.json:
         data = results.to_dict()
-        if args.csv is not None:
-            data["csv"] = args.csv
-        if args.plot is not None:
-            data["plot"] = args.plot
+        data.update(outputs)
         print_json(data)
         return 0
     _print_summary(results, args)
@@ -172,7 +171,7 @@ def _print_summary(results: Any, args: argparse.Namespace) -> None:
     if args.csv is not None:
         rows.append(("time series", args.csv))
     if args.plot is not None:
-        rows.append(("plot", args.plot))
+        rows.append(("plot", check_outputs(args, ("plot",))["plot"]))
     for name, value in rows:
         table.add_row(escape(name), escape(value))
     Console().print(table)
