@@ -100,7 +100,7 @@ def check_outputs(args: argparse.Namespace, options: Sequence[str]) -> dict[str,
             raise ConfigError(option, f"{value!r} is a folder; expected a file name")
         folder = resolved.parent
         if not folder.is_dir():
-            raise ConfigError(option, f"the folder of {value!r} does not exist")
+            raise ConfigError(option, f"directory of {value!r} does not exist")
         if resolved.exists() and not resolved.is_file():
             raise ConfigError(option, f"{value!r} exists and is not a regular file")
         _try_create(folder, value, option)
