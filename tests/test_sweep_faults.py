@@ -180,3 +180,51 @@ def test_scheduler_without_workers() -> None:
     ) as cluster:
         with pytest.raises(ConfigError, match="has no worker after 5 s"):
             connect_dask(cluster.scheduler_address, timeout=5.0)
+
+
+# --- torsio map ended by a signal ---------------------------------------------------------------
+def _descendants(pid: int) -> list[int]:
+    children: dict[int, list[int]] = {}
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        children.setdefault(int(fields[1]), []).append(int(stat.parent.name))
+    found, queue = [], [pid]
+    while queue:
+        for child in children.get(queue.pop(), []):
+            found.append(child)
+            queue.append(child)
+    return found
+
+
+@pytest.mark.slow
+def test_sigterm_to_a_map_on_two_workers(tmp_path) -> None:
+    """SIGTERM: within 10 s no process of the map is left, and the partial file holds its points."""
+    from torsio.analysis.maps import load_map
+
+    out = tmp_path / "m.json"
+    command = [sys.executable, "-m", "torsio", "map", "--workers", "2", "--strategy", "A"]
+    command += ["--wob", "25kN:225kN:15", "--rpm", "40:140:15", "--refine", "0"]
+    command += ["--engine", "numpy", "--out", str(out)]
+    process = subprocess.Popen(command, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 120.0
+        workers: list[int] = []
+        while time.monotonic() < deadline and len(workers) < 2:
+            time.sleep(0.5)
+            workers = [p for p in _descendants(process.pid) if _alive(p)]
+        assert len(workers) >= 2, "the map never started its workers"
+        time.sleep(15.0)  # let some chunks finish
+        family = [process.pid, *_descendants(process.pid)]
+        process.terminate()  # SIGTERM
+        _, err = process.communicate(timeout=30.0)
+    finally:
+        if process.poll() is None:
+            process.kill()
+    assert process.returncode == 143, err
+    assert "partial results written" in err and "Traceback" not in err
+    assert _wait_until_gone(family, 10.0) == []
+    partial = load_map(tmp_path / "m.partial.json")  # validated: done points have values
+    assert not partial.complete and not (tmp_path / "m.json").exists()
