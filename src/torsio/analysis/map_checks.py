@@ -100,8 +100,7 @@ def check_map_data(data: Any, where: str) -> None:
     if not isinstance(data, dict):
         raise ConfigError(
             where,
-            "expected a JSON object with the keys of a severity map, got "
-            f"{type(data).__name__}",
+            f"expected a JSON object with the keys of a severity map, got {type(data).__name__}",
         )
     missing = [key for key in REQUIRED_KEYS if key not in data]
     if missing:
@@ -165,8 +164,7 @@ def _check_points(data: dict[str, Any], where: str, done: np.ndarray, complete: 
     if unexplained.any():
         raise ConfigError(
             f"{where}: severity",
-            f"{int(unexplained.sum())} points are done with solver status 0 but have no "
-            "severity",
+            f"{int(unexplained.sum())} points are done with solver status 0 but have no severity",
         )
     if (np.isfinite(severity) & (severity < 0)).any():
         raise ConfigError(f"{where}: severity", "expected severities >= 0")
