@@ -115,7 +115,7 @@ def check_output_size(
     if not math.isfinite(needed) or (memory is not None and needed > 0.5 * memory):
         have = "" if memory is None else f"; {memory / 1e9:.3g} GB of memory is free"
         raise ConfigError(
-            "simulation.duration" if duration / step > 1e3 * duration else "simulation.output_step",
+            "simulation.output_step" if step < 1e-3 else "simulation.duration",
             f"a run of {duration:g} s sampled every {step:g} s has {samples:.3g} samples "
             f"whose series need {needed / 1e9:.3g} GB{have}; shorten the run or give a "
             "longer output step",
