@@ -24,7 +24,7 @@ from typing import Any
 import pluggy
 
 from torsio import hookspecs
-from torsio.errors import ConfigError
+from torsio.errors import ConfigError, PluginError, TorsioError
 
 
 class PluginWarning(UserWarning):
@@ -69,6 +69,10 @@ def _load_entry_points(manager: pluggy.PluginManager) -> None:
 
 
 def _collect(hook_name: str, kind: str) -> dict[str, type[Any]]:
+    return _collect_with_owners(hook_name, kind)[0]
+
+
+def _collect_with_owners(hook_name: str, kind: str) -> tuple[dict[str, type[Any]], dict[str, str]]:
     manager = plugin_manager()
     found: dict[str, type[Any]] = {}
     owner: dict[str, str] = {}
@@ -104,7 +108,7 @@ def _collect(hook_name: str, kind: str) -> dict[str, type[Any]]:
                 continue
             found[name] = cls
             owner[name] = plugin
-    return found
+    return found, owner
 
 
 def bit_laws() -> dict[str, type[Any]]:
@@ -225,3 +229,98 @@ def build_law(cls: type[Any], parameters: dict[str, Any], speed_unit: str = "rad
         raise ConfigError(
             f"bit_rock.{key}", f"law {name!r} rejected its parameters {parameters!r}: {exc}"
         ) from None
+
+
+def bit_law_origin(name: str) -> str:
+    """Where the bit-rock law ``name`` comes from, for messages.
+
+    ``"built-in"`` for torsio's own laws, else ``"plugin 'P' from distribution 'D'"``.
+
+    Examples
+    --------
+    >>> bit_law_origin("tucker-wang")
+    'built-in'
+    """
+    owner = _collect_with_owners("torsio_bit_laws", "bit-rock law")[1].get(name)
+    if owner is None or owner.startswith("torsio."):
+        return "built-in"
+    from importlib.metadata import entry_points
+
+    for entry_point in entry_points(group="torsio"):
+        if entry_point.name == owner:
+            dist = getattr(entry_point, "dist", None)
+            if dist is not None:
+                return f"plugin {owner!r} from distribution {dist.name!r}"
+    return f"plugin {owner!r}"
+
+
+PROBE_SPEEDS = (-1.0, 0.0, 1.0, 10.0)
+"""Bit speeds [rad/s] at which a new law's torque is tried once (a scalar, then an array)."""
+
+
+def build_bit_law(
+    name: str,
+    parameters: Any = None,
+    speed_unit: str = "rad/s",
+    wob: float = 100e3,
+    radius: float = 0.1,
+) -> Any:
+    """Build the bit-rock law ``name`` from its parameters and probe its torque once.
+
+    The probe calls ``torque`` on a scalar speed and on an array of
+    :data:`PROBE_SPEEDS` at ``wob`` [N] and ``radius`` [m]: each must give finite
+    values of the broadcast shape. Any failure of a law (its constructor raising,
+    a wrong shape, a non-finite torque) becomes a :class:`~torsio.errors.ConfigError`
+    (bad parameters) or :class:`~torsio.errors.PluginError` (a broken law) that names
+    the law and the plugin distribution it comes from.
+
+    Examples
+    --------
+    >>> build_bit_law("constant", {"torque_on_bit": 5e3})
+    ConstantTorque(torque_on_bit=5000.0)
+    >>> build_bit_law("tucker-wang", {"a0": -1.0, "a1": 1.0})
+    Traceback (most recent call last):
+    ...
+    torsio.errors.ConfigError: bit_rock.a0: law 'tucker-wang': a0 must be > 0 and finite, got -1.0
+    """
+    import numpy as np
+
+    law_class = get_bit_law(name)
+    origin = bit_law_origin(name)
+    what = f"bit-rock law {name!r} ({origin})"
+    try:
+        law = build_law(law_class, dict(parameters or {}), speed_unit)
+    except ConfigError as exc:
+        if origin == "built-in":
+            raise
+        raise ConfigError(exc.key, f"{exc.message} ({origin})") from None
+    except TorsioError:
+        raise
+    except Exception as exc:
+        raise PluginError(
+            f"{what} failed in its constructor: {type(exc).__name__}: {exc}"
+        ) from None
+    speeds = np.array(PROBE_SPEEDS)
+    for probe, shape in ((1.0, ()), (speeds, speeds.shape)):
+        try:
+            with np.errstate(all="ignore"):
+                torque = np.asarray(law.torque(probe, wob, radius), dtype=float)
+        except TorsioError:
+            raise
+        except Exception as exc:
+            raise PluginError(
+                f"{what}: torque(speed={probe!r}, wob={wob:g}, radius={radius:g}) raised "
+                f"{type(exc).__name__}: {exc}"
+            ) from None
+        if torque.shape != shape:
+            raise PluginError(
+                f"{what}: torque(speed, wob, radius) must return the broadcast shape of "
+                f"its inputs; for speed of shape {shape} it returned shape {torque.shape}"
+            )
+        if not np.all(np.isfinite(torque)):
+            raise ConfigError(
+                "bit_rock",
+                f"{what}: torque is not finite at speed {probe!r} rad/s, wob {wob:g} N, "
+                f"radius {radius:g} m (got {torque.tolist()!r}); check its parameters",
+            )
+    return law

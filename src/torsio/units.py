@@ -15,6 +15,10 @@ Examples
 12.566371
 >>> to_si(7800, "density", key="density")
 7800.0
+>>> to_si("5 dimensionless", "length", key="od")
+Traceback (most recent call last):
+...
+torsio.errors.ConfigError: od: '5 dimensionless' is a pure number, not a length ...
 """
 
 from __future__ import annotations
@@ -121,6 +125,14 @@ def to_si(value: Any, dimension: str, *, key: str) -> float:
     return result
 
 
+def _is_bare_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
 def _parse(text: str, dimension: str, key: str) -> float:
     match = _NUMBER_AND_UNIT.fullmatch(text)
     if match is not None and COMMON_UNITS.get(match[2], ("", 0.0))[0] == dimension:
@@ -137,9 +149,14 @@ def _parse(text: str, dimension: str, key: str) -> float:
         ) from None
     if not isinstance(quantity, ureg.Quantity):  # a bare number in a string
         return float(quantity)
-    if quantity.dimensionless and target not in ("", "rad/s", "1/s"):
-        if str(quantity.units) == "dimensionless":
-            return float(quantity.magnitude)
+    if quantity.dimensionless and str(quantity.units) == "dimensionless":
+        if _is_bare_number(text) or target == "":
+            return float(quantity.magnitude)  # "5" is SI like the number 5
+        raise ConfigError(  # "5 dimensionless" states explicitly that it has no unit
+            key,
+            f"{text!r} is a pure number, not a {dimension.replace('_', ' ')} "
+            f"(expected units like {target})",
+        )
     try:
         return float(quantity.to(target).magnitude)
     except (pint.errors.DimensionalityError, TypeError, ValueError):

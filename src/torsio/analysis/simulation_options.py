@@ -14,6 +14,7 @@ import attrs
 import numpy as np
 import scipy.integrate
 
+from torsio.analysis.budget import check_rtol
 from torsio.errors import ConfigError
 from torsio.io.config import Config
 
@@ -84,9 +85,7 @@ class SimulationOptions:
         converter=lambda v: _optional_positive("steady_window", v, "a positive time in s"),
     )
     method: Any = attrs.field(default="LSODA", converter=_check_method)
-    rtol: float = attrs.field(
-        default=1e-6, converter=lambda v: _positive("rtol", v, "a positive tolerance")
-    )
+    rtol: float = attrs.field(default=1e-6, converter=lambda v: check_rtol(v, "simulation.rtol"))
     atol: float = attrs.field(
         default=1e-9, converter=lambda v: _positive("atol", v, "a positive tolerance")
     )

@@ -37,6 +37,7 @@ Examples
 from __future__ import annotations
 
 import concurrent.futures as cf
+import math
 import os
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
@@ -58,7 +59,17 @@ __all__ = [
 ]
 
 CONNECT_TIMEOUT = 10.0
-"""Seconds to wait for a Dask scheduler before giving up."""
+"""Seconds to wait for a Dask scheduler (and for it to have a worker) before giving up."""
+
+CLOSE_TIMEOUT = 10.0
+"""Seconds to wait for a Dask client to close before leaving it behind."""
+
+NO_PROGRESS_TIMEOUT = 900.0
+"""Seconds without any task finishing after which a sweep on workers gives up (a
+scheduler whose workers are gone or hang); far longer than one task of a map."""
+
+PARENT_POLL = 0.5
+"""Seconds between two checks, in a local worker process, that its parent is alive."""
 
 ExecutorSpec = None | int | str | cf.Executor
 """What ``executor=`` accepts: None/"serial", a number of processes, a Dask address, an
@@ -147,6 +158,15 @@ def _retryable_types() -> tuple[type[BaseException], ...]:
     return tuple(kinds)
 
 
+def _fatal_types() -> tuple[type[BaseException], ...]:
+    try:  # distributed is optional
+        from distributed.client import ClosedClientError
+
+        return (ClosedClientError,)
+    except ImportError:  # pragma: no cover - dask extra not installed
+        return ()
+
+
 def describe_executor(spec: ExecutorSpec) -> str:
     """A short name for an executor specification, for reports."""
     if spec is None or spec == "serial":
@@ -179,6 +199,7 @@ class _Handle:
 def open_executor(spec: ExecutorSpec, timeout: float = CONNECT_TIMEOUT) -> Iterator[_Handle]:
     """The executor ``spec`` names (see the module documentation), closed at exit if owned."""
     name = describe_executor(spec)
+    check_timeout(timeout)
     if spec is None or spec == "serial":
         yield _Handle(SerialExecutor(), name, serial=True)
         return
@@ -191,12 +212,15 @@ def open_executor(spec: ExecutorSpec, timeout: float = CONNECT_TIMEOUT) -> Itera
             import multiprocessing
 
             holder["pool"] = cf.ProcessPoolExecutor(
-                spec, mp_context=multiprocessing.get_context("spawn")
+                spec,
+                mp_context=multiprocessing.get_context("spawn"),
+                initializer=watch_parent,
+                initargs=(os.getpid(),),
             )
             return holder["pool"]
 
         def close() -> None:
-            holder["pool"].shutdown(wait=False, cancel_futures=True)
+            terminate_workers(holder["pool"])
 
         handle = _Handle(build(), name, rebuild=build, close=close)
         try:
@@ -209,7 +233,7 @@ def open_executor(spec: ExecutorSpec, timeout: float = CONNECT_TIMEOUT) -> Itera
         try:
             yield _Handle(client.get_executor(pure=False), name)
         finally:
-            client.close()
+            close_dask(client)
         return
     if isinstance(spec, cf.Executor):
         yield _Handle(spec, name)
@@ -221,6 +245,15 @@ def open_executor(spec: ExecutorSpec, timeout: float = CONNECT_TIMEOUT) -> Itera
     )
 
 
+def check_timeout(timeout: Any, key: str = "timeout") -> float:
+    """``timeout`` [s] as a float, or a ConfigError unless it is a positive finite number."""
+    if isinstance(timeout, bool) or not isinstance(timeout, int | float):
+        raise ConfigError(key, f"expected a positive number of seconds, got {timeout!r}")
+    if not (math.isfinite(timeout) and timeout > 0):
+        raise ConfigError(key, f"expected a positive finite number of seconds, got {timeout!r}")
+    return float(timeout)
+
+
 def connect_dask(address: str, timeout: float = CONNECT_TIMEOUT) -> Any:
     """A ``distributed.Client`` connected to ``address``; ConfigError if it cannot be reached."""
     try:
@@ -229,14 +262,87 @@ def connect_dask(address: str, timeout: float = CONNECT_TIMEOUT) -> Any:
         raise ConfigError(
             "scheduler", "a Dask scheduler needs the dask extra: pip install 'torsio[dask]'"
         ) from None
-    try:
-        return distributed.Client(address, timeout=timeout, set_as_default=False)
-    except (OSError, TimeoutError, ValueError) as exc:
+    timeout = check_timeout(timeout)
+    outcome: dict[str, Any] = {}
+
+    def connect() -> None:  # in a thread: a peer that never answers must not block us
+        try:
+            client = distributed.Client(address, timeout=timeout, set_as_default=False)
+            outcome["client"] = client
+            client.wait_for_workers(1, timeout=timeout)
+        except BaseException as exc:  # reported below, in the calling thread
+            outcome["error"] = exc
+
+    import threading
+
+    thread = threading.Thread(target=connect, name="torsio-dask-connect", daemon=True)
+    thread.start()
+    thread.join(timeout + 2.0)
+    client = outcome.get("client")
+    error = outcome.get("error")
+    if thread.is_alive() or (error is not None and client is None):
+        why = "no answer" if thread.is_alive() else f"{type(error).__name__}: {error}".rstrip(": ")
+        if client is not None:
+            close_dask(client)
         raise ConfigError(
             "scheduler",
-            f"cannot reach the Dask scheduler at {address!r} "
-            f"within {timeout:g} s ({type(exc).__name__}: {exc})",
+            f"cannot reach the Dask scheduler at {address!r} within {timeout:g} s ({why}); "
+            "is it a Dask scheduler address such as tcp://host:8786?",
         ) from None
+    if error is not None:
+        close_dask(client)
+        raise ConfigError(
+            "scheduler",
+            f"the Dask scheduler at {address!r} has no worker after {timeout:g} s; "
+            "start workers (dask worker ADDRESS) or raise --timeout",
+        ) from None
+    return client
+
+
+def close_dask(client: Any, timeout: float = CLOSE_TIMEOUT) -> None:
+    """Close a Dask client within ``timeout`` s; a client that does not close is left."""
+    import threading
+
+    def close() -> None:
+        try:
+            client.close(timeout=timeout)
+        except Exception:  # a scheduler already gone: nothing left to close
+            pass
+
+    thread = threading.Thread(target=close, name="torsio-dask-close", daemon=True)
+    thread.start()
+    thread.join(timeout + 2.0)
+
+
+def watch_parent(parent: int) -> None:
+    """In a worker process: end it as soon as process ``parent`` is no longer its parent.
+
+    Runs as the initializer of the local process pools, so that no worker outlives
+    the sweep's process (killed, or ended by a signal it could not handle).
+    """
+    import threading
+
+    def watch() -> None:
+        import time
+
+        while os.getppid() == parent:
+            time.sleep(PARENT_POLL)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="torsio-watch-parent", daemon=True).start()
+
+
+def terminate_workers(pool: cf.Executor) -> None:
+    """Stop a process pool now: cancel what waits, terminate the running workers."""
+    processes = list(getattr(pool, "_processes", {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        if process.is_alive():
+            process.terminate()
+    for process in processes:
+        process.join(5.0)
+        if process.is_alive():  # pragma: no cover - ignores SIGTERM
+            process.kill()
 
 
 def run_tasks(
@@ -246,6 +352,7 @@ def run_tasks(
     retries: int = 2,
     progress: Callable[[int, int], None] | None = None,
     timeout: float = CONNECT_TIMEOUT,
+    no_progress_timeout: float = NO_PROGRESS_TIMEOUT,
 ) -> SweepOutcome:
     """Run ``function(*task)`` for every task; results in task order.
 
@@ -262,20 +369,24 @@ def run_tasks(
     progress : callable, optional
         ``progress(done, total)`` after each finished task.
     timeout : float
-        Seconds to wait for a Dask scheduler.
+        Seconds to wait for a Dask scheduler and its first worker.
+    no_progress_timeout : float
+        Seconds without any task finishing after which the sweep fails.
 
     Raises
     ------
     SweepInterrupted
         On Ctrl-C, with the finished results.
     SweepError
-        When a task's worker keeps dying, or an executor the sweep does not own
-        breaks.
+        When a task's worker keeps dying, an executor the sweep does not own
+        breaks, the executor itself fails (a lost scheduler) or no task finishes
+        within ``no_progress_timeout``; it carries the finished results.
     """
     if isinstance(retries, bool) or not isinstance(retries, int) or retries < 0:
         raise ConfigError("retries", f"expected a whole number >= 0, got {retries!r}")
+    check_timeout(no_progress_timeout, "no_progress_timeout")
     with open_executor(executor, timeout) as handle:
-        return _run(function, list(tasks), handle, retries, progress)
+        return _run(function, list(tasks), handle, retries, progress, no_progress_timeout)
 
 
 def run_tasks_on(
@@ -284,9 +395,10 @@ def run_tasks_on(
     tasks: Sequence[tuple[Any, ...]],
     retries: int = 2,
     progress: Callable[[int, int], None] | None = None,
+    no_progress_timeout: float = NO_PROGRESS_TIMEOUT,
 ) -> SweepOutcome:
     """:func:`run_tasks` on an executor already opened with :func:`open_executor`."""
-    return _run(function, list(tasks), handle, retries, progress)
+    return _run(function, list(tasks), handle, retries, progress, no_progress_timeout)
 
 
 def _run(
@@ -295,6 +407,7 @@ def _run(
     handle: _Handle,
     retries: int,
     progress: Callable[[int, int], None] | None,
+    no_progress_timeout: float = NO_PROGRESS_TIMEOUT,
 ) -> SweepOutcome:
     total = len(tasks)
     results: list[Any] = [None] * total
@@ -304,11 +417,20 @@ def _run(
     rebuilds = 0
     done = 0
     retryable = _retryable_types()
+    fatal = _fatal_types()
     pending: dict[cf.Future[Any], int] = {}
 
     def submit(index: int) -> None:
         attempts[index] += 1
-        pending[handle.executor.submit(function, *tasks[index])] = index
+        try:
+            future = handle.executor.submit(function, *tasks[index])
+        except Exception as exc:  # e.g. a closed Dask client, a shut-down pool
+            raise SweepError(
+                f"the executor {handle.name} refused task {index} "
+                f"({type(exc).__name__}: {exc}); {done} of {total} tasks finished",
+                results,
+            ) from exc
+        pending[future] = index
 
     def finish(index: int, value: Any) -> None:
         nonlocal done
@@ -326,7 +448,17 @@ def _run(
         for index in range(total):
             submit(index)
         while pending:
-            completed, _ = cf.wait(list(pending), return_when=cf.FIRST_COMPLETED)
+            completed, _ = cf.wait(
+                list(pending), timeout=no_progress_timeout, return_when=cf.FIRST_COMPLETED
+            )
+            if not completed:
+                for future in pending:
+                    future.cancel()
+                raise SweepError(
+                    f"no task finished within {no_progress_timeout:g} s on {handle.name} "
+                    f"({done} of {total} tasks finished): its workers are gone or hang",
+                    results,
+                )
             broken: BaseException | None = None
             for future in completed:
                 index = pending.pop(future)
@@ -335,6 +467,12 @@ def _run(
                 except cf.BrokenExecutor as exc:  # the pool lost a worker: all pending fail
                     broken = exc
                     continue
+                except fatal as exc:  # the executor itself is gone (a lost Dask scheduler)
+                    raise SweepError(
+                        f"the executor {handle.name} failed ({type(exc).__name__}: {exc}); "
+                        f"{done} of {total} tasks finished",
+                        results,
+                    ) from exc
                 except retryable as exc:  # e.g. Dask's KilledWorker: resubmit this task
                     if attempts[index] > retries:
                         raise SweepError(
@@ -376,6 +514,12 @@ def _run(
         if handle.close is not None:
             handle.close()
         raise SweepInterrupted(results, done, total) from None
+    except BaseException:  # a task's own error or a SweepError: stop what still runs
+        for future in pending:
+            future.cancel()
+        if handle.close is not None:
+            handle.close()
+        raise
 
 
 def worker_count(spec: ExecutorSpec) -> int:

@@ -47,6 +47,12 @@ from typing import Any
 import numpy as np
 import scipy.integrate
 
+from torsio.analysis.budget import (
+    BudgetExceeded,
+    EvaluationBudget,
+    check_law_time_scale,
+    check_output_size,
+)
 from torsio.analysis.severity import (
     DEFAULT_SAMPLES_PER_PERIOD,
     DEFAULT_STICK_THRESHOLD,
@@ -207,7 +213,8 @@ def simulate(
         if options.output_step is not None
         else 2.0 * math.pi / first_natural_frequency(system) / DEFAULT_SAMPLES_PER_PERIOD
     )
-    intervals = max(1, math.ceil(run / step * (1.0 - 1e-12)))
+    intervals = check_output_size(run, step, 3 * system.model.dofs + 4)
+    check_law_time_scale(system, system.wob, run)
     time_grid = np.linspace(0.0, run, intervals + 1)
     in_window = window_mask(time_grid, window)
     if step > window / MIN_WINDOW_SAMPLES:
@@ -223,14 +230,16 @@ def simulate(
 
     dynamics = Dynamics.from_system(system)
     y0 = _initial_state(dynamics, initial_state)
-    solution, name, elapsed = _integrate(dynamics, y0, time_grid, options)
+    where = f"WOB = {system.wob:g} N, {system.rpm:g} rpm"
+    solution, name, elapsed = _integrate(dynamics, y0, time_grid, options, where)
     states = solution.y
     finite = np.all(np.isfinite(states), axis=0)
     if not finite.all():
         bad = float(time_grid[int(np.argmin(finite))])
         raise SolverError(
             f"the {name} integrator returned non-finite values from t = {bad:.6g} s "
-            f"(of {run:.6g} s): {solution.message}"
+            f"(of {run:.6g} s) with the bit-rock law {_law_name(system.law)}: a law torque "
+            f"that is NaN or infinite, or an unstable model ({solution.message})"
         )
     z, twists_by_node, relative_by_node = dynamics.split(states)
     reference = dynamics.reference_speed
@@ -242,7 +251,11 @@ def simulate(
         ).copy()
     if not np.all(np.isfinite(bit_torque)):
         bad = float(time_grid[int(np.argmin(np.isfinite(bit_torque)))])
-        raise SolverError(f"the bit-rock law returned a non-finite torque at t = {bad:.6g} s")
+        raise SolverError(
+            f"the bit-rock law {_law_name(system.law)} returned a non-finite torque at "
+            f"t = {bad:.6g} s (bit speed {bit_speed[int(np.argmin(np.isfinite(bit_torque)))]:.6g}"
+            " rad/s)"
+        )
     surface_torque = np.asarray(dynamics.pipe_torque(twists_by_node, relative_by_node), float)
     motor_torque = np.broadcast_to(
         np.asarray(dynamics.motor_torque(z, twists_by_node, relative_by_node)[0], float),
@@ -289,7 +302,11 @@ def simulate(
 
 
 def _integrate(
-    dynamics: Dynamics, y0: np.ndarray, time_grid: np.ndarray, options: SimulationOptions
+    dynamics: Dynamics,
+    y0: np.ndarray,
+    time_grid: np.ndarray,
+    options: SimulationOptions,
+    where: str,
 ) -> tuple[Any, str, float]:
     """solve_ivp over the grid with the Jacobian each method can use; errors never hidden."""
     solver_kwargs: dict[str, Any] = {}
@@ -309,26 +326,44 @@ def _integrate(
     ):
         solver_kwargs["jac"] = dynamics.jacobian
     run = float(time_grid[-1])
+    budget = EvaluationBudget.for_samples(time_grid.size - 1)
     start = time.perf_counter()
     with np.errstate(all="ignore"):
-        solution = scipy.integrate.solve_ivp(
-            dynamics.rhs,
-            (0.0, run),
-            y0,
-            method=chosen,
-            t_eval=time_grid,
-            rtol=options.rtol,
-            atol=options.atol,
-            **solver_kwargs,
-        )
+        try:
+            solution = scipy.integrate.solve_ivp(
+                budget.wrap(dynamics.rhs),
+                (0.0, run),
+                y0,
+                method=chosen,
+                t_eval=time_grid,
+                rtol=options.rtol,
+                atol=options.atol,
+                **solver_kwargs,
+            )
+        except BudgetExceeded:
+            raise budget.error(name, run, where) from None
     elapsed = time.perf_counter() - start
-    reached = float(solution.t[-1]) if solution.t.size else 0.0
-    if solution.status < 0 or solution.y.shape[1] != time_grid.size:
+    times = np.asarray(solution.t, dtype=float)
+    reached = float(times[-1]) if times.size else 0.0
+    states = np.asarray(solution.y, dtype=float)
+    if solution.status < 0 or states.ndim != 2 or states.shape[1] != time_grid.size:
         raise SolverError(
             f"the {name} integrator failed at t = {reached:.6g} s of {run:.6g} s: "
-            f"{solution.message} (try another method or tighter tolerances)"
+            f"{solution.message} (operating point {where}; try another method or tighter "
+            "tolerances)"
         )
     return solution, name, elapsed
+
+
+def _law_name(law: Any) -> str:
+    from torsio.plugins import bit_law_origin
+
+    name = getattr(law, "name", "") or type(law).__name__
+    try:
+        origin = bit_law_origin(name)
+    except Exception:  # naming must never hide the error being reported
+        return repr(name)
+    return f"{name!r} ({origin})"
 
 
 def system_from_config(

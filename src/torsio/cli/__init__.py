@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import signal
 import sys
 import warnings
 from collections.abc import Iterator, Sequence
@@ -62,6 +63,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``torsio`` console script; returns the exit status."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    terminated: list[int] = []
+    previous = _handle_sigterm(terminated)
     try:
         with warnings.catch_warnings(), _warning_format(args.command):
             warnings.simplefilter("default")
@@ -70,14 +73,36 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"torsio {args.command}: error: {exc}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
-        print(f"torsio {args.command}: interrupted", file=sys.stderr)
-        return 130
+        what = "terminated (SIGTERM)" if terminated else "interrupted"
+        print(f"torsio {args.command}: {what}", file=sys.stderr)
+        return 143 if terminated else 130
     except BrokenPipeError:  # output piped into a program that stopped reading (| head)
         import os
 
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
     return int(status or 0)
+
+
+def _handle_sigterm(terminated: list[int]) -> Any:
+    """Make SIGTERM stop a command like Ctrl-C (partial results kept, workers stopped).
+
+    Returns the previous handler, or None where none can be installed (not the main
+    thread, no SIGTERM on the platform).
+    """
+    import threading
+
+    if threading.current_thread() is not threading.main_thread() or not hasattr(signal, "SIGTERM"):
+        return None
+
+    def on_sigterm(signum: int, frame: Any) -> None:
+        terminated.append(signum)
+        raise KeyboardInterrupt
+
+    return signal.signal(signal.SIGTERM, on_sigterm)
 
 
 if __name__ == "__main__":  # pragma: no cover

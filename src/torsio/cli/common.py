@@ -5,8 +5,13 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import sys
+from collections.abc import Sequence
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
+
+from torsio.errors import ConfigError
 
 if TYPE_CHECKING:
     from torsio.io.config import Config
@@ -47,9 +52,93 @@ def parse_time(value: str | None, key: str) -> float | None:
     if value is None:
         return None
     try:
-        return float(value)
+        number = float(value)
     except ValueError:
-        return to_si(value, "time", key=key)
+        number = to_si(value, "time", key=key)
+    if not (math.isfinite(number) and number > 0):
+        raise ConfigError(key, f"expected a positive finite time, got {value!r}")
+    return number
+
+
+def finite_float(text: str) -> float:
+    """argparse type of a number option: a finite float (``nan`` and ``inf`` are refused)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"expected a finite number, got {text!r}")
+    return value
+
+
+def check_outputs(args: argparse.Namespace, options: Sequence[str]) -> dict[str, str]:
+    """Check, before any work, that every output file named by ``options`` can be written.
+
+    ``options`` are attribute names of ``args`` (``"out"``, ``"csv"``, ``"plot"``,
+    ``"html"``). Each given path must lie in an existing folder where a file can be
+    created, must not be a folder, the configuration file or another output. A plot
+    without a suffix gets ``.png`` (as matplotlib would write it); a suffix that
+    matplotlib cannot write is an error. Returns the paths to write, by option.
+    """
+    paths: dict[str, str] = {}
+    seen: dict[Path, str] = {}
+    if getattr(args, "config", None) is not None:
+        seen[Path(args.config).resolve()] = "the configuration file"
+    for name in options:
+        value = getattr(args, name, None)
+        if value is None:
+            continue
+        option = f"--{name}"
+        if name == "plot":
+            value = _plot_path(value, option)
+        path = Path(value)
+        resolved = path.resolve()
+        if resolved in seen:
+            raise ConfigError(option, f"{value!r} is also {seen[resolved]}; name another file")
+        seen[resolved] = f"the file of --{name}"
+        if resolved.is_dir():
+            raise ConfigError(option, f"{value!r} is a folder; expected a file name")
+        folder = resolved.parent
+        if not folder.is_dir():
+            raise ConfigError(option, f"directory of {value!r} does not exist")
+        if resolved.exists() and not resolved.is_file():
+            raise ConfigError(option, f"{value!r} exists and is not a regular file")
+        _try_create(folder, value, option)
+        if resolved.exists() and not os.access(resolved, os.W_OK):
+            raise ConfigError(option, f"{value!r} exists and cannot be overwritten")
+        paths[name] = value
+    return paths
+
+
+def _try_create(folder: Path, value: str, option: str) -> None:
+    """Create and remove a file in ``folder``: the only test that holds for every user."""
+    import tempfile
+
+    try:
+        with tempfile.NamedTemporaryFile(dir=folder, prefix=".torsio-check-"):
+            pass
+    except OSError as exc:
+        raise ConfigError(
+            option, f"cannot write {value!r}: {exc.strerror or exc} in folder {str(folder)!r}"
+        ) from None
+
+
+def _plot_path(value: str, option: str) -> str:
+    suffix = Path(value).suffix.lower().lstrip(".")
+    if not suffix:
+        return value + ".png"
+    try:
+        from matplotlib.figure import Figure
+    except ImportError:
+        return value  # the command reports the missing matplotlib itself
+    supported = Figure().canvas.get_supported_filetypes()
+    if suffix not in supported:
+        raise ConfigError(
+            option,
+            f"matplotlib cannot write .{suffix} files; expected one of "
+            f"{', '.join('.' + k for k in sorted(supported))}",
+        )
+    return value
 
 
 SMALL_BARE_WOB = 1000.0

@@ -17,7 +17,9 @@ from typing import Any
 from torsio.cli.common import (
     add_config_argument,
     add_discretization_arguments,
+    check_outputs,
     discretization_overrides,
+    finite_float,
     load,
     parse_time,
     print_json,
@@ -74,7 +76,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument(
         "--threshold",
-        type=float,
+        type=finite_float,
         default=None,
         help="S_SS above which a point is severe (default 0.8)",
     )
@@ -87,7 +89,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument(
         "--rtol",
-        type=float,
+        type=finite_float,
         default=None,
         help="relative tolerance of the batch engine (default 1e-5)",
     )
@@ -100,6 +102,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         metavar="N",
         help="threads of the compiled engine in this process (default: all cores)",
     )
+    parser.add_argument(
+        "--on-failure",
+        choices=("raise", "mark"),
+        default=None,
+        help="points the solver fails on: stop with an error (raise, default) or keep "
+        "the others and mark them failed (mark)",
+    )
     parser.add_argument("--workers", type=int, metavar="N", help="run on N local worker processes")
     parser.add_argument(
         "--scheduler",
@@ -108,7 +117,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument(
         "--timeout",
-        type=float,
+        type=finite_float,
         default=None,
         metavar="S",
         help="seconds to wait for the Dask scheduler (default 10)",
@@ -207,6 +216,7 @@ _KEYS = {
     "scheduler": "--scheduler",
     "out": "--out",
     "timeout": "--timeout",
+    "on_failure": "--on-failure",
 }
 
 
@@ -259,9 +269,7 @@ def _run(args: argparse.Namespace) -> int:
         x_start, x_stop, x_count = _range_bounds(args.rpm or DEFAULT_RPM, "--rpm", "rpm")
         y_start, y_stop, y_count = _range_bounds(args.wob or DEFAULT_WOB, "--wob", "wob")
     check_grid_size(x_count, y_count)  # before building the axes
-    for path, option in ((args.out, "--out"), (args.csv, "--csv"), (args.plot, "--plot")):
-        if path is not None and not Path(path).resolve().parent.is_dir():
-            raise ConfigError(option, f"directory of {path!r} does not exist")
+    outputs = check_outputs(args, ("out", "csv", "plot"))  # before the work, not after it
     if args.plot is not None:
         try:
             import matplotlib  # noqa: F401
@@ -299,6 +307,8 @@ def _run(args: argparse.Namespace) -> int:
         options["refine"] = args.refine
     if args.rtol is not None:
         options["rtol"] = args.rtol
+    if args.on_failure is not None:
+        options["on_failure"] = args.on_failure
     x = np.linspace(x_start, x_stop, x_count)
     y = np.linspace(y_start, y_stop, y_count)
     try:
@@ -316,13 +326,13 @@ def _run(args: argparse.Namespace) -> int:
             )
         raise KeyboardInterrupt from None
     written: dict[str, str] = {}
-    if args.out is not None:
-        written["out"] = str(result.save(args.out))
-    if args.csv is not None:
-        written["csv"] = str(result.to_csv(args.csv))
-    if args.plot is not None:
-        result.plot(args.plot)
-        written["plot"] = args.plot
+    if "out" in outputs:
+        written["out"] = str(result.save(outputs["out"]))
+    if "csv" in outputs:
+        written["csv"] = str(result.to_csv(outputs["csv"]))
+    if "plot" in outputs:
+        result.plot(outputs["plot"])
+        written["plot"] = outputs["plot"]
     if args.json:
         data = result.to_dict()
         data.update(written)

@@ -7,6 +7,7 @@ import argparse
 from torsio.cli.common import (
     add_config_argument,
     add_discretization_arguments,
+    check_outputs,
     discretization_overrides,
     load,
     print_json,
@@ -43,6 +44,7 @@ def run(args: argparse.Namespace) -> int:
 
     if args.modes < 1:
         raise ConfigError("--modes", f"expected a whole number of modes >= 1, got {args.modes}")
+    check_outputs(args, ("html",))
     config = load(args)
     options = {**discretization_overrides(args), "modes": args.modes}
     ctx = ReportContext(config, **options)  # computed once, shared by every output

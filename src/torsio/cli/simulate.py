@@ -8,7 +8,9 @@ from typing import Any
 from torsio.cli.common import (
     add_config_argument,
     add_discretization_arguments,
+    check_outputs,
     discretization_overrides,
+    finite_float,
     load,
     parse_time,
     print_json,
@@ -46,8 +48,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--method", help="solve_ivp integrator: LSODA (default), Radau, BDF, RK45, DOP853, RK23"
     )
-    parser.add_argument("--rtol", type=float, help="relative tolerance (default 1e-6)")
-    parser.add_argument("--atol", type=float, help="absolute tolerance (default 1e-9)")
+    parser.add_argument("--rtol", type=finite_float, help="relative tolerance (default 1e-6)")
+    parser.add_argument("--atol", type=finite_float, help="absolute tolerance (default 1e-9)")
     parser.add_argument("--output-step", metavar="T", help="output sampling step: s or with units")
     parser.add_argument("--csv", metavar="FILE", help="write the time series to a CSV file")
     parser.add_argument(
@@ -64,6 +66,7 @@ def run(args: argparse.Namespace) -> int:
     from torsio.analysis.transient import simulate_config
     from torsio.errors import ConfigError
 
+    outputs = check_outputs(args, ("csv", "plot"))
     config = load(args)
     if args.rpm is not None and not config.top_drive.has_set_speed:
         raise ConfigError(
@@ -97,16 +100,13 @@ def run(args: argparse.Namespace) -> int:
         )
     except ConfigError as exc:
         raise ConfigError(_option_name(exc.key), exc.message) from None
-    if args.csv is not None:
-        results.to_csv(args.csv)
-    if args.plot is not None:
-        results.plot(args.plot)
+    if "csv" in outputs:
+        results.to_csv(outputs["csv"])
+    if "plot" in outputs:
+        results.plot(outputs["plot"])
     if args.json:
         data = results.to_dict()
-        if args.csv is not None:
-            data["csv"] = args.csv
-        if args.plot is not None:
-            data["plot"] = args.plot
+        data.update(outputs)
         print_json(data)
         return 0
     _print_summary(results, args)
@@ -173,7 +173,7 @@ def _print_summary(results: Any, args: argparse.Namespace) -> None:
     if args.csv is not None:
         rows.append(("time series", args.csv))
     if args.plot is not None:
-        rows.append(("plot", args.plot))
+        rows.append(("plot", check_outputs(args, ("plot",))["plot"]))
     for name, value in rows:
         table.add_row(escape(name), escape(value))
     Console().print(table)

@@ -88,9 +88,9 @@ class BitRockConfig:
 
     def build(self) -> Any:
         """The bit-rock law object (looked up among the registered laws)."""
-        from torsio.plugins import build_law, get_bit_law
+        from torsio.plugins import build_bit_law
 
-        return build_law(get_bit_law(self.law), dict(self.parameters), self.speed_unit)
+        return build_bit_law(self.law, self.parameters, speed_unit=self.speed_unit)
 
 
 @attrs.frozen
@@ -241,6 +241,14 @@ def load_config(path: str | Path) -> Config:
     except OSError as exc:
         raise ConfigError(
             "", f"cannot read configuration file {str(path)!r}: {exc.strerror or exc}"
+        ) from None
+    except UnicodeDecodeError as exc:
+        line = path.read_bytes()[: exc.start].count(b"\n") + 1
+        raise ConfigError(
+            "",
+            f"configuration file {str(path)!r} is not UTF-8 text (TOML files must be): "
+            f"byte {exc.object[exc.start : exc.start + 1]!r} at line {line}; "
+            "save it as UTF-8",
         ) from None
     return parse_config_text(text, source=str(path))
 

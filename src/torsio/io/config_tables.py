@@ -79,7 +79,8 @@ def _section(raw: Any, key: str, default_material: Material) -> Section:
             bha=bha,
         )
     except ConfigError as exc:
-        raise ConfigError(f"{key}.{exc.key}", exc.message) from None
+        full_key = exc.key if exc.key.startswith(f"{key}.") else f"{key}.{exc.key}"
+        raise ConfigError(full_key, exc.message) from None
 
 
 def _positive_number(value: Any, key: str, dimension: str, allow_zero: bool = True) -> float:

@@ -145,6 +145,9 @@ class Section:
         default=None, validator=attrs.validators.optional(attrs.validators.instance_of(bool))
     )
 
+    def __attrs_post_init__(self) -> None:
+        _check_derived(self)
+
     def describe(self) -> str:
         """Name of the section for messages: its name, else its kind."""
         return repr(self.name) if self.name else f"a {self.kind} section"
@@ -173,6 +176,60 @@ class Section:
     def wave_travel_time(self) -> float:
         """Time a torsional wave takes to cross the section, L / sqrt(G/rho) [s]."""
         return self.length / self.material.wave_speed
+
+
+DERIVED_RANGE = (1e-100, 1e100)
+"""Range (SI) every derived quantity of a section must lie in (J, rho J L, G J / L, wave
+speed and travel time): far beyond any drill-string, and narrow enough that products
+and squares of them in the model's matrices and frequencies stay finite floats."""
+
+#: Order of magnitude of each input of a steel drill-string section, to name the input
+#: furthest from it when a derived quantity is not a finite positive number.
+_TYPICAL = {"od": 0.15, "id": 0.1, "length": 100.0, "shear_modulus": 8e10, "density": 8e3}
+
+
+def _check_derived(section: Section) -> None:
+    """ConfigError naming the input if J, rho J L, G J / L, wave speed or travel time are not
+    finite positive numbers in :data:`DERIVED_RANGE`."""
+    inputs = {
+        "od": section.od,
+        "id": section.id,
+        "length": section.length,
+        "shear_modulus": section.material.shear_modulus,
+        "density": section.material.density,
+    }
+    quantities = (
+        ("polar moment of area J = pi/32 (od^4 - id^4)", "m^4", ("od", "id"), "polar_moment"),
+        ("inertia rho J L", "kg m^2", ("density", "od", "id", "length"), "inertia"),
+        ("stiffness G J / L", "N m/rad", ("shear_modulus", "od", "id", "length"), "stiffness"),
+        ("wave speed sqrt(G/rho)", "m/s", ("shear_modulus", "density"), "wave_speed"),
+        ("wave travel time L / sqrt(G/rho)", "s", ("length", "shear_modulus", "density"), None),
+    )
+    for label, unit, names, attribute in quantities:
+        try:
+            if attribute == "wave_speed":
+                value = section.material.wave_speed
+            elif attribute is None:
+                value = section.wave_travel_time
+            else:
+                value = getattr(section, attribute)
+        except (OverflowError, ZeroDivisionError):
+            value = math.inf
+        low, high = DERIVED_RANGE
+        if math.isfinite(value) and low <= value <= high:
+            continue
+        culprit = max(
+            (n for n in names if inputs[n] > 0),
+            key=lambda n: abs(math.log10(inputs[n] / _TYPICAL[n])),
+        )
+        key = culprit if culprit in ("od", "id", "length") else f"material.{culprit}"
+        given = ", ".join(f"{n} = {inputs[n]:g}" for n in names)
+        raise ConfigError(
+            key,
+            f"{culprit} = {inputs[culprit]!r} makes the {label} of {section.describe()} "
+            f"{value:g} {unit}, outside the range {low:g}..{high:g} that a model can "
+            f"compute with ({given}; SI units)",
+        )
 
 
 @attrs.frozen
