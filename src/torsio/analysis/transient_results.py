@@ -89,6 +89,13 @@ class TransientResults:
     reference_speed: float
     severity_speed: float
 
+    def __repr__(self) -> str:  # short: no time series
+        return (
+            f"TransientResults({self.time.size} samples over {self.time[-1]:g} s, "
+            f"S_SS {self.severity:.4g} over the last {self.steady_window:g} s, "
+            f"{self.solver.get('method')} rtol {self.solver.get('rtol')}; {self.system!r})"
+        )
+
     # --- derived views (no recomputation of the analysis) ---------------------------------
     @property
     def omega(self) -> float:
