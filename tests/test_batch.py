@@ -25,7 +25,7 @@ from torsio.errors import ConfigError
 from torsio.model.lumped import LumpedModel
 from torsio.physics.laws import ConstantTorque, TuckerWang
 from torsio.physics.system import System, builtin_config
-from torsio.solvers import batch, numpy_engine, rodas
+from torsio.solvers import batch, batch_results, numpy_engine, rodas
 
 TIGHT = {"method": "LSODA", "rtol": 1e-8, "atol": 1e-10}
 """Tolerances of the independent reference runs."""
@@ -208,7 +208,7 @@ def test_law_without_compiled_kernel_uses_numpy(one_dof: System) -> None:
 
 def test_failures_are_reported_not_hidden(one_dof: System) -> None:
     result = batch.simulate_batch(one_dof, [150e3, 50e3], [60.0, 120.0], max_steps=50)
-    assert (result.status == batch.STATUS_MAX_STEPS).all()
+    assert (result.status == batch_results.STATUS_MAX_STEPS).all()
     assert np.isnan(result.severity).all()
     assert "too many steps" in result.failures()[0] and "wob=150000 N" in result.failures()[0]
 

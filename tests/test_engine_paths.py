@@ -26,8 +26,7 @@ import pytest
 from torsio.analysis.transient import simulate
 from torsio.io.config import builtin_config
 from torsio.physics.system import System
-from torsio.physics.top_drives import top_drive_from_parameters
-from torsio.plugins import get_bit_law
+from torsio.plugins import get_bit_law, top_drive_from_parameters
 from torsio.solvers.batch import simulate_batch
 from torsio.solvers.reference import reference_severity
 

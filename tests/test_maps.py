@@ -164,7 +164,7 @@ def test_off_grid_critical_wob_is_marked_not_drawn(tmp_path) -> None:
     assert math.isnan(SeverityMap.from_dict(data).critical_wob[2])
     assert "SeverityMap(" in repr(result) and "3 rpm x 4 wob points" in repr(result)
     pytest.importorskip("matplotlib")
-    from torsio.io.map_plot import OFF_GRID_LABELS
+    from torsio.plotting.map_plot import OFF_GRID_LABELS
 
     ax = result.plot(tmp_path / "map.png")
     lines = {line.get_label(): line for line in ax.get_lines()}

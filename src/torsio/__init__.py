@@ -69,8 +69,8 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
         "TopDriveBoundary",
         "TorqueTopDrive",
         "ZTorqueTopDrive",
-        "top_drive_from_parameters",
     ),
+    "torsio.plugins": ("top_drive_from_parameters",),
     "torsio.analysis.maps": ("SeverityMap", "severity_map", "dimensionless_map", "load_map"),
     "torsio.solvers.batch": ("simulate_batch",),
     "torsio.analysis.stability": (
@@ -135,8 +135,8 @@ if TYPE_CHECKING:  # for type checkers and editors; at run time see __getattr__
         TopDriveBoundary,
         TorqueTopDrive,
         ZTorqueTopDrive,
-        top_drive_from_parameters,
     )
+    from torsio.plugins import top_drive_from_parameters
     from torsio.solvers.batch import simulate_batch
 
 

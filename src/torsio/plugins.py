@@ -21,6 +21,7 @@ import warnings
 from functools import lru_cache
 from typing import Any
 
+import attrs
 import pluggy
 
 from torsio import hookspecs
@@ -324,3 +325,38 @@ def build_bit_law(
                 f"radius {radius:g} m (got {torque.tolist()!r}); check its parameters",
             )
     return law
+
+
+def top_drive_from_parameters(kind: str, **parameters: Any) -> Any:
+    """The top drive of kind ``kind`` (any registered name) built from keyword parameters.
+
+    Errors name ``top_drive.kind`` for an unknown kind and ``top_drive.<key>``
+    for an unknown, missing or invalid parameter.
+    """
+    cls = get_top_drive(kind)
+    if attrs.has(cls):
+        fields = attrs.fields_dict(cls)
+        unknown = sorted(set(parameters) - set(fields))
+        if unknown:
+            raise ConfigError(
+                f"top_drive.{unknown[0]}",
+                f"top drive {kind!r} has no parameter {unknown[0]!r}; its parameters are "
+                f"{', '.join(fields) or 'none'}",
+            )
+        missing = [
+            key
+            for key, field in fields.items()
+            if field.default is attrs.NOTHING and field.init and key not in parameters
+        ]
+        if missing:
+            raise ConfigError(
+                f"top_drive.{missing[0]}", f"top drive {kind!r} needs parameter {missing[0]!r}"
+            )
+    try:
+        return cls(**parameters)
+    except ConfigError:
+        raise
+    except (TypeError, ValueError) as exc:
+        raise ConfigError(
+            "top_drive", f"top drive {kind!r} rejected its parameters: {exc}"
+        ) from None

@@ -13,7 +13,7 @@ import numpy as np
 
 from torsio.analysis.map_runs import PointRunner
 from torsio.errors import SolverError
-from torsio.solvers.batch import STATUS_MESSAGES
+from torsio.solvers.batch_results import STATUS_MESSAGES
 
 __all__ = ["locate_critical_wob"]
 

@@ -21,7 +21,7 @@ import attrs
 import numpy as np
 
 from torsio.errors import ConfigError
-from torsio.solvers.batch import STATUS_MESSAGES
+from torsio.solvers.batch_results import STATUS_MESSAGES
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = [
@@ -131,7 +131,7 @@ class SeverityMap:
         Equivalent stiffness [N m/rad], first natural frequency [rad/s] and bit
         radius [m]: the scales of Pi_1 and Pi_2.
     status : ndarray of int, shape (n, m)
-        Solver status per point (0 ok; see :data:`torsio.solvers.batch.STATUS_MESSAGES`).
+        Solver status per point (0 ok; see :data:`torsio.solvers.batch_results.STATUS_MESSAGES`).
     steps : ndarray of int, shape (n, m)
         Accepted steps per point.
     done : ndarray of bool, shape (n, m)
@@ -443,9 +443,9 @@ class SeverityMap:
         Rotary speed on the x axis, weight on bit on the y axis (Pi_1 and Pi_2
         when ``dimensionless``; default: as the map was asked for). Needs
         matplotlib. Writes a PNG when ``path`` is given; returns the axes
-        (:func:`torsio.io.map_plot.plot_severity_map`).
+        (:func:`torsio.plotting.map_plot.plot_severity_map`).
         """
-        from torsio.io.map_plot import plot_severity_map
+        from torsio.plotting.map_plot import plot_severity_map
 
         return plot_severity_map(self, path=path, ax=ax, dimensionless=dimensionless)
 

@@ -16,7 +16,8 @@ import numpy as np
 from torsio.analysis.sweep import SweepInterrupted, run_tasks_on
 from torsio.errors import ConfigError
 from torsio.physics.system import System
-from torsio.solvers.batch import STATUS_MESSAGES, simulate_batch
+from torsio.solvers.batch import simulate_batch
+from torsio.solvers.batch_results import STATUS_MESSAGES
 
 __all__ = ["BYTES_PER_POINT", "PointRunner", "check_grid_size"]
 

@@ -94,7 +94,7 @@ def report_figures(ctx: ReportContext) -> list[tuple[Any, str]]:
     """The report's figures (matplotlib Figures, no pyplot state) with their captions."""
     from matplotlib.figure import Figure
 
-    from torsio.io.plotting import plot_mode_shapes
+    from torsio.plotting import plot_mode_shapes
 
     figures = []
     modes = tuple(range(1, min(3, ctx.modal.frequencies_rad.size) + 1))

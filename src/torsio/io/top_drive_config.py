@@ -66,7 +66,7 @@ class TopDriveConfig:
 
     def build(self) -> Any:
         """The top-drive object (a registered kind built from the parameters)."""
-        from torsio.physics.top_drives import top_drive_from_parameters
+        from torsio.plugins import top_drive_from_parameters
 
         return top_drive_from_parameters(self.kind, **self.parameters)
 

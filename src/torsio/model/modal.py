@@ -112,7 +112,7 @@ class ModalResults:
 
     def plot(self, modes: tuple[int, ...] = (1,), ax: Any = None, reference: bool = True) -> Any:
         """Plot mode shapes against depth (matplotlib); the continuum as lines if known."""
-        from torsio.io.plotting import plot_mode_shapes
+        from torsio.plotting import plot_mode_shapes
 
         return plot_mode_shapes(self, modes, ax=ax, reference=reference)
 

@@ -31,6 +31,7 @@ Simulator4nDOF default); Navarro-Lopez and Cortes (2007) use a rotary table of
 
 Examples
 --------
+>>> from torsio.plugins import top_drive_from_parameters
 >>> pi = top_drive_from_parameters("pi", inertia=2900.0, kp=5000.0, ki=2900.0 * 0.8**2)
 >>> round(abs(pi.impedance(0.8) - 5000.0), 9)   # ki = omega_s^2 J: a pure damper at omega_s
 0.0
@@ -62,7 +63,6 @@ __all__ = [
     "TopDriveBoundary",
     "TorqueTopDrive",
     "ZTorqueTopDrive",
-    "top_drive_from_parameters",
     "top_pipe_impedance",
 ]
 
@@ -392,40 +392,3 @@ BUILTIN_TOP_DRIVES: tuple[type[Any], ...] = (
 def torsio_top_drives() -> tuple[type[Any], ...]:
     """The built-in top drives, registered like any plugin's."""
     return BUILTIN_TOP_DRIVES
-
-
-def top_drive_from_parameters(kind: str, **parameters: Any) -> Any:
-    """The top drive of kind ``kind`` (any registered name) built from keyword parameters.
-
-    Errors name ``top_drive.kind`` for an unknown kind and ``top_drive.<key>``
-    for an unknown, missing or invalid parameter.
-    """
-    from torsio.plugins import get_top_drive
-
-    cls = get_top_drive(kind)
-    if attrs.has(cls):
-        fields = attrs.fields_dict(cls)
-        unknown = sorted(set(parameters) - set(fields))
-        if unknown:
-            raise ConfigError(
-                f"top_drive.{unknown[0]}",
-                f"top drive {kind!r} has no parameter {unknown[0]!r}; its parameters are "
-                f"{', '.join(fields) or 'none'}",
-            )
-        missing = [
-            key
-            for key, field in fields.items()
-            if field.default is attrs.NOTHING and field.init and key not in parameters
-        ]
-        if missing:
-            raise ConfigError(
-                f"top_drive.{missing[0]}", f"top drive {kind!r} needs parameter {missing[0]!r}"
-            )
-    try:
-        return cls(**parameters)
-    except ConfigError:
-        raise
-    except (TypeError, ValueError) as exc:
-        raise ConfigError(
-            "top_drive", f"top drive {kind!r} rejected its parameters: {exc}"
-        ) from None

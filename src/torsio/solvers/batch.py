@@ -48,6 +48,9 @@ import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.physics.system import System
+from torsio.solvers.batch_results import (
+    BatchResults,
+)
 from torsio.solvers.compiled import HAVE_NUMBA, numba
 from torsio.solvers.law_kernels import LawKernel, law_kernel
 from torsio.solvers.reference import reference_severity, run_times
@@ -77,18 +80,6 @@ DEFAULT_ATOL = 1e-6
 
 DEFAULT_MAX_STEPS = 2_000_000
 """Accepted steps allowed per point before the point is reported as failed."""
-
-STATUS_OK = 0
-STATUS_MAX_STEPS = 1
-STATUS_STEP_UNDERFLOW = 2
-STATUS_NOT_FINITE = 3
-STATUS_MESSAGES = {
-    STATUS_OK: "ok",
-    STATUS_MAX_STEPS: "too many steps",
-    STATUS_STEP_UNDERFLOW: "step size underflow",
-    STATUS_NOT_FINITE: "non-finite state",
-}
-"""What each per-point status code means."""
 
 
 @attrs.frozen(eq=False)
@@ -217,72 +208,6 @@ def _top_vector(boundary: Any, chain: np.ndarray) -> np.ndarray:
     top[23 : 23 + m] = boundary.c
     top[26 : 26 + m] = boundary.w
     return top
-
-
-@attrs.frozen(repr=False)
-class BatchResults:
-    """S_SS of a batch of operating points.
-
-    Attributes
-    ----------
-    wob : ndarray
-        Weight on bit of each point [N].
-    rpm : ndarray
-        Surface rotary speed (set speed) of each point [rpm]; NaN for a torque-driven top.
-    severity : ndarray
-        S_SS (Eq. 12) of each point; NaN where the solver failed.
-    bit_speed_max, bit_speed_min : ndarray
-        Extremes of the bit speed over the steady window [rad/s].
-    top_speed_mean : ndarray
-        Mean top-drive speed over the steady window [rad/s].
-    steps, rejected : ndarray
-        Accepted and rejected steps of each point.
-    status : ndarray
-        0 for success, else a key of :data:`STATUS_MESSAGES`.
-    engine : str
-        The engine that ran: ``"compiled"``, ``"numpy"`` or ``"scipy"``.
-    duration, steady_window : float
-        Run length and steady window [s].
-    rtol, atol : float
-        Tolerances.
-    elapsed : float
-        Wall time [s].
-    """
-
-    wob: np.ndarray
-    rpm: np.ndarray
-    severity: np.ndarray
-    bit_speed_max: np.ndarray
-    bit_speed_min: np.ndarray
-    top_speed_mean: np.ndarray
-    steps: np.ndarray
-    rejected: np.ndarray
-    status: np.ndarray
-    engine: str
-    duration: float
-    steady_window: float
-    rtol: float
-    atol: float
-    elapsed: float
-
-    def __repr__(self) -> str:  # short: counts, no arrays
-        return (
-            f"BatchResults({self.severity.size} points, {int(np.sum(self.status != 0))} failed, "
-            f"engine {self.engine!r}, rtol {self.rtol:g}, {self.elapsed:.3g} s)"
-        )
-
-    @property
-    def ok(self) -> np.ndarray:
-        """Whether each point was integrated successfully."""
-        return self.status == STATUS_OK
-
-    def failures(self) -> list[str]:
-        """One line per failed point: operating point and reason."""
-        return [
-            f"wob={w:g} N, rpm={r:g}: {STATUS_MESSAGES.get(int(s), f'status {s}')}"
-            for w, r, s in zip(self.wob, self.rpm, self.status, strict=True)
-            if s
-        ]
 
 
 def resolve_engine(engine: str, law: Any) -> tuple[str, LawKernel | None]:

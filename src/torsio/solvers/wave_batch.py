@@ -45,7 +45,8 @@ def simulate_wave_batch(
 ) -> Any:
     """S_SS of the wave model at each (wob[k], rpm[k]); returns a ``BatchResults``."""
     from torsio.analysis.wave import top_boundary
-    from torsio.solvers.batch import BatchResults, _check_points
+    from torsio.solvers.batch import _check_points
+    from torsio.solvers.batch_results import BatchResults
     from torsio.solvers.wave_march import march
 
     grid = system.model

@@ -14,12 +14,12 @@ that they compose into multi-panel figures:
   :func:`plot_reference_lines`, :func:`shade_bha`; :func:`save_figure`
   writes and closes a figure; :func:`pyplot` gives ``matplotlib.pyplot``
   (Agg backend when there is no display) or a clear error if matplotlib is
-  missing (these two live in :mod:`torsio.io.figures`, the convergence plots in
-  :mod:`torsio.io.convergence_plots`; all are importable from here).
+  missing (these two live in :mod:`torsio.plotting.figures`, the convergence plots in
+  :mod:`torsio.plotting.convergence_plots`; all are importable from here).
 
 Depth is measured from the surface [m] and increases downward, as in the
 paper's figures. Mode shapes are normalized to a peak magnitude of 1
-(:func:`torsio.model.modal.normalize_shape`); the continuum shape is drawn with the
+(:func:`torsio.model.shapes.normalize_shape`); the continuum shape is drawn with the
 sign that best matches the lumped one at its nodes.
 
 Examples
@@ -40,12 +40,12 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from torsio.errors import TorsioError
-from torsio.io.convergence_plots import (
+from torsio.plotting.convergence_plots import (
     plot_convergence,
     plot_convergence_error,
     plot_reference_lines,
 )
-from torsio.io.figures import _axes, pyplot, save_figure
+from torsio.plotting.figures import _axes, pyplot, save_figure
 
 if TYPE_CHECKING:
     from torsio.model.continuum import ContinuumModes

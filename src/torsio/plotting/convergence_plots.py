@@ -4,7 +4,7 @@ The layout of the paper's Figs. 3a, 4a-b and 5a: :func:`plot_convergence` draws 
 mode's frequency against the degrees of freedom with the continuum value as a dashed
 line; :func:`plot_convergence_error` draws the error on log-log axes, where a
 convergence order is a slope; :func:`plot_reference_lines` draws reference frequencies.
-All are re-exported by :mod:`torsio.io.plotting`.
+All are re-exported by :mod:`torsio.plotting`.
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from torsio.errors import TorsioError
-from torsio.io.figures import _axes, _ticker
+from torsio.plotting.figures import _axes, _ticker
 
 __all__ = ["plot_convergence", "plot_convergence_error", "plot_reference_lines"]
 
