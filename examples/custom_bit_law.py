@@ -23,8 +23,8 @@ import attrs
 import numpy as np
 
 import torsio
-from torsio.io.plotting import pyplot, save_figure
 from torsio.physics.laws import BitRockLaw, Parameter
+from torsio.plotting import pyplot, save_figure
 from torsio.plugins import get_bit_law, plugin_manager
 from torsio.solvers.law_kernels import compile_law_function
 

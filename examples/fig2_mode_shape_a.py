@@ -19,7 +19,7 @@ import numpy as np
 
 from torsio import StrategyA, continuum_modes, modal_analysis
 from torsio.examples import ritto2017_string
-from torsio.io.plotting import plot_continuum_shape, plot_mode_shapes, pyplot, save_figure
+from torsio.plotting import plot_continuum_shape, plot_mode_shapes, pyplot, save_figure
 
 
 def main(argv: list[str] | None = None) -> None:

@@ -23,7 +23,7 @@ import numpy as np
 
 from torsio import StrategyB, continuum_modes, modal_analysis
 from torsio.examples import ritto2017_string
-from torsio.io.plotting import (
+from torsio.plotting import (
     plot_convergence,
     plot_mode_shapes,
     plot_reference_lines,

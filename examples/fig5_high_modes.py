@@ -29,7 +29,7 @@ import numpy as np
 
 from torsio import ConsistentMass, MixedMass, StrategyB, continuum_modes, modal_analysis
 from torsio.examples import ritto2017_string
-from torsio.io.plotting import (
+from torsio.plotting import (
     plot_convergence,
     plot_convergence_error,
     plot_mode_shapes,

@@ -29,7 +29,7 @@ import numpy as np
 
 from torsio import DrillPipe, DrillString, System, builtin_config
 from torsio.analysis.maps import SeverityMap, dimensionless_map, severity_map
-from torsio.io.plotting import pyplot, save_figure
+from torsio.plotting import pyplot, save_figure
 
 
 def variants() -> dict[str, Callable[[DrillString], DrillString]]:

@@ -13,7 +13,7 @@ import argparse
 from pathlib import Path
 
 import torsio
-from torsio.io.plotting import pyplot, save_figure
+from torsio.plotting import pyplot, save_figure
 
 
 def main(argv: list[str] | None = None) -> None:

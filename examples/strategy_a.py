@@ -22,7 +22,7 @@ from pathlib import Path
 
 from torsio import StrategyA, StrategyB, StrategyC, continuum_modes, modal_analysis
 from torsio.examples import ritto2017_string
-from torsio.io.plotting import pyplot, save_figure
+from torsio.plotting import pyplot, save_figure
 
 PAPER_FEM_HZ = 0.1307
 """First natural frequency by FEM (ABAQUS, 2430 elements), paper Section 3."""

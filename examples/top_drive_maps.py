@@ -28,13 +28,13 @@ import numpy as np
 from torsio import System, builtin_config
 from torsio.analysis.maps import SeverityMap, severity_map
 from torsio.io.config import parse_config_text
-from torsio.io.plotting import pyplot, save_figure
 from torsio.physics.top_drives import (
     PITopDrive,
     SoftTorqueTopDrive,
     ZTorqueTopDrive,
     top_pipe_impedance,
 )
+from torsio.plotting import pyplot, save_figure
 
 TOP_DRIVE_INERTIA = 2900.0
 """J [kg m^2], the Simulator4nDOF default."""

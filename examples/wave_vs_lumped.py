@@ -29,8 +29,8 @@ import numpy as np
 from torsio.analysis.maps import severity_map
 from torsio.analysis.wave import wave_response
 from torsio.io.config import builtin_config
-from torsio.io.plotting import pyplot, save_figure
 from torsio.physics.damping import RayleighDamping
+from torsio.plotting import pyplot, save_figure
 from torsio.solvers.batch import simulate_batch
 
 DAMPING = RayleighDamping(alpha=0.35, beta=0.0)
