@@ -102,6 +102,12 @@ def check_map_data(data: Any, where: str) -> None:
             where,
             f"expected a JSON object with the keys of a severity map, got {type(data).__name__}",
         )
+    from torsio.analysis.map_results import FORMAT
+
+    if data.get("format") != FORMAT:
+        raise ConfigError(
+            f"{where}: format", f"expected a {FORMAT!r} file, got format {data.get('format')!r}"
+        )
     missing = [key for key in REQUIRED_KEYS if key not in data]
     if missing:
         raise ConfigError(f"{where}: {missing[0]}", "missing key of a saved severity map")

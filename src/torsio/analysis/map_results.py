@@ -14,6 +14,7 @@ import json
 import math
 import os
 import uuid
+import zipfile
 from pathlib import Path
 from typing import Any
 
@@ -455,7 +456,10 @@ def load_map(path: str | Path) -> SeverityMap:
     path = Path(path)
     try:
         if path.suffix == ".npz":
-            with np.load(path, allow_pickle=False) as archive:
+            archive = np.load(path, allow_pickle=False)
+            if not isinstance(archive, np.lib.npyio.NpzFile):
+                raise ValueError("an .npy array, not an .npz archive of a map")
+            with archive:
                 data = json.loads(str(archive["metadata"]))
                 for key in archive.files:
                     if key != "metadata":
@@ -466,6 +470,9 @@ def load_map(path: str | Path) -> SeverityMap:
         raise ConfigError(
             "path", f"cannot read map file {str(path)!r}: {exc.strerror or exc}"
         ) from None
-    except (ValueError, KeyError) as exc:
+    except (ValueError, KeyError, EOFError, RecursionError, zipfile.BadZipFile) as exc:
         raise ConfigError("path", f"{str(path)!r} is not a saved severity map ({exc})") from None
+    from torsio.analysis.map_checks import check_map_data
+
+    check_map_data(data, str(path))
     return SeverityMap.from_dict(data)
