@@ -23,7 +23,7 @@ from torsio.solvers.characteristics import (
     node_offsets,
     rest_state,
 )
-from torsio.solvers.wave_top import TopArrays
+from torsio.solvers.wave_top import TopArrays, with_impedance
 
 
 # --- driver ---------------------------------------------------------------------------------
@@ -169,6 +169,8 @@ def march(
     else:
         torque, slope, parameters, engine = law_functions(law)
     offsets = node_offsets(grid)
+    # the boundaries see the stored state half a drag step behind: Z exp(alpha dt / 2)
+    top = with_impedance(top, float(grid.impedances[0]) / math.sqrt(decay), dt)
     state = rest_state(grid, top) if state is None else state.copy()
     if top.held and state.top.size == 0:
         state = WaveState(state.p, state.m, np.zeros(1), state.bit)
@@ -181,7 +183,9 @@ def march(
     speed0 = state.top[0] if not top.held else top.set_speed
     if not top.held:
         x0 = state.top
-        u0 = top.coefficients[0] + top.coefficients[1:-1] @ x0 + top.coefficients[-1] * state.m[0]
+        torque0 = 0.5 * (state.p[0] + state.m[0])
+        m_stored = torque0 - top.impedance * (state.p[0] - state.m[0]) / (2 * grid.impedances[0])
+        u0 = top.coefficients[0] + top.coefficients[1:-1] @ x0 + top.coefficients[-1] * m_stored
         summary[10] = float(np.clip(u0, -top.max_torque, top.max_torque)) * speed0
     else:
         summary[10] = (state.m[0] + grid.impedances[0] * speed0) * speed0

@@ -7,7 +7,9 @@ T_pipe = m + Z Omega_0; its state x = [Omega_0, z] obeys a linear ODE driven by 
 incoming invariant m, integrated by the trapezoidal rule with m linear over the step.
 For small motions of a PI top drive with no inertia and no integral gain this gives the
 reflection R = (Z - kp) / (Z + kp); in general R = (Z - Z_td) / (Z + Z_td) with the top
-drive's impedance Z_td(i omega) (``TopDriveBoundary.impedance``).
+drive's impedance Z_td(i omega) (``TopDriveBoundary.impedance``). With distributed drag the
+stepping applies the top to the sampled state, half a drag step ahead of the stored one,
+where T_pipe = m + Z exp(alpha dt / 2) Omega_0 (:func:`with_impedance`).
 """
 
 from __future__ import annotations
@@ -38,6 +40,8 @@ class TopArrays:
     forcing: np.ndarray  # (3, n)
     constant: np.ndarray  # (3, n)
     coefficients: np.ndarray  # (n + 2,)
+    impedance: float = math.nan
+    boundary: Any = None
 
     @property
     def states(self) -> int:
@@ -63,7 +67,8 @@ def top_arrays(boundary: Any, impedance: float, time_step: float, speed: float) 
     """
     if getattr(boundary, "held", True):
         return held_top(speed)
-    a = np.atleast_2d(np.asarray(boundary.a, dtype=float)).reshape(-1, np.size(boundary.c))
+    states = int(np.size(boundary.c))  # controller states (none for a torque top drive)
+    a = np.asarray(boundary.a, dtype=float).reshape(states, states)
     b = np.asarray(boundary.b, dtype=float).reshape(-1, 2)
     c = np.asarray(boundary.c, dtype=float).ravel()
     d = np.asarray(boundary.d, dtype=float).ravel()
@@ -109,5 +114,15 @@ def top_arrays(boundary: Any, impedance: float, time_step: float, speed: float) 
         forcing[mode] = np.linalg.solve(left, 0.5 * time_step * B)
         constant[mode] = np.linalg.solve(left, time_step * f)
     return TopArrays(
-        False, set_speed, inertia, drag, max_torque, propagator, forcing, constant, coefficients
-    )
+        False, set_speed, inertia, drag, max_torque, propagator, forcing, constant, coefficients,
+        z_pipe, boundary,
+    )  # fmt: skip
+
+
+def with_impedance(top: TopArrays, impedance: float, time_step: float) -> TopArrays:
+    """``top`` on a pipe of ``impedance`` (the same top when it already is, or held)."""
+    if top.held or top.impedance == impedance:
+        return top
+    if top.boundary is None:
+        raise ValueError("these top arrays keep no top-drive description to rebuild them from")
+    return top_arrays(top.boundary, impedance, time_step, top.set_speed)
