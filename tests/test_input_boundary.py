@@ -108,6 +108,9 @@ BAD_OPTIONS = [
     (["map", "--rtol", "inf", "--wob", "1:2:2", "--rpm", "50:60:2"], "--rtol"),
     (["map", "--threshold", "nan", "--wob", "1:2:2", "--rpm", "50:60:2"], "--threshold"),
     (["simulate", "--rtol", "10"], "--rtol"),
+    (["simulate", "--rtol", "0.5"], "--rtol"),
+    (["map", "--rtol", "10", "--wob", "1:2:2", "--rpm", "50:60:2"], "--rtol"),
+    (["map", "--rtol", "0.5", "--wob", "1:2:2", "--rpm", "50:60:2"], "--rtol"),
     (["simulate", "--rtol", "1e-20"], "--rtol"),
     (["simulate", "--atol", "nan"], "--atol"),
     (["simulate", "--duration", "nan"], "--duration"),
@@ -226,6 +229,29 @@ def test_broken_plugin_law_in_a_configuration(test_laws, capsys, tmp_path):
     assert "test-raises" in err and "torsio-test-laws" in err
 
 
+GRID_ARGS = ["--wob", "50kN:150kN:2", "--rpm", "60:100:2", "--refine", "0"]
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["simulate"],
+        ["map", *GRID_ARGS],
+        ["map", *GRID_ARGS, "--engine", "numpy"],
+        ["map", *GRID_ARGS, "--engine", "scipy"],
+    ],
+    ids=["simulate", "map", "map numpy", "map scipy"],
+)
+def test_nan_torque_on_the_command_line_names_the_law(test_laws, capsys, tmp_path, args):
+    """A plugin law that turns NaN once the bit moves: every engine names it, status 2."""
+    path = tmp_path / "nan.toml"
+    text = _builtin_text()
+    start, end = text.index("[bit_rock]"), text.index("[damping]")
+    path.write_text(text[:start] + '[bit_rock]\nlaw = "test-nan-later"\n\n' + text[end:])
+    err = cli_error(capsys, args[0], str(path), "--strategy", "A", *args[1:])
+    assert "'test-nan-later'" in err and "torsio-test-laws" in err, err
+
+
 def test_nan_torque_during_a_run_names_the_law(test_laws):
     from torsio.analysis.transient import simulate
     from torsio.physics.system import System
@@ -277,7 +303,14 @@ def _output_cases(tmp_path):
 @pytest.mark.parametrize("case", ["folder", "proc", "missing folder", "config"])
 @pytest.mark.parametrize(
     ("command", "option"),
-    [("map", "--out"), ("map", "--csv"), ("map", "--plot"), ("simulate", "--csv")],
+    [
+        ("map", "--out"),
+        ("map", "--csv"),
+        ("map", "--plot"),
+        ("simulate", "--csv"),
+        ("simulate", "--plot"),
+        ("report", "--html"),
+    ],
 )
 def test_unwritable_outputs_are_refused_before_the_work(capsys, tmp_path, case, command, option):
     cases, config = _output_cases(tmp_path)
@@ -290,21 +323,57 @@ def test_unwritable_outputs_are_refused_before_the_work(capsys, tmp_path, case, 
     assert not list(tmp_path.glob("*.partial.*"))
 
 
-def test_read_only_folder_is_refused(capsys, tmp_path):
-    import os
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["map", "--wob", "1:2:2", "--rpm", "50:60:2", "--out"],
+        ["map", "--wob", "1:2:2", "--rpm", "50:60:2", "--csv"],
+        ["simulate", "--csv"],
+        ["report", "--html"],
+    ],
+    ids=lambda args: " ".join(args[:1] + args[-1:]),
+)
+def test_read_only_folder_is_refused(args):
+    """A folder the user may not write into: refused before the work, naming the option.
 
-    if os.geteuid() == 0:
-        pytest.skip("root writes into read-only folders")
-    folder = tmp_path / "ro"
-    folder.mkdir()
-    folder.chmod(0o555)
-    try:
-        err = cli_error(
-            capsys, "map", "--wob", "1:2:2", "--rpm", "50:60:2", "--out", str(folder / "m.json")
-        )
-    finally:
-        folder.chmod(0o755)
-    assert "--out" in err and "cannot write" in err
+    Root writes everywhere, so as root the command runs in a forked child that has
+    become ``nobody`` (the modules it needs are imported before the fork).
+    """
+    import os
+    import tempfile
+
+    import torsio.analysis.maps  # noqa: F401  (imported before the fork)
+    import torsio.analysis.transient  # noqa: F401
+    from torsio.cli import build_parser
+
+    build_parser()
+    base = tempfile.mkdtemp(prefix="torsio-ro-")
+    os.chmod(base, 0o755)
+    folder = os.path.join(base, "ro")
+    os.mkdir(folder, 0o555)
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # the child: never return into pytest
+        status = 70
+        try:
+            import sys
+
+            if os.geteuid() == 0:
+                os.setgid(65534)
+                os.setuid(65534)
+            sys.stderr = os.fdopen(write, "w")
+            status = main([*args, os.path.join(folder, "out.file")])
+            sys.stderr.flush()
+        finally:
+            os._exit(status)
+    os.close(write)
+    with os.fdopen(read) as stream:
+        err = stream.read()
+    _, status = os.waitpid(pid, 0)
+    os.chmod(folder, 0o755)
+    assert os.waitstatus_to_exitcode(status) == 2, err
+    assert args[-1] in err and "cannot write" in err and "Traceback" not in err, err
+    assert os.listdir(folder) == []
 
 
 def test_plot_path_is_the_file_written(capsys, tmp_path):

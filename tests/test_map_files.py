@@ -41,3 +41,43 @@ def test_npy_renamed_npz(tmp_path):
     npy.rename(path)
     with pytest.raises(ConfigError):
         load_map(path)
+
+
+def test_messages_name_the_cause(tmp_path):
+    """Each refusal says what is wrong with the file, not only that it is refused."""
+    cases = {
+        "list.json": ("[1, 2]", "expected a JSON object"),
+        "nosev.json": (BAD_JSON["no severity"], "severity"),
+        "deep.json": (BAD_JSON["deeply nested"], "map"),
+    }
+    for name, (text, fragment) in cases.items():
+        (tmp_path / name).write_text(text)
+        with pytest.raises(ConfigError) as caught:
+            load_map(tmp_path / name)
+        assert name in str(caught.value) and fragment in str(caught.value), str(caught.value)
+
+
+@pytest.fixture(scope="module")
+def small_map():
+    from torsio.analysis.maps import severity_map
+    from torsio.io.config import builtin_config
+    from torsio.physics.system import System
+
+    system = System.from_config(builtin_config(), strategy="A")
+    return severity_map(system, wob=[50e3, 150e3], rpm=[60.0, 100.0], refine=0)
+
+
+@pytest.mark.parametrize("suffix", [".json", ".npz"])
+def test_complete_flag_with_no_point_done(tmp_path, small_map, suffix):
+    """A file that says complete but holds no computed point is refused, naming 'complete'."""
+    import attrs
+
+    empty = attrs.evolve(
+        small_map,
+        severity=np.full_like(small_map.severity, np.nan),
+        done=np.zeros_like(small_map.done),
+    )
+    path = empty.save(tmp_path / f"map{suffix}")
+    assert load_map(small_map.save(tmp_path / f"good{suffix}")).complete  # the format itself
+    with pytest.raises(ConfigError, match=r"complete: the map says it is complete but 4 of 4"):
+        load_map(path)

@@ -255,6 +255,22 @@ def bit_law_origin(name: str) -> str:
     return f"plugin {owner!r}"
 
 
+def describe_bit_law(law: Any) -> str:
+    """The name of a bit-rock law object and where it comes from, for error messages.
+
+    Examples
+    --------
+    >>> describe_bit_law(build_bit_law("constant", {"torque_on_bit": 5e3}))
+    "'constant' (built-in)"
+    """
+    name = getattr(law, "name", "") or type(law).__name__
+    try:
+        origin = bit_law_origin(name)
+    except Exception:  # naming must never hide the error being reported
+        return repr(name)
+    return f"{name!r} ({origin})"
+
+
 PROBE_SPEEDS = (-1.0, 0.0, 1.0, 10.0)
 """Bit speeds [rad/s] at which a new law's torque is tried once (a scalar, then an array)."""
 

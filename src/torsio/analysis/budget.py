@@ -15,6 +15,8 @@ silently wrong answer, an exhausted memory or a run that never ends:
   bit inertia over the law's slope at zero speed, must not be more than
   :data:`MAX_STIFFNESS_RATIO` times shorter than the run (a law that no integrator
   resolves in double precision, e.g. Tucker-Wang with a0 = 1e20).
+* :func:`check_batch_work`: the same checks for the runs of a map, and a run length the
+  batch engine's step limit can cover (a map and one run refuse the same inputs).
 
 Examples
 --------
@@ -43,6 +45,7 @@ __all__ = [
     "RTOL_RANGE",
     "BudgetExceeded",
     "EvaluationBudget",
+    "check_batch_work",
     "check_law_time_scale",
     "check_output_size",
     "check_rtol",
@@ -203,7 +206,7 @@ def check_law_time_scale(system: Any, wob: float, duration: float) -> None:
     slope = law_slope_at_rest(system.law, wob, system.bit_radius)
     if slope == 0.0:
         return
-    bit_inertia = float(np.asarray(system.model.inertia)[-1, -1])
+    bit_inertia = _bit_inertia(system.model)
     scale = bit_inertia / slope
     if math.isfinite(scale) and scale > 0 and duration / scale <= MAX_STIFFNESS_RATIO:
         return
@@ -216,3 +219,34 @@ def check_law_time_scale(system: Any, wob: float, duration: float) -> None:
         f"{MAX_STIFFNESS_RATIO:.0e} times faster than the run of {duration:.4g} s can be "
         "integrated; check the law's parameters (e.g. a0, a1) and the bit radius",
     )
+
+
+def _bit_inertia(model: Any) -> float:
+    """Inertia of the bit's node [kg m^2]: a lumped model's last one, or a wave model's bit."""
+    if hasattr(model, "bit_inertia"):
+        return float(model.bit_inertia)
+    return float(np.asarray(model.inertia)[-1, -1])
+
+
+def check_batch_work(
+    system: Any, wob: Any, duration: float, rtol: Any, period: float, max_steps: int
+) -> None:
+    """ConfigError unless the runs of a map can be integrated as asked, before any starts.
+
+    The runs of a map are held to the rules of a single run: ``rtol`` in
+    :data:`RTOL_RANGE` and the law's time scale (:func:`check_law_time_scale`, at the
+    largest weight on bit ``wob`` [N], the stiffest point for laws proportional to it).
+    The batch engine takes steps of at most a quarter of the first-mode ``period`` [s]
+    and at most ``max_steps`` of them, so a longer ``duration`` [s] is refused.
+    """
+    check_rtol(rtol, "rtol")
+    if 4.0 * duration / period > max_steps:
+        raise ConfigError(
+            "duration",
+            f"a run of {duration:g} s is {duration / period:.3g} periods of the first mode "
+            f"({period:.3g} s); the batch engine takes steps of at most a quarter period and at "
+            f"most {max_steps:,} per point, so no point could finish: shorten the run",
+        )
+    loads = np.asarray(wob, dtype=float)
+    if loads.size:
+        check_law_time_scale(system, float(loads.max()), duration)

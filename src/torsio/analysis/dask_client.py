@@ -40,10 +40,12 @@ def connect_dask(address: str, timeout: float = CONNECT_TIMEOUT) -> Any:
             outcome["client"] = client
             client.wait_for_workers(1, timeout=timeout)
         except BaseException as exc:  # reported below, in the calling thread
-            outcome["error"] = exc
+            _discard_half_built(exc, distributed.Client)
+            outcome["error"] = exc.with_traceback(None)
 
     import threading
 
+    log_without_tracebacks()  # distributed is imported now: its handlers exist
     thread = threading.Thread(target=connect, name="torsio-dask-connect", daemon=True)
     thread.start()
     thread.join(timeout + 2.0)
@@ -68,6 +70,24 @@ def connect_dask(address: str, timeout: float = CONNECT_TIMEOUT) -> Any:
     return client
 
 
+def _discard_half_built(error: BaseException, client_class: Any) -> None:
+    """Mark closed a client whose constructor raised ``error``.
+
+    Otherwise the half-built client, kept alive by the traceback, tries to close
+    itself when it is collected (at exit: a 20 s wait, then a traceback on stderr).
+    """
+    traceback = error.__traceback__
+    while traceback is not None:
+        candidate: Any = traceback.tb_frame.f_locals.get("self")
+        if isinstance(candidate, client_class) and getattr(candidate, "status", None) != "closed":
+            try:
+                candidate.close(timeout=1.0)
+            except Exception:  # unreachable scheduler: nothing to close on its side
+                pass
+            candidate.status = "closed"
+        traceback = traceback.tb_next
+
+
 def close_dask(client: Any, timeout: float = CLOSE_TIMEOUT) -> None:
     """Close a Dask client within ``timeout`` s; a client that does not close is left."""
     import threading
@@ -81,3 +101,31 @@ def close_dask(client: Any, timeout: float = CLOSE_TIMEOUT) -> None:
     thread = threading.Thread(target=close, name="torsio-dask-close", daemon=True)
     thread.start()
     thread.join(timeout + 2.0)
+
+
+class _WithoutTraceback:
+    """A logging filter that keeps a record's message and drops its traceback."""
+
+    def filter(self, record: Any) -> bool:
+        record.exc_info = None
+        record.exc_text = None
+        record.stack_info = None
+        return True
+
+
+def log_without_tracebacks() -> None:
+    """Let Dask's and the executors' log records reach stderr as one line, no traceback.
+
+    Called on connecting: a lost scheduler is reported by torsio's own error; the
+    tracebacks ``distributed`` and ``concurrent.futures`` log on the way are noise.
+    """
+    import logging
+
+    handlers = [logging.lastResort]
+    for name in ("distributed", "concurrent.futures", "tornado", "asyncio"):
+        handlers += logging.getLogger(name).handlers
+    for handler in handlers:
+        if handler is not None and not any(
+            isinstance(f, _WithoutTraceback) for f in handler.filters
+        ):
+            handler.addFilter(_WithoutTraceback())

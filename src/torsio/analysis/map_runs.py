@@ -1,7 +1,9 @@
 """The grid of a severity map and how its points run.
 
-Axis checks and the memory bound of a grid (:func:`check_grid_size`), the chunks of
-points sent to an executor (:class:`PointRunner`), and the progress bar.
+Axis checks and the memory bound of a grid (:func:`check_grid_size`), the options of a
+map (:func:`check_map_options`), the chunks of points sent to an executor
+(:class:`PointRunner`), the error of a map whose executor failed (:class:`MapFailed`),
+and the progress bar.
 """
 
 from __future__ import annotations
@@ -13,16 +15,58 @@ from typing import Any
 
 import numpy as np
 
-from torsio.analysis.sweep import SweepInterrupted, run_tasks_on
+from torsio.analysis.sweep import SweepError, SweepInterrupted, run_tasks_on
 from torsio.errors import ConfigError
 from torsio.physics.system import System
 from torsio.solvers.batch import simulate_batch
 from torsio.solvers.batch_results import STATUS_MESSAGES
 
-__all__ = ["BYTES_PER_POINT", "PointRunner", "check_grid_size"]
+__all__ = ["BYTES_PER_POINT", "MapFailed", "PointRunner", "check_grid_size", "check_map_options"]
 
 BYTES_PER_POINT = 256
 """Memory a grid point costs, results and their JSON text included (an upper estimate)."""
+
+
+class MapFailed(SweepError):
+    """The executor of a map failed (workers that keep dying, a lost scheduler, no progress).
+
+    A :class:`~torsio.analysis.sweep.SweepError` whose ``partial`` is the map of the
+    points finished before the failure, with ``complete = False`` (``torsio map --out``
+    writes it to ``FILE.partial.*``).
+    """
+
+    def __init__(self, error: SweepError, partial: Any) -> None:
+        done = int(partial.done.sum())
+        super().__init__(
+            f"{error} (map: {done} of {partial.done.size} points computed)", error.results
+        )
+        self.partial = partial
+
+
+def check_map_options(
+    threshold: Any, stick_slip_threshold: Any, refine: Any, on_failure: Any, chunk_size: Any
+) -> None:
+    """ConfigError naming the first option of a map that is out of its range."""
+    for key, value in (("threshold", threshold), ("stick_slip_threshold", stick_slip_threshold)):
+        if isinstance(value, bool) or not (
+            isinstance(value, int | float) and math.isfinite(value) and value >= 0
+        ):
+            raise ConfigError(key, f"expected a non-negative number, got {value!r}")
+    if stick_slip_threshold > threshold:
+        raise ConfigError(
+            "stick_slip_threshold",
+            f"expected at most the severe threshold ({threshold:g}), got {stick_slip_threshold!r}",
+        )
+    if isinstance(refine, bool) or not isinstance(refine, int) or not 0 <= refine <= 40:
+        raise ConfigError(
+            "refine", f"expected a whole number of bisection steps in 0..40, got {refine!r}"
+        )
+    if on_failure not in ("raise", "mark"):
+        raise ConfigError("on_failure", f"expected 'raise' or 'mark', got {on_failure!r}")
+    if chunk_size is not None and (
+        isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1
+    ):
+        raise ConfigError("chunk_size", f"expected a whole number >= 1, got {chunk_size!r}")
 
 
 def _axis(key: str, values: Any, positive: bool) -> np.ndarray:
@@ -169,7 +213,7 @@ class PointRunner:
             outcome = run_tasks_on(
                 self.handle, _chunk_task, tasks, retries=self.retries, progress=report
             )
-        except SweepInterrupted as exc:
+        except (SweepInterrupted, SweepError) as exc:  # keep what finished, then re-raise
             if on_partial is not None:
                 on_partial([(bounds[k], r) for k, r in enumerate(exc.results) if r is not None])
             raise

@@ -59,6 +59,7 @@ from typing import Any
 
 import numpy as np
 
+from torsio.analysis.budget import check_batch_work
 from torsio.analysis.critical_wob import locate_critical_wob
 from torsio.analysis.map_results import (
     CLASSES,
@@ -71,23 +72,26 @@ from torsio.analysis.map_results import (
 )
 from torsio.analysis.map_runs import (
     BYTES_PER_POINT,
+    MapFailed,
     PointRunner,
     _axis,
     _default_chunk_size,
     _failure_lines,
     _rich_progress,
     check_grid_size,
+    check_map_options,
 )
 from torsio.analysis.severity import SEVERE_THRESHOLD
 from torsio.analysis.sweep import (
     ExecutorSpec,
+    SweepError,
     SweepInterrupted,
     open_executor,
     worker_count,
 )
 from torsio.errors import ConfigError, SolverError
 from torsio.physics.system import System
-from torsio.solvers.batch import DEFAULT_ATOL, DEFAULT_RTOL, simulate_batch
+from torsio.solvers.batch import DEFAULT_ATOL, DEFAULT_MAX_STEPS, DEFAULT_RTOL, simulate_batch
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = [
@@ -96,6 +100,7 @@ __all__ = [
     "DEFAULT_REFINE",
     "FORMAT",
     "FORMAT_VERSION",
+    "MapFailed",
     "MapInterrupted",
     "STICK_SLIP_THRESHOLD",
     "SeverityMap",
@@ -309,29 +314,11 @@ def _build_map(
     from torsio.analysis.sweep import CONNECT_TIMEOUT
     from torsio.solvers.reference import run_times
 
-    for key, value in (("threshold", threshold), ("stick_slip_threshold", stick_slip_threshold)):
-        if isinstance(value, bool) or not (
-            isinstance(value, int | float) and math.isfinite(value) and value >= 0
-        ):
-            raise ConfigError(key, f"expected a non-negative number, got {value!r}")
-    if stick_slip_threshold > threshold:
-        raise ConfigError(
-            "stick_slip_threshold",
-            f"expected at most the severe threshold ({threshold:g}), got {stick_slip_threshold!r}",
-        )
-    if isinstance(refine, bool) or not isinstance(refine, int) or not 0 <= refine <= 40:
-        raise ConfigError(
-            "refine", f"expected a whole number of bisection steps in 0..40, got {refine!r}"
-        )
-    if on_failure not in ("raise", "mark"):
-        raise ConfigError("on_failure", f"expected 'raise' or 'mark', got {on_failure!r}")
-    if chunk_size is not None and (
-        isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1
-    ):
-        raise ConfigError("chunk_size", f"expected a whole number >= 1, got {chunk_size!r}")
+    check_map_options(threshold, stick_slip_threshold, refine, on_failure, chunk_size)
     check_grid_size(rpm.size, wob.size)
     duration, steady_window = run_times(system, duration, steady_window)
     k_eq, omega1 = _scales(system)
+    check_batch_work(system, wob, duration, rtol, 2.0 * math.pi / omega1, DEFAULT_MAX_STEPS)
     serial = executor is None or executor == "serial"
     options: dict[str, Any] = {
         "duration": duration,
@@ -438,12 +425,17 @@ def _build_map(
                 rows = runner.run(flat_wob, flat_rpm, keep_partial)
             except SweepInterrupted:
                 raise MapInterrupted(partial_map()) from None
+            except SweepError as exc:
+                raise MapFailed(exc, partial_map()) from exc
             store(rows, indices)
             failed = done & (status != 0)
             if failed.any() and on_failure == "raise":
                 lines = _failure_lines(wob, rpm, status)
+                from torsio.plugins import describe_bit_law
+
                 raise SolverError(
-                    f"the batch solver failed at {len(lines)} of {points} points: "
+                    f"the batch solver ({engine_name} engine, bit-rock law "
+                    f"{describe_bit_law(system.law)}) failed at {len(lines)} of {points} points: "
                     + "; ".join(lines[:5])
                     + (" ..." if len(lines) > 5 else "")
                     + " (on_failure='mark' keeps the others)"
@@ -454,6 +446,8 @@ def _build_map(
                 )
             except SweepInterrupted:
                 raise MapInterrupted(partial_map()) from None
+            except SweepError as exc:
+                raise MapFailed(exc, partial_map()) from exc
             info["retried_chunks"] = runner.retried
     finally:
         if stop is not None:

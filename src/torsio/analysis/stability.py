@@ -303,8 +303,8 @@ def stability_boundary(system: System, rpm: Any) -> StabilityBoundary:
     wob = np.full(speeds.shape, np.nan)
     if math.isfinite(critical.slope):
         reference = 1e5
-        unit = _bit_slope(system, omega, 1.0)
-        scaled = _bit_slope(system, omega, reference)
+        unit = _finite_slopes(system, omega, 1.0)
+        scaled = _finite_slopes(system, omega, reference)
         if np.allclose(scaled, reference * unit, rtol=1e-9, atol=1e-12 * np.abs(scaled).max()):
             with np.errstate(divide="ignore", invalid="ignore"):
                 wob = np.where(unit < 0, critical.slope / unit, np.nan)
@@ -316,9 +316,27 @@ def stability_boundary(system: System, rpm: Any) -> StabilityBoundary:
     return StabilityBoundary(speeds, wob, critical.slope, critical.frequency)
 
 
+def _finite_slopes(system: System, omega: np.ndarray, wob: float) -> np.ndarray:
+    """The law's slopes at the speeds ``omega`` [rad/s]; ConfigError naming it if not finite."""
+    with np.errstate(all="ignore"):
+        slopes = np.asarray(_bit_slope(system, omega, wob), dtype=float)
+    if not np.isfinite(slopes).all():
+        from torsio.plugins import describe_bit_law
+
+        bad = int(np.flatnonzero(~np.isfinite(np.broadcast_to(slopes, omega.shape)))[0])
+        raise ConfigError(
+            "bit_rock",
+            f"the slope of the bit-rock law {describe_bit_law(system.law)} {system.law!r} at "
+            f"{omega[bad]:g} rad/s and wob = {wob:g} N is "
+            f"{float(np.broadcast_to(slopes, omega.shape)[bad])}: the linear stability boundary "
+            "needs a finite slope; check the law's parameters",
+        )
+    return slopes
+
+
 def _wob_at_slope(system: System, omega: float, target: float) -> float:
     def excess(wob: float) -> float:
-        return float(_bit_slope(system, omega, wob)) - target
+        return float(_finite_slopes(system, np.atleast_1d(omega), wob)[0]) - target
 
     if excess(0.0) < 0:
         return 0.0

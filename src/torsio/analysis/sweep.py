@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 import os
+import time
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from typing import Any
@@ -68,6 +69,8 @@ NO_PROGRESS_TIMEOUT = 900.0
 scheduler whose workers are gone or hang); far longer than one task of a map."""
 
 PARENT_POLL = 0.5
+EXECUTOR_POLL = 1.0
+"""Seconds between two checks, while tasks run, that the executor is still there."""
 """Seconds between two checks, in a local worker process, that its parent is alive."""
 
 ExecutorSpec = None | int | str | cf.Executor
@@ -192,6 +195,7 @@ class _Handle:
     rebuild: Callable[[], cf.Executor] | None = None
     close: Callable[[], None] | None = None
     serial: bool = False
+    alive: Callable[[], bool] = lambda: True
 
 
 @contextmanager
@@ -230,7 +234,11 @@ def open_executor(spec: ExecutorSpec, timeout: float = CONNECT_TIMEOUT) -> Itera
     if isinstance(spec, str):
         client = connect_dask(spec, timeout)
         try:
-            yield _Handle(client.get_executor(pure=False), name)
+            yield _Handle(
+                client.get_executor(pure=False),
+                name,
+                alive=lambda: client.status not in ("closing", "closed"),
+            )
         finally:
             close_dask(client)
         return
@@ -355,12 +363,21 @@ def _run(
         try:
             future = handle.executor.submit(function, *tasks[index])
         except Exception as exc:  # e.g. a closed Dask client, a shut-down pool
+            if not handle.alive():
+                raise lost() from exc
             raise SweepError(
                 f"the executor {handle.name} refused task {index} "
                 f"({type(exc).__name__}: {exc}); {done} of {total} tasks finished",
                 results,
             ) from exc
         pending[future] = index
+
+    def lost() -> SweepError:
+        return SweepError(
+            f"the executor {handle.name} was lost (its scheduler is gone or closed the "
+            f"connection); {done} of {total} tasks finished",
+            results,
+        )
 
     def finish(index: int, value: Any) -> None:
         nonlocal done
@@ -370,6 +387,11 @@ def _run(
         if progress is not None:
             progress(done, total)
 
+    def cancel_pending() -> None:
+        if handle.alive():  # a closed Dask client cannot cancel (its callbacks would raise)
+            for future in pending:
+                future.cancel()
+
     try:
         if handle.serial:  # in order, in this thread
             for index in range(total):
@@ -377,13 +399,20 @@ def _run(
             return SweepOutcome(results, 0, handle.name)
         for index in range(total):
             submit(index)
+        last_progress = time.monotonic()
         while pending:
             completed, _ = cf.wait(
-                list(pending), timeout=no_progress_timeout, return_when=cf.FIRST_COMPLETED
+                list(pending),
+                timeout=min(EXECUTOR_POLL, no_progress_timeout),
+                return_when=cf.FIRST_COMPLETED,
             )
-            if not completed:
-                for future in pending:
-                    future.cancel()
+            if not completed and not handle.alive():
+                raise lost()
+            if completed:
+                last_progress = time.monotonic()
+            elif time.monotonic() - last_progress < no_progress_timeout:
+                continue
+            else:
                 raise SweepError(
                     f"no task finished within {no_progress_timeout:g} s on {handle.name} "
                     f"({done} of {total} tasks finished): its workers are gone or hang",
@@ -398,6 +427,8 @@ def _run(
                     broken = exc
                     continue
                 except fatal as exc:  # the executor itself is gone (a lost Dask scheduler)
+                    if not handle.alive():
+                        raise lost() from exc
                     raise SweepError(
                         f"the executor {handle.name} failed ({type(exc).__name__}: {exc}); "
                         f"{done} of {total} tasks finished",
@@ -439,14 +470,12 @@ def _run(
                         submit(index)
         return SweepOutcome(results, retried, handle.name)
     except KeyboardInterrupt:
-        for future in pending:
-            future.cancel()
+        cancel_pending()
         if handle.close is not None:
             handle.close()
         raise SweepInterrupted(results, done, total) from None
     except BaseException:  # a task's own error or a SweepError: stop what still runs
-        for future in pending:
-            future.cancel()
+        cancel_pending()
         if handle.close is not None:
             handle.close()
         raise

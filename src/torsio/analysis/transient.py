@@ -356,14 +356,9 @@ def _integrate(
 
 
 def _law_name(law: Any) -> str:
-    from torsio.plugins import bit_law_origin
+    from torsio.plugins import describe_bit_law
 
-    name = getattr(law, "name", "") or type(law).__name__
-    try:
-        origin = bit_law_origin(name)
-    except Exception:  # naming must never hide the error being reported
-        return repr(name)
-    return f"{name!r} ({origin})"
+    return describe_bit_law(law)
 
 
 def system_from_config(

@@ -204,7 +204,7 @@ _KEYS = {
     "pi1": "--pi1",
     "pi2": "--pi2",
     "grid": "--wob/--rpm",
-    "duration": "--duration",
+    "duration": "--duration (simulation.duration)",
     "steady_window": "--window",
     "simulation.duration": "--duration",
     "simulation.steady_window": "--window",
@@ -234,6 +234,7 @@ def _run(args: argparse.Namespace) -> int:
     import numpy as np
 
     from torsio.analysis.maps import (
+        MapFailed,
         MapInterrupted,
         check_grid_size,
         dimensionless_map,
@@ -325,6 +326,12 @@ def _run(args: argparse.Namespace) -> int:
                 file=sys.stderr,
             )
         raise KeyboardInterrupt from None
+    except MapFailed as exc:  # the executor failed: keep what finished, then the error
+        if args.out is not None:
+            partial = _partial_path(Path(args.out))
+            exc.partial.save(partial)
+            exc.args = (f"{exc}; partial results written to {partial} (marked incomplete)",)
+        raise
     written: dict[str, str] = {}
     if "out" in outputs:
         written["out"] = str(result.save(outputs["out"]))

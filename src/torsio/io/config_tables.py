@@ -79,7 +79,9 @@ def _section(raw: Any, key: str, default_material: Material) -> Section:
             bha=bha,
         )
     except ConfigError as exc:
-        full_key = exc.key if exc.key.startswith(f"{key}.") else f"{key}.{exc.key}"
+        # a value of the file's [material] (the section has none of its own) keeps its key
+        inherited = exc.key.startswith("material.") and "material" not in table
+        full_key = exc.key if inherited or exc.key.startswith(f"{key}.") else f"{key}.{exc.key}"
         raise ConfigError(full_key, exc.message) from None
 
 

@@ -53,16 +53,26 @@ def reference_severity(
     options: dict[str, Any] = {}
     if implicit:
         options["jac"] = equations.jacobian
-    solution = solve_ivp(
-        equations.rhs,
-        (0.0, duration),
-        equations.rest_state(),
-        method=method,
-        rtol=rtol,
-        atol=atol,
-        dense_output=True,
-        **options,
-    )
+    try:
+        solution = solve_ivp(
+            equations.rhs,
+            (0.0, duration),
+            equations.rest_state(),
+            method=method,
+            rtol=rtol,
+            atol=atol,
+            dense_output=True,
+            **options,
+        )
+    except (ArithmeticError, ValueError, RuntimeError, np.linalg.LinAlgError) as exc:
+        from torsio.plugins import describe_bit_law
+
+        # e.g. a singular step matrix after a law returned NaN: name the point and the law
+        raise SolverError(
+            f"solve_ivp ({method}) failed at wob={system.wob:g} N, rpm={system.rpm:g} with the "
+            f"bit-rock law {describe_bit_law(system.law)} ({type(exc).__name__}: {exc}); "
+            "a law torque that is NaN or infinite, or an unstable model"
+        ) from None
     info: dict[str, Any] = {
         "nfev": int(solution.nfev),
         "steps": int(solution.t.size - 1),
