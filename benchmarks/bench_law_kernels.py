@@ -92,9 +92,24 @@ TW_SLOPE = njit(cache=True)(tucker_wang_slope)
 
 @njit(cache=True)
 def _serial_tucker_wang_constant(chain, top, p, settings, wob, omega, omega_set, out) -> None:
+    vectors = np.zeros((rodas.VECTOR_ROWS, chain.shape[1]))
+    small = np.zeros((rodas.SMALL_ROWS, 8))
     for k in range(wob.size):
+        vectors[:] = 0.0
+        small[:] = 0.0
         rodas._integrate_point(
-            chain, top, TW_TORQUE, TW_SLOPE, p, settings, wob[k], omega[k], omega_set[k], out[k]
+            chain,
+            top,
+            TW_TORQUE,
+            TW_SLOPE,
+            p,
+            settings,
+            wob[k],
+            omega[k],
+            omega_set[k],
+            out[k],
+            vectors,
+            small,
         )
 
 
@@ -108,7 +123,10 @@ def part_kernel(points: int, repeat: int) -> None:
     duration, window = batch.run_times(system, None, None)
     period = 2.0 * math.pi / model.first_frequency
     h0 = min(1e-3 * period, period / 4)
-    settings = np.array([duration, duration - window, 1e-5, 1e-6, h0, period / 4, 2e6, 0.108])
+    # the kernel's settings (rodas.SETTINGS_SIZE): every run to the end, no steady-cycle stop
+    settings = np.array(
+        [duration, duration - window, 1e-5, 1e-6, h0, period / 4, 2e6, 0.108, 0.0, 0.0]
+    )
     outputs = {}
     runs = {
         "FunctionType (shipped)": lambda out: rodas.integrate_serial(

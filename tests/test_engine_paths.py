@@ -27,7 +27,7 @@ from torsio.analysis.transient import simulate
 from torsio.io.config import builtin_config
 from torsio.physics.system import System
 from torsio.plugins import get_bit_law, top_drive_from_parameters
-from torsio.solvers.batch import simulate_batch
+from torsio.solvers.batch import DEFAULT_STEADY_TOLERANCE, simulate_batch
 from torsio.solvers.reference import reference_severity
 
 DURATION, WINDOW = 60.0, 20.0  # s: long enough for stick-slip to form from rest
@@ -66,10 +66,16 @@ def test_same_severity_on_every_path(dofs: int, law: str, top: str) -> None:
         reference = simulate(
             system, duration=DURATION, steady_window=WINDOW, method="LSODA", rtol=1e-8, atol=1e-10
         ).severity
-    compiled = simulate_batch(system, [system.wob], [system.rpm], engine="compiled", **BATCH)
-    numpy = simulate_batch(system, [system.wob], [system.rpm], engine="numpy", **BATCH)
-    assert compiled.ok.all() and numpy.ok.all()
+    point = ([system.wob], [system.rpm])
+    compiled = simulate_batch(system, *point, engine="compiled", **BATCH)  # ends on the cycle
+    whole = simulate_batch(system, *point, engine="compiled", steady_tolerance=0.0, **BATCH)
+    numpy = simulate_batch(system, *point, engine="numpy", **BATCH)
+    assert compiled.ok.all() and whole.ok.all() and numpy.ok.all()
     assert reference > 0.8  # a stick-slip point: the comparison is not trivially 0 = 0
     assert abs(compiled.severity[0] - reference) < 2e-3
     assert abs(numpy.severity[0] - reference) < 2e-3
-    np.testing.assert_allclose(numpy.severity, compiled.severity, atol=1e-6)
+    # the same method to the end of the run: the same steps, S_SS to round-off
+    np.testing.assert_allclose(numpy.severity, whole.severity, atol=1e-6)
+    # ending on the steady cycle moves S_SS by at most the steady tolerance
+    assert compiled.ended[0] < DURATION
+    assert abs(compiled.severity[0] - whole.severity[0]) <= DEFAULT_STEADY_TOLERANCE

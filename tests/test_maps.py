@@ -306,7 +306,7 @@ def test_solver_failures_raise_or_are_marked(one_dof: System, monkeypatch) -> No
     original = batch.simulate_batch
 
     def few_steps(*args, **kwargs):
-        return original(*args, **{**kwargs, "max_steps": 500})
+        return original(*args, **{**kwargs, "max_steps": 500, "steady_tolerance": 0.0})
 
     monkeypatch.setattr(map_runs, "simulate_batch", few_steps)  # what each chunk calls
     with pytest.raises(SolverError, match="wob=150000 N, rpm=60: too many steps"):

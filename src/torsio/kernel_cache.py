@@ -7,7 +7,15 @@ cache to the user's cache folder, never into the installed package (a cache insi
 - ``$NUMBA_CACHE_DIR`` when the user set it (torsio leaves it alone);
 - else ``$TORSIO_CACHE_DIR/numba``, ``$XDG_CACHE_HOME/torsio/numba``, or the platform's
   cache folder: ``~/.cache/torsio/numba`` (Linux), ``~/Library/Caches/torsio/numba``
-  (macOS), ``%LOCALAPPDATA%\\torsio\\Cache\\numba`` (Windows).
+  (macOS), ``%LOCALAPPDATA%\\torsio\\Cache\\numba`` (Windows); in it, one folder per
+  state of the kernel sources (``kernels-<key>``, the key a hash of torsio's and numba's
+  versions and of every kernel source file's size and time).
+
+numba checks a cached function against its own source file only, not against the files
+of the functions it calls and compiles in (the kernel's cycle tracker, the chain's
+forces): after an update of one of those, it would load the old machine code. A folder
+per state of all the sources can never hold stale code; folders not written to for
+:data:`STALE_DAYS` days are removed.
 
 The first process that compiles prints one line to stderr (never to stdout, so
 ``--json`` output stays clean): ``compiling the batch engine once (about 20 s); later
@@ -28,7 +36,9 @@ from __future__ import annotations
 import atexit
 import hashlib
 import os
+import shutil
 import sys
+import time
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any, TextIO
@@ -36,6 +46,10 @@ from typing import Any, TextIO
 #: Seconds the first compile of the batch engine takes, measured on a 2-core machine
 #: (numba 0.68, Python 3.11: 15-25 s); printed in the first-run note.
 FIRST_COMPILE_SECONDS = 20
+
+#: Days after which a cache folder of other kernel sources (an older version, another
+#: installation) that nothing wrote to is removed.
+STALE_DAYS = 30
 
 _ANNOUNCED = "TORSIO_COMPILE_ANNOUNCED"  # set once the note is printed (seen by child processes)
 
@@ -86,16 +100,28 @@ def use_user_cache_dir() -> None:
     config: Any = numba.config
     if config.CACHE_DIR:  # NUMBA_CACHE_DIR, or set by the user in this process
         return
-    folder = numba_cache_dir()
+    folder = _kernels_folder()
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError:  # read-only home: numba falls back to its own locations
         return
     config.CACHE_DIR = str(folder)
+    stale = time.time() - STALE_DAYS * 86400.0
+    for old in folder.parent.glob("kernels-*"):  # earlier states, other installations
+        try:
+            if old != folder and old.stat().st_mtime < stale:
+                shutil.rmtree(old, ignore_errors=True)
+        except OSError:  # pragma: no cover - removed meanwhile by another process
+            pass
 
 
-def _stamp_path() -> Path:
-    """A file whose presence says: these sources were compiled into the cache."""
+def _kernels_folder() -> Path:
+    """The cache folder of the current state of the kernel sources."""
+    return numba_cache_dir() / f"kernels-{_sources_key()}"
+
+
+def _sources_key() -> str:
+    """A hash of torsio's, Python's and numba's versions and the kernel sources' stamps."""
     import torsio
 
     key = hashlib.sha1()
@@ -114,7 +140,13 @@ def _stamp_path() -> Path:
         except OSError:
             continue
         key.update(f"{source} {stat.st_mtime_ns} {stat.st_size}".encode())
-    return numba_cache_dir() / f"torsio-kernels-{key.hexdigest()[:16]}.stamp"
+    return key.hexdigest()[:16]
+
+
+def _stamp_path() -> Path:
+    """A file whose presence says: these sources were compiled into the cache."""
+    folder = Path(os.environ.get("NUMBA_CACHE_DIR") or _kernels_folder())
+    return folder / f"torsio-kernels-{_sources_key()}.stamp"
 
 
 def kernels_cached() -> bool:

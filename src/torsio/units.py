@@ -73,8 +73,12 @@ COMMON_UNITS: dict[str, tuple[str, float]] = {
     "h": ("time", 3600.0),
     "rpm": ("angular_speed", math.pi / 30.0),
     "rad/s": ("angular_speed", 1.0),
+    "kg/m^3": ("density", 1.0),
+    "g/cm^3": ("density", 1e3),
 }
-_NUMBER_AND_UNIT = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A-Za-z/]+)\s*")
+_NUMBER_AND_UNIT = re.compile(
+    r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A-Za-z][A-Za-z/^\d]*)\s*"
+)
 
 
 @lru_cache(maxsize=1)

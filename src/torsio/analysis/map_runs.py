@@ -128,9 +128,12 @@ def _bytes(value: float) -> str:
 def _chunk_task(
     system: System, wob: np.ndarray, rpm: np.ndarray, options: dict[str, Any]
 ) -> np.ndarray:
-    """Worker side: S_SS and diagnostics of a chunk of points, shape (k, 4)."""
+    """Worker side: S_SS, status, steps, rejected steps and the time each run ended [s],
+    shape (k, 5)."""
     result = simulate_batch(system, wob, rpm, **options)
-    return np.column_stack([result.severity, result.status, result.steps, result.rejected])
+    return np.column_stack(
+        [result.severity, result.status, result.steps, result.rejected, result.ended]
+    )
 
 
 class PointRunner:
@@ -220,7 +223,7 @@ class PointRunner:
         self.retried += outcome.retries
         self.done_points += count
         self.runs += count
-        return np.concatenate(outcome.results) if outcome.results else np.empty((0, 4))
+        return np.concatenate(outcome.results) if outcome.results else np.empty((0, 5))
 
 
 def _default_chunk_size(points: int, workers: int, serial: bool, dofs: int) -> int:

@@ -52,6 +52,7 @@ Examples
 
 from __future__ import annotations
 
+import inspect
 import math
 import warnings
 from collections.abc import Callable
@@ -91,7 +92,13 @@ from torsio.analysis.sweep import (
 )
 from torsio.errors import ConfigError, SolverError
 from torsio.physics.system import System
-from torsio.solvers.batch import DEFAULT_ATOL, DEFAULT_MAX_STEPS, DEFAULT_RTOL, simulate_batch
+from torsio.solvers.batch import (
+    DEFAULT_ATOL,
+    DEFAULT_MAX_STEPS,
+    DEFAULT_RTOL,
+    DEFAULT_STEADY_TOLERANCE,
+    simulate_batch,
+)
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = [
@@ -149,6 +156,7 @@ def severity_map(
     retries: int = 2,
     on_failure: str = "raise",
     timeout: float | None = None,
+    steady_tolerance: float = DEFAULT_STEADY_TOLERANCE,
 ) -> SeverityMap:
     """S_SS over the grid ``rpm`` x ``wob``, its classification and critical curve.
 
@@ -191,6 +199,9 @@ def severity_map(
         naming them, or keep them as NaN with their status (and warn).
     timeout : float, optional
         Seconds to wait for a Dask scheduler.
+    steady_tolerance : float
+        A run ends once the motion is on a steady cycle, within this S_SS (0: every
+        run to the end; :mod:`torsio.solvers.cycles`).
 
     Returns
     -------
@@ -221,6 +232,7 @@ def severity_map(
         retries,
         on_failure,
         timeout,
+        steady_tolerance,
         dimensionless=False,
     )
 
@@ -249,41 +261,12 @@ def dimensionless_map(system: System, pi1: Any, pi2: Any, **options: Any) -> Sev
     k_eq, omega1 = _scales(system)
     rpm = pi1_axis * omega1 / RPM_TO_RAD_S
     wob = pi2_axis * k_eq / system.bit_radius
-    keys = (
-        "duration",
-        "steady_window",
-        "executor",
-        "chunk_size",
-        "progress",
-        "threshold",
-        "stick_slip_threshold",
-        "refine",
-        "rtol",
-        "atol",
-        "engine",
-        "retries",
-        "on_failure",
-        "timeout",
-    )
+    parameters = inspect.signature(severity_map).parameters
+    keys = [key for key in parameters if key not in ("system", "wob", "rpm")]
     unknown = sorted(set(options) - set(keys))
     if unknown:
         raise ConfigError(unknown[0], f"unknown option; expected one of {', '.join(keys)}")
-    defaults: dict[str, Any] = {
-        "duration": None,
-        "steady_window": None,
-        "executor": None,
-        "chunk_size": None,
-        "progress": None,
-        "threshold": SEVERE_THRESHOLD,
-        "stick_slip_threshold": STICK_SLIP_THRESHOLD,
-        "refine": DEFAULT_REFINE,
-        "rtol": DEFAULT_RTOL,
-        "atol": DEFAULT_ATOL,
-        "engine": "auto",
-        "retries": 2,
-        "on_failure": "raise",
-        "timeout": None,
-    }
+    defaults: dict[str, Any] = {key: parameters[key].default for key in keys}
     defaults.update(options)
     return _build_map(system, wob, rpm, dimensionless=True, **defaults)
 
@@ -306,6 +289,7 @@ def _build_map(
     retries: int,
     on_failure: str,
     timeout: float | None,
+    steady_tolerance: float,
     dimensionless: bool,
 ) -> SeverityMap:
     import time
@@ -327,6 +311,7 @@ def _build_map(
         "atol": atol,
         "engine": engine,
         "threads": None if serial else 1,
+        "steady_tolerance": steady_tolerance,
     }
     boundary = system.top.boundary(system)
     if not boundary.held and not math.isfinite(boundary.set_speed):
@@ -357,6 +342,7 @@ def _build_map(
     status = np.zeros((rpm.size, wob.size), dtype=np.int64)
     steps = np.zeros((rpm.size, wob.size), dtype=np.int64)
     done = np.zeros((rpm.size, wob.size), dtype=bool)
+    ended_early = np.zeros((rpm.size, wob.size), dtype=bool)
     grid_rpm, grid_wob = np.meshgrid(rpm, wob, indexing="ij")
     flat_wob = grid_wob.ravel()
     flat_rpm = grid_rpm.ravel()
@@ -375,6 +361,7 @@ def _build_map(
         "atol": atol,
         "refine": refine,
         "initial_state": "rest",
+        "steady_tolerance": steady_tolerance,
     }
 
     def store(rows: np.ndarray, at: np.ndarray) -> None:
@@ -382,6 +369,7 @@ def _build_map(
         severity[i, j] = rows[:, 0]
         status[i, j] = rows[:, 1].astype(np.int64)
         steps[i, j] = rows[:, 2].astype(np.int64)
+        ended_early[i, j] = rows[:, 4] < duration
         done[i, j] = True
 
     def partial_map() -> SeverityMap:
@@ -460,6 +448,7 @@ def _build_map(
         )
     info["elapsed_s"] = time.perf_counter() - start
     info["extra_runs"] = runner.runs - points
+    info["ended_on_steady_cycle"] = int(ended_early.sum())  # grid points that ended early
     from torsio.model.wave import is_wave_model
 
     if is_wave_model(system.model):  # no linearization of the distributed model (yet)

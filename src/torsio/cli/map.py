@@ -94,6 +94,14 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="relative tolerance of the batch engine (default 1e-5)",
     )
     parser.add_argument(
+        "--steady-tol",
+        type=finite_float,
+        default=None,
+        metavar="S",
+        help="end a run once it is on a steady cycle, within this S_SS (default 1e-3; "
+        "0 runs every point to the end)",
+    )
+    parser.add_argument(
         "--engine", default="auto", help="batch engine: auto (default), numba, numpy, scipy"
     )
     parser.add_argument(
@@ -211,6 +219,7 @@ _KEYS = {
     "threshold": "--threshold",
     "refine": "--refine",
     "rtol": "--rtol",
+    "steady_tolerance": "--steady-tol",
     "engine": "--engine",
     "workers": "--workers",
     "scheduler": "--scheduler",
@@ -308,6 +317,8 @@ def _run(args: argparse.Namespace) -> int:
         options["refine"] = args.refine
     if args.rtol is not None:
         options["rtol"] = args.rtol
+    if args.steady_tol is not None:
+        options["steady_tolerance"] = args.steady_tol
     if args.on_failure is not None:
         options["on_failure"] = args.on_failure
     x = np.linspace(x_start, x_stop, x_count)

@@ -78,6 +78,11 @@ convergence study that chose it: |dS_SS| < 1e-3 against rtol = 1e-8 runs)."""
 DEFAULT_ATOL = 1e-6
 """Default absolute tolerance [rad, rad/s]."""
 
+DEFAULT_STEADY_TOLERANCE = 1e-3
+"""Default steady-cycle tolerance of the compiled engine, in S_SS units: a run ends once
+the motion is on a cycle whose extremes can move by no more than this over the rest of
+the run (:mod:`torsio.solvers.cycles`); 0 runs every point to the end."""
+
 DEFAULT_MAX_STEPS = 2_000_000
 """Accepted steps allowed per point before the point is reported as failed."""
 
@@ -270,6 +275,7 @@ def simulate_batch(
     max_steps: int = DEFAULT_MAX_STEPS,
     engine: str = "auto",
     threads: int | None = None,
+    steady_tolerance: float = DEFAULT_STEADY_TOLERANCE,
 ) -> BatchResults:
     """S_SS of ``system`` at each operating point (wob[k], rpm[k]), started from rest.
 
@@ -299,6 +305,11 @@ def simulate_batch(
     threads : int, optional
         Threads of the compiled engine (default: numba's default, all cores). Calls
         from other threads than the main one always run on one thread.
+    steady_tolerance : float
+        The compiled engine ends a run early once the motion is on a cycle whose bit-speed
+        extremes can move by no more than this (in S_SS units) over the rest of the run
+        (:mod:`torsio.solvers.cycles`); 0 runs to the end. Not used with a torque-driven
+        top drive (its mean speed needs the whole window) or by the other engines.
 
     Returns
     -------
@@ -328,6 +339,16 @@ def simulate_batch(
     for key, value in (("rtol", rtol), ("atol", atol)):
         if not (math.isfinite(value) and value > 0):
             raise ConfigError(key, f"expected a positive tolerance, got {value!r}")
+    if isinstance(steady_tolerance, bool) or not (
+        isinstance(steady_tolerance, int | float)
+        and math.isfinite(steady_tolerance)
+        and 0 <= steady_tolerance <= 0.1
+    ):
+        raise ConfigError(
+            "steady_tolerance",
+            f"expected a tolerance in S_SS units in [0, 0.1] (0: run to the end), "
+            f"got {steady_tolerance!r}",
+        )
     duration, steady_window = run_times(system, duration, steady_window)
     name, kernel = resolve_engine(engine, system.law)
     model = BatchModel.from_system(system) if name != "scipy" else None
@@ -344,18 +365,31 @@ def simulate_batch(
         raise ConfigError("max_step", f"expected a positive step in s, got {max_step!r}")
     omega_set = rpm_arr * (math.pi / 30.0)
     h0 = min(1e-3 * period, max_step)
+    steady = 0.0 if torque_driven else float(steady_tolerance)
     settings = np.array(
-        [duration, duration - steady_window, rtol, atol, h0, max_step, max_steps, 0.0]
+        [
+            duration,
+            duration - steady_window,
+            rtol,
+            atol,
+            h0,
+            max_step,
+            max_steps,
+            0.0,
+            steady,
+            omega1,
+        ]
     )
     start = time.perf_counter()
     out = np.zeros((wob_arr.size, OUT_COLUMNS))
+    out[:, 6] = duration  # the time each run ended (the compiled kernel may end earlier)
     if name == "scipy":
         for k in range(wob_arr.size):
             at = {} if torque_driven else {"rpm": float(rpm_arr[k])}
             point = system.at(wob=float(wob_arr[k]), **at)
             _, info = reference_severity(point, duration, steady_window, rtol=rtol, atol=atol)
             extremes = (info["bit_speed_max"], info["bit_speed_min"])
-            out[k] = (*extremes, info["steps"], 0, 0, info["top_speed_mean"])
+            out[k, :6] = (*extremes, info["steps"], 0, 0, info["top_speed_mean"])
     elif wob_arr.size:
         assert model is not None
         settings[7] = model.bit_radius
@@ -365,7 +399,7 @@ def simulate_batch(
             if name == "numpy":
                 from torsio.solvers.numpy_engine import integrate_numpy
 
-                out[rows] = integrate_numpy(model.chain, top, model.law, *point_settings)
+                out[rows, :6] = integrate_numpy(model.chain, top, model.law, *point_settings)[:, :6]
             else:
                 assert kernel is not None
                 law = (kernel.torque, kernel.slope, kernel.parameters)
@@ -393,6 +427,8 @@ def simulate_batch(
         float(rtol),
         float(atol),
         elapsed,
+        out[:, 6].copy(),
+        steady,
     )
 
 

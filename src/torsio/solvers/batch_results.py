@@ -46,6 +46,11 @@ class BatchResults:
         Tolerances.
     elapsed : float
         Wall time [s].
+    ended : ndarray
+        Time [s] each run ended: ``duration``, or earlier where the compiled engine found
+        the motion on a steady cycle (:mod:`torsio.solvers.cycles`).
+    steady_tolerance : float
+        The steady-cycle tolerance used (0: every run went to the end).
     """
 
     wob: np.ndarray
@@ -63,6 +68,10 @@ class BatchResults:
     rtol: float
     atol: float
     elapsed: float
+    ended: np.ndarray = attrs.field(
+        default=attrs.Factory(lambda self: np.full(self.severity.shape, self.duration), True)
+    )
+    steady_tolerance: float = 0.0
 
     def __repr__(self) -> str:  # short: counts, no arrays
         return (

@@ -117,7 +117,7 @@ def integrate_numpy(
     omega_set: np.ndarray,
 ) -> np.ndarray:
     """Every point at once; returns the :data:`torsio.solvers.rodas.OUT_COLUMNS` per point."""
-    t_end, t_window, rtol, atol, h0, hmax, max_steps, radius = settings
+    t_end, t_window, rtol, atol, h0, hmax, max_steps, radius = settings[:8]
     sys_ = _Chain(chain, top, law, float(radius))
     n, m = sys_.n, sys_.m
     count = wob.size

@@ -17,9 +17,9 @@ leaves an n x n tridiagonal matrix, factored once per step in O(n) without pivot
 Per-point step control: RMS of ``err_i / (atol + rtol max(|y_i|, |y_new_i|))`` over every
 state <= 1, Gustafsson's predictive controller, steps capped at ``hmax``.
 
-The extremes of the bit speed in the steady window come from the cubic Hermite
-interpolant of each step (values and accelerations at both ends); the mean top-drive speed
-over the window (for a torque-driven top) is the integral of the same interpolant.
+The extremes of the bit speed in the steady window, the mean top-drive speed and the end
+of a run on a steady cycle come from the cubic Hermite interpolant of each step
+(:mod:`torsio.solvers.cycles`). The step loop allocates nothing and counts no references.
 
 The law enters through two first-class functions of signature
 :data:`torsio.solvers.law_kernels.LAW_SIGNATURE`; the kernels below have explicit
@@ -32,15 +32,31 @@ import math
 
 import numpy as np
 
+from torsio.solvers.chain_kernel import (
+    TOP_SIZE,
+    accelerations,
+    controller_solve,
+    forces,
+    mass_factors,
+    saturated,
+)
 from torsio.solvers.compiled import kernel_signature, njit, prange
+from torsio.solvers.cycles import (
+    CYCLE_MAX,
+    CYCLE_MIN,
+    CYCLE_SIZE,
+    extremes_of_cubic,
+    integral_of_cubic,
+    track_cycle,
+)
 
 __all__ = [
     "GAMMA",
     "OUT_COLUMNS",
     "RODAS_A",
     "RODAS_C",
+    "SETTINGS_SIZE",
     "TOP_SIZE",
-    "extremes_of_cubic",
     "integrate_parallel",
     "integrate_serial",
 ]
@@ -67,173 +83,24 @@ RODAS_C[5, :5] = (
 )
 # y_new = (argument of stage 6) + k6 and the embedded error estimate is k6 itself.
 
-OUT_COLUMNS = 6
-"""Per point: bit speed max, min [rad/s], accepted, rejected steps, status, mean top speed."""
+OUT_COLUMNS = 7
+"""Per point: bit speed max, min [rad/s], accepted, rejected steps, status, mean top speed
+[rad/s], time the run ended [s] (t_end, or earlier on a steady cycle)."""
 
-# the top-drive vector: [has node, m, u0, max_torque, k1, c1, d_e, d_T, a (3x3), b (3x2), c, w]
-_A0, _B0, _C0, _W0 = 8, 17, 23, 26
-TOP_SIZE = 29
-
-
-@njit(cache=True)
-def extremes_of_cubic(
-    u0: float, u1: float, d0: float, d1: float, lo: float, vmax: float, vmin: float
-) -> tuple[float, float]:
-    """Max and min of the cubic Hermite interpolant on [lo, 1] (d0, d1 scaled by h)."""
-    c2 = -3.0 * u0 - 2.0 * d0 + 3.0 * u1 - d1
-    c3 = 2.0 * u0 + d0 - 2.0 * u1 + d1
-    ulo = u0 + lo * (d0 + lo * (c2 + lo * c3))
-    vmax = max(vmax, ulo, u1)
-    vmin = min(vmin, ulo, u1)
-    a = 3.0 * c3  # u'(x) = d0 + 2 c2 x + 3 c3 x^2
-    b = 2.0 * c2
-    if abs(a) > 1e-14 * (abs(b) + abs(d0)):
-        disc = b * b - 4.0 * a * d0
-        if disc >= 0.0:
-            sq = math.sqrt(disc)
-            q = -0.5 * (b + math.copysign(sq, b))
-            for root in (q / a, d0 / q if q != 0.0 else -1.0):
-                if lo < root < 1.0:
-                    u = u0 + root * (d0 + root * (c2 + root * c3))
-                    vmax = max(vmax, u)
-                    vmin = min(vmin, u)
-    elif b != 0.0:
-        root = -d0 / b
-        if lo < root < 1.0:
-            u = u0 + root * (d0 + root * (c2 + root * c3))
-            vmax = max(vmax, u)
-            vmin = min(vmin, u)
-    return vmax, vmin
+SETTINGS_SIZE = 10
+"""The kernel's settings: t_end, start of the window [s], rtol, atol, first and largest
+step [s], steps allowed, bit radius [m], steady-cycle tolerance (0: run to t_end; see
+:mod:`torsio.solvers.cycles`), omega_1 [rad/s]."""
 
 
-@njit(cache=True)
-def _integral_of_cubic(u0: float, u1: float, d0: float, d1: float, lo: float) -> float:
-    """Integral over x in [lo, 1] of the cubic Hermite interpolant (in units of the step)."""
-    c2 = -3.0 * u0 - 2.0 * d0 + 3.0 * u1 - d1
-    c3 = 2.0 * u0 + d0 - 2.0 * u1 + d1
-    upper = u0 + d0 / 2.0 + c2 / 3.0 + c3 / 4.0
-    lower = lo * (u0 + lo * (d0 / 2.0 + lo * (c2 / 3.0 + lo * c3 / 4.0)))
-    return upper - lower
+@njit(cache=True, error_model="numpy", _nrt=False)
+def _integrate_point(
+    chain, top, torque, slope, p, settings, wob, omega, omega_set, out, vectors, small
+) -> None:
+    """RODAS4 from rest to t_end; ``out`` gets the :data:`OUT_COLUMNS` of the point.
 
-
-@njit(cache=True)
-def _forces(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, fv, fz) -> float:
-    """fv = chain forces (motor and bit included), fz = z'; returns the bit speed."""
-    n = phi.size
-    kd, ku, cd, cu, drag, applied = chain[2], chain[3], chain[4], chain[5], chain[6], chain[7]
-    for i in range(n):
-        fv[i] = applied[i] - drag[i] * omega - kd[i] * phi[i] - cd[i] * v[i]
-    for i in range(n - 1):
-        fv[i] -= ku[i] * phi[i + 1] + cu[i] * v[i + 1]
-        fv[i + 1] -= ku[i] * phi[i] + cu[i] * v[i]
-    bit_speed = omega + v[n - 1]
-    fv[n - 1] -= torque(p, bit_speed, wob, radius)
-    if top[0] != 0.0:
-        m = int(top[1])
-        error = omega_set - (omega + v[0]) if omega_set == omega_set else 0.0
-        pipe = top[4] * (phi[0] - phi[1]) + top[5] * (v[0] - v[1])
-        free = top[2] + top[6] * error + top[7] * pipe
-        for j in range(m):
-            free += top[_C0 + j] * z[j]
-        u = min(max(free, -top[3]), top[3])
-        fv[0] += u
-        for j in range(m):
-            s = top[_B0 + 2 * j] * error + top[_B0 + 2 * j + 1] * pipe
-            s += top[_W0 + j] * (u - free)
-            for q in range(m):
-                s += top[_A0 + 3 * j + q] * z[q]
-            fz[j] = s
-    return bit_speed
-
-
-@njit(cache=True)
-def _mass_factors(chain, mpiv, mlow) -> None:
-    """LU factors of the tridiagonal [I] (no pivoting: it is positive definite)."""
-    md, mu = chain[0], chain[1]
-    mpiv[0] = md[0]
-    for i in range(1, md.size):
-        mlow[i] = mu[i - 1] / mpiv[i - 1]
-        mpiv[i] = md[i] - mlow[i] * mu[i - 1]
-
-
-@njit(cache=True)
-def _accelerations(chain, mpiv, mlow, fv, acc) -> None:
-    """acc = [I]^-1 fv from the factors of :func:`_mass_factors`."""
-    n = fv.size
-    mu = chain[1]
-    acc[0] = fv[0]
-    for i in range(1, n):
-        acc[i] = fv[i] - mlow[i] * acc[i - 1]
-    acc[n - 1] /= mpiv[n - 1]
-    for i in range(n - 2, -1, -1):
-        acc[i] = (acc[i] - mu[i] * acc[i + 1]) / mpiv[i]
-
-
-@njit(cache=True)
-def _controller_solve(top, g, saturated, q, zy, gains) -> None:
-    """q = (I/g - Z_z)^-1, zy = Z_y and gains = (G_e, G_T, r_0.., r_m-1) of the elimination.
-
-    Z_z = dz'/dz, Z_y = dz'/dy, U_z = du/dz, U_y = du/dy (zero when saturated);
-    G = U_y + U_z q Z_y and r = U_z q (see the module documentation).
+    ``vectors`` (:data:`VECTOR_ROWS`, n) and ``small`` (:data:`SMALL_ROWS`, 8): zeroed work space.
     """
-    m = int(top[1])
-    work = np.zeros((3, 6))
-    for j in range(m):
-        for k in range(m):
-            zz = top[_A0 + 3 * j + k]
-            if saturated:
-                zz -= top[_W0 + j] * top[_C0 + k]
-            work[j, k] = (1.0 / g if j == k else 0.0) - zz
-            work[j, 3 + k] = 1.0 if j == k else 0.0
-    for col in range(m):  # Gauss-Jordan with partial pivoting on at most 3 x 3
-        best = col
-        for r in range(col + 1, m):
-            if abs(work[r, col]) > abs(work[best, col]):
-                best = r
-        for k in range(6):
-            work[col, k], work[best, k] = work[best, k], work[col, k]
-        inverse = 1.0 / work[col, col]
-        for k in range(6):
-            work[col, k] *= inverse
-        for r in range(m):
-            if r != col:
-                factor = work[r, col]
-                for k in range(6):
-                    work[r, k] -= factor * work[col, k]
-    for j in range(m):
-        for k in range(m):
-            q[j, k] = work[j, 3 + k]
-    uy_e = 0.0 if saturated else top[6]
-    uy_t = 0.0 if saturated else top[7]
-    gains[0] = uy_e
-    gains[1] = uy_t
-    for k in range(m):
-        row_gain = 0.0
-        if not saturated:
-            for j in range(m):
-                row_gain += top[_C0 + j] * q[j, k]
-        gains[2 + k] = row_gain
-        zy[k, 0] = top[_B0 + 2 * k] - (top[_W0 + k] * top[6] if saturated else 0.0)
-        zy[k, 1] = top[_B0 + 2 * k + 1] - (top[_W0 + k] * top[7] if saturated else 0.0)
-    for k in range(m):
-        gains[0] += gains[2 + k] * zy[k, 0]
-        gains[1] += gains[2 + k] * zy[k, 1]
-
-
-@njit(cache=True)
-def _saturated(top, omega, omega_set, phi, v, z) -> bool:
-    if top[0] == 0.0 or not top[3] < np.inf:
-        return False
-    error = omega_set - (omega + v[0]) if omega_set == omega_set else 0.0
-    free = top[2] + top[6] * error + top[7] * (top[4] * (phi[0] - phi[1]) + top[5] * (v[0] - v[1]))
-    for j in range(int(top[1])):
-        free += top[_C0 + j] * z[j]
-    return abs(free) > top[3]
-
-
-@njit(cache=True)
-def _integrate_point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out) -> None:
-    """RODAS4 from rest to t_end; ``out`` gets the :data:`OUT_COLUMNS` of the point."""
     t_end, t_window, rtol, atol, h0, hmax = (
         settings[0],
         settings[1],
@@ -250,38 +117,51 @@ def _integrate_point(chain, top, torque, slope, p, settings, wob, omega, omega_s
     m = int(top[1])
     k1, c1 = top[4], top[5]
     size = 2 * n + m
-    phi = np.zeros(n)
-    v = np.full(n, -omega)  # start-up from rest: theta' = 0, controller states 0
-    z = np.zeros(3)
-    kphi = np.zeros((6, n))
-    kv = np.zeros((6, n))
-    kz = np.zeros((6, 3))
-    aphi = np.empty(n)
-    av = np.empty(n)
-    az = np.zeros(3)
-    fphi = np.empty(n)
-    fv = np.empty(n)
-    fz = np.zeros(3)
-    f0v = np.empty(n)
-    f0z = np.zeros(3)
-    uphi = np.empty(n)
-    uv = np.empty(n)
-    uz = np.zeros(3)
-    x = np.empty(n)
-    ipiv = np.empty(n)
-    low = np.zeros(n)
-    band = np.zeros(n)
-    acc = np.empty(n)
-    mpiv = np.empty(n)
-    mlow = np.zeros(n)
-    q = np.zeros((3, 3))
-    zy = np.zeros((3, 2))
-    gains = np.zeros(5)
-    _mass_factors(chain, mpiv, mlow)
+    kphi = vectors[0:6]
+    kv = vectors[6:12]
+    phi, v, aphi, av, fphi, fv, f0v = (
+        vectors[12],
+        vectors[13],
+        vectors[14],
+        vectors[15],
+        vectors[16],
+        vectors[17],
+        vectors[18],
+    )
+    uphi, uv, x, ipiv, low, band, acc, mpiv, mlow = (
+        vectors[19],
+        vectors[20],
+        vectors[21],
+        vectors[22],
+        vectors[23],
+        vectors[24],
+        vectors[25],
+        vectors[26],
+        vectors[27],
+    )
+    phi0, v0, acc0, cross = vectors[28], vectors[29], vectors[30], vectors[31:33]
+    for i in range(n):
+        v[i] = -omega  # start-up from rest: theta' = 0, controller states 0
+    steady_tolerance = settings[8]
+    track = steady_tolerance > 0.0
+    cycle = small[16, 0:CYCLE_SIZE]
+    cycle_settings = small[17, 0:5]
+    cycle_settings[0] = 2.0 * abs(omega)
+    cycle_settings[1] = settings[9]
+    cycle_settings[2] = t_end
+    cycle_settings[3] = t_end - t_window
+    cycle_settings[4] = steady_tolerance
+    kz = small[0:6, 0:3]
+    z, az, fz, f0z, uz = small[6, 0:3], small[6, 3:6], small[7, 0:3], small[7, 3:6], small[8, 0:3]
+    q = small[9:12, 0:3]
+    zy = small[9:12, 3:5]
+    gains = small[12, 0:5]
+    solve_work = small[13:16]
+    mass_factors(chain, mpiv, mlow)
     tiny = 1e-12 * max(1.0, t_end)
 
-    _forces(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, f0v, f0z)
-    _accelerations(chain, mpiv, mlow, f0v, acc)
+    forces(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, f0v, f0z)
+    accelerations(chain, mpiv, mlow, f0v, acc)
     bit_acc0 = acc[n - 1]
     top_acc0 = acc[0]
     t = 0.0
@@ -309,8 +189,8 @@ def _integrate_point(chain, top, torque, slope, p, settings, wob, omega, omega_s
         diag0 = 0.0
         extra01 = 0.0
         if has_top:  # eliminate the controller increments into rows 0 and 1
-            saturated = _saturated(top, omega, omega_set, phi, v, z)
-            _controller_solve(top, g, saturated, q, zy, gains)
+            limited = saturated(top, omega, omega_set, phi, v, z)
+            controller_solve(top, g, limited, q, zy, gains, solve_work)
             extra01 = gains[1] * (g * k1 + c1)
             diag0 = gains[0] - extra01
         # factor [I]/g + [C] + g [K] + s e_N e_N^T (+ the top drive's row-0 terms)
@@ -364,7 +244,7 @@ def _integrate_point(chain, top, torque, slope, p, settings, wob, omega, omega_s
                 for i in range(m):
                     fz[i] = f0z[i]
             else:
-                _forces(chain, top, torque, p, wob, radius, omega, omega_set, aphi, av, az, fv, fz)
+                forces(chain, top, torque, p, wob, radius, omega, omega_set, aphi, av, az, fv, fz)
                 for i in range(n):
                     fphi[i] = av[i] + uphi[i]
                     fv[i] += md[i] * uv[i]
@@ -428,21 +308,34 @@ def _integrate_point(chain, top, torque, slope, p, settings, wob, omega, omega_s
             err_accepted = max(1e-2, err)
             bit0 = v[n - 1]
             top0 = v[0]
+            if track and bit0 < 0.0 <= av[n - 1] + kv[5, n - 1]:  # keep the step's start
+                for i in range(n):
+                    phi0[i] = phi[i]
+                    v0[i] = v[i]
+                    acc0[i] = acc[i]
             for i in range(n):
                 phi[i] = aphi[i] + kphi[5, i]
                 v[i] = av[i] + kv[5, i]
             for i in range(m):
                 z[i] = az[i] + kz[5, i]
-            _forces(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, f0v, f0z)
-            _accelerations(chain, mpiv, mlow, f0v, acc)
+            forces(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, f0v, f0z)
+            accelerations(chain, mpiv, mlow, f0v, acc)
             t_new = t + h
             if t_new > t_window:
                 lo = (t_window - t) / h if t < t_window else 0.0
                 vmax, vmin = extremes_of_cubic(
-                    bit0, v[n - 1], h * bit_acc0, h * acc[n - 1], lo, vmax, vmin
+                    bit0, v[n - 1], h * bit_acc0, h * acc[n - 1], lo, 1.0, vmax, vmin
                 )
                 if has_top:
-                    top_integral += h * _integral_of_cubic(top0, v[0], h * top_acc0, h * acc[0], lo)
+                    top_integral += h * integral_of_cubic(top0, v[0], h * top_acc0, h * acc[0], lo)
+            if track and track_cycle(
+                cycle, t, h, bit0, bit_acc0, phi0, v0, acc0, phi, v, acc, cross, cycle_settings
+            ):  # on a steady cycle: its extremes are those of the rest of the window
+                vmax = max(vmax, cycle[CYCLE_MAX])
+                vmin = min(vmin, cycle[CYCLE_MIN])
+                t = t_new
+                steps += 1
+                break
             bit_acc0 = acc[n - 1]
             top_acc0 = acc[0]
             t = t_new
@@ -461,21 +354,57 @@ def _integrate_point(chain, top, torque, slope, p, settings, wob, omega, omega_s
     out[3] = rejected
     out[4] = status
     out[5] = omega + (top_integral / (t_end - t_window) if has_top else 0.0)
+    out[6] = t
 
 
-@njit(kernel_signature(), cache=True, nogil=True)
+VECTOR_ROWS = 33
+"""Rows of the per-point work space of length n (:func:`_integrate_point`)."""
+SMALL_ROWS = 18
+"""Rows of the per-point work space of length 8 (controller states, their solve, the
+steady-cycle tracker)."""
+
+
+@njit(kernel_signature(), cache=True, nogil=True, error_model="numpy")
 def integrate_serial(chain, top, torque, slope, p, settings, wob, omega, omega_set, out) -> None:
     """Every point in turn, without the GIL (arguments: :func:`kernel_signature`)."""
+    vectors = np.empty((VECTOR_ROWS, chain.shape[1]))
+    small = np.empty((SMALL_ROWS, 8))
     for k in range(wob.size):
+        vectors[:] = 0.0
+        small[:] = 0.0
         _integrate_point(
-            chain, top, torque, slope, p, settings, wob[k], omega[k], omega_set[k], out[k]
+            chain,
+            top,
+            torque,
+            slope,
+            p,
+            settings,
+            wob[k],
+            omega[k],
+            omega_set[k],
+            out[k],
+            vectors,
+            small,
         )
 
 
-@njit(kernel_signature(), cache=True, parallel=True)
+@njit(kernel_signature(), cache=True, parallel=True, error_model="numpy")
 def integrate_parallel(chain, top, torque, slope, p, settings, wob, omega, omega_set, out) -> None:
     """Every point on numba's thread pool (dynamic sharing: set the chunk size to 1)."""
     for k in prange(wob.size):
+        vectors = np.zeros((VECTOR_ROWS, chain.shape[1]))
+        small = np.zeros((SMALL_ROWS, 8))
         _integrate_point(
-            chain, top, torque, slope, p, settings, wob[k], omega[k], omega_set[k], out[k]
+            chain,
+            top,
+            torque,
+            slope,
+            p,
+            settings,
+            wob[k],
+            omega[k],
+            omega_set[k],
+            out[k],
+            vectors,
+            small,
         )
