@@ -170,11 +170,12 @@ def cli_map() -> tuple[float, dict[str, Any]]:
     return time.perf_counter() - start, json.loads(result.stdout)
 
 
-def in_process(system: System) -> tuple[float, np.ndarray]:
+def in_process(system: System) -> tuple[float, np.ndarray, int]:
+    """(seconds, S_SS, points whose run ended on its steady cycle)."""
     wob, rpm = grid()
     start = time.perf_counter()
     result = severity_map(system, wob, rpm, duration=DURATION, steady_window=WINDOW, refine=0)
-    return time.perf_counter() - start, result.severity
+    return time.perf_counter() - start, result.severity, result.info["ended_on_steady_cycle"]
 
 
 def threads() -> int:
@@ -208,7 +209,7 @@ def main() -> int:
     print(f"warm-up (numba compile or cache load, one CLI map): {time.perf_counter() - warm:.1f} s")
 
     cli_seconds, cli_data = cli_map()
-    inproc_seconds, severity = in_process(one)
+    inproc_seconds, severity, ended = in_process(one)
     base_seconds, indices, base_values = baseline(one, args.every)
     error = float(np.max(np.abs(severity.ravel()[indices] - base_values)))
     cli_severity = np.asarray(cli_data["severity"], dtype=float).ravel()
@@ -229,10 +230,15 @@ def main() -> int:
         f"{base_seconds / inproc_seconds:6.0f}x  (target 500x)  max |dS_SS| {error:.1e}"
     )
     print(f"  CLI cost besides the in-process grid: {cli_seconds - inproc_seconds:.2f} s")
+    print(
+        f"  runs ended on their steady cycle (steady_tolerance "
+        f"{cli_data['info']['steady_tolerance']:g}): CLI "
+        f"{cli_data['info']['ended_on_steady_cycle']}, in process {ended} of {POINTS**2}"
+    )
     if not args.skip_10dof:
         ten = ritto("C", 10)
         in_process(ten)  # warm
-        seconds10, severity10 = in_process(ten)
+        seconds10, severity10, ended10 = in_process(ten)
         base10, indices10, values10 = baseline(ten, args.every_10dof)
         error10 = float(np.max(np.abs(severity10.ravel()[indices10] - values10)))
         print("\n10-DOF strategy C")
@@ -242,7 +248,8 @@ def main() -> int:
         )
         print(
             f"  severity_map in process (refine=0, all cores)  {seconds10:6.2f} s  "
-            f"{base10 / seconds10:6.0f}x  (target 150x)  max |dS_SS| {error10:.1e}"
+            f"{base10 / seconds10:6.0f}x  (target 150x)  max |dS_SS| {error10:.1e}  "
+            f"({ended10} runs ended on their steady cycle)"
         )
     return 0
 
