@@ -189,3 +189,29 @@ def test_malformed_kernel_is_reported(one_dof: System) -> None:
     with pytest.warns(RuntimeWarning, match="numpy engine"):
         result = batch.simulate_batch(system, [150e3], [60.0])
     assert result.engine == "numpy"
+
+
+def _nan_slope(p: Any, w: float, wob: float, radius: float) -> float:
+    """A slope that is not a number once the bit turns slower than p[4] rad/s."""
+    return math.nan if w < p[4] else 0.0
+
+
+def test_a_law_whose_slope_is_not_a_number_is_a_non_finite_state(one_dof: System) -> None:
+    # the law, not the step, is at fault: the point's status says so (not "step size
+    # underflow", as when the step shrank on the NaN until it vanished)
+    from torsio.solvers.batch_results import STATUS_MESSAGES, STATUS_NOT_FINITE
+    from torsio.solvers.law_kernels import compile_law_function
+
+    class NanSlope(TuckerWang):
+        name = "nan-slope"
+
+        def kernel(self) -> Any:
+            torque, _, parameters = super().kernel()
+            return (torque, compile_law_function(_nan_slope), np.append(parameters, 1.0))
+
+    law = NanSlope(a0=0.221, a1=0.2, a2=0.89, a3=0.06, speed_unit="rpm")
+    result = batch.simulate_batch(attrs.evolve(one_dof, law=law), [150e3], [60.0])
+    assert result.engine == "compiled"
+    assert result.status[0] == STATUS_NOT_FINITE
+    assert "non-finite" in STATUS_MESSAGES[STATUS_NOT_FINITE]
+    assert np.isnan(result.severity[0])

@@ -186,6 +186,9 @@ def _integrate_point(
             h = t_end - t
         g = GAMMA * h
         s = slope(p, omega + v[n - 1], wob, radius)
+        if not math.isfinite(s):  # the law's slope, not the step, is at fault
+            status = 3
+            break
         diag0 = 0.0
         extra01 = 0.0
         if has_top:  # eliminate the controller increments into rows 0 and 1
