@@ -243,3 +243,24 @@ def test_non_chain_model_needs_the_scipy_engine(one_dof: System) -> None:
     )
     expected = reference(system, 1e4, 60.0, 60.0, 20.0)
     assert abs(result.severity[0] - expected) < 1e-3
+
+
+def test_a_failing_point_of_the_scipy_engine_is_marked_not_raised(one_dof: System) -> None:
+    # one point's failure is reported by its status, as with the other engines, so that
+    # a map with on_failure="mark" keeps the other points
+    class NanAboveWeight:  # the documented contract: NaN torque above 150 kN
+        name = "nan-above-150-kN"
+
+        def __init__(self) -> None:
+            self.law = TuckerWang(a0=0.221, a1=0.2, a2=0.89, a3=0.06, speed_unit="rpm")
+
+        def torque(self, speed: object, wob: object, radius: object) -> np.ndarray:
+            values = self.law.torque(speed, wob, radius)
+            return np.where(np.asarray(wob) > 150e3, np.nan, values)
+
+    system = attrs.evolve(one_dof, law=NanAboveWeight())
+    result = batch.simulate_batch(
+        system, [100e3, 200e3], [120.0, 120.0], duration=30.0, steady_window=10.0, engine="scipy"
+    )
+    assert result.status.tolist() == [batch_results.STATUS_OK, batch_results.STATUS_SOLVER_FAILED]
+    assert np.isfinite(result.severity[0]) and np.isnan(result.severity[1])

@@ -46,11 +46,9 @@ from typing import Any
 import attrs
 import numpy as np
 
-from torsio.errors import ConfigError
+from torsio.errors import ConfigError, SolverError
 from torsio.physics.system import System
-from torsio.solvers.batch_results import (
-    BatchResults,
-)
+from torsio.solvers.batch_results import STATUS_SOLVER_FAILED, BatchResults
 from torsio.solvers.compiled import HAVE_NUMBA, numba
 from torsio.solvers.law_kernels import LawKernel, law_kernel
 from torsio.solvers.reference import reference_severity, run_times
@@ -387,7 +385,11 @@ def simulate_batch(
         for k in range(wob_arr.size):
             at = {} if torque_driven else {"rpm": float(rpm_arr[k])}
             point = system.at(wob=float(wob_arr[k]), **at)
-            _, info = reference_severity(point, duration, steady_window, rtol=rtol, atol=atol)
+            try:
+                _, info = reference_severity(point, duration, steady_window, rtol=rtol, atol=atol)
+            except SolverError:  # one point's failure, reported by its status like the others'
+                out[k, :6] = (math.nan, math.nan, 0, 0, STATUS_SOLVER_FAILED, math.nan)
+                continue
             extremes = (info["bit_speed_max"], info["bit_speed_min"])
             out[k, :6] = (*extremes, info["steps"], 0, 0, info["top_speed_mean"])
     elif wob_arr.size:
