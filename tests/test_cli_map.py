@@ -166,3 +166,20 @@ def test_progress_bar_only_on_a_terminal(monkeypatch, capsys) -> None:
     main(["map", *ARGS])
     assert seen["progress"] is True
     capsys.readouterr()
+
+
+def test_the_files_simulation_tolerances_reach_the_map(capsys, tmp_path: Path) -> None:
+    # [simulation] rtol/atol set the map's engine too (--rtol wins); the keys of single runs
+    # only are said on stderr, never silently dropped
+    from importlib import resources
+
+    text = resources.files("torsio").joinpath("data/ritto2017.toml").read_text(encoding="utf-8")
+    path = tmp_path / "tolerances.toml"
+    path.write_text(text + "\n[simulation]\nrtol = 1e-4\natol = 1e-5\noutput_step = 0.05\n")
+    assert main(["map", str(path), *ARGS, "--json"]) == 0
+    captured = capsys.readouterr()
+    data = json.loads(captured.out)
+    assert (data["info"]["rtol"], data["info"]["atol"]) == (1e-4, 1e-5)
+    assert "[simulation] output_step apply to single runs" in captured.err
+    data = run_json(capsys, str(path), *ARGS, "--rtol", "1e-6")
+    assert data["info"]["rtol"] == 1e-6

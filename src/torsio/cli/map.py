@@ -218,7 +218,8 @@ _KEYS = {
     "simulation.steady_window": "--window",
     "threshold": "--threshold",
     "refine": "--refine",
-    "rtol": "--rtol",
+    "rtol": "--rtol (simulation.rtol)",
+    "atol": "simulation.atol",
     "steady_tolerance": "--steady-tol",
     "engine": "--engine",
     "workers": "--workers",
@@ -315,8 +316,19 @@ def _run(args: argparse.Namespace) -> int:
         options["threshold"] = args.threshold
     if args.refine is not None:
         options["refine"] = args.refine
+    for key in ("rtol", "atol"):  # the file's tolerances, unless --rtol says otherwise
+        if key in simulation:
+            options[key] = simulation[key]
     if args.rtol is not None:
         options["rtol"] = args.rtol
+    single_run_only = sorted(set(simulation) & {"method", "output_step", "stick_threshold"})
+    if single_run_only:
+        print(
+            f"torsio map: [simulation] {', '.join(single_run_only)} apply to single runs "
+            "(torsio simulate, report) only: the map integrates every point with its own "
+            "engine (--engine) and reads S_SS from the extremes of the bit speed",
+            file=sys.stderr,
+        )
     if args.steady_tol is not None:
         options["steady_tolerance"] = args.steady_tol
     if args.on_failure is not None:
