@@ -25,7 +25,12 @@ import numpy as np
 
 from torsio.errors import ConfigError
 
-__all__ = ["CRITICAL_STATUSES", "REQUIRED_KEYS", "check_map_data"]
+__all__ = ["CRITICAL_STATUSES", "FORMAT", "FORMAT_VERSION", "REQUIRED_KEYS", "check_map_data"]
+
+FORMAT = "torsio-severity-map"
+"""The ``format`` key of saved maps (version :data:`FORMAT_VERSION`)."""
+
+FORMAT_VERSION = 1
 
 REQUIRED_KEYS = (
     "format",
@@ -102,8 +107,6 @@ def check_map_data(data: Any, where: str) -> None:
             where,
             f"expected a JSON object with the keys of a severity map, got {type(data).__name__}",
         )
-    from torsio.analysis.map_results import FORMAT
-
     if data.get("format") != FORMAT:
         raise ConfigError(
             f"{where}: format", f"expected a {FORMAT!r} file, got format {data.get('format')!r}"

@@ -21,6 +21,7 @@ from typing import Any
 import attrs
 import numpy as np
 
+from torsio.analysis.map_checks import FORMAT, FORMAT_VERSION, check_map_data
 from torsio.errors import ConfigError
 from torsio.solvers.batch_results import STATUS_MESSAGES
 from torsio.units import RPM_TO_RAD_S
@@ -41,12 +42,6 @@ STICK_SLIP_THRESHOLD = 0.05
 
 CLASSES = ("stable", "stick-slip", "severe")
 """Class names, in increasing severity (``"failed"`` marks a point the solver failed on)."""
-
-
-FORMAT = "torsio-severity-map"
-"""The ``format`` key of saved maps (version :data:`FORMAT_VERSION`)."""
-
-FORMAT_VERSION = 1
 
 
 class MapInterrupted(KeyboardInterrupt):
@@ -472,7 +467,5 @@ def load_map(path: str | Path) -> SeverityMap:
         ) from None
     except (ValueError, KeyError, EOFError, RecursionError, zipfile.BadZipFile) as exc:
         raise ConfigError("path", f"{str(path)!r} is not a saved severity map ({exc})") from None
-    from torsio.analysis.map_checks import check_map_data
-
     check_map_data(data, str(path))
     return SeverityMap.from_dict(data)

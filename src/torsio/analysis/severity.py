@@ -41,6 +41,7 @@ from typing import Any
 import numpy as np
 
 from torsio.errors import ConfigError
+from torsio.model.modal import first_natural_frequency as model_first_frequency
 
 DEFAULT_DURATION_PERIODS = 40.0
 """Default run length, in periods 2 pi / omega_1 of the first natural mode."""
@@ -63,18 +64,10 @@ creeps at a few per cent of Omega instead of stopping exactly."""
 def first_natural_frequency(system: Any) -> float:
     """omega_1 [rad/s] of a System's (or a model's) structure, top held, undamped.
 
-    For the distributed model, the first frequency of its exact continuum.
+    For the distributed model, the first frequency of its exact continuum
+    (:func:`torsio.model.modal.first_natural_frequency`).
     """
-    from torsio.model.wave import is_wave_model
-
-    model = getattr(system, "model", system)
-    if is_wave_model(model):
-        from torsio.solvers.wave_batch import wave_scales
-
-        return float(wave_scales(model)[1])
-    from torsio.model.modal import modal_analysis
-
-    return float(modal_analysis(model, 1).frequencies_rad[0])
+    return model_first_frequency(system)
 
 
 def run_times(

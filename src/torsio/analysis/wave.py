@@ -35,31 +35,18 @@ import attrs
 import numpy as np
 
 from torsio.analysis.severity import DEFAULT_DURATION_PERIODS, DEFAULT_WINDOW_PERIODS, check_window
+from torsio.analysis.transient_results import TransientResults
 from torsio.errors import ConfigError
-from torsio.model.continuum import continuum_modes
-from torsio.model.wave import WaveModel, check_wave_damping, is_wave_model
+from torsio.model.wave import WaveModel, check_wave_damping, first_frequency, is_wave_model
 from torsio.solvers.characteristics import WaveState, node_offsets
 from torsio.solvers.wave_march import WaveRun, march
-from torsio.solvers.wave_top import held_top, top_arrays
+from torsio.solvers.wave_top import top_boundary
 
 DEFAULT_SAMPLES_PER_PERIOD = 200
 """Output samples per period of the first continuum mode (as the lumped transient)."""
 
 DEFAULT_STICK_THRESHOLD = 0.1
 """The bit sticks while |bit speed| < 0.1 Omega (as the lumped transient)."""
-
-
-def first_frequency(grid: WaveModel) -> float:
-    """First natural frequency [rad/s] of the string on the grid (top held, exact continuum)."""
-    return float(continuum_modes(grid.grid_string(), count=1).frequencies_rad[0])
-
-
-def top_boundary(system: Any, grid: WaveModel) -> Any:
-    """The top as stepping arrays: held at Omega, or the system's top drive."""
-    boundary = system.top.boundary(system) if hasattr(system.top, "boundary") else None
-    if boundary is None or boundary.held:
-        return held_top(system.omega)
-    return top_arrays(boundary, float(grid.impedances[0]), grid.time_step, system.omega)
 
 
 @attrs.frozen(eq=False)
@@ -104,9 +91,7 @@ def _depths(grid: WaveModel) -> np.ndarray:
 
 def _transient_results(values: dict[str, Any]) -> Any:
     """A TransientResults from the values it has fields for."""
-    from torsio.analysis import transient
-
-    cls = transient.TransientResults
+    cls = TransientResults
     return cls(**{k: v for k, v in values.items() if k in attrs.fields_dict(cls)})
 
 

@@ -23,7 +23,8 @@ from typing import Any
 import attrs
 
 from torsio.examples import ritto2017_string
-from torsio.io.validation_page import ROUND_OFF_FRACTION, difference_text, page, table
+from torsio.io import validation_page
+from torsio.io.validation_page import ROUND_OFF_FRACTION, difference_text, table
 from torsio.model.continuum import continuum_modes
 from torsio.model.discretize import StrategyA, StrategyB, StrategyC
 from torsio.model.drillstring import DrillString
@@ -428,6 +429,11 @@ def map_point_against_single_run() -> Check:
         0.01,
         "issue tolerance",
     )
+
+
+def page() -> str:
+    """The whole validation page (``docs/validation.md``): every check of :data:`CHECKS`."""
+    return validation_page.page(CHECKS)
 
 
 def main(argv: list[str] | None = None) -> int:

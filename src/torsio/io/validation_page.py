@@ -8,6 +8,7 @@ check's tolerance as a bound, so that the page is the same on every machine.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -71,11 +72,12 @@ linear-algebra library: it is shown as a bound ("< 1e-7 %").
 """
 
 
-def page() -> str:
-    """The whole validation page: every check of :data:`torsio.io.validation.CHECKS`."""
-    from torsio.io.validation import CHECKS
+def page(checks: Mapping[str, Callable[[], Check]]) -> str:
+    """The whole validation page from every check in ``checks`` (name: function), run here.
 
-    rows = [function() for function in CHECKS.values()]
+    :func:`torsio.io.validation.page` passes :data:`torsio.io.validation.CHECKS`.
+    """
+    rows = [function() for function in checks.values()]
     failed = [row.quantity for row in rows if not row.passed]
     status = "All checks pass." if not failed else f"FAILING: {', '.join(failed)}"
     return HEADER + table(rows) + f"\n{status}\n"

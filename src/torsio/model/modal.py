@@ -29,6 +29,7 @@ from torsio.model.continuum import ContinuumModes, continuum_modes
 from torsio.model.drillstring import DrillString
 from torsio.model.lumped import LumpedModel
 from torsio.model.shapes import normalize_shape
+from torsio.model.wave import first_frequency, is_wave_model
 
 
 @attrs.frozen(repr=False)
@@ -190,6 +191,18 @@ class ModalComparison:
             data["continuum_rigid_bha_hz"] = self.reference_hz.tolist()
             data["relative_error_rigid_bha"] = self.relative_error.tolist()
         return data
+
+
+def first_natural_frequency(model: Any) -> float:
+    """omega_1 [rad/s] of a model (or a System's model), top held, undamped.
+
+    For a lumped model its first mode; for the distributed (``wave``) model the first
+    frequency of its exact continuum. Every default that counts periods reads this.
+    """
+    model = getattr(model, "model", model)
+    if is_wave_model(model):
+        return first_frequency(model)
+    return float(modal_analysis(model, 1).frequencies_rad[0])
 
 
 def _is_tridiagonal(matrix: np.ndarray) -> bool:

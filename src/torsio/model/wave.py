@@ -49,6 +49,7 @@ import attrs
 import numpy as np
 
 from torsio.errors import ConfigError
+from torsio.model.continuum import continuum_modes
 from torsio.model.drillstring import DrillString
 
 DEFAULT_MAX_TIME_STEP = 5e-3
@@ -282,6 +283,11 @@ def _positive(key: str, value: Any, default: float) -> float:
 def is_wave_model(model: Any) -> bool:
     """Whether ``model`` is the wave strategy's grid (not a lumped model)."""
     return isinstance(model, WaveModel)
+
+
+def first_frequency(grid: WaveModel) -> float:
+    """First natural frequency [rad/s] of the string on the grid (top held, exact continuum)."""
+    return float(continuum_modes(grid.grid_string(), count=1).frequencies_rad[0])
 
 
 def check_wave_damping(damping: Any) -> float:

@@ -59,6 +59,7 @@ import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.model.lumped import LumpedModel
+from torsio.model.modal import first_natural_frequency
 from torsio.physics.damping import ModelDamping, RayleighDamping
 from torsio.physics.laws import TuckerWang
 from torsio.physics.system import System
@@ -148,16 +149,10 @@ class DimensionlessGroups:
         return data
 
 
-def _first_frequency(model: LumpedModel) -> float:
-    from torsio.model.modal import modal_analysis
-
-    return float(modal_analysis(model, 1).frequencies_rad[0])
-
-
 def dimensionless_groups(system: System) -> DimensionlessGroups:
     """k_eq, omega_1, I_eq, Pi_1, Pi_2 (and Tucker-Wang b0..b3) of a System."""
     k_eq = system.model.equivalent_stiffness
-    omega1 = _first_frequency(system.model)
+    omega1 = first_natural_frequency(system.model)
     law = system.law
     tucker = None
     if isinstance(law, TuckerWang):

@@ -104,17 +104,6 @@ def _max_torque(value: Any) -> Any:
     return math.inf if value is None else _to_float(value)
 
 
-def _first_frequency(system: Any) -> float:
-    from torsio.model.modal import modal_analysis
-    from torsio.model.wave import is_wave_model
-
-    if is_wave_model(system.model):  # the distributed model: its exact continuum
-        from torsio.analysis.wave import first_frequency
-
-        return first_frequency(system.model)
-    return float(modal_analysis(system.model, 1).frequencies_rad[0])
-
-
 @attrs.frozen
 class ConstantSpeedTop:
     """Top drive held at the surface speed Omega of the operating point (paper Eq. 3)."""
@@ -274,8 +263,11 @@ class SoftTorqueTopDrive:
                 "the SoftTorque default tuning needs the system (omega_1, zeta); pass it",
             )
         kp = self.kp if self.kp is not None else top_pipe_impedance(system)
-        ki = self.ki if self.ki is not None else _first_frequency(system) ** 2 * self.inertia
-        return kp, ki
+        if self.ki is not None:
+            return kp, self.ki
+        from torsio.model.modal import first_natural_frequency  # scipy: not for `torsio laws`
+
+        return kp, first_natural_frequency(system.model) ** 2 * self.inertia
 
     def boundary(self, system: Any) -> TopDriveBoundary:
         """Node 0 with the PI integral as controller state, tuned on ``system``."""

@@ -48,7 +48,7 @@ import numpy as np
 
 from torsio.errors import ConfigError, SolverError
 from torsio.physics.system import System
-from torsio.solvers.batch_results import STATUS_SOLVER_FAILED, BatchResults
+from torsio.solvers.batch_results import STATUS_SOLVER_FAILED, BatchResults, batch_points
 from torsio.solvers.compiled import HAVE_NUMBA, numba
 from torsio.solvers.law_kernels import LawKernel, law_kernel
 from torsio.solvers.reference import reference_severity, run_times
@@ -246,21 +246,6 @@ def resolve_engine(engine: str, law: Any) -> tuple[str, LawKernel | None]:
     return "compiled", kernel
 
 
-def _check_points(wob: Any, rpm: Any) -> tuple[np.ndarray, np.ndarray]:
-    wob_arr, rpm_arr = np.broadcast_arrays(
-        np.asarray(wob, dtype=float), np.asarray(rpm, dtype=float)
-    )
-    wob_arr = np.ascontiguousarray(wob_arr.ravel())
-    rpm_arr = np.ascontiguousarray(rpm_arr.ravel())
-    if wob_arr.size and not (np.isfinite(wob_arr).all() and (wob_arr >= 0).all()):
-        bad = wob_arr[~(np.isfinite(wob_arr) & (wob_arr >= 0))][0]
-        raise ConfigError("wob", f"expected non-negative finite weights on bit in N, got {bad!r}")
-    if rpm_arr.size and not (np.isfinite(rpm_arr).all() and (rpm_arr > 0).all()):
-        bad = rpm_arr[~(np.isfinite(rpm_arr) & (rpm_arr > 0))][0]
-        raise ConfigError("rpm", f"expected positive finite rotary speeds, got {bad!r}")
-    return wob_arr, rpm_arr
-
-
 def simulate_batch(
     system: System,
     wob: Any,
@@ -321,19 +306,7 @@ def simulate_batch(
         from torsio.solvers.wave_batch import simulate_wave_batch
 
         return simulate_wave_batch(system, wob, rpm, duration, steady_window, rtol, atol)
-    boundary = system.top.boundary(system)
-    torque_driven = not boundary.held and not math.isfinite(boundary.set_speed)
-    if torque_driven != (rpm is None):
-        raise ConfigError(
-            "rpm",
-            "a top drive without a set speed (kind 'torque') takes no rotary speeds (rpm=None);"
-            " S_SS is relative to its mean speed"
-            if torque_driven
-            else "expected rotary speeds in rpm",
-        )
-    wob_arr, rpm_arr = _check_points(wob, 60.0 if rpm is None else rpm)
-    if torque_driven:
-        rpm_arr = np.full_like(wob_arr, np.nan)
+    wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)
     for key, value in (("rtol", rtol), ("atol", atol)):
         if not (math.isfinite(value) and value > 0):
             raise ConfigError(key, f"expected a positive tolerance, got {value!r}")

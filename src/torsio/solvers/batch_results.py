@@ -2,8 +2,13 @@
 
 from __future__ import annotations
 
+import math
+from typing import Any
+
 import attrs
 import numpy as np
+
+from torsio.errors import ConfigError
 
 STATUS_OK = 0
 STATUS_MAX_STEPS = 1
@@ -18,6 +23,37 @@ STATUS_MESSAGES = {
     STATUS_SOLVER_FAILED: "solve_ivp failed (scipy engine)",
 }
 """What each per-point status code means."""
+
+
+def batch_points(system: Any, wob: Any, rpm: Any) -> tuple[np.ndarray, np.ndarray, bool]:
+    """(wob [N], rpm [rpm], torque_driven) of a batch, broadcast, flat and checked.
+
+    ``rpm`` is None exactly for a top drive without a set speed; its rpm are then NaN.
+    """
+    boundary = system.top.boundary(system)
+    torque_driven = not boundary.held and not math.isfinite(boundary.set_speed)
+    if torque_driven != (rpm is None):
+        raise ConfigError(
+            "rpm",
+            "a top drive without a set speed (kind 'torque') takes no rotary speeds (rpm=None);"
+            " S_SS is relative to its mean speed"
+            if torque_driven
+            else "expected rotary speeds in rpm",
+        )
+    wob_arr, rpm_arr = np.broadcast_arrays(
+        np.asarray(wob, dtype=float), np.asarray(60.0 if rpm is None else rpm, dtype=float)
+    )
+    wob_arr = np.ascontiguousarray(wob_arr.ravel())
+    rpm_arr = np.ascontiguousarray(rpm_arr.ravel())
+    if wob_arr.size and not (np.isfinite(wob_arr).all() and (wob_arr >= 0).all()):
+        bad = wob_arr[~(np.isfinite(wob_arr) & (wob_arr >= 0))][0]
+        raise ConfigError("wob", f"expected non-negative finite weights on bit in N, got {bad!r}")
+    if rpm_arr.size and not (np.isfinite(rpm_arr).all() and (rpm_arr > 0).all()):
+        bad = rpm_arr[~(np.isfinite(rpm_arr) & (rpm_arr > 0))][0]
+        raise ConfigError("rpm", f"expected positive finite rotary speeds, got {bad!r}")
+    if torque_driven:
+        rpm_arr = np.full_like(wob_arr, np.nan)
+    return wob_arr, rpm_arr, torque_driven
 
 
 @attrs.frozen(repr=False)

@@ -17,8 +17,11 @@ from typing import Any
 import numpy as np
 
 from torsio.analysis.severity import default_times
-from torsio.errors import ConfigError, SolverError
-from torsio.model.wave import check_wave_damping
+from torsio.errors import SolverError
+from torsio.model.wave import check_wave_damping, first_frequency
+from torsio.solvers.batch_results import BatchResults, batch_points
+from torsio.solvers.wave_march import march
+from torsio.solvers.wave_top import top_boundary
 
 
 def wave_scales(grid: Any) -> tuple[float, float]:
@@ -27,8 +30,6 @@ def wave_scales(grid: Any) -> tuple[float, float]:
     k_eq = 1 / sum(L_i / (G_i J_i)): the static stiffness seen at the bit with the top
     held (Eq. 9 for the continuous string); omega_1 the grid string's first exact mode.
     """
-    from torsio.analysis.wave import first_frequency
-
     compliance = sum(1.0 / s.stiffness for s in grid.grid_string().flexible_sections)
     return 1.0 / compliance, first_frequency(grid)
 
@@ -44,20 +45,9 @@ def simulate_wave_batch(
     **ignored: Any,
 ) -> Any:
     """S_SS of the wave model at each (wob[k], rpm[k]); returns a ``BatchResults``."""
-    from torsio.analysis.wave import top_boundary
-    from torsio.solvers.batch import _check_points
-    from torsio.solvers.batch_results import BatchResults
-    from torsio.solvers.wave_march import march
-
     grid = system.model
     alpha = check_wave_damping(system.damping)
-    boundary = system.top.boundary(system)
-    torque_driven = not boundary.held and not math.isfinite(boundary.set_speed)
-    if torque_driven != (rpm is None):
-        raise ConfigError("rpm", "rpm=None exactly for a top drive without a set speed")
-    wob_arr, rpm_arr = _check_points(wob, 60.0 if rpm is None else rpm)
-    if torque_driven:
-        rpm_arr = np.full_like(wob_arr, np.nan)
+    wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)
     if duration is None or steady_window is None:
         default_duration, default_window = default_times(wave_scales(grid)[1])
         duration = default_duration if duration is None else duration

@@ -126,3 +126,11 @@ def with_impedance(top: TopArrays, impedance: float, time_step: float) -> TopArr
     if top.boundary is None:
         raise ValueError("these top arrays keep no top-drive description to rebuild them from")
     return top_arrays(top.boundary, impedance, time_step, top.set_speed)
+
+
+def top_boundary(system: Any, grid: Any) -> TopArrays:
+    """The top of ``system`` on the wave grid: held at Omega, or its top drive, as arrays."""
+    boundary = system.top.boundary(system) if hasattr(system.top, "boundary") else None
+    if boundary is None or boundary.held:
+        return held_top(system.omega)
+    return top_arrays(boundary, float(grid.impedances[0]), grid.time_step, system.omega)
