@@ -51,7 +51,7 @@ def finite_difference_jacobian(dynamics: Dynamics, y: np.ndarray) -> np.ndarray:
     return jac
 
 
-@pytest.mark.parametrize("strategy", ["A", "C"])
+@pytest.mark.parametrize("strategy", ["A", "B", "C"])
 @pytest.mark.parametrize("top", tops(), ids=lambda t: getattr(t, "name", "?"))
 def test_jacobian_is_the_derivative_of_the_rhs(strategy: str, top: object) -> None:
     # exact identity: the analytic Jacobian equals a central difference of rhs
@@ -90,6 +90,24 @@ def test_held_top_keeps_the_model_and_a_top_node_extends_it() -> None:
     assert driven.mass_diag[0] == J_TD
     # the extended chain is free: rigid rotation stores no strain ([K] 1 = 0)
     assert np.allclose(driven.stiffness_matrix.sum(axis=1), 0.0, atol=1e-9 * k1)
+
+
+def test_strategy_b_chain_is_tied_to_the_top_at_its_first_node_only() -> None:
+    # [K] 1 of a chain is k_1 e_1 exactly (each lower row is -k_i + (k_i + k_i+1) - k_i+1);
+    # strategy B's drill-pipe/BHA junction leaves round-off in that row sum (3.6e-12 N m/rad
+    # for the built-in string), which is not a spring to the top: a top drive with inertia
+    # takes the model, and its node joins the first node by k_1 and c_1 = beta k_1
+    system = System.from_config(builtin_config(), strategy="B").at(wob=100e3, rpm=60)
+    k = system.model.stiffness
+    assert k.sum(axis=1)[1] != 0.0  # the round-off this checks against is really there
+    springs = -np.diag(k, 1)  # k_2 .. k_n: the chain's springs below the first node
+    assert system.model.top_stiffness[0] == k[0, 0] - springs[0]
+    assert not np.any(system.model.top_stiffness[1:])
+    driven = system.with_top(PITopDrive(inertia=J_TD, kp=5e3, ki=J_TD)).dynamics()
+    k1 = system.model.top_stiffness[0]
+    assert driven.dofs == system.model.dofs + 1 and driven.states == 1
+    assert driven.stiffness_upper[0] == -k1
+    assert driven.damping_upper[0] == -system.damping.beta * k1
 
 
 def test_consistent_mass_with_a_top_drive_is_refused() -> None:
