@@ -126,16 +126,14 @@ _Runner = PointRunner
 
 
 def _scales(system: System) -> tuple[float, float]:
-    from torsio.model.modal import modal_analysis
+    from torsio.model.modal import first_natural_frequency
     from torsio.model.wave import is_wave_model
 
     if is_wave_model(system.model):
         from torsio.solvers.wave_batch import wave_scales
 
         return wave_scales(system.model)
-
-    omega1 = float(modal_analysis(system.model, 1).frequencies_rad[0])
-    return float(system.model.equivalent_stiffness), omega1
+    return float(system.model.equivalent_stiffness), first_natural_frequency(system.model)
 
 
 def severity_map(

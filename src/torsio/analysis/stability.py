@@ -62,10 +62,10 @@ from typing import Any
 
 import attrs
 import numpy as np
-import scipy.linalg
 import scipy.optimize
 
 from torsio.errors import ConfigError
+from torsio.model.modal import natural_frequencies
 from torsio.physics.dynamics import Dynamics, bit_slope
 from torsio.physics.system import System
 from torsio.units import RPM_TO_RAD_S
@@ -191,7 +191,7 @@ def critical_bit_damping(system: System) -> CriticalDamping:
     """
     model = system.model
     dynamics = Dynamics.from_system(system)
-    natural = np.sqrt(np.abs(scipy.linalg.eigh(model.stiffness, model.inertia, eigvals_only=True)))
+    natural = natural_frequencies(model)  # once per model
     if not np.any(dynamics.damping_matrix) and dynamics.top.states == 0:
         return CriticalDamping(0.0, float(natural[0]))
     low, high = natural[0] / 1000.0, natural[-1] * 10.0

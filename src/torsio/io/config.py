@@ -85,12 +85,16 @@ class BitRockConfig:
     radius: float | None = None
     speed_unit: str = "rad/s"
     parameters: Mapping[str, float] = attrs.field(factory=dict)
+    _built: list[Any] = attrs.field(factory=list, init=False, eq=False, repr=False)
 
     def build(self) -> Any:
-        """The bit-rock law object (looked up among the registered laws)."""
-        from torsio.plugins import build_bit_law
+        """The bit-rock law object (looked up among the registered laws), built once: the
+        validation on reading the file builds it, every System of the table reuses it."""
+        if not self._built:
+            from torsio.plugins import build_bit_law
 
-        return build_bit_law(self.law, self.parameters, speed_unit=self.speed_unit)
+            self._built.append(build_bit_law(self.law, self.parameters, speed_unit=self.speed_unit))
+        return self._built[0]
 
 
 @attrs.frozen

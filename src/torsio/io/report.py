@@ -42,7 +42,7 @@ True
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from typing import Any
 
 from rich.console import Console
@@ -105,12 +105,17 @@ SECTIONS: list[Callable[[ReportContext], ReportSection | None]] = [
 """The sections of the report, in order; a function may return None to be left out."""
 
 
-def report_sections(ctx: ReportContext) -> Iterator[ReportSection]:
-    """The sections of the report of ``ctx``, in order."""
-    for function in SECTIONS:
-        section = function(ctx)
-        if section is not None:
-            yield section
+def report_sections(ctx: ReportContext) -> list[ReportSection]:
+    """The sections of the report of ``ctx``, in order, computed once per context.
+
+    The modal analysis runs first: every later omega_1 of the model (run times, the
+    dimensionless groups, the batch engine, a top drive's tuning) reads it.
+    """
+    if ctx.sections is None:
+        ctx.modal  # noqa: B018  (computed here, before anything that needs omega_1)
+        sections = (function(ctx) for function in SECTIONS)
+        ctx.sections = [section for section in sections if section is not None]
+    return ctx.sections
 
 
 def report_data(config: Config | ReportContext, **options: Any) -> dict[str, Any]:

@@ -32,6 +32,11 @@ WIDE = 100
 class ReportContext:
     """A configuration and what the report computes from it, each computed once on demand.
 
+    One System is built (one discretization, one bit-rock law); the modal analysis runs
+    once and every later omega_1 of the model reads it; the transient, the critical-WOB
+    search and the sections themselves (:attr:`sections`) are computed once and shared by
+    the terminal, JSON and HTML outputs.
+
     Parameters
     ----------
     config : Config
@@ -62,6 +67,8 @@ class ReportContext:
             "bha_elements": bha_elements,
         }
         self.requested_modes = modes
+        self.sections: list[ReportSection] | None = None
+        """The report's sections once computed (:func:`torsio.io.report.report_sections`)."""
 
     @functools.cached_property
     def system(self) -> System | None:
@@ -72,6 +79,11 @@ class ReportContext:
         if self.config.bit_rock is None:
             return None
         return System.from_config(self.config, **self.overrides)
+
+    @functools.cached_property
+    def law(self) -> Any:
+        """The bit-rock law of the System (None without a ``[bit_rock]`` table)."""
+        return None if self.system is None else self.system.law
 
     @functools.cached_property
     def model(self) -> LumpedModel:
@@ -101,10 +113,11 @@ class ReportContext:
         no_speed = op.rpm is None and self.config.top_drive.has_set_speed
         if self.system is None or op.wob is None or no_speed:
             return None
-        from torsio.analysis.transient import simulate_config
+        from torsio.analysis.simulation_options import SimulationOptions
+        from torsio.analysis.transient import simulate
 
-        discretization = {k: v for k, v in self.overrides.items() if v is not None}
-        return simulate_config(self.config, discretization=discretization)
+        options = SimulationOptions.from_config(self.config)
+        return simulate(self.system, **options.kwargs())  # as simulate_config, on this System
 
     @functools.cached_property
     def comparison(self) -> ModalComparison | None:

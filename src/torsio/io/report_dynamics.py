@@ -18,7 +18,7 @@ def operation_section(ctx: ReportContext) -> ReportSection:
     op = ctx.config.operation
     chain_without_law = ctx.config.string is None and ctx.config.bit_rock is None
     radius = None if chain_without_law else ctx.config.bit_radius
-    law = None if ctx.config.bit_rock is None else ctx.config.bit_law()
+    law = ctx.law
     law_data: dict[str, Any] | None = None
     steady_torque = None
     if law is not None:

@@ -114,6 +114,9 @@ class LumpedModel:
         default=None, converter=attrs.converters.optional(_as_vector)
     )
     details: dict[str, Any] = attrs.field(factory=dict, eq=False)
+    _memo: dict[str, Any] = attrs.field(factory=dict, init=False, eq=False, repr=False)
+    """What analyses derived from the (never modified) matrices, e.g. omega_1, kept so that
+    each is computed once per model (:func:`torsio.model.modal.first_natural_frequency`)."""
 
     def __repr__(self) -> str:  # short: no matrices
         depths = self.node_depths

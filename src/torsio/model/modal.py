@@ -202,7 +202,38 @@ def first_natural_frequency(model: Any) -> float:
     model = getattr(model, "model", model)
     if is_wave_model(model):
         return first_frequency(model)
+    known = _memo(model).get("first_frequency")
+    if known is not None:  # from an earlier modal analysis of this model
+        return float(known)
     return float(modal_analysis(model, 1).frequencies_rad[0])
+
+
+def natural_frequencies(model: LumpedModel) -> np.ndarray:
+    """Every natural frequency [rad/s] of a lumped model, top held, ascending: solved once
+    per model and kept with it (or taken from a modal analysis of all its modes)."""
+    memo = _memo(model)
+    if "frequencies" not in memo:
+        _remember(model, np.sqrt(_eigen(model, (0, model.dofs - 1), vectors=False)[0]))
+    return np.asarray(memo["frequencies"])
+
+
+def highest_natural_frequency(model: LumpedModel) -> float:
+    """omega_n [rad/s] of a lumped model, top held: it bounds the stiffness of the equations."""
+    return float(natural_frequencies(model)[-1])
+
+
+def _memo(model: Any) -> dict[str, Any]:
+    """What has been computed from the model's matrices (a throw-away dict for a model
+    type that keeps none)."""
+    memo = getattr(model, "_memo", None)
+    return memo if isinstance(memo, dict) else {}
+
+
+def _remember(model: Any, frequencies: np.ndarray) -> None:
+    memo = _memo(model)
+    memo["first_frequency"] = float(frequencies[0])
+    if frequencies.size == model.dofs:
+        memo["frequencies"] = frequencies
 
 
 def _is_tridiagonal(matrix: np.ndarray) -> bool:
@@ -225,22 +256,39 @@ def modal_analysis(
     if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count:
         raise ConfigError("count", f"expected a whole number of modes >= 1, got {count!r}")
     count = min(count, n)
+    eigenvalues, vectors = _eigen(model, (0, count - 1))
+    frequencies = np.sqrt(eigenvalues)
+    _remember(model, frequencies)  # every later omega_1 (and spectrum) of the model reads it
+    return ModalResults(model, frequencies, normalize_shape(vectors), vectors, string)
+
+
+def _eigen(
+    model: LumpedModel, indices: tuple[int, int], vectors: bool = True
+) -> tuple[np.ndarray, np.ndarray]:
+    """Eigenvalues omega^2 [rad^2/s^2] ``indices[0]..indices[1]`` of the pencil ([K], [I]),
+    ascending, with their vectors (columns; none with ``vectors=False``).
+
+    Lumped (diagonal) inertia with a chain stiffness is solved as the tridiagonal matrix
+    D^-1/2 [K] D^-1/2 (O(n^2), no dense BLAS); any other model as the dense pencil.
+    """
+    shapes = np.empty((model.dofs, 0))
     if model.has_lumped_mass and _is_tridiagonal(model.stiffness):
-        # D^-1/2 [K] D^-1/2 is tridiagonal: O(n^2) and no dense BLAS
         scale = 1.0 / np.sqrt(np.diag(model.inertia))
         diagonal = np.diag(model.stiffness) * scale**2
         off_diagonal = np.diag(model.stiffness, 1) * scale[:-1] * scale[1:]
-        eigenvalues, vectors = scipy.linalg.eigh_tridiagonal(
-            diagonal, off_diagonal, select="i", select_range=(0, count - 1)
+        solved = scipy.linalg.eigh_tridiagonal(
+            diagonal, off_diagonal, eigvals_only=not vectors, select="i", select_range=indices
         )
-        vectors = vectors * scale[:, None]
+        eigenvalues, shapes = solved if vectors else (solved, shapes)
+        shapes = shapes * scale[:, None] if vectors else shapes
     else:
-        eigenvalues, vectors = scipy.linalg.eigh(
-            model.stiffness, model.inertia, subset_by_index=(0, count - 1)
+        solved = scipy.linalg.eigh(
+            model.stiffness, model.inertia, eigvals_only=not vectors, subset_by_index=indices
         )
+        eigenvalues, shapes = solved if vectors else (solved, shapes)
     if np.any(eigenvalues <= 0):
         raise ConfigError(
             "stiffness",
             "non-positive eigenvalue: the model is not fixed at the top or not positive definite",
         )
-    return ModalResults(model, np.sqrt(eigenvalues), normalize_shape(vectors), vectors, string)
+    return eigenvalues, shapes

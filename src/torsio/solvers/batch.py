@@ -47,6 +47,7 @@ import attrs
 import numpy as np
 
 from torsio.errors import ConfigError, SolverError
+from torsio.model.modal import first_natural_frequency, highest_natural_frequency
 from torsio.physics.system import System
 from torsio.solvers.batch_results import STATUS_SOLVER_FAILED, BatchResults, batch_points
 from torsio.solvers.compiled import HAVE_NUMBA, numba
@@ -106,8 +107,8 @@ class BatchModel:
     torque_driven : bool
         Whether the top drive has no set speed (``torque``): Omega_ref from the torque
         balance, S_SS relative to the mean top-drive speed.
-    first_frequency, highest_frequency : float
-        omega_1 and omega_n [rad/s] of the model with the top held.
+    first_frequency : float
+        omega_1 [rad/s] of the model with the top held (:attr:`highest_frequency`: omega_n).
     """
 
     chain: np.ndarray
@@ -115,13 +116,10 @@ class BatchModel:
     system: System
     torque_driven: bool
     first_frequency: float
-    highest_frequency: float
 
     @classmethod
     def from_system(cls, system: System) -> BatchModel:
         """The chain of ``system`` (ConfigError if the model is not a chain)."""
-        import scipy.linalg
-
         dynamics = system.dynamics()
         if not dynamics.is_chain:
             raise ConfigError(
@@ -141,18 +139,18 @@ class BatchModel:
                 dynamics.applied,
             ]
         )
-        model = system.model
-        eigenvalues = scipy.linalg.eigh(
-            np.asarray(model.stiffness), np.asarray(model.inertia), eigvals_only=True
-        )
         return cls(
             np.ascontiguousarray(chain, dtype=float),
             _top_vector(dynamics.top, chain),
             system,
             dynamics.has_top_node and not math.isfinite(dynamics.set_speed),
-            float(np.sqrt(eigenvalues[0])),
-            float(np.sqrt(eigenvalues[-1])),
+            first_natural_frequency(system.model),  # once per model, kept with it
         )
+
+    @property
+    def highest_frequency(self) -> float:
+        """omega_n [rad/s] of the model with the top held (solved on first use, once per model)."""
+        return highest_natural_frequency(self.system.model)
 
     @property
     def law(self) -> Any:
@@ -326,9 +324,7 @@ def simulate_batch(
     if model is not None:
         omega1 = model.first_frequency
     else:
-        from torsio.model.modal import modal_analysis
-
-        omega1 = float(modal_analysis(system.model, 1).frequencies_rad[0])
+        omega1 = first_natural_frequency(system.model)
     period = 2.0 * math.pi / omega1
     if max_step is None:
         max_step = period / 4.0
