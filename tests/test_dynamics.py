@@ -166,6 +166,8 @@ def test_registry_and_parameter_errors() -> None:
         top_drive_from_parameters("pi", inertia=J_TD, kp=0.0, ki=1e3)
     with pytest.raises(ConfigError, match="top_drive.ki: expected a number"):
         top_drive_from_parameters("pi", inertia=J_TD, kp=1.0, ki="fast")
+    with pytest.raises(ConfigError, match="top_drive.kp: expected a number"):
+        PITopDrive(inertia=J_TD, kp=None, ki=1e3)  # None only where a tuning supplies it
     with pytest.raises(ConfigError, match="top_drive.alpha: expected a value in"):
         ZTorqueTopDrive(inertia=J_TD, alpha=1.5)
 

@@ -23,10 +23,13 @@ torsio.errors.ConfigError: od: '5 dimensionless' is a pure number, not a length 
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 from functools import lru_cache
 from typing import Any
+
+import attrs
 
 from torsio.errors import ConfigError
 
@@ -189,6 +192,24 @@ def as_si(value: Any, dimension: str, key: str) -> float:
         return float(value)
     except (TypeError, ValueError):
         raise ConfigError(key, f"expected a number or a string with units, got {value!r}") from None
+
+
+def si_field(dimension: str, key: str, **field: Any) -> Any:
+    """An attrs field in SI units that also takes a string with units (:func:`as_si`).
+
+    ``key`` names the field in messages; ``field`` are the other arguments of
+    ``attrs.field`` (``validator``, ``default``, ...).
+
+    Examples
+    --------
+    >>> import attrs
+    >>> @attrs.frozen
+    ... class Pipe:
+    ...     od: float = si_field("length", "od")
+    >>> Pipe("5 in").od, Pipe(0.127).od
+    (0.127, 0.127)
+    """
+    return attrs.field(converter=functools.partial(as_si, dimension=dimension, key=key), **field)
 
 
 def as_rpm(value: Any, key: str = "rpm") -> float:

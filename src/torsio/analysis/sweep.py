@@ -363,19 +363,23 @@ def _run(
         try:
             future = handle.executor.submit(function, *tasks[index])
         except Exception as exc:  # e.g. a closed Dask client, a shut-down pool
-            if not handle.alive():
-                raise lost() from exc
-            raise SweepError(
-                f"the executor {handle.name} refused task {index} "
-                f"({type(exc).__name__}: {exc}); {done} of {total} tasks finished",
-                results,
-            ) from exc
+            raise failure(f"refused task {index}", exc) from exc
         pending[future] = index
 
     def lost() -> SweepError:
         return SweepError(
             f"the executor {handle.name} was lost (its scheduler is gone or closed the "
             f"connection); {done} of {total} tasks finished",
+            results,
+        )
+
+    def failure(what: str, exc: BaseException) -> SweepError:
+        """The executor's own error ``exc`` (it ``what``), or :func:`lost` if it is gone."""
+        if not handle.alive():
+            return lost()
+        return SweepError(
+            f"the executor {handle.name} {what} ({type(exc).__name__}: {exc}); "
+            f"{done} of {total} tasks finished",
             results,
         )
 
@@ -427,13 +431,7 @@ def _run(
                     broken = exc
                     continue
                 except fatal as exc:  # the executor itself is gone (a lost Dask scheduler)
-                    if not handle.alive():
-                        raise lost() from exc
-                    raise SweepError(
-                        f"the executor {handle.name} failed ({type(exc).__name__}: {exc}); "
-                        f"{done} of {total} tasks finished",
-                        results,
-                    ) from exc
+                    raise failure("failed", exc) from exc
                 except retryable as exc:  # e.g. Dask's KilledWorker: resubmit this task
                     if attempts[index] > retries:
                         raise SweepError(

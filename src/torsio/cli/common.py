@@ -1,4 +1,6 @@
-"""Helpers shared by the CLI commands: the configuration argument and JSON output."""
+"""Helpers shared by the CLI commands: the parser of a command, the arguments several
+commands take (configuration, discretization, run times, output files, JSON) and JSON
+output."""
 
 from __future__ import annotations
 
@@ -7,7 +9,7 @@ import json
 import math
 import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -15,6 +17,96 @@ from torsio.errors import ConfigError
 
 if TYPE_CHECKING:
     from torsio.io.config import Config
+
+
+def add_command(
+    subparsers: argparse._SubParsersAction,
+    name: str,
+    run: Callable[[argparse.Namespace], int],
+    summary: str,
+    description: str,
+) -> argparse.ArgumentParser:
+    """The parser of the command ``torsio NAME``: ``summary`` for ``torsio --help``,
+    ``description`` for its own help, ``run(args)`` returns the exit status."""
+    parser: argparse.ArgumentParser = subparsers.add_parser(
+        name, help=summary, description=description
+    )
+    parser.set_defaults(run=run)
+    return parser
+
+
+def add_json_argument(parser: argparse.ArgumentParser) -> None:
+    """--json: print one JSON object instead of the terminal layout."""
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+
+
+def add_run_time_arguments(
+    parser: argparse.ArgumentParser, length: str = "run length", run: str = "the run"
+) -> None:
+    """--duration (``length``) and --window (the steady-state window at the end of ``run``)."""
+    parser.add_argument(
+        "--duration", metavar="T", help=f"{length}: s or with units (default: 40 periods)"
+    )
+    parser.add_argument(
+        "--window",
+        metavar="T",
+        help=f"steady-state window at the end of {run}: s or with units (default: 15 periods)",
+    )
+
+
+def add_file_outputs(parser: argparse.ArgumentParser, csv: str, plot: str) -> None:
+    """--csv FILE (``csv``: what its rows are) and --plot FILE (``plot``: what the PNG shows)."""
+    parser.add_argument("--csv", metavar="FILE", help=csv)
+    parser.add_argument("--plot", metavar="FILE", help=f"{plot} (needs matplotlib)")
+
+
+def require_plotting(args: argparse.Namespace) -> None:
+    """A clear error before any work if ``--plot`` is given and matplotlib is missing."""
+    if getattr(args, "plot", None) is None:
+        return
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        raise ConfigError(
+            "--plot", "needs matplotlib, which is not installed; pip install 'torsio[plot]'"
+        ) from None
+
+
+def refuse_rpm_without_set_speed(config: Config, rpm: Any, consequence: str) -> None:
+    """A clear error if a rotary speed is given for a top drive without a set speed."""
+    if rpm is not None and not config.top_drive.has_set_speed:
+        raise ConfigError(
+            "--rpm",
+            f"the top drive is {config.top_drive.kind!r} (top_drive.kind): its speed follows "
+            f"from the torque balance{consequence}",
+        )
+
+
+def write_and_print(
+    args: argparse.Namespace,
+    results: Any,
+    outputs: dict[str, str],
+    summary: Callable[[Any, dict[str, str]], None],
+) -> int:
+    """Write the files ``outputs`` names (``out``: ``results.save``, ``csv``:
+    ``results.to_csv``, ``plot``: ``results.plot``), then print ``results.to_dict()`` with
+    the paths written as one JSON object (``--json``) or ``summary(results, written)``.
+    Returns the exit status, 0."""
+    written: dict[str, str] = {}
+    if "out" in outputs:
+        written["out"] = str(results.save(outputs["out"]))
+    if "csv" in outputs:
+        written["csv"] = str(results.to_csv(outputs["csv"]))
+    if "plot" in outputs:
+        results.plot(outputs["plot"])
+        written["plot"] = outputs["plot"]
+    if args.json:
+        data = results.to_dict()
+        data.update(written)
+        print_json(data)
+    else:
+        summary(results, written)
+    return 0
 
 
 def add_config_argument(parser: argparse.ArgumentParser) -> None:

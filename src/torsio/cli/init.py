@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from torsio.cli import common
+
 DEFAULT_PATH = "torsio.toml"
 
 
@@ -17,17 +19,18 @@ def template_text() -> str:
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     """Add the ``init`` command to the ``torsio`` parser."""
-    parser = subparsers.add_parser(
+    parser = common.add_command(
+        subparsers,
         "init",
-        help="write a commented template configuration (default: torsio.toml)",
-        description="Write a template configuration file with every table and key "
+        run,
+        "write a commented template configuration (default: torsio.toml)",
+        "Write a template configuration file with every table and key "
         "explained; it runs as it is (torsio report PATH, torsio simulate PATH ...).",
     )
     parser.add_argument(
         "path", nargs="?", default=DEFAULT_PATH, metavar="PATH", help=f"default {DEFAULT_PATH}"
     )
     parser.add_argument("--force", action="store_true", help="overwrite PATH if it exists")
-    parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:

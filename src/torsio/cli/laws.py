@@ -5,18 +5,19 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from torsio.cli.common import print_json
+from torsio.cli import common
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     """Add the ``laws`` command to the ``torsio`` parser."""
-    parser = subparsers.add_parser(
+    parser = common.add_command(
+        subparsers,
         "laws",
-        help="registered bit-rock laws (built-in and plugins) and their parameters",
-        description="List every registered bit-rock law, built-in or from a plugin.",
+        run,
+        "registered bit-rock laws (built-in and plugins) and their parameters",
+        "List every registered bit-rock law, built-in or from a plugin.",
     )
-    parser.add_argument("--json", action="store_true", help="print one JSON object")
-    parser.set_defaults(run=run)
+    common.add_json_argument(parser)
 
 
 def describe(cls: type[Any]) -> dict[str, Any]:
@@ -37,7 +38,7 @@ def run(args: argparse.Namespace) -> int:
 
     laws = [describe(cls) for _, cls in sorted(bit_laws().items())]
     if args.json:
-        print_json({"laws": laws})
+        common.print_json({"laws": laws})
         return 0
     from rich.console import Console
     from rich.markup import escape

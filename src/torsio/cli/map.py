@@ -14,17 +14,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from torsio.cli.common import (
-    add_config_argument,
-    add_discretization_arguments,
-    check_outputs,
-    discretization_overrides,
-    finite_float,
-    load,
-    parse_time,
-    print_json,
-    warn_small_bare_wob,
-)
+from torsio.cli import common
 
 DEFAULT_WOB = "25kN:225kN:21"
 DEFAULT_RPM = "40:140:21"
@@ -32,17 +22,17 @@ DEFAULT_RPM = "40:140:21"
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     """Add the ``map`` command to the ``torsio`` parser."""
-    parser = subparsers.add_parser(
+    parser = common.add_command(
+        subparsers,
         "map",
-        help="severity map S_SS over weight on bit x rotary speed, critical WOB",
-        description=(
-            "Stick-slip severity S_SS (Eq. 12) over a grid of weight on bit and rotary "
-            "speed, each point started from rest; classification, the critical weight on bit "
-            "per rotary speed (bisected between grid points) and the linear stability "
-            "boundary. Ranges are START:STOP:N."
-        ),
+        run,
+        "severity map S_SS over weight on bit x rotary speed, critical WOB",
+        "Stick-slip severity S_SS (Eq. 12) over a grid of weight on bit and rotary "
+        "speed, each point started from rest; classification, the critical weight on bit "
+        "per rotary speed (bisected between grid points) and the linear stability "
+        "boundary. Ranges are START:STOP:N.",
     )
-    add_config_argument(parser)
+    common.add_config_argument(parser)
     parser.add_argument(
         "--wob",
         metavar="START:STOP:N",
@@ -63,20 +53,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         metavar="START:STOP:N",
         help="dimensionless loads Pi_2 = W_ob R_bit/k_eq (instead of --wob)",
     )
-    add_discretization_arguments(parser)
-    parser.add_argument(
-        "--duration",
-        metavar="T",
-        help="run length of every point: s or with units (default: 40 periods)",
-    )
-    parser.add_argument(
-        "--window",
-        metavar="T",
-        help="steady-state window at the end of each run (default: 15 periods)",
-    )
+    common.add_discretization_arguments(parser)
+    common.add_run_time_arguments(parser, length="run length of every point", run="each run")
     parser.add_argument(
         "--threshold",
-        type=finite_float,
+        type=common.finite_float,
         default=None,
         help="S_SS above which a point is severe (default 0.8)",
     )
@@ -89,13 +70,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument(
         "--rtol",
-        type=finite_float,
+        type=common.finite_float,
         default=None,
         help="relative tolerance of the batch engine (default 1e-5)",
     )
     parser.add_argument(
         "--steady-tol",
-        type=finite_float,
+        type=common.finite_float,
         default=None,
         metavar="S",
         help="end a run once it is on a steady cycle, within this S_SS (default 1e-3; "
@@ -125,7 +106,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument(
         "--timeout",
-        type=finite_float,
+        type=common.finite_float,
         default=None,
         metavar="S",
         help="seconds to wait for the Dask scheduler (default 10)",
@@ -136,14 +117,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="save the map (.json, or .npz); an interrupted map goes to "
         "FILE.partial.json/.npz, marked incomplete",
     )
-    parser.add_argument("--csv", metavar="FILE", help="write one row per grid point")
-    parser.add_argument(
-        "--plot",
-        metavar="FILE",
-        help="write a PNG heat map with the critical curve (needs matplotlib)",
+    common.add_file_outputs(
+        parser,
+        csv="write one row per grid point",
+        plot="write a PNG heat map with the critical curve",
     )
-    parser.add_argument("--json", action="store_true", help="print one JSON object")
-    parser.set_defaults(run=run)
+    common.add_json_argument(parser)
 
 
 # --- ranges ---------------------------------------------------------------------------------
@@ -179,7 +158,7 @@ def _range_bounds(text: str, option: str, kind: str) -> tuple[float, float, int]
         if not part:
             raise ConfigError(option, f"expected START:STOP:N, got {text!r}")
         if kind == "wob":
-            warn_small_bare_wob(part, option)
+            common.warn_small_bare_wob(part, option)
             value = to_si(part, "force", key=option)
             if value < 0:
                 raise ConfigError(option, f"expected non-negative weights on bit, got {part!r}")
@@ -280,30 +259,17 @@ def _run(args: argparse.Namespace) -> int:
         x_start, x_stop, x_count = _range_bounds(args.rpm or DEFAULT_RPM, "--rpm", "rpm")
         y_start, y_stop, y_count = _range_bounds(args.wob or DEFAULT_WOB, "--wob", "wob")
     check_grid_size(x_count, y_count)  # before building the axes
-    outputs = check_outputs(args, ("out", "csv", "plot"))  # before the work, not after it
-    if args.plot is not None:
-        try:
-            import matplotlib  # noqa: F401
-        except ImportError:
-            raise ConfigError(
-                "--plot", "needs matplotlib, which is not installed; pip install 'torsio[plot]'"
-            ) from None
+    outputs = common.check_outputs(args, ("out", "csv", "plot"))  # before the work, not after it
+    common.require_plotting(args)
 
-    config = load(args)
-    if args.rpm is not None and not config.top_drive.has_set_speed:
-        from torsio.errors import ConfigError
-
-        raise ConfigError(
-            "--rpm",
-            f"the top drive is {config.top_drive.kind!r} (top_drive.kind): its speed follows "
-            "from the torque balance, there is no rotary speed to set",
-        )
+    config = common.load(args)
+    common.refuse_rpm_without_set_speed(config, args.rpm, ", there is no rotary speed to set")
     system = System.from_config(
-        config, **{k: v for k, v in discretization_overrides(args).items() if v is not None}
+        config, **{k: v for k, v in common.discretization_overrides(args).items() if v is not None}
     )
     simulation = dict(config.simulation.options)
-    duration = parse_time(args.duration, "--duration")
-    window = parse_time(args.window, "--window")
+    duration = common.parse_time(args.duration, "--duration")
+    window = common.parse_time(args.window, "--window")
     options: dict[str, Any] = {
         "duration": duration if duration is not None else simulation.get("duration"),
         "steady_window": window if window is not None else simulation.get("steady_window"),
@@ -355,21 +321,7 @@ def _run(args: argparse.Namespace) -> int:
             exc.partial.save(partial)
             exc.args = (f"{exc}; partial results written to {partial} (marked incomplete)",)
         raise
-    written: dict[str, str] = {}
-    if "out" in outputs:
-        written["out"] = str(result.save(outputs["out"]))
-    if "csv" in outputs:
-        written["csv"] = str(result.to_csv(outputs["csv"]))
-    if "plot" in outputs:
-        result.plot(outputs["plot"])
-        written["plot"] = outputs["plot"]
-    if args.json:
-        data = result.to_dict()
-        data.update(written)
-        print_json(data)
-        return 0
-    _print_summary(result, written)
-    return 0
+    return common.write_and_print(args, result, outputs, _print_summary)
 
 
 def _use_threads(count: int) -> None:

@@ -5,24 +5,20 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from torsio.cli.common import (
-    add_config_argument,
-    add_discretization_arguments,
-    discretization_overrides,
-    load,
-    print_json,
-)
+from torsio.cli import common
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     """Add the ``modes`` command to the ``torsio`` parser."""
-    parser = subparsers.add_parser(
+    parser = common.add_command(
+        subparsers,
         "modes",
-        help="natural frequencies and their error against the exact continuum",
-        description="Natural frequencies of the lumped model against the exact continuum.",
+        run,
+        "natural frequencies and their error against the exact continuum",
+        "Natural frequencies of the lumped model against the exact continuum.",
     )
-    add_config_argument(parser)
-    add_discretization_arguments(parser)
+    common.add_config_argument(parser)
+    common.add_discretization_arguments(parser)
     parser.add_argument(
         "--count",
         type=int,
@@ -30,8 +26,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         metavar="N",
         help="number of modes (default: all, at most 10)",
     )
-    parser.add_argument("--json", action="store_true", help="print one JSON object")
-    parser.set_defaults(run=run)
+    common.add_json_argument(parser)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -43,8 +38,8 @@ def run(args: argparse.Namespace) -> int:
     from torsio.io.report import modes_table
     from torsio.model.modal import modal_analysis
 
-    config = load(args)
-    model = config.model(**discretization_overrides(args))
+    config = common.load(args)
+    model = config.model(**common.discretization_overrides(args))
     if args.count is not None and args.count < 1:
         raise ConfigError("--count", f"expected a whole number of modes >= 1, got {args.count}")
     from torsio.model.wave import is_wave_model
@@ -70,7 +65,7 @@ def run(args: argparse.Namespace) -> int:
         data["count"] = shown
         if args.count is not None:
             data["count_requested"] = args.count
-        print_json(data)
+        common.print_json(data)
         return 0
     console = Console()
     rigid = comparison.reference.rigid_bha
@@ -98,7 +93,7 @@ def _print_chain_modes(results: Any, as_json: bool) -> int:
         data = results.to_dict()
         data.update({"continuum_hz": None, "relative_error": None, "continuum": NO_CONTINUUM})
         data["count"] = int(results.frequencies_rad.size)
-        print_json(data)
+        common.print_json(data)
         return 0
     table = Table(title=f"Modes of the {results.model.dofs}-DOF chain")
     table.add_column("mode", justify="right")
@@ -123,7 +118,7 @@ def _wave_modes(model: Any, count: int, as_json: bool) -> int:
     grid = continuum_modes(model.grid_string(), count).frequencies_hz
     exact = continuum_modes(model.string, count).frequencies_hz
     if as_json:
-        print_json(
+        common.print_json(
             {
                 "strategy": "wave",
                 "dofs": model.dofs,

@@ -4,37 +4,31 @@ from __future__ import annotations
 
 import argparse
 
-from torsio.cli.common import (
-    add_config_argument,
-    add_discretization_arguments,
-    check_outputs,
-    discretization_overrides,
-    load,
-    print_json,
-)
+from torsio.cli import common
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     """Add the ``report`` command to the ``torsio`` parser."""
-    parser = subparsers.add_parser(
+    parser = common.add_command(
+        subparsers,
         "report",
-        help="report on a configuration (default: the built-in example)",
-        description="The string, its discretization, its first modes against the exact "
+        run,
+        "report on a configuration (default: the built-in example)",
+        "The string, its discretization, its first modes against the exact "
         "continuum, their damping ratios and the operating point.",
     )
-    add_config_argument(parser)
-    add_discretization_arguments(parser)
+    common.add_config_argument(parser)
+    common.add_discretization_arguments(parser)
     parser.add_argument(
         "--modes", type=int, default=5, metavar="N", help="number of modes shown (default: 5)"
     )
-    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    common.add_json_argument(parser)
     parser.add_argument(
         "--html",
         metavar="FILE",
         help="also write the report as a standalone HTML page with its plots "
         "(the plots need matplotlib: the [plot] extra)",
     )
-    parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -44,9 +38,9 @@ def run(args: argparse.Namespace) -> int:
 
     if args.modes < 1:
         raise ConfigError("--modes", f"expected a whole number of modes >= 1, got {args.modes}")
-    check_outputs(args, ("html",))
-    config = load(args)
-    options = {**discretization_overrides(args), "modes": args.modes}
+    common.check_outputs(args, ("html",))
+    config = common.load(args)
+    options = {**common.discretization_overrides(args), "modes": args.modes}
     ctx = ReportContext(config, **options)  # computed once, shared by every output
     if args.html:
         from pathlib import Path
@@ -63,7 +57,7 @@ def run(args: argparse.Namespace) -> int:
 
             print(f"torsio report: {args.html} has no figures. {NO_FIGURES_NOTE}", file=sys.stderr)
     if args.json:
-        print_json(report_data(ctx))
+        common.print_json(report_data(ctx))
     else:
         render(ctx)
     return 0

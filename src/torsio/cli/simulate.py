@@ -5,60 +5,42 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from torsio.cli.common import (
-    add_config_argument,
-    add_discretization_arguments,
-    check_outputs,
-    discretization_overrides,
-    finite_float,
-    load,
-    parse_time,
-    print_json,
-    warn_small_bare_wob,
-)
+from torsio.cli import common
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     """Add the ``simulate`` command to the ``torsio`` parser."""
-    parser = subparsers.add_parser(
+    parser = common.add_command(
+        subparsers,
         "simulate",
-        help="start-up transient at one operating point and its stick-slip severity S_SS",
-        description=(
-            "Integrate the equations of motion from rest at a weight on bit and rotary "
-            "speed, and report the stick-slip severity S_SS (Eq. 12) over the steady window. "
-            "Options override the configuration file."
-        ),
+        run,
+        "start-up transient at one operating point and its stick-slip severity S_SS",
+        "Integrate the equations of motion from rest at a weight on bit and rotary "
+        "speed, and report the stick-slip severity S_SS (Eq. 12) over the steady window. "
+        "Options override the configuration file.",
     )
-    add_config_argument(parser)
+    common.add_config_argument(parser)
     parser.add_argument(
         "--wob", metavar="W", help="weight on bit: N, or with units ('100 kN', '22 klbf')"
     )
     parser.add_argument(
         "--rpm", metavar="R", help="surface rotary speed: rpm, or with units ('10 rad/s')"
     )
-    add_discretization_arguments(parser)
-    parser.add_argument(
-        "--duration", metavar="T", help="run length: s or with units (default: 40 periods)"
-    )
-    parser.add_argument(
-        "--window",
-        metavar="T",
-        help="steady-state window at the end of the run: s or with units (default: 15 periods)",
-    )
+    common.add_discretization_arguments(parser)
+    common.add_run_time_arguments(parser)
     parser.add_argument(
         "--method", help="solve_ivp integrator: LSODA (default), Radau, BDF, RK45, DOP853, RK23"
     )
-    parser.add_argument("--rtol", type=finite_float, help="relative tolerance (default 1e-6)")
-    parser.add_argument("--atol", type=finite_float, help="absolute tolerance (default 1e-9)")
+    tolerance = common.finite_float
+    parser.add_argument("--rtol", type=tolerance, help="relative tolerance (default 1e-6)")
+    parser.add_argument("--atol", type=tolerance, help="absolute tolerance (default 1e-9)")
     parser.add_argument("--output-step", metavar="T", help="output sampling step: s or with units")
-    parser.add_argument("--csv", metavar="FILE", help="write the time series to a CSV file")
-    parser.add_argument(
-        "--plot",
-        metavar="FILE",
-        help="write a PNG of bit speed, surface torque and torque on bit (needs matplotlib)",
+    common.add_file_outputs(
+        parser,
+        csv="write the time series to a CSV file",
+        plot="write a PNG of bit speed, surface torque and torque on bit",
     )
-    parser.add_argument("--json", action="store_true", help="print one JSON object")
-    parser.set_defaults(run=run)
+    common.add_json_argument(parser)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -66,51 +48,32 @@ def run(args: argparse.Namespace) -> int:
     from torsio.analysis.transient import simulate_config
     from torsio.errors import ConfigError
 
-    outputs = check_outputs(args, ("csv", "plot"))
-    config = load(args)
-    if args.rpm is not None and not config.top_drive.has_set_speed:
-        raise ConfigError(
-            "--rpm",
-            f"the top drive is {config.top_drive.kind!r} (top_drive.kind): its speed follows "
-            "from the torque balance; remove --rpm, or change top_drive.torque",
-        )
+    outputs = common.check_outputs(args, ("csv", "plot"))
+    config = common.load(args)
+    common.refuse_rpm_without_set_speed(
+        config, args.rpm, "; remove --rpm, or change top_drive.torque"
+    )
     overrides: dict[str, Any] = {
-        "duration": parse_time(args.duration, "--duration"),
-        "steady_window": parse_time(args.window, "--window"),
-        "output_step": parse_time(args.output_step, "--output-step"),
+        "duration": common.parse_time(args.duration, "--duration"),
+        "steady_window": common.parse_time(args.window, "--window"),
+        "output_step": common.parse_time(args.output_step, "--output-step"),
         "method": args.method,
         "rtol": args.rtol,
         "atol": args.atol,
     }
-    if args.plot is not None:
-        try:
-            import matplotlib  # noqa: F401
-        except ImportError:
-            raise ConfigError(
-                "--plot", "needs matplotlib, which is not installed; pip install 'torsio[plot]'"
-            ) from None
-    warn_small_bare_wob(args.wob)
+    common.require_plotting(args)
+    common.warn_small_bare_wob(args.wob)
     try:
         results = simulate_config(
             config,
             wob=args.wob,
             rpm=args.rpm,
-            discretization=discretization_overrides(args),
+            discretization=common.discretization_overrides(args),
             **overrides,
         )
     except ConfigError as exc:
         raise ConfigError(_option_name(exc.key), exc.message) from None
-    if "csv" in outputs:
-        results.to_csv(outputs["csv"])
-    if "plot" in outputs:
-        results.plot(outputs["plot"])
-    if args.json:
-        data = results.to_dict()
-        data.update(outputs)
-        print_json(data)
-        return 0
-    _print_summary(results, args)
-    return 0
+    return common.write_and_print(args, results, outputs, _print_summary)
 
 
 _OPTIONS = {
@@ -129,7 +92,7 @@ def _option_name(key: str) -> str:
     return _OPTIONS.get(key, key)
 
 
-def _print_summary(results: Any, args: argparse.Namespace) -> None:
+def _print_summary(results: Any, written: dict[str, str]) -> None:
     from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
@@ -170,10 +133,10 @@ def _print_summary(results: Any, args: argparse.Namespace) -> None:
             f"{solver['wall_time_s']:.2f} s",
         ),
     ]
-    if args.csv is not None:
-        rows.append(("time series", args.csv))
-    if args.plot is not None:
-        rows.append(("plot", check_outputs(args, ("plot",))["plot"]))
+    if "csv" in written:
+        rows.append(("time series", written["csv"]))
+    if "plot" in written:
+        rows.append(("plot", written["plot"]))
     for name, value in rows:
         table.add_row(escape(name), escape(value))
     Console().print(table)

@@ -26,45 +26,25 @@ from typing import Any, ClassVar
 import attrs
 
 from torsio.errors import ConfigError
-from torsio.units import as_si
+from torsio.units import si_field
 
 
-def _positive_finite(instance: Any, attribute: attrs.Attribute[Any], value: float) -> None:
-    if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
-        name = type(instance).__name__
-        raise ConfigError(
-            attribute.name,
-            f"{name}.{attribute.name} must be a positive finite number, got {value!r}",
-        )
+def _finite(what: str, accept: Any) -> Any:
+    """An attrs validator: a finite number with ``accept(value)`` true, else a ConfigError."""
+
+    def check(instance: Any, attribute: attrs.Attribute[Any], value: float) -> None:
+        if not (isinstance(value, int | float) and math.isfinite(value) and accept(value)):
+            name = type(instance).__name__
+            raise ConfigError(
+                attribute.name,
+                f"{name}.{attribute.name} must be a {what} finite number, got {value!r}",
+            )
+
+    return check
 
 
-def _non_negative_finite(instance: Any, attribute: attrs.Attribute[Any], value: float) -> None:
-    if not (isinstance(value, int | float) and math.isfinite(value) and value >= 0):
-        name = type(instance).__name__
-        raise ConfigError(
-            attribute.name,
-            f"{name}.{attribute.name} must be a non-negative finite number, got {value!r}",
-        )
-
-
-def _shear_modulus_si(value: Any) -> float:
-    return as_si(value, "pressure", "shear_modulus")
-
-
-def _density_si(value: Any) -> float:
-    return as_si(value, "density", "density")
-
-
-def _od_si(value: Any) -> float:
-    return as_si(value, "length", "od")
-
-
-def _id_si(value: Any) -> float:
-    return as_si(value, "length", "id")
-
-
-def _length_si(value: Any) -> float:
-    return as_si(value, "length", "length")
+_positive_finite = _finite("positive", lambda value: value > 0)
+_non_negative_finite = _finite("non-negative", lambda value: value >= 0)
 
 
 @attrs.frozen
@@ -84,8 +64,8 @@ class Material:
     3306.9...
     """
 
-    shear_modulus: float = attrs.field(converter=_shear_modulus_si, validator=_positive_finite)
-    density: float = attrs.field(converter=_density_si, validator=_positive_finite)
+    shear_modulus: float = si_field("pressure", "shear_modulus", validator=_positive_finite)
+    density: float = si_field("density", "density", validator=_positive_finite)
 
     @property
     def wave_speed(self) -> float:
@@ -134,9 +114,9 @@ class Section:
     kind: ClassVar[str] = "section"
     default_bha: ClassVar[bool] = True
 
-    od: float = attrs.field(converter=_od_si, validator=_positive_finite)
-    id: float = attrs.field(converter=_id_si, validator=_check_inner_diameter)
-    length: float = attrs.field(converter=_length_si, validator=_positive_finite)
+    od: float = si_field("length", "od", validator=_positive_finite)
+    id: float = si_field("length", "id", validator=_check_inner_diameter)
+    length: float = si_field("length", "length", validator=_positive_finite)
     material: Material = attrs.field(
         default=STEEL, validator=attrs.validators.instance_of(Material)
     )
@@ -144,6 +124,14 @@ class Section:
     bha: bool | None = attrs.field(
         default=None, validator=attrs.validators.optional(attrs.validators.instance_of(bool))
     )
+
+    def __init_subclass__(cls, kind: str | None = None, bha: bool = True, **kwargs: Any) -> None:
+        """A kind of section: ``class DrillCollar(Section, kind="drill_collar")``; ``bha``
+        is whether it belongs to the BHA by default."""
+        super().__init_subclass__(**kwargs)
+        if kind is not None:  # (attrs re-creates a slotted class without the keywords)
+            cls.kind = kind
+            cls.default_bha = bha
 
     def __attrs_post_init__(self) -> None:
         _check_derived(self)
@@ -232,65 +220,42 @@ def _check_derived(section: Section) -> None:
         )
 
 
-@attrs.frozen
-class DrillPipe(Section):
+# The kinds of section add no fields: plain subclasses of the attrs class Section (frozen,
+# validated, compared by kind and value); ``kind`` names each in configuration files.
+class DrillPipe(Section, kind="drill_pipe", bha=False):
     """Drill pipe: the long slender upper part of the string (not BHA by default)."""
 
-    kind: ClassVar[str] = "drill_pipe"
-    default_bha: ClassVar[bool] = False
 
-
-@attrs.frozen
-class HeavyWeightDrillPipe(Section):
+class HeavyWeightDrillPipe(Section, kind="hwdp"):
     """Heavy-weight drill pipe (HWDP): part of the BHA by default ("BHA 1" in the paper)."""
 
-    kind: ClassVar[str] = "hwdp"
 
-
-@attrs.frozen
-class DrillCollar(Section):
+class DrillCollar(Section, kind="drill_collar"):
     """Drill collar: thick-walled BHA pipe that provides the weight on bit."""
 
-    kind: ClassVar[str] = "drill_collar"
 
-
-@attrs.frozen
-class MWD(Section):
+class MWD(Section, kind="mwd"):
     """Measurement-while-drilling tool (BHA)."""
 
-    kind: ClassVar[str] = "mwd"
 
-
-@attrs.frozen
-class LWD(Section):
+class LWD(Section, kind="lwd"):
     """Logging-while-drilling tool (BHA)."""
 
-    kind: ClassVar[str] = "lwd"
 
-
-@attrs.frozen
-class Stabilizer(Section):
+class Stabilizer(Section, kind="stabilizer"):
     """Stabilizer (BHA). Torsionally a short shaft of its body diameters."""
 
-    kind: ClassVar[str] = "stabilizer"
 
-
-@attrs.frozen
-class BHASection(Section):
+class BHASection(Section, kind="bha"):
     """Generic BHA section, e.g. "drill collars, MWD and LWD tools" lumped together."""
 
-    kind: ClassVar[str] = "bha"
 
-
-@attrs.frozen
-class Bit(Section):
+class Bit(Section, kind="bit"):
     """The drill bit: rigid, always last, part of the BHA.
 
     The bit is not a spring: its inertia rho J L is lumped into the last degree
     of freedom. Its radius (default od/2) is the R_bit of the bit-rock law.
     """
-
-    kind: ClassVar[str] = "bit"
 
     @property
     def radius(self) -> float:

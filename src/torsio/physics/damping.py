@@ -18,14 +18,13 @@ torsio.errors.ConfigError: damping.modes: expected two different mode numbers, g
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import attrs
 import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.model.lumped import LumpedModel
-from torsio.units import as_si
+from torsio.units import si_field
 
 
 def _non_negative(instance: object, attribute: attrs.Attribute[float], value: float) -> None:
@@ -33,14 +32,6 @@ def _non_negative(instance: object, attribute: attrs.Attribute[float], value: fl
         raise ConfigError(
             f"damping.{attribute.name}", f"expected a non-negative finite value, got {value!r}"
         )
-
-
-def _alpha_si(value: Any) -> float:
-    return as_si(value, "inverse_time", "alpha")
-
-
-def _beta_si(value: Any) -> float:
-    return as_si(value, "time", "beta")
 
 
 @attrs.frozen
@@ -55,8 +46,8 @@ class RayleighDamping:
         Stiffness-proportional coefficient [s] (or e.g. ``"60 ms"``).
     """
 
-    alpha: float = attrs.field(default=0.0, converter=_alpha_si, validator=_non_negative)
-    beta: float = attrs.field(default=0.0, converter=_beta_si, validator=_non_negative)
+    alpha: float = si_field("inverse_time", "alpha", default=0.0, validator=_non_negative)
+    beta: float = si_field("time", "beta", default=0.0, validator=_non_negative)
 
     def matrix(self, model: LumpedModel) -> np.ndarray:
         """[C], in N m s/rad."""

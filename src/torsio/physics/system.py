@@ -39,7 +39,7 @@ from torsio.errors import ConfigError
 from torsio.model.lumped import LumpedModel
 from torsio.physics.damping import ModelDamping, RayleighDamping
 from torsio.physics.top_drives import ConstantSpeedTop
-from torsio.units import RPM_TO_RAD_S, as_rpm, as_si
+from torsio.units import RPM_TO_RAD_S, as_rpm, si_field
 
 __all__ = ["ConstantSpeedTop", "System"]
 
@@ -72,14 +72,6 @@ def _check_operating_value(key: str, value: float, positive: bool) -> None:
         raise ConfigError(key, f"expected a {what} finite value, got {value!r}")
 
 
-def _bit_radius_si(value: Any) -> float:
-    return as_si(value, "length", "bit_radius")
-
-
-def _wob_si(value: Any) -> float:
-    return as_si(value, "force", "wob")
-
-
 @attrs.frozen(repr=False)
 class System:
     """A damped lumped model with a bit-rock law, top drive and operating point.
@@ -105,9 +97,9 @@ class System:
 
     model: LumpedModel
     law: Any
-    bit_radius: float = attrs.field(converter=_bit_radius_si)
+    bit_radius: float = si_field("length", "bit_radius")
     damping: RayleighDamping | ModelDamping = attrs.field(factory=RayleighDamping)
-    wob: float = attrs.field(default=0.0, converter=_wob_si)
+    wob: float = si_field("force", "wob", default=0.0)
     rpm: float = attrs.field(default=60.0, converter=as_rpm)
     top: Any = attrs.field(factory=ConstantSpeedTop, validator=_check_top)
     string: Any = attrs.field(default=None, eq=False)

@@ -83,13 +83,26 @@ def _number(key: str, value: Any, unit: str, *, positive: bool = False) -> float
     return number
 
 
-def _validator(unit: str, positive: bool) -> Any:
+def _validator(unit: str, positive: bool, optional: bool) -> Any:
     def check(instance: Any, attribute: attrs.Attribute[Any], value: Any) -> None:
-        if value is None or (attribute.name == "max_torque" and value == math.inf):
+        if (value is None and optional) or (attribute.name == "max_torque" and value == math.inf):
             return
         _number(attribute.name, value, unit, positive=positive)
 
     return check
+
+
+def _parameter(unit: str, positive: bool = True, default: Any = attrs.NOTHING) -> Any:
+    """A top-drive parameter: a finite number in ``unit``, > 0 (>= 0 unless ``positive``);
+    None only where it is the default (a value resolved on the system, e.g. a tuning)."""
+    validator = _validator(unit, positive, optional=default is None)
+    return attrs.field(default=default, converter=_to_float, validator=validator)
+
+
+def _max_torque_field() -> Any:
+    """The motor torque limit [N m], > 0; none (inf) by default or when given as None."""
+    validator = _validator("N m", positive=True, optional=False)
+    return attrs.field(default=math.inf, converter=_max_torque, validator=validator)
 
 
 def _to_float(value: Any) -> Any:
@@ -116,12 +129,6 @@ class ConstantSpeedTop:
         return TopDriveBoundary(inertia=0.0, set_speed=float(system.omega))
 
 
-def _non_negative_field(unit: str, default: Any = 0.0) -> Any:
-    return attrs.field(
-        default=default, converter=_to_float, validator=_validator(unit, positive=False)
-    )
-
-
 @attrs.frozen
 class TorqueTopDrive:
     """Constant motor torque on a top drive with inertia (Navarro-Lopez and Cortes 2007).
@@ -143,9 +150,9 @@ class TorqueTopDrive:
     name: ClassVar[str] = "torque"
     description: ClassVar[str] = "J Omega' = torque - drag Omega - T_pipe"
 
-    inertia: float = attrs.field(converter=_to_float, validator=_validator("kg m^2", True))
-    torque: float = attrs.field(converter=_to_float, validator=_validator("N m", positive=True))
-    drag: float = _non_negative_field("N m s/rad")
+    inertia: float = _parameter("kg m^2")
+    torque: float = _parameter("N m")
+    drag: float = _parameter("N m s/rad", positive=False, default=0.0)
 
     def boundary(self, system: Any) -> TopDriveBoundary:
         """Node 0 with a constant motor torque and no controller state."""
@@ -198,13 +205,11 @@ class PITopDrive:
     name: ClassVar[str] = "pi"
     description: ClassVar[str] = "J Omega' = kp e + ki int(e) - drag Omega - T_pipe"
 
-    inertia: float = attrs.field(converter=_to_float, validator=_validator("kg m^2", True))
-    kp: float = attrs.field(converter=_to_float, validator=_validator("N m s/rad", positive=True))
-    ki: float = attrs.field(converter=_to_float, validator=_validator("N m/rad", positive=False))
-    drag: float = _non_negative_field("N m s/rad")
-    max_torque: float = attrs.field(
-        default=math.inf, converter=_max_torque, validator=_validator("N m", positive=True)
-    )
+    inertia: float = _parameter("kg m^2")
+    kp: float = _parameter("N m s/rad")
+    ki: float = _parameter("N m/rad", positive=False)
+    drag: float = _parameter("N m s/rad", positive=False, default=0.0)
+    max_torque: float = _max_torque_field()
 
     def boundary(self, system: Any) -> TopDriveBoundary:
         """Node 0 with the PI integral as controller state."""
@@ -222,7 +227,17 @@ class PITopDrive:
 
 
 @attrs.frozen
-class SoftTorqueTopDrive:
+class _TunedSpeedLoop:
+    """J [kg m^2] and the PI gains kp [N m s/rad], ki [N m/rad] of a speed loop whose
+    gains default (None) to a tuning on the system."""
+
+    inertia: float = _parameter("kg m^2")
+    kp: float | None = _parameter("N m s/rad", default=None)
+    ki: float | None = _parameter("N m/rad", positive=False, default=None)
+
+
+@attrs.frozen
+class SoftTorqueTopDrive(_TunedSpeedLoop):
     """The PI speed loop with the SoftTorque tuning (Kyllingstad and Nessjoen 2009).
 
     By default ki = omega_1^2 J (omega_1: first natural frequency of the model
@@ -243,17 +258,8 @@ class SoftTorqueTopDrive:
     name: ClassVar[str] = "soft-torque"
     description: ClassVar[str] = "pi with ki = omega_1^2 J, kp = zeta (SoftTorque tuning)"
 
-    inertia: float = attrs.field(converter=_to_float, validator=_validator("kg m^2", True))
-    kp: float | None = attrs.field(
-        default=None, converter=_to_float, validator=_validator("N m s/rad", positive=True)
-    )
-    ki: float | None = attrs.field(
-        default=None, converter=_to_float, validator=_validator("N m/rad", positive=False)
-    )
-    drag: float = _non_negative_field("N m s/rad")
-    max_torque: float = attrs.field(
-        default=math.inf, converter=_max_torque, validator=_validator("N m", positive=True)
-    )
+    drag: float = _parameter("N m s/rad", positive=False, default=0.0)
+    max_torque: float = _max_torque_field()
 
     def gains(self, system: Any = None) -> tuple[float, float]:
         """(kp, ki) with the defaults resolved on ``system`` where not given."""
@@ -286,7 +292,7 @@ class SoftTorqueTopDrive:
 
 
 @attrs.frozen
-class ZTorqueTopDrive:
+class ZTorqueTopDrive(_TunedSpeedLoop):
     """Z-Torque: a stiff speed loop whose set point is lowered by the pipe torque.
 
     Impedance matching by torque feedback (Dwars 2015), as in NORCE/OSDC
@@ -319,24 +325,11 @@ class ZTorqueTopDrive:
     name: ClassVar[str] = "z-torque"
     description: ClassVar[str] = "stiff PI on Omega_set - Omega - alpha HP(T_pipe) / zeta"
 
-    inertia: float = attrs.field(converter=_to_float, validator=_validator("kg m^2", True))
-    kp: float | None = attrs.field(
-        default=None, converter=_to_float, validator=_validator("N m s/rad", positive=True)
-    )
-    ki: float | None = attrs.field(
-        default=None, converter=_to_float, validator=_validator("N m/rad", positive=False)
-    )
-    zeta: float | None = attrs.field(
-        default=None, converter=_to_float, validator=_validator("N m s/rad", positive=True)
-    )
-    alpha: float = attrs.field(default=0.25, converter=_to_float, validator=_validator("-", True))
-    highpass_period: float = attrs.field(
-        default=20.0, converter=_to_float, validator=_validator("s", positive=True)
-    )
-    drag: float = _non_negative_field("N m s/rad")
-    max_torque: float = attrs.field(
-        default=math.inf, converter=_max_torque, validator=_validator("N m", positive=True)
-    )
+    zeta: float | None = _parameter("N m s/rad", default=None)
+    alpha: float = _parameter("-", default=0.25)
+    highpass_period: float = _parameter("s", default=20.0)
+    drag: float = _parameter("N m s/rad", positive=False, default=0.0)
+    max_torque: float = _max_torque_field()
 
     def __attrs_post_init__(self) -> None:
         if self.alpha > 1.0:

@@ -70,6 +70,26 @@ def _columns(values: Any, rows: int) -> np.ndarray:
     return array
 
 
+def _plot_curves(
+    ax: Any,
+    x: np.ndarray,
+    curves: np.ndarray,
+    labels: Sequence[str] | None,
+    colors: Sequence[Any] | None,
+    marker: str,
+    linestyle: str,
+) -> list[Any]:
+    """Column j of ``curves`` against ``x`` in colour ``colors[j]`` (default Cj); the colours."""
+    drawn = []
+    for j in range(curves.shape[1]):
+        color = colors[j] if colors is not None else f"C{j}"
+        label = labels[j] if labels is not None else None
+        ax.plot(x, curves[:, j], marker=marker, markersize=4, linestyle=linestyle,
+                linewidth=1.0, color=color, label=label)  # fmt: skip
+        drawn.append(color)
+    return drawn
+
+
 def plot_convergence(
     dofs: Sequence[int] | np.ndarray,
     frequencies_hz: Any,
@@ -121,18 +141,8 @@ def plot_convergence(
     ax = _axes(ax)
     x = np.asarray(dofs, dtype=float)
     curves = _columns(frequencies_hz, x.size)
-    for j in range(curves.shape[1]):
-        color = colors[j] if colors is not None else f"C{j}"
-        ax.plot(
-            x,
-            curves[:, j],
-            marker=marker,
-            markersize=4,
-            linestyle=linestyle,
-            linewidth=1.0,
-            color=color,
-            label=labels[j] if labels is not None else None,
-        )
+    drawn = _plot_curves(ax, x, curves, labels, colors, marker, linestyle)
+    for j, color in enumerate(drawn):
         reference = reference_hz[j] if reference_hz is not None and j < len(reference_hz) else None
         if reference is not None:
             ax.axhline(
@@ -185,17 +195,7 @@ def plot_convergence_error(
     ax = _axes(ax)
     x = np.asarray(dofs, dtype=float)
     curves = 100.0 * np.abs(_columns(relative_errors, x.size))
-    for j in range(curves.shape[1]):
-        ax.plot(
-            x,
-            curves[:, j],
-            marker=marker,
-            markersize=4,
-            linestyle=linestyle,
-            linewidth=1.0,
-            color=colors[j] if colors is not None else f"C{j}",
-            label=labels[j] if labels is not None else None,
-        )
+    _plot_curves(ax, x, curves, labels, colors, marker, linestyle)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ticker = _ticker()
