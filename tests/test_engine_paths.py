@@ -11,6 +11,12 @@ and agree far closer (1e-6). With a PI top drive the scipy path is
 ``torsio.solvers.reference.reference_severity`` (solve_ivp, Radau, rtol 1e-8, atol 1e-10,
 on the same right-hand side and exact Jacobian of the description).
 
+The batch engine's own scipy path (engine="scipy": reference_severity per point, Radau
+at the batch tolerances) is checked against the reference too. Which engine ran is asserted,
+so that a law without a compiled kernel cannot silently fall back. The linearization's
+eigenvalues against those of a central-difference Jacobian of the same right-hand side, for
+the same 1, 5 and 40 DOF models and laws, are in tests/test_top_drive_analyses.py.
+
 Cases: the built-in Ritto et al. (2017) string with 1 DOF (strategy A), 5 DOF (strategy C)
 and 40 DOF (strategy C, 40 drill-pipe elements); Tucker-Wang and the bundled plugin's
 coulomb-stribeck law; the top held at constant speed and a PI top drive (kp = 5000
@@ -49,8 +55,14 @@ def _system(dofs: int, law: str, top: str) -> System:
     return system.at(wob=wob, rpm=rpm)
 
 
+def _slow(dofs: int, law: str, top: str) -> list[pytest.MarkDecorator]:
+    # 40 DOFs run by default once (Tucker-Wang, held top, about 20 s); the rest with -m slow
+    default = (dofs, law, top) == (40, "tucker-wang", "constant-speed")
+    return [pytest.mark.slow] if dofs == 40 and not default else []
+
+
 CASES = [
-    pytest.param(dofs, law, top, marks=[pytest.mark.slow] if dofs == 40 else [])
+    pytest.param(dofs, law, top, marks=_slow(dofs, law, top))
     for dofs in (1, 5, 40)
     for law in ("tucker-wang", "coulomb-stribeck")
     for top in ("constant-speed", "pi")
@@ -71,6 +83,13 @@ def test_same_severity_on_every_path(dofs: int, law: str, top: str) -> None:
     whole = simulate_batch(system, *point, engine="compiled", steady_tolerance=0.0, **BATCH)
     numpy = simulate_batch(system, *point, engine="numpy", **BATCH)
     assert compiled.ok.all() and whole.ok.all() and numpy.ok.all()
+    # each path really ran: the law's compiled kernel (Tucker-Wang's and the plugin's alike),
+    # the fallback engine, and the scipy path
+    assert (compiled.engine, whole.engine, numpy.engine) == ("compiled", "compiled", "numpy")
+    if top != "pi":  # (with the PI top drive the reference already is the scipy engine's run)
+        scipy = simulate_batch(system, *point, engine="scipy", **BATCH)
+        assert scipy.engine == "scipy" and scipy.ok.all()
+        assert abs(scipy.severity[0] - reference) < 2e-3
     assert reference > 0.8  # a stick-slip point: the comparison is not trivially 0 = 0
     assert abs(compiled.severity[0] - reference) < 2e-3
     assert abs(numpy.severity[0] - reference) < 2e-3
