@@ -367,47 +367,36 @@ SMALL_ROWS = 18
 steady-cycle tracker)."""
 
 
+@njit(cache=True, nogil=True, error_model="numpy")
+def _point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k) -> None:
+    """Point k with its own zeroed work space (allocated here, outside the step loop)."""
+    vectors = np.zeros((VECTOR_ROWS, chain.shape[1]))
+    small = np.zeros((SMALL_ROWS, 8))
+    _integrate_point(
+        chain,
+        top,
+        torque,
+        slope,
+        p,
+        settings,
+        wob[k],
+        omega[k],
+        omega_set[k],
+        out[k],
+        vectors,
+        small,
+    )
+
+
 @njit(kernel_signature(), cache=True, nogil=True, error_model="numpy")
 def integrate_serial(chain, top, torque, slope, p, settings, wob, omega, omega_set, out) -> None:
     """Every point in turn, without the GIL (arguments: :func:`kernel_signature`)."""
-    vectors = np.empty((VECTOR_ROWS, chain.shape[1]))
-    small = np.empty((SMALL_ROWS, 8))
     for k in range(wob.size):
-        vectors[:] = 0.0
-        small[:] = 0.0
-        _integrate_point(
-            chain,
-            top,
-            torque,
-            slope,
-            p,
-            settings,
-            wob[k],
-            omega[k],
-            omega_set[k],
-            out[k],
-            vectors,
-            small,
-        )
+        _point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k)
 
 
 @njit(kernel_signature(), cache=True, parallel=True, error_model="numpy")
 def integrate_parallel(chain, top, torque, slope, p, settings, wob, omega, omega_set, out) -> None:
     """Every point on numba's thread pool (dynamic sharing: set the chunk size to 1)."""
     for k in prange(wob.size):
-        vectors = np.zeros((VECTOR_ROWS, chain.shape[1]))
-        small = np.zeros((SMALL_ROWS, 8))
-        _integrate_point(
-            chain,
-            top,
-            torque,
-            slope,
-            p,
-            settings,
-            wob[k],
-            omega[k],
-            omega_set[k],
-            out[k],
-            vectors,
-            small,
-        )
+        _point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k)
