@@ -63,6 +63,7 @@ DISCRETIZATION_KEYS = {
     "max_element_length",
     "time_step",
     "travel_time_tolerance",
+    "rigid_bha",
 }
 DAMPING_KEYS = {"alpha", "beta", "ratios", "modes"}
 OPERATION_KEYS = {"wob", "rpm"}

@@ -87,9 +87,13 @@ class WaveModel:
     densities : ndarray
         rho_i [kg/m^3].
     bit_inertia : float
-        Inertia of the bit, a rigid body below the last section [kg m^2].
+        Inertia of the bit, a rigid body below the last section [kg m^2] (with
+        ``rigid_bha``: the BHA's and the bit's).
     strategy : str
         ``"wave"``.
+    rigid_bha : bool
+        The grid covers the drill pipes only, the BHA a rigid body with the bit:
+        strategy C's string, the limit its discretization converges to.
     """
 
     string: DrillString
@@ -102,11 +106,18 @@ class WaveModel:
     bit_inertia: float
     strategy: str = "wave"
     details: dict[str, Any] = attrs.field(factory=dict, eq=False)
+    rigid_bha: bool = False
+
+    @property
+    def sections(self) -> tuple[Any, ...]:
+        """The sections on the grid: the flexible ones, or the drill pipes with ``rigid_bha``."""
+        string = self.string
+        return string.drill_pipe_sections if self.rigid_bha else string.flexible_sections
 
     @property
     def travel_times(self) -> np.ndarray:
         """Travel time L_i / c_i of each section of the string as given [s]."""
-        lengths = np.array([s.length for s in self.string.flexible_sections])
+        lengths = np.array([s.length for s in self.sections])
         return lengths / self.wave_speeds
 
     @property
@@ -151,9 +162,17 @@ class WaveModel:
         """
         sections = [
             attrs.evolve(s, length=float(length))
-            for s, length in zip(self.string.flexible_sections, self.grid_lengths, strict=True)
+            for s, length in zip(self.sections, self.grid_lengths, strict=True)
         ]
-        return self.string.with_sections([*sections, self.string.bit])
+        rigid = list(self.string.bha_sections) if self.rigid_bha else []
+        return self.string.with_sections([*sections, *rigid, self.string.bit])
+
+    @property
+    def static_stiffness(self) -> float:
+        """k_eq = 1 / sum(L_i / (G_i J_i)) over the grid's sections (top held) [N m/rad]."""
+        grid = self.grid_string()
+        sections = grid.drill_pipe_sections if self.rigid_bha else grid.flexible_sections
+        return 1.0 / sum(1.0 / s.stiffness for s in sections)
 
     def describe(self) -> dict[str, Any]:
         """Grid facts for reports and JSON."""
@@ -164,6 +183,7 @@ class WaveModel:
             "impedances_N_m_s": [float(z) for z in self.impedances],
             "travel_time_errors": [float(e) for e in self.travel_time_errors],
             "bit_inertia_kg_m2": self.bit_inertia,
+            "rigid_bha": self.rigid_bha,
         }
 
 
@@ -218,6 +238,9 @@ class WaveStrategy:
     travel_time_tolerance : float, optional
         Largest relative change of a section's travel time L/c by rounding to whole cells
         (default :data:`DEFAULT_TRAVEL_TIME_TOLERANCE`).
+    rigid_bha : bool, optional
+        Waves in the drill pipes only, the BHA a rigid body with the bit (strategy C's
+        string; default False: every section flexible).
     """
 
     name: ClassVar[str] = "wave"
@@ -227,6 +250,7 @@ class WaveStrategy:
         self,
         time_step: float | None = None,
         travel_time_tolerance: float | None = None,
+        rigid_bha: bool | None = None,
         **options: Any,
     ) -> None:
         for key, value in options.items():
@@ -240,10 +264,15 @@ class WaveStrategy:
         self.travel_time_tolerance = _positive(
             "travel_time_tolerance", travel_time_tolerance, DEFAULT_TRAVEL_TIME_TOLERANCE
         )
+        if rigid_bha is not None and not isinstance(rigid_bha, bool):
+            raise ConfigError("rigid_bha", f"expected true or false, got {rigid_bha!r}")
+        self.rigid_bha = bool(rigid_bha)
 
     def discretize(self, string: DrillString) -> WaveModel:
         """The characteristic grid of ``string``."""
-        sections = string.flexible_sections
+        sections = string.drill_pipe_sections if self.rigid_bha else string.flexible_sections
+        if not sections:
+            raise ConfigError("rigid_bha", "the string has no drill pipes above its BHA")
         taus = np.array([s.wave_travel_time for s in sections])
         if taus.sum() / self.time_step > MAX_CELLS:
             raise ConfigError(
@@ -263,11 +292,12 @@ class WaveStrategy:
             wave_speeds=speed,
             polar_moments=polar,
             densities=density,
-            bit_inertia=float(string.bit.inertia),
+            bit_inertia=float(string.bha_inertia if self.rigid_bha else string.bit.inertia),
             details={
                 "time_step_s": dt,
                 "cells": {s.name or s.kind: int(n) for s, n in zip(sections, cells, strict=True)},
             },
+            rigid_bha=self.rigid_bha,
         )
 
 
@@ -283,11 +313,6 @@ def _positive(key: str, value: Any, default: float) -> float:
 def is_wave_model(model: Any) -> bool:
     """Whether ``model`` is the wave strategy's grid (not a lumped model)."""
     return isinstance(model, WaveModel)
-
-
-def first_frequency(grid: WaveModel) -> float:
-    """First natural frequency [rad/s] of the string on the grid (top held, exact continuum)."""
-    return float(continuum_modes(grid.grid_string(), count=1).frequencies_rad[0])
 
 
 def check_wave_damping(damping: Any) -> float:
@@ -308,6 +333,15 @@ def check_wave_damping(damping: Any) -> float:
             "expected 0",
         )
     return float(alpha)
+
+
+def first_frequency(grid: WaveModel) -> float:
+    """First natural frequency [rad/s] of the string on the grid (top held, exact continuum).
+
+    The rigid-BHA continuum with ``rigid_bha``.
+    """
+    modes = continuum_modes(grid.grid_string(), count=1, rigid_bha=grid.rigid_bha)
+    return float(modes.frequencies_rad[0])
 
 
 from torsio.hookspecs import hookimpl  # noqa: E402  (after the class it registers)

@@ -28,10 +28,10 @@ def wave_scales(grid: Any) -> tuple[float, float]:
     """(k_eq [N m/rad], omega_1 [rad/s]) of the continuum on the grid.
 
     k_eq = 1 / sum(L_i / (G_i J_i)): the static stiffness seen at the bit with the top
-    held (Eq. 9 for the continuous string); omega_1 the grid string's first exact mode.
+    held (Eq. 9 for the continuous string); omega_1 the grid string's first exact mode
+    (the rigid-BHA continuum with ``rigid_bha``).
     """
-    compliance = sum(1.0 / s.stiffness for s in grid.grid_string().flexible_sections)
-    return 1.0 / compliance, first_frequency(grid)
+    return grid.static_stiffness, first_frequency(grid)
 
 
 def simulate_wave_batch(
