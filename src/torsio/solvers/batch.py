@@ -303,7 +303,9 @@ def simulate_batch(
     if is_wave_model(system.model):  # the distributed model: its own stepping
         from torsio.solvers.wave_batch import simulate_wave_batch
 
-        return simulate_wave_batch(system, wob, rpm, duration, steady_window, rtol, atol)
+        return simulate_wave_batch(
+            system, wob, rpm, duration, steady_window, rtol, atol, threads=threads
+        )
     wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)
     for key, value in (("rtol", rtol), ("atol", atol)):
         if not (math.isfinite(value) and value > 0):

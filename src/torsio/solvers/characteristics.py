@@ -141,7 +141,7 @@ def state_from_fields(
 
 
 # --- the compiled step ----------------------------------------------------------------------
-@njit(_SOLVE_SIGNATURE, cache=True)
+@njit(_SOLVE_SIGNATURE, cache=True, nogil=True)
 def _solve_bit(k, rhs, guess, torque, slope, parameters, wob, radius):  # type: ignore[no-untyped-def,unused-ignore]
     """Root of k w + T_bit(w) = rhs nearest ``guess`` in the direction of motion."""
     f0 = k * guess + torque(parameters, guess, wob, radius) - rhs
@@ -183,7 +183,26 @@ def _solve_bit(k, rhs, guess, torque, slope, parameters, wob, radius):  # type: 
     return w
 
 
-@njit(_MARCH_SIGNATURE, cache=True)
+@njit(cache=True, nogil=True)
+def _transport(offsets, half_plus, half_minus, p, m, p_next, m_next):  # type: ignore[no-untyped-def,unused-ignore]
+    """Drag step, then every invariant one node along its characteristic (into ``*_next``).
+
+    A function of its own, on slices indexed from 0: the compiler then vectorizes the
+    loop (no swapped buffers, no possibly negative index), about 5 times faster.
+    """
+    for s in range(offsets.size - 1):
+        start = offsets[s]
+        stop = offsets[s + 1]
+        p_in = p[start:stop]
+        m_in = m[start:stop]
+        p_out = p_next[start:stop]
+        m_out = m_next[start:stop]
+        for j in range(stop - start - 1):
+            p_out[j + 1] = half_plus * p_in[j] + half_minus * m_in[j]
+            m_out[j] = half_minus * p_in[j + 1] + half_plus * m_in[j + 1]
+
+
+@njit(_MARCH_SIGNATURE, cache=True, nogil=True)
 def _march(  # type: ignore[no-untyped-def,unused-ignore]
     offsets, impedance, settings, p, m, top_state, bit_state,
     propagator, forcing, constant, coefficients,
@@ -225,13 +244,7 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
         m_top_old = m[0]
         # 1. drag (merged half steps) fused with the transport: the stored state is half a
         # drag step behind the sampled one, so this is the Strang splitting D(1/2) T D(1/2)
-        for s in range(sections):
-            start = offsets[s]
-            stop = offsets[s + 1] - 1
-            for j in range(start + 1, stop + 1):
-                p_next[j] = half_plus * p[j - 1] + half_minus * m[j - 1]
-            for j in range(start, stop):
-                m_next[j] = half_minus * p[j + 1] + half_plus * m[j + 1]
+        _transport(offsets, half_plus, half_minus, p, m, p_next, m_next)
         p, p_next = p_next, p
         m, m_next = m_next, m
         # 2. junctions
