@@ -326,3 +326,24 @@ def test_strategy_c_severity_converges_at_second_order_to_its_wave_limit() -> No
     print("S_SS errors of C against the rigid-BHA wave model:", errors, "order", order)
     assert order == pytest.approx(2.0, abs=0.25)
     assert max(errors) < 0.01  # the target: within 0.01 of the distributed model
+
+
+def test_report_of_the_wave_model_shows_its_grid_and_severity(tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
+    # torsio report --strategy wave end to end: the grid (cells per section, time step; the
+    # default grid of the paper's string, docs/wave.md) and S_SS of the same run as simulate
+    import json
+
+    from torsio.cli import main
+
+    path = tmp_path / "wave.toml"
+    path.write_text(_wave_config_text().replace('strategy = "wave"', 'strategy = "C"'))
+    assert main(["report", str(path), "--strategy", "wave", "--modes", "2", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    grid = data["discretization"]
+    assert grid["strategy"] == "wave"
+    assert [part["cells"] for part in grid["parts"]] == [995, 36, 62]
+    assert grid["time_step_s"] == pytest.approx(1.4386e-3, abs=1e-7)
+    assert data["wave"]["cells"] == [995, 36, 62]
+    assert data["wave"]["severity"] == data["response"]["severity"]
+    assert data["modes"]["frequencies_hz"][0] == pytest.approx(0.13075, abs=1e-5)  # continuum
+    assert data["damping"]["ratios"][0] == pytest.approx(0.35 / (2 * 0.8215), rel=1e-3)

@@ -11,7 +11,10 @@ Sections now: the drill-string, its discretization, the first modes against
 the exact continuum, the Rayleigh damping ratios of those modes, the operating
 point, the top drive (gains, impedance at omega_1, reflection coefficient), the
 dimensionless groups, the response there (S_SS, stick fraction) and its distance
-to the critical weight on bit.
+to the critical weight on bit. For the distributed model (``strategy = "wave"``) the
+discretization, modes and damping sections describe its grid, its exact continuum and
+its distributed drag (:mod:`torsio.io.report_wave`), and a ``wave`` section follows the
+response.
 
 Examples
 --------
@@ -66,6 +69,12 @@ from torsio.io.report_model import (
     string_table,
 )
 from torsio.io.report_top_drive import top_drive_section
+from torsio.io.report_wave import (
+    wave_damping_section,
+    wave_discretization_section,
+    wave_modes_section,
+    wave_section,
+)
 
 __all__ = [
     "CRITICAL_SEARCH",
@@ -105,15 +114,31 @@ SECTIONS: list[Callable[[ReportContext], ReportSection | None]] = [
 """The sections of the report, in order; a function may return None to be left out."""
 
 
+WAVE_SECTIONS: dict[Any, Callable[[ReportContext], ReportSection | None]] = {
+    discretization_section: wave_discretization_section,
+    modes_section: wave_modes_section,
+    damping_section: wave_damping_section,
+}
+"""Sections the wave model replaces (same JSON keys); its own ``wave`` section follows
+the response."""
+
+
 def report_sections(ctx: ReportContext) -> list[ReportSection]:
     """The sections of the report of ``ctx``, in order, computed once per context.
 
     The modal analysis runs first: every later omega_1 of the model (run times, the
-    dimensionless groups, the batch engine, a top drive's tuning) reads it.
+    dimensionless groups, the batch engine, a top drive's tuning) reads it. The wave
+    model has no matrices: its sections describe the grid, its exact continuum and its
+    distributed drag instead (:data:`WAVE_SECTIONS`).
     """
     if ctx.sections is None:
-        ctx.modal  # noqa: B018  (computed here, before anything that needs omega_1)
-        sections = (function(ctx) for function in SECTIONS)
+        functions = list(SECTIONS)
+        if ctx.is_wave:
+            functions = [WAVE_SECTIONS.get(function, function) for function in functions]
+            functions.insert(functions.index(response_section) + 1, wave_section)
+        else:
+            ctx.modal  # noqa: B018  (computed here, before anything that needs omega_1)
+        sections = (function(ctx) for function in functions)
         ctx.sections = [section for section in sections if section is not None]
     return ctx.sections
 

@@ -101,6 +101,22 @@ class ReportContext:
         return damping
 
     @functools.cached_property
+    def is_wave(self) -> bool:
+        """Whether the model is the distributed (wave) model rather than a lumped one."""
+        from torsio.model.wave import is_wave_model
+
+        return is_wave_model(self.model)
+
+    @functools.cached_property
+    def first_frequency(self) -> float:
+        """omega_1 [rad/s]: the model's first mode (the wave model's: its exact continuum)."""
+        if self.is_wave:
+            from torsio.model.wave import first_frequency
+
+            return first_frequency(self.model)  # type: ignore[arg-type]
+        return float(self.modal.frequencies_rad[0])
+
+    @functools.cached_property
     def modal(self) -> ModalResults:
         """The first modes of the model."""
         count = min(self.requested_modes, self.model.dofs)

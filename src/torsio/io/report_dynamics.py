@@ -128,13 +128,11 @@ def response_section(ctx: ReportContext) -> ReportSection | None:
         Text(f"{data['bit_speed_min_rad_s']:.4g} to {data['bit_speed_max_rad_s']:.4g} rad/s"),
     )
     table.add_row("window", Text(f"{start:.4g} to {end:.4g} s of a start-up from rest"))
+    rtol, atol = solver.get("rtol"), solver.get("atol")
+    tolerances = "fixed step" if rtol != rtol else f"rtol {rtol:g}, atol {atol:g}"  # NaN: none
     table.add_row(
         "integrator",
-        Text(
-            f"{solver.get('method')} (rtol {solver.get('rtol'):g}, "
-            f"atol {solver.get('atol'):g}), {solver.get('nfev')} "
-            "evaluations"
-        ),
+        Text(f"{solver.get('method')} ({tolerances}), {solver.get('nfev')} evaluations"),
     )
     return ReportSection("response", "Response at the operating point (Eq. 12)", data, table)
 

@@ -66,7 +66,7 @@ def top_drive_data(ctx: ReportContext) -> dict[str, Any] | None:
         return None
     top = system.top
     boundary = top.boundary(system)
-    omega1 = float(ctx.modal.frequencies_rad[0])
+    omega1 = ctx.first_frequency
     i_eq = float(ctx.model.equivalent_stiffness) / omega1**2
     zeta = pipe_impedance(system, top)
     pi_like = boundary.states >= 1

@@ -168,6 +168,11 @@ class WaveModel:
         return self.string.with_sections([*sections, *rigid, self.string.bit])
 
     @property
+    def equivalent_stiffness(self) -> float:
+        """k_eq of Eq. 9 for the string on the grid: :attr:`static_stiffness` [N m/rad]."""
+        return self.static_stiffness
+
+    @property
     def static_stiffness(self) -> float:
         """k_eq = 1 / sum(L_i / (G_i J_i)) over the grid's sections (top held) [N m/rad]."""
         grid = self.grid_string()
