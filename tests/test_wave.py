@@ -225,13 +225,25 @@ def test_wave_strategy_refuses_what_it_cannot_represent() -> None:
     system = config.system(strategy="wave")  # the paper's beta = 0.06 s
     from torsio.analysis.wave import wave_response
 
-    with pytest.raises(ConfigError, match="damping.beta"):
+    # the message names what to set: alpha + beta w1^2 keeps the first mode's damping ratio
+    # (Rayleigh: zeta_1 = (alpha / w1 + beta w1) / 2, w1 = 0.8215 rad/s from the continuum)
+    with pytest.raises(ConfigError, match=r"damping.beta.*beta = 0.*alpha = 0\.3905 1/s"):
         wave_response(system, duration=1.0)
     with pytest.raises(ConfigError, match="dp_elements"):
         WaveStrategy(dp_elements=5)
     with pytest.raises(ConfigError, match="time_step"):
         WaveStrategy(time_step=-1.0)
     assert attrs.evolve(system, damping=RayleighDamping(alpha=0.35)).model.strategy == "wave"
+
+
+def test_cli_simulate_wave_on_the_builtin_config_says_what_to_set(capsys) -> None:  # type: ignore[no-untyped-def]
+    # the built-in file has beta = 0.06 s: a usage error naming the key and the remedy
+    from torsio.cli import main
+
+    assert main(["simulate", "--strategy", "wave"]) == 2
+    message = capsys.readouterr().err
+    assert "damping.beta" in message and "beta = 0" in message
+    assert "alpha = 0.3905 1/s" in message and "Kelvin-Voigt" in message
 
 
 def _wave_config_text() -> str:

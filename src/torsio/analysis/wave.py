@@ -128,7 +128,7 @@ def wave_response(
     grid = system.model
     if not is_wave_model(grid):
         raise ConfigError("discretization.strategy", f"expected the wave model, got {grid!r}")
-    alpha = check_wave_damping(system.damping)
+    alpha = check_wave_damping(system.damping, system.model)
     dt = grid.time_step
     period = 2.0 * math.pi / first_frequency(grid)
     duration = DEFAULT_DURATION_PERIODS * period if duration is None else float(duration)

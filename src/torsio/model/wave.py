@@ -27,8 +27,8 @@ a distributed viscous drag d = alpha rho J per unit length (and alpha J_bit on t
 which the wave model carries. The stiffness-proportional part beta [K] is a Kelvin-Voigt
 material damping, T = -G J (theta_x + beta theta_xt); it turns the wave equation into a
 wave-diffusion equation with no characteristics, and the wave model refuses it
-(``ConfigError`` on ``damping.beta``): compare lumped and distributed models with
-beta = 0.
+(``ConfigError`` on ``damping.beta``, naming the alpha with the same first-mode damping
+ratio, :func:`equivalent_alpha`): compare lumped and distributed models with beta = 0.
 
 Examples
 --------
@@ -320,8 +320,16 @@ def is_wave_model(model: Any) -> bool:
     return isinstance(model, WaveModel)
 
 
-def check_wave_damping(damping: Any) -> float:
-    """alpha [1/s] of a damping the wave model can carry; a clear error otherwise."""
+def check_wave_damping(damping: Any, grid: WaveModel | None = None) -> float:
+    """alpha [1/s] of a damping the wave model can carry; a clear error otherwise.
+
+    With ``grid`` the error for beta != 0 names the alpha that gives the first mode of
+    the grid's string the same damping ratio (:func:`equivalent_alpha`).
+
+    >>> from torsio.physics.damping import RayleighDamping
+    >>> check_wave_damping(RayleighDamping(alpha=0.35))
+    0.35
+    """
     alpha = getattr(damping, "alpha", None)
     beta = getattr(damping, "beta", None)
     if alpha is None or beta is None:
@@ -331,13 +339,35 @@ def check_wave_damping(damping: Any) -> float:
             f"(alpha as distributed drag), got {damping!r}",
         )
     if beta != 0.0:
+        hint = "set [damping] beta = 0 and give the damping as alpha [1/s]"
+        if grid is not None:
+            omega = first_frequency(grid)
+            ratio = 0.5 * (alpha / omega + beta * omega)
+            hint += (
+                f": alpha = {equivalent_alpha(alpha, beta, omega):.4g} 1/s (alpha + beta w1^2, "
+                f"w1 = {omega:.4g} rad/s) keeps the first mode's damping ratio {ratio:.3g}"
+            )
         raise ConfigError(
             "damping.beta",
-            f"the wave model carries the mass-proportional part alpha as distributed drag "
-            f"but not stiffness-proportional (Kelvin-Voigt) damping; got beta = {beta!r} s, "
-            "expected 0",
+            f"the wave model carries the mass-proportional part alpha of Rayleigh damping as "
+            f"distributed viscous drag, but not the stiffness-proportional (Kelvin-Voigt) part; "
+            f"got beta = {beta!r} s. To run the wave model, {hint} "
+            "(docs/wave.md, Damping)",
         )
     return float(alpha)
+
+
+def equivalent_alpha(alpha: float, beta: float, first_frequency: float) -> float:
+    """Mass-proportional alpha [1/s] with the first-mode damping ratio of (alpha, beta).
+
+    Rayleigh damping gives mode n the ratio (alpha / w_n + beta w_n) / 2; alpha + beta w1^2
+    alone gives mode 1 the same ratio (the higher modes less: Kelvin-Voigt damping grows
+    with frequency, distributed drag falls).
+
+    >>> round(equivalent_alpha(0.35, 0.06, 0.8215), 4)
+    0.3905
+    """
+    return float(alpha + beta * first_frequency**2)
 
 
 def first_frequency(grid: WaveModel) -> float:

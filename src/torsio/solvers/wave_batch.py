@@ -66,7 +66,7 @@ def simulate_wave_batch(
     count, as the lumped engine; one thread off the main thread, e.g. in a Dask worker).
     """
     grid = system.model
-    alpha = check_wave_damping(system.damping)
+    alpha = check_wave_damping(system.damping, system.model)
     wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)
     if duration is None or steady_window is None:
         default_duration, default_window = default_times(wave_scales(grid)[1])
