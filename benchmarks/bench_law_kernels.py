@@ -92,25 +92,8 @@ TW_SLOPE = njit(cache=True)(tucker_wang_slope)
 
 @njit(cache=True)
 def _serial_tucker_wang_constant(chain, top, p, settings, wob, omega, omega_set, out) -> None:
-    vectors = np.zeros((rodas.VECTOR_ROWS, chain.shape[1]))
-    small = np.zeros((rodas.SMALL_ROWS, 8))
-    for k in range(wob.size):
-        vectors[:] = 0.0
-        small[:] = 0.0
-        rodas._integrate_point(
-            chain,
-            top,
-            TW_TORQUE,
-            TW_SLOPE,
-            p,
-            settings,
-            wob[k],
-            omega[k],
-            omega_set[k],
-            out[k],
-            vectors,
-            small,
-        )
+    for k in range(wob.size):  # the shipped per-point entry, the law compiled in
+        rodas._point(chain, top, TW_TORQUE, TW_SLOPE, p, settings, wob, omega, omega_set, out, k)
 
 
 def part_kernel(points: int, repeat: int) -> None:
