@@ -79,3 +79,9 @@ def test_the_crossing_of_a_cubic_is_found_to_round_off() -> None:
     u0, u1, d0, d1 = -0.6, 4.2, 1.1, 9.5
     assert cycles.upward_root(u0, u1, d0, d1) == pytest.approx(0.3, abs=1e-12)
     assert cycles.hermite(u0, u1, d0, d1, 0.5) == pytest.approx(0.125 + 0.675 + 0.55 - 0.6)
+    # concave: Newton's iterates approach the root from one side only, the bracket's other
+    # end stays put. u(x) = -x^2 + 2 x - 0.75: u(0) = -0.75, u(1) = 0.25, u'(0) = 2,
+    # u'(1) = 0; root x = 0.5
+    assert cycles.upward_root(-0.75, 0.25, 2.0, 0.0) == pytest.approx(0.5, abs=1e-12)
+    # convex, the mirror case: u(x) = x^2 + x - 0.75, u'(0) = 1, u'(1) = 3; root x = 0.5
+    assert cycles.upward_root(-0.75, 1.25, 1.0, 3.0) == pytest.approx(0.5, abs=1e-12)

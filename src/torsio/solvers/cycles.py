@@ -117,22 +117,26 @@ def integral_of_cubic(u0: float, u1: float, d0: float, d1: float, lo: float) -> 
 def upward_root(u0: float, u1: float, d0: float, d1: float) -> float:
     """The x in (0, 1] where the cubic crosses zero, for u0 < 0 <= u1 (Newton, bisection
     safeguard, to 1e-13)."""
+    c2 = -3.0 * u0 - 2.0 * d0 + 3.0 * u1 - d1
+    c3 = 2.0 * u0 + d0 - 2.0 * u1 + d1
     lo, hi = 0.0, 1.0
     x = u0 / (u0 - u1)  # the secant's root as the first guess
-    for _ in range(60):
-        u = hermite(u0, u1, d0, d1, x)
+    for _ in range(100):
+        u = u0 + x * (d0 + x * (c2 + x * c3))
+        if u == 0.0:
+            return x
         if u < 0.0:
             lo = x
         else:
             hi = x
-        if hi - lo < 1e-13:
-            break
-        c2 = -3.0 * u0 - 2.0 * d0 + 3.0 * u1 - d1
-        c3 = 2.0 * u0 + d0 - 2.0 * u1 + d1
         slope = d0 + x * (2.0 * c2 + 3.0 * x * c3)
         step = x - u / slope if slope != 0.0 else -1.0
-        x = step if lo < step < hi else 0.5 * (lo + hi)
-    return hi
+        if not lo < step < hi:
+            step = 0.5 * (lo + hi)
+        if abs(step - x) < 1e-13:
+            return step
+        x = step
+    return x
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
