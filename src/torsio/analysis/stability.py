@@ -116,8 +116,15 @@ def eigenvalues(system: System, bit_slope: float | None = None) -> np.ndarray:
 
 
 def growth_rate(system: System, bit_slope: float | None = None) -> float:
-    """Largest real part of the eigenvalues [1/s]: > 0 means steady rotation is unstable."""
-    return float(eigenvalues(system, bit_slope)[0].real)
+    """Largest real part of the eigenvalues [1/s]: > 0 means steady rotation is unstable.
+
+    Eigenvalues zero to round-off (below 1e3 eps of the largest in magnitude) are left
+    out: a top drive whose controller integrates the speed error leaves the angle of the
+    whole string neutral, an eigenvalue 0 whose computed real part is +-1e-16.
+    """
+    values = eigenvalues(system, bit_slope)
+    neutral = np.abs(values) <= 1e3 * np.finfo(float).eps * np.max(np.abs(values))
+    return float(values[~neutral][0].real) if np.any(~neutral) else 0.0
 
 
 def bit_receptance(system: System, omega: Any) -> np.ndarray:
