@@ -54,7 +54,7 @@ def table(rows: list[Check]) -> str:
         diff = difference_text(row)
         lines.append(
             f"| {row.quantity} | {row.source} | {row.source_value:.6g} | "
-            f"{row.value:.6g} | {diff} | {row.tolerance:.2g} ({row.note}) |"
+            f"{row.value:.{row.digits}g} | {diff} | {row.tolerance:.2g} ({row.note}) |"
         )
     return "\n".join(lines) + "\n"
 
@@ -67,7 +67,8 @@ suite runs (`tests/test_validation.py`); a test fails if this page differs from 
 generation. *difference* is (torsio − source)/|source|; a check passes when
 |torsio − source| is within the tolerance, whose reason is given in brackets. A difference
 under a thousandth of the tolerance is round-off, whose digits change with the CPU and the
-linear-algebra library: it is shown as a bound ("< 1e-7 %").
+linear-algebra library: it is shown as a bound ("< 1e-7 %"). A stick-slip run's energy
+residual is shown with two digits: its third changes with them.
 
 """
 
