@@ -7,9 +7,9 @@ mode, S_SS over the last 15, 200 output samples per period), the same bit-rock l
 top drive. S_SS takes the bit-speed extremes over every time step of the window.
 :func:`torsio.analysis.transient.simulate` hands wave systems to it.
 
-Integrator: exact transport along characteristics, exact junctions, BDF2 for the bit,
-trapezoidal rule for a top drive, Strang splitting for the distributed drag; fixed step
-dt of the grid (no tolerances).
+Integrator: exact transport along characteristics, exact junctions, the distributed drag
+lumped into point dampers every ``drag_spacing`` cells (exact junctions too), BDF2 for
+the bit, trapezoidal rule for a top drive; fixed step dt of the grid (no tolerances).
 
 Examples
 --------
@@ -182,7 +182,9 @@ def wave_response(
         "residual": float(summary["work_in"] - stored - dissipated),
     }
     solver = {
-        "method": "characteristics (exact transport, BDF2 bit, trapezoidal top drive)",
+        "method": "characteristics (exact transport, point dampers, BDF2 bit, "
+        "trapezoidal top drive)",
+        "drag_spacing": grid.drag_spacing,
         "time_step": dt,
         "cells": list(grid.cells),
         "travel_time_errors": [float(e) for e in grid.travel_time_errors],

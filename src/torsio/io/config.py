@@ -33,6 +33,7 @@ from torsio.errors import ConfigError
 from torsio.io.chain_config import ChainConfig, parse_chain
 from torsio.io.config_tables import (
     _material,
+    _option_error,
     _positive_number,
     _section,
     _string,
@@ -64,6 +65,7 @@ DISCRETIZATION_KEYS = {
     "time_step",
     "travel_time_tolerance",
     "rigid_bha",
+    "drag_spacing",
 }
 DAMPING_KEYS = {"alpha", "beta", "ratios", "modes"}
 OPERATION_KEYS = {"wob", "rpm"}
@@ -450,7 +452,7 @@ def _discretization(raw: Any) -> DiscretizationConfig:
         key = exc.key if exc.key.startswith("discretization") else f"discretization.{exc.key}"
         raise ConfigError(key, exc.message) from None
     except TypeError as exc:
-        raise ConfigError("discretization", f"strategy {strategy!r}: {exc}") from None
+        raise _option_error(strategy, exc) from None
     return DiscretizationConfig(strategy, options)
 
 

@@ -6,6 +6,7 @@ and assembles the :class:`~torsio.io.config.Config`. Every error names its key.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from typing import Any
 
@@ -28,6 +29,17 @@ def _table(value: Any, key: str, allowed: set[str]) -> Mapping[str, Any]:
             f"{where}{unknown[0]}", f"unknown key; expected one of {', '.join(sorted(allowed))}"
         )
     return value
+
+
+def _option_error(strategy: str, exc: TypeError) -> ConfigError:
+    """The error for a discretizer that refused its options: the option named if possible."""
+    unexpected = re.search(r"unexpected keyword argument '(\w+)'", str(exc))
+    if unexpected:  # an option of another strategy (drag_spacing for C, ...)
+        key = unexpected.group(1)
+        return ConfigError(
+            f"discretization.{key}", f"strategy {strategy!r} takes no option {key!r}"
+        )
+    return ConfigError("discretization", f"strategy {strategy!r}: {exc}")
 
 
 def _string(value: Any, key: str) -> str:

@@ -69,11 +69,13 @@ def wave_discretization_section(ctx: ReportContext) -> ReportSection:
         "lumped_mass": None,
         "time_step_s": grid.time_step,
         "rigid_bha": grid.rigid_bha,
+        "drag_spacing": grid.drag_spacing,
     }
     head = Text.assemble(
         ("strategy ", "dim"), (grid.strategy, "bold"), f" — {description}\n",
         ("time step ", "dim"), (f"{grid.time_step * 1e3:.5g} ms", "bold"),
         " (a wave crosses one cell a step), ", ("nodes ", "dim"), (str(grid.dofs), "bold"),
+        ", ", ("drag ", "dim"), (f"every {grid.drag_spacing} cells", "bold"),
     )  # fmt: skip
     if grid.rigid_bha:
         head.append("\nBHA rigid with the bit (strategy C's string)", style="dim")
@@ -128,7 +130,10 @@ def wave_damping_section(ctx: ReportContext) -> ReportSection:
     table = _table("mode", "ω [rad/s]", "ζ = α/(2ω) [%]")
     for i, (omega_n, zeta) in enumerate(zip(w, ratios, strict=True)):
         table.add_row(str(i + 1), f"{omega_n:.3f}", f"{100 * zeta:.2f}")
-    head = Text(f"α = {alpha:.4g} 1/s as a drag α ρ J per unit length (and α J_b on the bit)")
+    head = Text(
+        f"α = {alpha:.4g} 1/s as a drag α ρ J per unit length (and α J_b on the bit), "
+        f"lumped into point dampers every {grid.drag_spacing} cells"
+    )
     if beta:
         head.append(f"\nβ = {beta:g} s: not representable (Kelvin–Voigt); the run refuses it")
     return ReportSection("damping", "Damping: distributed viscous drag", data, Group(head, table))

@@ -24,9 +24,11 @@ reflected with (Z1 - Z2) / (Z1 + Z2); in torque the factors are 2 Z2 / (Z1 + Z2)
 
 Damping: the mass-proportional part alpha [I] of Rayleigh damping is the lumped form of
 a distributed viscous drag d = alpha rho J per unit length (and alpha J_bit on the bit),
-which the wave model carries. The stiffness-proportional part beta [K] is a Kelvin-Voigt
-material damping, T = -G J (theta_x + beta theta_xt); it turns the wave equation into a
-wave-diffusion equation with no characteristics, and the wave model refuses it
+which the wave model carries, lumped in its turn into point dampers at every
+``drag_spacing``-th node (:func:`drag_lumping`; 1: at every node). The
+stiffness-proportional part beta [K] is a Kelvin-Voigt material damping,
+T = -G J (theta_x + beta theta_xt); it turns the wave equation into a wave-diffusion
+equation with no characteristics, and the wave model refuses it
 (``ConfigError`` on ``damping.beta``, naming the alpha with the same first-mode damping
 ratio, :func:`equivalent_alpha`): compare lumped and distributed models with beta = 0.
 
@@ -57,6 +59,10 @@ DEFAULT_MAX_TIME_STEP = 5e-3
 
 DEFAULT_TRAVEL_TIME_TOLERANCE = 3e-4
 """Default largest relative change of a section's travel time by rounding to whole cells."""
+
+DEFAULT_DRAG_SPACING = 4
+"""Default number of cells between the nodes that carry the distributed drag (docs/wave.md
+gives its effect on S_SS: less than that of halving the time step)."""
 
 MAX_CELLS = 200_000
 """Largest number of cells a wave grid may have (memory and run time grow with it)."""
@@ -94,6 +100,8 @@ class WaveModel:
     rigid_bha : bool
         The grid covers the drill pipes only, the BHA a rigid body with the bit:
         strategy C's string, the limit its discretization converges to.
+    drag_spacing : int
+        Cells between the nodes that carry the distributed drag (:func:`drag_lumping`).
     """
 
     string: DrillString
@@ -107,6 +115,7 @@ class WaveModel:
     strategy: str = "wave"
     details: dict[str, Any] = attrs.field(factory=dict, eq=False)
     rigid_bha: bool = False
+    drag_spacing: int = DEFAULT_DRAG_SPACING
 
     @property
     def sections(self) -> tuple[Any, ...]:
@@ -189,6 +198,7 @@ class WaveModel:
             "travel_time_errors": [float(e) for e in self.travel_time_errors],
             "bit_inertia_kg_m2": self.bit_inertia,
             "rigid_bha": self.rigid_bha,
+            "drag_spacing": self.drag_spacing,
         }
 
 
@@ -206,6 +216,30 @@ def interface_factors(upper: float, lower: float) -> dict[str, float]:
         "torque_transmitted": 2.0 * lower / total,
         "torque_reflected": (lower - upper) / total,
     }
+
+
+def drag_lumping(cells: int, spacing: int) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes of a section of ``cells`` cells that carry its drag, and their shares [cells].
+
+    The drag of the section (alpha rho J per unit length, cells c dt long) is lumped into
+    point dampers at nodes 0, k, 2k, ... and the last node (k = ``spacing``), each taking
+    half of the cells on either side (the trapezoidal rule on that partition): the
+    shares add up to ``cells``. A share s gives the damper c = alpha Z s dt [N m s/rad].
+
+    >>> nodes, shares = drag_lumping(10, 4)
+    >>> nodes.tolist(), shares.tolist()
+    ([0, 4, 8, 10], [2.0, 4.0, 3.0, 1.0])
+    >>> drag_lumping(3, 1)[1].tolist()  # spacing 1: every node, half shares at the ends
+    [0.5, 1.0, 1.0, 0.5]
+    """
+    nodes = np.arange(0, cells + 1, spacing)
+    if nodes[-1] != cells:
+        nodes = np.append(nodes, cells)
+    gaps = np.diff(nodes).astype(float)
+    shares = np.zeros(nodes.size)
+    shares[:-1] += 0.5 * gaps
+    shares[1:] += 0.5 * gaps
+    return nodes, shares
 
 
 def choose_time_step(
@@ -246,6 +280,9 @@ class WaveStrategy:
     rigid_bha : bool, optional
         Waves in the drill pipes only, the BHA a rigid body with the bit (strategy C's
         string; default False: every section flexible).
+    drag_spacing : int, optional
+        Cells between the nodes that carry the distributed drag (default
+        :data:`DEFAULT_DRAG_SPACING`; 1: every node).
     """
 
     name: ClassVar[str] = "wave"
@@ -256,6 +293,7 @@ class WaveStrategy:
         time_step: float | None = None,
         travel_time_tolerance: float | None = None,
         rigid_bha: bool | None = None,
+        drag_spacing: int | None = None,
         **options: Any,
     ) -> None:
         for key, value in options.items():
@@ -263,7 +301,8 @@ class WaveStrategy:
                 raise ConfigError(
                     key,
                     f"the wave strategy takes no option {key!r}: its grid follows the wave "
-                    "speeds; give time_step [s] and travel_time_tolerance instead",
+                    "speeds; give time_step [s], travel_time_tolerance and drag_spacing "
+                    "instead",
                 )
         self.time_step = _positive("time_step", time_step, DEFAULT_MAX_TIME_STEP)
         self.travel_time_tolerance = _positive(
@@ -272,6 +311,15 @@ class WaveStrategy:
         if rigid_bha is not None and not isinstance(rigid_bha, bool):
             raise ConfigError("rigid_bha", f"expected true or false, got {rigid_bha!r}")
         self.rigid_bha = bool(rigid_bha)
+        if drag_spacing is None:
+            drag_spacing = DEFAULT_DRAG_SPACING
+        if isinstance(drag_spacing, bool) or not isinstance(drag_spacing, int) or drag_spacing < 1:
+            raise ConfigError(
+                "drag_spacing",
+                f"expected a whole number of cells >= 1 between the drag nodes, got "
+                f"{drag_spacing!r}",
+            )
+        self.drag_spacing = int(drag_spacing)
 
     def discretize(self, string: DrillString) -> WaveModel:
         """The characteristic grid of ``string``."""
@@ -301,8 +349,10 @@ class WaveStrategy:
             details={
                 "time_step_s": dt,
                 "cells": {s.name or s.kind: int(n) for s, n in zip(sections, cells, strict=True)},
+                "drag_spacing": self.drag_spacing,
             },
             rigid_bha=self.rigid_bha,
+            drag_spacing=self.drag_spacing,
         )
 
 

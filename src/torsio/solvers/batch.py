@@ -49,7 +49,12 @@ import numpy as np
 from torsio.errors import ConfigError, SolverError
 from torsio.model.modal import first_natural_frequency, highest_natural_frequency
 from torsio.physics.system import System
-from torsio.solvers.batch_results import STATUS_SOLVER_FAILED, BatchResults, batch_points
+from torsio.solvers.batch_results import (
+    DEFAULT_STEADY_TOLERANCE,
+    STATUS_SOLVER_FAILED,
+    BatchResults,
+    batch_points,
+)
 from torsio.solvers.compiled import HAVE_NUMBA, numba
 from torsio.solvers.law_kernels import LawKernel, law_kernel
 from torsio.solvers.reference import reference_severity, run_times
@@ -76,11 +81,6 @@ convergence study that chose it: |dS_SS| < 1e-3 against rtol = 1e-8 runs)."""
 
 DEFAULT_ATOL = 1e-6
 """Default absolute tolerance [rad, rad/s]."""
-
-DEFAULT_STEADY_TOLERANCE = 1e-3
-"""Default steady-cycle tolerance of the compiled engine, in S_SS units: a run ends once
-the motion is on a cycle whose extremes can move by no more than this over the rest of
-the run (:mod:`torsio.solvers.cycles`); 0 runs every point to the end."""
 
 DEFAULT_MAX_STEPS = 2_000_000
 """Accepted steps allowed per point before the point is reported as failed."""
@@ -304,7 +304,15 @@ def simulate_batch(
         from torsio.solvers.wave_batch import simulate_wave_batch
 
         return simulate_wave_batch(
-            system, wob, rpm, duration, steady_window, rtol, atol, threads=threads
+            system,
+            wob,
+            rpm,
+            duration,
+            steady_window,
+            rtol,
+            atol,
+            threads=threads,
+            steady_tolerance=steady_tolerance,
         )
     wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)
     for key, value in (("rtol", rtol), ("atol", atol)):

@@ -10,6 +10,12 @@ import numpy as np
 
 from torsio.errors import ConfigError
 
+DEFAULT_STEADY_TOLERANCE = 1e-3
+"""Default steady-cycle tolerance of the compiled engines, in S_SS units: a run ends once
+the motion is on a cycle whose extremes can move by no more than this over the rest of
+the run (:mod:`torsio.solvers.cycles`, :mod:`torsio.solvers.characteristics`); 0 runs
+every point to the end."""
+
 STATUS_OK = 0
 STATUS_MAX_STEPS = 1
 STATUS_STEP_UNDERFLOW = 2

@@ -1,44 +1,60 @@
 """Time stepping of the distributed model along characteristics (:mod:`torsio.model.wave`).
 
-One step of length dt:
+The state is the pair of Riemann invariants at every node: p = T + Z w travels down,
+m = T - Z w travels up. One step of length dt:
 
-1. **transport**: in every section the invariant p = T + Z w moves one node down and
-   m = T - Z w one node up (exact: the grid matches the wave speed);
-2. **junctions**: speed and torque continuous, so with the incoming p (from above) and
-   m (from below) ``w = (p - m) / (Z1 + Z2)``, ``T = (Z2 p + Z1 m) / (Z1 + Z2)`` and the
-   outgoing invariants follow (exact);
-3. **top**: held at Omega (outgoing p = m + 2 Z Omega, a reflection R = -1), or a top drive
-   (inertia and linear controller, :class:`torsio.physics.top_drives.TopDriveBoundary`)
-   integrated by the trapezoidal rule with the incoming m linear over the step; a motor
-   torque beyond ``max_torque`` is held at the limit for the step (back-calculation
-   anti-windup as the description gives it);
-4. **bit**: the bit's inertia J_b with torque on bit T_bit(w_b), drag alpha J_b and the
-   pipe torque p - Z w_b, by BDF2 (backward Euler on the first step), an L-stable
-   second-order rule: the bit's own time scale J_b / Z (about 2e-4 s for the Ritto
-   string) is far below dt. Each step solves one scalar equation
-   k w + T_bit(w) = r (k > 0) by bracketing from the previous speed in the direction of
-   motion and safeguarded Newton (to 1e-12 relative);
-5. **distributed drag** d = alpha rho J: the speed at every node decays by exp(-alpha dt)
-   with the torque unchanged, applied as half steps around 1-4 (Strang splitting,
-   second order; consecutive half steps are merged).
+1. **transport**: in every section each p moves one node down and each m one node up
+   (exact: the grid matches the wave speed). The invariants live in ring buffers, one
+   pair per section, so a step moves the buffers' read positions, not the values;
+2. **drag**: the distributed drag alpha rho J of each section is lumped into point
+   dampers c = alpha Z s dt at every ``drag_spacing``-th node, s the node's share of the
+   section in cells (:func:`torsio.model.wave.drag_lumping`). A damper at an inner node
+   is a junction with a dashpot to the borehole, solved exactly: with the arriving p
+   and m, ``v = (p - m) / (2 Z + c)``, then ``p <- m + 2 Z v``, ``m <- p - 2 Z v``; it
+   dissipates c v^2. The shares of the end nodes join the junction, the top drive and
+   the bit there;
+3. **junctions** between sections: speed continuous, the torque jump the damper's,
+   ``v = (p - m) / (Z1 + Z2 + c)``; the outgoing invariants follow (exact);
+4. **top**: held at Omega (outgoing p = m + 2 Z Omega, a reflection R = -1), or a top
+   drive (inertia and linear controller, :class:`torsio.physics.top_drives.TopDriveBoundary`,
+   the top node's damper added to its drag) integrated by the trapezoidal rule with the
+   incoming m linear over the step; a motor torque beyond ``max_torque`` is held at the
+   limit for the step (back-calculation anti-windup as the description gives it);
+5. **bit**: the bit's inertia J_b with torque on bit T_bit(w_b), drag alpha J_b plus the
+   bottom node's damper, and the pipe torque p - Z w_b, by BDF2 (backward Euler on the
+   first step), an L-stable second-order rule: the bit's own time scale J_b / Z (about
+   2e-4 s for the Ritto string) is far below dt. Each step solves one scalar equation
+   k w + T_bit(w) = r (k > 0): bracketed from the previous speed in the direction of
+   motion, the first trial the linear extrapolation of the last two speeds, then
+   safeguarded Newton to 1e-12 relative (or to where quadratic convergence puts the
+   error below that).
 
-The stored state is half a drag step behind the sampled one (T unchanged, w smaller by
-exp(-alpha dt / 2)). The top and the bit act on the sampled state: the top speed and the
-bit speed are node speeds there, so for a stored incoming invariant T = m + Z' w at the
-top and T = p - Z' w at the bit, with Z' = Z exp(alpha dt / 2). (Applying them to the
-stored state instead moves the boundary speeds by alpha dt / 2, a first-order error in
-the boundary power: 3e-4 of the work at dt = 4 ms.)
+Everything but the bit's and the top drive's time integration is exact for the lumped
+drag: the energy of the string, sum of (p^2 + m^2) dt / (4 Z) over the nodes (half at
+the ends of a section), changes by the boundary powers summed by the trapezoidal rule
+(the transport and the junctions), less c v^2 dt at every inner damper. With every power
+summed so, work in = stored + dissipated to O(dt^2) when the top speed is continuous.
+A jump in speed reaching the bit (a held top started from rest) is not resolved when
+dt >> J_b / Z: BDF2 then loses about J_b dw^2 / 2 of energy for a jump dw of the bit
+speed.
 
-Energy: exact transport and junctions change the string's energy by the trapezoidal
-rule of the boundary powers, the drag steps by (1 - exp(-alpha dt)) of the kinetic
-energy; the kernel sums every power by the trapezoidal rule, so work in = stored +
-dissipated to O(dt^2) for a continuous top speed. A jump in speed reaching the bit
-(a held top started from rest) is not resolved when dt >> J_b / Z: BDF2 then loses
-about J_b dw^2 / 2 of energy for a jump dw of the bit speed.
+The speed at an inner damper node is (p - m) / (2 Z - c) for the stored outgoing pair
+(the torque steps by c v there; its mean is (p + m) / 2): :func:`node_impedances`.
+
+A run can end early on a steady cycle (``steady_tolerance`` > 0, held top or a top drive
+with a set speed): a cycle ends where the bit speed crosses the reference speed upwards,
+at least ``cycle_gap`` (a quarter of the first natural period) after the last cycle's
+end, so that a fast oscillation of the bit about the reference does not count; there
+the speed and torque of every node are compared with those at the last cycle's end, in
+S_SS units (speeds and torques / Z over 2 Omega), and the run ends once even the larger
+of the last two changes, repeated at every cycle left, could not move the state by the
+tolerance (the rule of :mod:`torsio.solvers.cycles`). A stick-slip cycle sends fronts down the
+string that the grid places to one cell, so its state repeats to about 1e-3 only and
+such runs go to the end; smooth motions (a decaying oscillation) end early.
 
 The step is compiled with numba (cache=True) when the law brings a compiled kernel
-(:func:`torsio.solvers.law_kernels.law_kernel`); otherwise the same algorithm runs on
-numpy arrays with the law's Python ``torque`` and ``slope``.
+(:func:`torsio.solvers.law_kernels.law_kernel`); otherwise the same algorithm runs as
+plain Python with the law's ``torque`` and ``slope``.
 """
 
 from __future__ import annotations
@@ -46,30 +62,69 @@ from __future__ import annotations
 import math
 from typing import Any
 
-import attrs
-import numpy as np
+from torsio.solvers.compiled import njit
+from torsio.solvers.wave_bit import _solve_bit
+from torsio.solvers.wave_buffers import (
+    _advance,
+    _copy_nodes,
+    _dampers,
+    _dampers_with_power,
+    _read_nodes,
+    _slot,
+)
+from torsio.solvers.wave_state import (
+    BUFFER_START,
+    C_INNER,
+    C_SPECIAL,
+    INNER,
+    LAST_COLUMN,
+    LAST_ROW,
+    RATIO_INNER,
+    RATIO_SPECIAL,
+    SPECIAL,
+    SPECIAL_COLUMN,
+    SPECIAL_ROW,
+    WIDTH,
+    KernelLayout,
+    WaveState,
+    Z,
+    kernel_layout,
+    node_impedances,
+    node_offsets,
+    node_speeds,
+    rest_state,
+    state_from_fields,
+)
 
-from torsio.model.wave import WaveModel
-from torsio.solvers.wave_top import TopArrays
+__all__ = [
+    "RECORD_CHANNELS",
+    "SUMMARY_FIELDS",
+    "SUMMARY_SIZE",
+    "KernelLayout",
+    "WaveState",
+    "kernel_layout",
+    "node_impedances",
+    "node_offsets",
+    "node_speeds",
+    "rest_state",
+    "state_from_fields",
+]
 
 try:  # numba is optional: without it the same steps run as plain Python (slowly)
-    from numba import njit, types
+    from numba import types
 
     _F8 = types.float64
     _VECTOR = types.float64[::1]
+    _MATRIX = types.float64[:, ::1]
     _LAW = types.FunctionType(_F8(_VECTOR, _F8, _F8, _F8))
-    _SOLVE_SIGNATURE: Any = _F8(_F8, _F8, _F8, _LAW, _LAW, _VECTOR, _F8, _F8)
     _MARCH_SIGNATURE: Any = types.void(
-        types.int64[::1], _VECTOR, _VECTOR, _VECTOR, _VECTOR, _VECTOR, _VECTOR,
-        types.float64[:, :, ::1], types.float64[:, ::1], types.float64[:, ::1], _VECTOR,
-        _LAW, _LAW, _VECTOR, types.float64[:, ::1], types.float64[:, ::1], _VECTOR,
+        types.int64[:, ::1], _MATRIX, _VECTOR, _VECTOR, _VECTOR, _VECTOR, _VECTOR, _VECTOR,
+        _VECTOR, types.float64[:, :, ::1], _MATRIX, _MATRIX, _VECTOR,
+        _LAW, _LAW, _VECTOR, _MATRIX, _MATRIX, _VECTOR, _MATRIX,
+        _MATRIX, _MATRIX, types.int64[:, ::1], _VECTOR,
     )  # fmt: skip
 except ImportError:  # pragma: no cover - exercised only without numba
-    _SOLVE_SIGNATURE = _MARCH_SIGNATURE = None
-
-    def njit(*args: Any, **kwargs: Any) -> Any:  # type: ignore[no-redef]
-        """Stands in for numba.njit: the function runs as plain Python."""
-        return lambda function: function
+    _MARCH_SIGNATURE = None
 
 
 RECORD_CHANNELS = ("bit_speed", "bit_torque", "surface_torque", "top_speed", "motor_torque")
@@ -89,181 +144,189 @@ SUMMARY_FIELDS = (
 )
 """Entries of the run summary: extremes and sums over the window; energies [J] over the run."""
 
-_NEWTON_TOLERANCE = 1e-12
+SUMMARY_SIZE = 25
+"""Length of the kernel's summary array: :data:`SUMMARY_FIELDS`, the powers of the last
+step (10-14), the steps taken before (15), the steady-cycle tracker (16-22, 24) and the
+step the run ended on a steady cycle (23, 0: it did not)."""
+
+# the steady-cycle tracker in the summary array
+_COUNT, _T_LAST, _RUN_MAX, _RUN_MIN, _CYCLE_MAX, _CYCLE_MIN, _CHANGE, _ENDED, _KEPT = range(16, 25)
 
 
-@attrs.frozen(eq=False)
-class WaveState:
-    """State of the distributed model: invariants at every node, top and bit states.
-
-    ``p`` and ``m`` hold every section's nodes (a junction node once per section),
-    section s at ``offsets[s] .. offsets[s] + cells[s]``. ``bit`` = [w_b, w_b one step
-    earlier, steps taken]. ``top`` = [Omega_0, z...] (empty when held).
-    """
-
-    p: np.ndarray
-    m: np.ndarray
-    top: np.ndarray
-    bit: np.ndarray
-
-    def copy(self) -> WaveState:
-        """An independent copy."""
-        return WaveState(self.p.copy(), self.m.copy(), self.top.copy(), self.bit.copy())
-
-
-def node_offsets(grid: WaveModel) -> np.ndarray:
-    """Start of each section's node block in the state arrays, and the total size."""
-    return np.concatenate([[0], np.cumsum(np.array(grid.cells) + 1)]).astype(np.int64)
-
-
-def rest_state(grid: WaveModel, top: TopArrays) -> WaveState:
-    """Everything at rest: zero speed and torque along the string, top and bit still."""
-    size = int(node_offsets(grid)[-1])
-    return WaveState(np.zeros(size), np.zeros(size), np.zeros(max(top.states, 1)), np.zeros(3))
-
-
-def state_from_fields(
-    grid: WaveModel, speed: np.ndarray, torque: np.ndarray, top: TopArrays
-) -> WaveState:
-    """A state with angular speed [rad/s] and torque [N m] given at every node.
-
-    ``speed`` and ``torque`` follow the state layout (:func:`node_offsets`); the bit
-    starts at the speed of the last node.
-    """
-    state = rest_state(grid, top)
-    z = np.repeat(grid.impedances, np.array(grid.cells) + 1)
-    state.p[:] = torque + z * speed
-    state.m[:] = torque - z * speed
-    state.bit[:2] = speed[-1]
-    if not top.held:
-        state.top[0] = speed[0]
-    return state
-
-
-# --- the compiled step ----------------------------------------------------------------------
-@njit(_SOLVE_SIGNATURE, cache=True, nogil=True)
-def _solve_bit(k, rhs, guess, torque, slope, parameters, wob, radius):  # type: ignore[no-untyped-def,unused-ignore]
-    """Root of k w + T_bit(w) = rhs nearest ``guess`` in the direction of motion."""
-    f0 = k * guess + torque(parameters, guess, wob, radius) - rhs
-    if f0 == 0.0:
-        return guess
-    direction = -1.0 if f0 > 0.0 else 1.0
-    low = guess
-    f_low = f0
-    step = abs(f0) / k + 1e-9 * (abs(guess) + 1.0)
-    high = guess + direction * step
-    f_high = k * high + torque(parameters, high, wob, radius) - rhs
-    tries = 0
-    while (f_high > 0.0) == (f0 > 0.0):
-        low, f_low = high, f_high
-        step *= 2.0
-        high = low + direction * step
-        f_high = k * high + torque(parameters, high, wob, radius) - rhs
-        tries += 1
-        if tries > 200:
-            return math.nan
-    # safeguarded Newton in the bracket [low, high]
-    w = high if abs(f_high) < abs(f_low) else low
-    for _ in range(100):
-        f = k * w + torque(parameters, w, wob, radius) - rhs
-        if f == 0.0:
-            return w
-        if (f > 0.0) == (f_low > 0.0):
-            low, f_low = w, f
-        else:
-            high = w
-        derivative = k + slope(parameters, w, wob, radius)
-        candidate = w - f / derivative if derivative != 0.0 else math.nan
-        lo, hi = (low, high) if low < high else (high, low)
-        if not (lo < candidate < hi):
-            candidate = 0.5 * (low + high)
-        if abs(candidate - w) <= _NEWTON_TOLERANCE * (abs(w) + 1e-6):
-            return candidate
-        w = candidate
-    return w
-
-
-@njit(cache=True, nogil=True)
-def _transport(offsets, half_plus, half_minus, p, m, p_next, m_next):  # type: ignore[no-untyped-def,unused-ignore]
-    """Drag step, then every invariant one node along its characteristic (into ``*_next``).
-
-    A function of its own, on slices indexed from 0: the compiler then vectorizes the
-    loop (no swapped buffers, no possibly negative index), about 5 times faster.
-    """
-    for s in range(offsets.size - 1):
-        start = offsets[s]
-        stop = offsets[s + 1]
-        p_in = p[start:stop]
-        m_in = m[start:stop]
-        p_out = p_next[start:stop]
-        m_out = m_next[start:stop]
-        for j in range(stop - start - 1):
-            p_out[j + 1] = half_plus * p_in[j] + half_minus * m_in[j]
-            m_out[j] = half_minus * p_in[j + 1] + half_plus * m_in[j + 1]
-
-
-@njit(_MARCH_SIGNATURE, cache=True, nogil=True)
-def _march(  # type: ignore[no-untyped-def,unused-ignore]
-    offsets, impedance, settings, p, m, top_state, bit_state,
-    propagator, forcing, constant, coefficients,
-    torque, slope, parameters, records, field, summary,
+@njit(cache=True, nogil=True, _nrt=False)
+def _crossing(  # type: ignore[no-untyped-def,unused-ignore]
+    layout, spacing, P, M, heads, impedances, speeds, torques, cross, summary,
+    w_bit, top_speed, t_cross, reference, t_end, window_length, tolerance,
 ):  # fmt: skip
-    """Advance ``settings[9]`` steps; see the module docstring. Works in place."""
+    """At an upward crossing of the reference speed by the bit: whether the motion is on
+    a steady cycle (module docstring). Updates the tracker in ``summary`` and the state
+    kept in ``cross`` (2, nodes + 2: speeds and torques / Z', then the bit and top speeds).
+
+    The state of every node is read only when the bit's and the top's change alone would
+    let the run end (it bounds the change from below); otherwise the change counts as
+    infinite and no state is kept, which can only delay the end.
+    """
+    nodes = speeds.size
+    crossings = summary[_COUNT]
+    period = t_cross - summary[_T_LAST]
+    cycles_left = (t_end - t_cross) / period if crossings >= 1.0 else math.inf
+    change = math.inf
+    quick = 0.0
+    bounded = crossings >= 1.0
+    if bounded:
+        quick = max(abs(w_bit - cross[0, nodes]), abs(top_speed - cross[0, nodes + 1]))
+        bounded = cycles_left * quick / (2.0 * reference) <= tolerance
+    cross[0, nodes] = w_bit
+    cross[0, nodes + 1] = top_speed
+    if bounded or crossings < 1.0:
+        _read_nodes(layout, spacing, P, M, heads, impedances, speeds, torques)
+        if summary[_KEPT] > 0.0:
+            moved = 0.0
+            for j in range(nodes):
+                moved = max(moved, abs(speeds[j] - cross[0, j]), abs(torques[j] - cross[1, j]))
+            change = max(moved, quick) / (2.0 * reference)
+        for j in range(nodes):
+            cross[0, j] = speeds[j]
+            cross[1, j] = torques[j]
+        summary[_KEPT] = 1.0
+    else:
+        summary[_KEPT] = 0.0
+    steady = (
+        crossings >= 3.0
+        and period <= window_length
+        and cycles_left * max(change, summary[_CHANGE]) <= tolerance
+    )
+    if crossings >= 1.0:
+        summary[_CYCLE_MAX] = summary[_RUN_MAX]
+        summary[_CYCLE_MIN] = summary[_RUN_MIN]
+    summary[_CHANGE] = change
+    summary[_COUNT] = crossings + 1.0
+    summary[_T_LAST] = t_cross
+    summary[_RUN_MAX] = w_bit
+    summary[_RUN_MIN] = w_bit
+    return steady
+
+
+@njit(_MARCH_SIGNATURE, cache=True, nogil=True, _nrt=False, error_model="numpy")
+def _march(  # type: ignore[no-untyped-def,unused-ignore]
+    layout, sections, end_dampers, impedances, settings, p, m, top_state, bit_state,
+    propagator, forcing, constant, coefficients,
+    torque, slope, parameters, records, field, summary, cross, buffers, scratch, heads, top_work,
+):  # fmt: skip
+    """Advance ``settings[8]`` steps; see the module docstring. Works in place on the
+    node-ordered state (p, m, top_state, bit_state) and the ``summary``; ``buffers``
+    (2, KernelLayout.buffer_size), ``scratch`` (2, nodes), ``heads`` (sections, 4) and
+    ``top_work`` (top states) are its work space, allocated by the caller."""
     dt = settings[0]
-    decay = settings[1]
-    bit_inertia = settings[2]
-    alpha = settings[3]
-    wob = settings[4]
-    radius = settings[5]
-    held = settings[6] != 0.0
-    set_speed = settings[7]
-    max_torque = settings[8]
-    steps = int(settings[9])
-    window_start = int(settings[10])
-    record_every = int(settings[11])
-    field_every = int(settings[12])
-    top_drag = settings[13]
-    sections = impedance.size
-    last = offsets[sections] - 1
-    # the boundaries act on the sampled state, half a drag step ahead of the stored one:
-    # there T = m + (Z / sqrt(decay)) w for the stored incoming m (module docstring)
-    root_decay = math.sqrt(decay)
-    z_top = impedance[0] / root_decay
-    z_bit = impedance[sections - 1] / root_decay
+    bit_inertia = settings[1]
+    alpha = settings[2]
+    wob = settings[3]
+    radius = settings[4]
+    held = settings[5] != 0.0
+    set_speed = settings[6]
+    max_torque = settings[7]
+    steps = int(settings[8])
+    window_start = int(settings[9])
+    record_every = int(settings[10])
+    field_every = int(settings[11])
+    top_drag = settings[12]
+    track_energy = settings[13] != 0.0
+    spacing = int(settings[14])
+    steady_tolerance = settings[15]
+    reference = settings[16]
+    end_step = settings[17]
+    window_length = settings[18]
+    cycle_gap = settings[19]
+    track = steady_tolerance > 0.0 and reference > 0.0
+    count = layout.shape[0]
+    last = count - 1
+    nodes = p.size
+    P = buffers[0]
+    M = buffers[1]
+    # heads: (row, column) of node 0's slot of p and of m in each section
+    heads[:, :] = 0
+    _copy_nodes(layout, spacing, P, M, heads, p, m, True)
+    c_top = end_dampers[0]
+    c_bit = end_dampers[count]
+    z_top = sections[0, Z]
+    z_bit = sections[last, Z]
     n_top = top_state.size
-    half_plus = 0.5 * (1.0 + decay)
-    half_minus = 0.5 * (1.0 - decay)
-    # power at the previous step (trapezoidal energies)
-    previous = np.zeros(5)
-    previous[:] = summary[10:15]
-    mode_x = np.zeros(n_top)
-    p_next = np.empty_like(p)
-    m_next = np.empty_like(m)
-    track_energy = settings[14] != 0.0
+    previous = summary[10:15]  # powers at the previous step (trapezoidal energies)
+    mode_x = top_work
+    speeds = scratch[0]
+    torques = scratch[1]
+    w_now = bit_state[0]
+    t_now = torque(parameters, w_now, wob, radius)
+    taken = 0
     for step in range(steps):
-        m_top_old = m[0]
-        # 1. drag (merged half steps) fused with the transport: the stored state is half a
-        # drag step behind the sampled one, so this is the Strang splitting D(1/2) T D(1/2)
-        _transport(offsets, half_plus, half_minus, p, m, p_next, m_next)
-        p, p_next = p_next, p
-        m, m_next = m_next, m
-        # 2. junctions
-        for s in range(sections - 1):
-            a = offsets[s + 1] - 1
-            b = offsets[s + 1]
-            z1 = impedance[s]
-            z2 = impedance[s + 1]
-            speed = (p[a] - m[b]) / (z1 + z2)
-            tq = (z2 * p[a] + z1 * m[b]) / (z1 + z2)
-            m[a] = tq - z1 * speed
-            p[b] = tq + z2 * speed
-        # 3. top
-        m_in = m[0]
+        m_top_old = M[layout[0, BUFFER_START] + heads[0, 2] * layout[0, WIDTH] + heads[0, 3]]
+        # 1. transport
+        _advance(layout, spacing, P, M, heads)
+        # 2. inner dampers: the regular ones a run of one row of p and one of m
+        inner_power = 0.0
+        for s in range(count):
+            start = layout[s, BUFFER_START]
+            width = layout[s, WIDTH]
+            regular = layout[s, INNER]
+            if regular > 0:
+                ip = start + heads[s, 0] * width + heads[s, 1] + 1
+                im = start + heads[s, 2] * width + heads[s, 3] + 1
+                if track_energy:
+                    total = _dampers_with_power(
+                        P[ip : ip + regular], M[im : im + regular], sections[s, RATIO_INNER]
+                    )
+                    z = sections[s, Z]
+                    c = sections[s, C_INNER]
+                    inner_power += c * total / ((2.0 * z + c) * (2.0 * z + c))
+                else:
+                    _dampers(P[ip : ip + regular], M[im : im + regular], sections[s, RATIO_INNER])
+            if layout[s, SPECIAL] >= 0:
+                rows_on = layout[s, SPECIAL_ROW]
+                columns_on = layout[s, SPECIAL_COLUMN]
+                ip = _slot(start, width, spacing, heads[s, 0], heads[s, 1], rows_on, columns_on)
+                im = _slot(start, width, spacing, heads[s, 2], heads[s, 3], rows_on, columns_on)
+                arriving_p = P[ip]
+                difference = arriving_p - M[im]
+                jump = sections[s, RATIO_SPECIAL] * difference
+                P[ip] = M[im] + jump
+                M[im] = arriving_p - jump
+                z = sections[s, Z]
+                c = sections[s, C_SPECIAL]
+                inner_power += c * difference * difference / ((2.0 * z + c) * (2.0 * z + c))
+        # 3. junctions (with the damper of the junction node)
+        end_power = 0.0
+        for s in range(last):
+            upper_start = layout[s, BUFFER_START]
+            upper_width = layout[s, WIDTH]
+            lower_start = layout[s + 1, BUFFER_START]
+            lower_width = layout[s + 1, WIDTH]
+            last_row = layout[s, LAST_ROW]
+            last_column = layout[s, LAST_COLUMN]
+            ia = _slot(upper_start, upper_width, spacing, heads[s, 0], heads[s, 1], last_row,
+                       last_column)  # fmt: skip
+            ja = _slot(upper_start, upper_width, spacing, heads[s, 2], heads[s, 3], last_row,
+                       last_column)  # fmt: skip
+            ib = _slot(lower_start, lower_width, spacing, heads[s + 1, 0], heads[s + 1, 1], 0, 0)
+            jb = _slot(lower_start, lower_width, spacing, heads[s + 1, 2], heads[s + 1, 3], 0, 0)
+            z1 = sections[s, Z]
+            z2 = sections[s + 1, Z]
+            c = end_dampers[s + 1]
+            speed = (P[ia] - M[jb]) / (z1 + z2 + c)
+            M[ja] = P[ia] - 2.0 * z1 * speed
+            P[ib] = M[jb] + 2.0 * z2 * speed
+            end_power += c * speed * speed
+        # 4. top
+        top_width = layout[0, WIDTH]
+        top_start = layout[0, BUFFER_START]
+        i_top = _slot(top_start, top_width, spacing, heads[0, 0], heads[0, 1], 0, 0)
+        j_top = _slot(top_start, top_width, spacing, heads[0, 2], heads[0, 3], 0, 0)
+        m_in = M[j_top]
         if held:
             top_speed = set_speed
-            motor = m_in + z_top * set_speed
+            motor = m_in + (z_top + c_top) * set_speed
         else:
             chosen = 0
+            u_free = 0.0
             for mode in range(3):
                 for i in range(n_top):
                     acc = constant[mode, i] + forcing[mode, i] * (m_top_old + m_in)
@@ -294,56 +357,57 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
             for i in range(n_top):
                 top_state[i] = mode_x[i]
             top_speed = top_state[0]
-        p[0] = m_in + 2.0 * z_top * top_speed
+        P[i_top] = m_in + 2.0 * z_top * top_speed
         surface_torque = m_in + z_top * top_speed
-        # 4. bit
-        p_in = p[last]
-        w_now = bit_state[0]
+        end_power += c_top * top_speed * top_speed
+        # 5. bit
+        bit_start = layout[last, BUFFER_START]
+        bit_width = layout[last, WIDTH]
+        last_row = layout[last, LAST_ROW]
+        last_column = layout[last, LAST_COLUMN]
+        i_bit = _slot(bit_start, bit_width, spacing, heads[last, 0], heads[last, 1], last_row,
+                      last_column)  # fmt: skip
+        j_bit = _slot(bit_start, bit_width, spacing, heads[last, 2], heads[last, 3], last_row,
+                      last_column)  # fmt: skip
+        p_in = P[i_bit]
+        w_old = bit_state[1]
         if bit_state[2] < 1.0:
-            k = bit_inertia / dt + z_bit + alpha * bit_inertia
+            k = bit_inertia / dt + z_bit + alpha * bit_inertia + c_bit
             rhs = bit_inertia * w_now / dt + p_in
+            guess = w_now
         else:
-            k = 1.5 * bit_inertia / dt + z_bit + alpha * bit_inertia
-            rhs = bit_inertia * (4.0 * w_now - bit_state[1]) / (2.0 * dt) + p_in
-        w_bit = _solve_bit(k, rhs, w_now, torque, slope, parameters, wob, radius)
+            k = 1.5 * bit_inertia / dt + z_bit + alpha * bit_inertia + c_bit
+            rhs = bit_inertia * (4.0 * w_now - w_old) / (2.0 * dt) + p_in
+            guess = 2.0 * w_now - w_old
+        w_bit, bit_torque = _solve_bit(
+            k, rhs, w_now, t_now, guess, torque, slope, parameters, wob, radius
+        )
         if not math.isfinite(w_bit):
-            summary[9] = step + 1.0
-            return
+            summary[9] = summary[15] + step + 1.0
+            break
+        taken = step + 1
         bit_state[1] = w_now
         bit_state[0] = w_bit
         bit_state[2] += 1.0
-        m[last] = p_in - 2.0 * z_bit * w_bit
-        bit_torque = torque(parameters, w_bit, wob, radius)
-        # 5. the string's drag power alpha rho J dx w^2 = alpha dt (p - m)^2 / (4 Z) at this
-        # step (the state is half a drag step ahead: w^2 times exp(-alpha dt) ... undone)
-        drag_power = 0.0
-        if track_energy and alpha > 0.0:
-            for s in range(sections):
-                start = offsets[s]
-                stop = offsets[s + 1] - 1
-                acc = 0.0
-                for j in range(start, stop + 1):
-                    difference = p[j] - m[j]
-                    acc += difference * difference
-                d0 = p[start] - m[start]
-                d1 = p[stop] - m[stop]
-                acc -= 0.5 * (d0 * d0 + d1 * d1)
-                drag_power += alpha * dt * acc / (4.0 * impedance[s])
-            drag_power *= decay
-        # energies (trapezoidal in time)
-        power_in = motor * top_speed if not held else surface_torque * top_speed
+        w_old = w_now
+        w_now = w_bit
+        t_now = bit_torque
+        M[j_bit] = p_in - 2.0 * z_bit * w_bit
+        end_power += c_bit * w_bit * w_bit
+        # energies: the inner dampers' exactly, the rest by the trapezoidal rule
+        power_in = motor * top_speed
         power_bit = bit_torque * w_bit
         power_bit_drag = alpha * bit_inertia * w_bit * w_bit
         power_top_drag = top_drag * top_speed * top_speed
         summary[4] += 0.5 * dt * (previous[0] + power_in)
         summary[5] += 0.5 * dt * (previous[1] + power_bit)
         summary[6] += 0.5 * dt * (previous[2] + power_bit_drag)
-        summary[7] += 0.5 * dt * (previous[3] + drag_power)
+        summary[7] += 0.5 * dt * (previous[3] + end_power) + dt * inner_power
         summary[8] += 0.5 * dt * (previous[4] + power_top_drag)
         previous[0] = power_in
         previous[1] = power_bit
         previous[2] = power_bit_drag
-        previous[3] = drag_power
+        previous[3] = end_power
         previous[4] = power_top_drag
         # window extremes and records
         absolute = int(summary[15]) + step + 1
@@ -365,16 +429,30 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
         if field_every > 0 and absolute % field_every == 0:
             row = absolute // field_every
             if row < field.shape[0]:
-                for s in range(sections):
-                    z = impedance[s]
-                    for j in range(offsets[s], offsets[s + 1]):
-                        field[row, j] = root_decay * (p[j] - m[j]) / (2.0 * z)
-    summary[10] = previous[0]
-    summary[11] = previous[1]
-    summary[12] = previous[2]
-    summary[13] = previous[3]
-    summary[14] = previous[4]
-    summary[15] += steps
-    if steps % 2 == 1:  # the buffers were swapped an odd number of times
-        p_next[:] = p
-        m_next[:] = m
+                _read_nodes(layout, spacing, P, M, heads, impedances, speeds, torques)
+                for j in range(nodes):
+                    field[row, j] = speeds[j]
+        # 6. a steady cycle? (upward crossings of the reference speed by the bit)
+        if track:
+            crossed = w_old < reference <= w_bit
+            t_cross = 0.0
+            if crossed:
+                t_cross = (absolute - 1.0 + (reference - w_old) / (w_bit - w_old)) * dt
+                crossed = summary[_COUNT] < 1.0 or t_cross - summary[_T_LAST] >= cycle_gap
+            if not crossed:
+                if summary[_COUNT] > 0.0:
+                    summary[_RUN_MAX] = max(summary[_RUN_MAX], w_bit)
+                    summary[_RUN_MIN] = min(summary[_RUN_MIN], w_bit)
+                continue
+            steady = _crossing(
+                layout, spacing, P, M, heads, impedances, speeds, torques, cross, summary,
+                w_bit, top_speed, t_cross, reference, end_step * dt, window_length,
+                steady_tolerance,
+            )  # fmt: skip
+            if steady:  # its extremes are those of the rest of the window
+                summary[0] = min(summary[0], summary[_CYCLE_MIN])
+                summary[1] = max(summary[1], summary[_CYCLE_MAX])
+                summary[_ENDED] = absolute
+                break
+    summary[15] += taken
+    _copy_nodes(layout, spacing, P, M, heads, p, m, False)

@@ -4,8 +4,10 @@
 System with a :class:`torsio.model.wave.WaveModel` to. Every point starts from rest and
 runs the compiled characteristic stepping (:mod:`torsio.solvers.characteristics`) on the
 fixed grid (no tolerances: ``rtol`` and ``atol`` are kept for the record only); S_SS takes
-the bit-speed extremes over every step of the window. The engine is ``"wave"`` (the law's
-compiled kernel) or ``"wave-python"`` (a law without one).
+the bit-speed extremes over every step of the window. A run ends early once it is on a
+steady cycle within ``steady_tolerance`` (:mod:`torsio.solvers.characteristics`; not with
+a torque-driven top). The engine is ``"wave"`` (the law's compiled kernel) or
+``"wave-python"`` (a law without one).
 """
 
 from __future__ import annotations
@@ -19,9 +21,9 @@ from typing import Any
 import numpy as np
 
 from torsio.analysis.severity import default_times
-from torsio.errors import SolverError
+from torsio.errors import ConfigError, SolverError
 from torsio.model.wave import check_wave_damping, first_frequency
-from torsio.solvers.batch_results import BatchResults, batch_points
+from torsio.solvers.batch_results import DEFAULT_STEADY_TOLERANCE, BatchResults, batch_points
 from torsio.solvers.wave_march import march
 from torsio.solvers.wave_top import top_boundary
 
@@ -58,18 +60,31 @@ def simulate_wave_batch(
     rtol: float = math.nan,
     atol: float = math.nan,
     threads: int | None = None,
+    steady_tolerance: float = DEFAULT_STEADY_TOLERANCE,
     **ignored: Any,
 ) -> Any:
     """S_SS of the wave model at each (wob[k], rpm[k]); returns a ``BatchResults``.
 
     ``threads``: points run side by side on so many threads (default: numba's thread
     count, as the lumped engine; one thread off the main thread, e.g. in a Dask worker).
+    ``steady_tolerance``: as for the lumped engine (S_SS units; 0 runs to the end).
     """
+    if isinstance(steady_tolerance, bool) or not (
+        isinstance(steady_tolerance, int | float)
+        and math.isfinite(steady_tolerance)
+        and 0 <= steady_tolerance <= 0.1
+    ):
+        raise ConfigError(
+            "steady_tolerance",
+            f"expected a tolerance in S_SS units in [0, 0.1] (0: run to the end), "
+            f"got {steady_tolerance!r}",
+        )
     grid = system.model
     alpha = check_wave_damping(system.damping, system.model)
     wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)
+    omega_1 = wave_scales(grid)[1]
     if duration is None or steady_window is None:
-        default_duration, default_window = default_times(wave_scales(grid)[1])
+        default_duration, default_window = default_times(omega_1)
         duration = default_duration if duration is None else duration
         steady_window = default_window if steady_window is None else steady_window
     dt = grid.time_step
@@ -77,6 +92,8 @@ def simulate_wave_batch(
     window_steps = max(1, int(round(float(steady_window) / dt)))
     out = np.full((wob_arr.size, 3), np.nan)
     status = np.zeros(wob_arr.size, dtype=np.int64)
+    taken = np.zeros(wob_arr.size, dtype=np.int64)
+    steady = 0.0 if torque_driven else float(steady_tolerance)
     engines = set()
 
     def run_point(k: int) -> None:
@@ -84,16 +101,19 @@ def simulate_wave_batch(
         top = top_boundary(point, grid)
         try:
             run = march(grid, top, point.law, point.wob, point.bit_radius, alpha, steps,
-                        window_start=steps - window_steps + 1, track_energy=False)  # fmt: skip
+                        window_start=steps - window_steps + 1, track_energy=False,
+                        steady_tolerance=steady, cycle_gap=0.5 * math.pi / omega_1)  # fmt: skip
         except SolverError:
             status[k] = 1
             return
         summary = run.summary
         engines.add(run.engine)
+        taken[k] = int(summary["steps"])
+        window = summary["window_steps"]
         out[k] = (
             summary["bit_speed_max"],
             summary["bit_speed_min"],
-            summary["top_speed_sum"] / summary["window_steps"],
+            summary["top_speed_sum"] / window if window else math.nan,
         )
 
     start = time.perf_counter()
@@ -109,8 +129,9 @@ def simulate_wave_batch(
     reference = out[:, 2] if torque_driven else rpm_arr * (math.pi / 30.0)
     with np.errstate(invalid="ignore", divide="ignore"):
         severity = np.where(status == 0, (out[:, 0] - out[:, 1]) / (2.0 * reference), np.nan)
+    ended = np.where((taken < steps) & (status == 0), taken * dt, float(duration))
     return BatchResults(
-        wob_arr, rpm_arr, severity, out[:, 0], out[:, 1], out[:, 2],
-        np.full(wob_arr.size, steps, dtype=np.int64), np.zeros(wob_arr.size, dtype=np.int64),
-        status, engine, float(duration), float(steady_window), float(rtol), float(atol), elapsed,
+        wob_arr, rpm_arr, severity, out[:, 0], out[:, 1], out[:, 2], taken,
+        np.zeros(wob_arr.size, dtype=np.int64), status, engine, float(duration),
+        float(steady_window), float(rtol), float(atol), elapsed, ended, steady,
     )  # fmt: skip

@@ -1,9 +1,9 @@
 """Running the distributed model: :func:`march` sets up and calls the compiled stepping.
 
-The stepping itself (transport, junctions, top, bit, drag) is in
+The stepping itself (transport, drag, junctions, top, bit) is in
 :mod:`torsio.solvers.characteristics`; this module chooses the engine (the law's
-compiled kernel, or plain Python), keeps the drag half step bookkeeping of the Strang
-splitting, and returns records, snapshots along the string and energy integrals.
+compiled kernel, or plain Python), lays the grid out for it and returns records,
+snapshots along the string and energy integrals.
 """
 
 from __future__ import annotations
@@ -18,15 +18,17 @@ from torsio.errors import SolverError
 from torsio.model.wave import WaveModel
 from torsio.solvers.characteristics import (
     SUMMARY_FIELDS,
+    SUMMARY_SIZE,
+    KernelLayout,
     WaveState,
     _march,
+    kernel_layout,
     node_offsets,
     rest_state,
 )
-from torsio.solvers.wave_top import TopArrays, with_impedance
+from torsio.solvers.wave_top import TopArrays, with_node_damper
 
 
-# --- driver ---------------------------------------------------------------------------------
 @attrs.frozen(eq=False)
 class WaveRun:
     """What :func:`march` produced.
@@ -44,9 +46,9 @@ class WaveRun:
     summary : dict
         :data:`SUMMARY_FIELDS` (energies in J over the run), plus ``stored_initial`` and
         ``stored_final`` [J] (:func:`stored_energy`; the initial state with a held top
-        already turning).
+        already turning), ``steps`` (taken) and ``ended_on_steady_cycle``.
     state : WaveState
-        Final state (between drag half steps undone: the state at the final time).
+        Final state.
     engine : str
         ``"numba"`` or ``"python"``.
     """
@@ -97,15 +99,6 @@ def law_functions(law: Any) -> tuple[Any, Any, np.ndarray, str]:
     return torque, slope, np.zeros(1), "python"
 
 
-def _apply_drag(grid: WaveModel, state: WaveState, factor: float) -> None:
-    """Scale the speed at every node by ``factor`` with the torque unchanged."""
-    z = np.repeat(grid.impedances, np.array(grid.cells) + 1)
-    torque = 0.5 * (state.p + state.m)
-    speed = (state.p - state.m) / (2.0 * z) * factor
-    state.p[:] = torque + z * speed
-    state.m[:] = torque - z * speed
-
-
 def string_energy(grid: WaveModel, state: WaveState) -> float:
     """Kinetic plus strain energy of the string [J]: sum of (p^2 + m^2) dt / (4 Z), trapezoidal."""
     offsets = node_offsets(grid)
@@ -126,6 +119,20 @@ def stored_energy(grid: WaveModel, state: WaveState, top: TopArrays) -> float:
     return energy
 
 
+def _end_damper_power(
+    grid: WaveModel, layout: KernelLayout, state: WaveState, top_speed: float
+) -> float:
+    """Power [W] of the dampers at the top node, the junctions and the bit in ``state``."""
+    offsets = node_offsets(grid)
+    z = layout.impedances
+    power = layout.end_dampers[0] * top_speed**2 + layout.end_dampers[-1] * state.bit[0] ** 2
+    for s in range(1, len(grid.cells)):
+        node = offsets[s]  # the lower section's first node: speed continuous there
+        speed = (state.p[node] - state.m[node]) / (2.0 * z[node])
+        power += layout.end_dampers[s] * speed**2
+    return float(power)
+
+
 def march(
     grid: WaveModel,
     top: TopArrays,
@@ -141,6 +148,8 @@ def march(
     state: WaveState | None = None,
     kernel: tuple[Any, Any, np.ndarray] | None = None,
     track_energy: bool = True,
+    steady_tolerance: float = 0.0,
+    cycle_gap: float = 0.0,
 ) -> WaveRun:
     """Advance the distributed model ``steps`` time steps from ``state`` (default: rest).
 
@@ -160,66 +169,70 @@ def march(
         First step of the window over which bit-speed extremes are taken.
     record_every, field_every : int
         Record the signals / the speed along the string every so many steps (0: never).
+    steady_tolerance : float
+        End the run early once the motion is on a steady cycle that could not move S_SS
+        by more than this over the steps left (module :mod:`torsio.solvers.characteristics`;
+        0: never; a top with a set speed only).
+    cycle_gap : float
+        Least time [s] between two ends of a cycle for ``steady_tolerance`` (a quarter of
+        the first natural period in maps).
     """
     dt = grid.time_step
-    decay = math.exp(-alpha * dt)
     if kernel is not None:
         torque, slope, parameters = kernel
         engine = "numba"
     else:
         torque, slope, parameters, engine = law_functions(law)
-    offsets = node_offsets(grid)
-    # the boundaries see the stored state half a drag step behind: Z exp(alpha dt / 2)
-    top = with_impedance(top, float(grid.impedances[0]) / math.sqrt(decay), dt)
+    layout = kernel_layout(grid, alpha)
+    top = with_node_damper(top, float(layout.end_dampers[0]), dt)
     state = rest_state(grid, top) if state is None else state.copy()
     if top.held and state.top.size == 0:
         state = WaveState(state.p, state.m, np.zeros(1), state.bit)
+    z_top = float(grid.impedances[0])
     if top.held:  # the held top turns at its speed from t = 0 on
-        state.p[0] = state.m[0] + 2.0 * grid.impedances[0] * top.set_speed
+        state.p[0] = state.m[0] + 2.0 * z_top * top.set_speed
     stored_initial = stored_energy(grid, state, top)
-    summary = np.zeros(16)
+    summary = np.zeros(SUMMARY_SIZE)
     summary[0], summary[1] = math.inf, -math.inf
     # powers at t = 0 for the trapezoidal energies
     speed0 = state.top[0] if not top.held else top.set_speed
+    surface0 = state.m[0] + z_top * speed0
     if not top.held:
         x0 = state.top
-        torque0 = 0.5 * (state.p[0] + state.m[0])
-        m_stored = torque0 - top.impedance * (state.p[0] - state.m[0]) / (2 * grid.impedances[0])
-        u0 = top.coefficients[0] + top.coefficients[1:-1] @ x0 + top.coefficients[-1] * m_stored
-        summary[10] = float(np.clip(u0, -top.max_torque, top.max_torque)) * speed0
+        u0 = top.coefficients[0] + top.coefficients[1:-1] @ x0 + top.coefficients[-1] * state.m[0]
+        motor0 = float(np.clip(u0, -top.max_torque, top.max_torque))
     else:
-        summary[10] = (state.m[0] + grid.impedances[0] * speed0) * speed0
+        motor0 = surface0 + layout.end_dampers[0] * speed0
     w_bit = state.bit[0]
+    summary[10] = motor0 * speed0
     summary[11] = float(law.torque(w_bit, wob, radius)) * w_bit
     summary[12] = alpha * grid.bit_inertia * w_bit * w_bit
-    z = np.repeat(grid.impedances, np.array(grid.cells) + 1)
-    weights = np.ones_like(z)
-    weights[offsets[:-1]] = 0.5
-    weights[offsets[1:] - 1] = 0.5
-    summary[13] = float(alpha * dt * np.sum(weights * (state.p - state.m) ** 2 / (4.0 * z)))
+    summary[13] = _end_damper_power(grid, layout, state, speed0)
     summary[14] = top.drag * speed0 * speed0
-    _apply_drag(grid, state, 1.0 / math.sqrt(decay))  # the kernel keeps it half a drag behind
     records = np.full((steps // record_every + 1 if record_every else 0, 5), np.nan)
-    field = np.full((steps // field_every + 1 if field_every else 0, z.size), np.nan)
+    field = np.full((steps // field_every + 1 if field_every else 0, state.p.size), np.nan)
     if record_every:
-        records[0] = [
-            state.bit[0], float(law.torque(state.bit[0], wob, radius)),
-            state.m[0] + grid.impedances[0] * speed0, speed0, summary[10] / speed0
-            if speed0 else 0.0,
-        ]  # fmt: skip
+        records[0] = [w_bit, float(law.torque(w_bit, wob, radius)), surface0, speed0, motor0]
     if field_every:
-        field[0] = (state.p - state.m) / (2.0 * z) * math.sqrt(decay)
+        field[0] = (state.p - state.m) / (2.0 * layout.impedances)
+    reference = top.set_speed if top.held or math.isfinite(top.set_speed) else 0.0
     settings = np.array(
         [
-            dt, decay, grid.bit_inertia, alpha, wob, radius, 1.0 if top.held else 0.0,
-            top.set_speed, top.max_torque, steps, window_start, record_every, field_every,
-            top.drag, 1.0 if track_energy else 0.0,
+            dt, grid.bit_inertia, alpha, wob, radius, 1.0 if top.held else 0.0, top.set_speed,
+            top.max_torque, steps, window_start, record_every, field_every, top.drag,
+            1.0 if track_energy else 0.0, grid.drag_spacing, steady_tolerance, reference,
+            steps, (steps - window_start + 1) * dt, cycle_gap,
         ]
     )  # fmt: skip
+    cross = np.zeros((2, state.p.size + 2))
+    work = (  # the kernel's work space: buffers, node scratch, heads, top states
+        np.zeros((2, layout.buffer_size)), np.zeros((2, state.p.size)),
+        np.zeros((len(grid.cells), 4), dtype=np.int64), np.zeros(state.top.size),
+    )  # fmt: skip
     arguments = (
-        offsets, np.ascontiguousarray(grid.impedances, dtype=float), settings, state.p, state.m,
-        state.top, state.bit, top.propagator, top.forcing, top.constant, top.coefficients,
-        torque, slope, parameters, records, field, summary,
+        layout.integers, layout.floats, layout.end_dampers, layout.impedances, settings,
+        state.p, state.m, state.top, state.bit, top.propagator, top.forcing, top.constant,
+        top.coefficients, torque, slope, parameters, records, field, summary, cross, *work,
     )  # fmt: skip
     if engine == "numba":
         _march(*arguments)
@@ -230,10 +243,11 @@ def march(
             f"the bit equation has no solution at step {int(summary[9])} "
             f"(t = {summary[9] * dt:.6g} s): the torque on bit is not finite there"
         )
-    _apply_drag(grid, state, math.sqrt(decay))
     energies = dict(zip(SUMMARY_FIELDS, summary[:10].tolist(), strict=True))
     energies["stored_initial"] = stored_initial
     energies["stored_final"] = stored_energy(grid, state, top)
+    energies["steps"] = float(summary[15])
+    energies["ended_on_steady_cycle"] = float(summary[23] > 0)
     return WaveRun(
         time=np.arange(records.shape[0]) * dt * record_every,
         records=records,

@@ -7,9 +7,10 @@ T_pipe = m + Z Omega_0; its state x = [Omega_0, z] obeys a linear ODE driven by 
 incoming invariant m, integrated by the trapezoidal rule with m linear over the step.
 For small motions of a PI top drive with no inertia and no integral gain this gives the
 reflection R = (Z - kp) / (Z + kp); in general R = (Z - Z_td) / (Z + Z_td) with the top
-drive's impedance Z_td(i omega) (``TopDriveBoundary.impedance``). With distributed drag the
-stepping applies the top to the sampled state, half a drag step ahead of the stored one,
-where T_pipe = m + Z exp(alpha dt / 2) Omega_0 (:func:`with_impedance`).
+drive's impedance Z_td(i omega) (``TopDriveBoundary.impedance``). With distributed drag
+the top node carries its share of the string's drag as a damper c (module
+:mod:`torsio.solvers.characteristics`), which adds to the top drive's own drag
+(:func:`with_node_damper`).
 """
 
 from __future__ import annotations
@@ -29,6 +30,8 @@ class TopArrays:
     by ``x1 = L[k] x0 + g[k] (m0 + m1) + q[k]`` (trapezoidal rule) in mode k = 0 (free),
     1 (motor torque at +max) or 2 (at -max); the motor torque is
     ``u_free = coefficients[0] + coefficients[1:-1] . x + coefficients[-1] m``.
+    ``drag`` is the top drive's own drag, ``node_damper`` the string's drag at the top node
+    [N m s/rad], which the arrays include besides.
     """
 
     held: bool
@@ -42,6 +45,7 @@ class TopArrays:
     coefficients: np.ndarray  # (n + 2,)
     impedance: float = math.nan
     boundary: Any = None
+    node_damper: float = 0.0
 
     @property
     def states(self) -> int:
@@ -57,10 +61,13 @@ def held_top(speed: float) -> TopArrays:
     )  # fmt: skip
 
 
-def top_arrays(boundary: Any, impedance: float, time_step: float, speed: float) -> TopArrays:
+def top_arrays(
+    boundary: Any, impedance: float, time_step: float, speed: float, node_damper: float = 0.0
+) -> TopArrays:
     """Arrays of a top-drive description (``TopDriveBoundary``) on a pipe of ``impedance``.
 
-    ``speed`` is Omega_set for a held top. Derivation (module docstring of
+    ``speed`` is Omega_set for a held top; ``node_damper`` [N m s/rad] a damper at the top
+    node besides the top drive's drag. Derivation (module docstring of
     :mod:`torsio.physics.top_drives`): with the incoming invariant m, T_pipe = m + Z Omega_0,
     y = [Omega_set - Omega_0, T_pipe], u_free = u0 + c z + d y,
     J Omega_0' = u - drag Omega_0 - T_pipe, z' = a z + b y + w (u - u_free).
@@ -104,7 +111,7 @@ def top_arrays(boundary: Any, impedance: float, time_step: float, speed: float) 
             A[1:, :] -= np.outer(w, coefficients[1:-1])
             B[1:] -= w * coefficients[-1]
             f[1:] += w * (limit - coefficients[0])
-        A[0, 0] -= drag + z_pipe
+        A[0, 0] -= drag + node_damper + z_pipe
         B[0] -= 1.0
         A[0, :] /= inertia
         B[0] /= inertia
@@ -115,17 +122,17 @@ def top_arrays(boundary: Any, impedance: float, time_step: float, speed: float) 
         constant[mode] = np.linalg.solve(left, time_step * f)
     return TopArrays(
         False, set_speed, inertia, drag, max_torque, propagator, forcing, constant, coefficients,
-        z_pipe, boundary,
+        z_pipe, boundary, float(node_damper),
     )  # fmt: skip
 
 
-def with_impedance(top: TopArrays, impedance: float, time_step: float) -> TopArrays:
-    """``top`` on a pipe of ``impedance`` (the same top when it already is, or held)."""
-    if top.held or top.impedance == impedance:
+def with_node_damper(top: TopArrays, damper: float, time_step: float) -> TopArrays:
+    """``top`` with a damper [N m s/rad] at the top node (the same top when it has it, or held)."""
+    if top.held or top.node_damper == damper:
         return top
     if top.boundary is None:
         raise ValueError("these top arrays keep no top-drive description to rebuild them from")
-    return top_arrays(top.boundary, impedance, time_step, top.set_speed)
+    return top_arrays(top.boundary, top.impedance, time_step, top.set_speed, damper)
 
 
 def top_boundary(system: Any, grid: Any) -> TopArrays:

@@ -1,0 +1,163 @@
+"""The state of the distributed model and its layout for the stepping kernel.
+
+:class:`WaveState` holds the Riemann invariants p = T + Z w (travelling down) and
+m = T - Z w (travelling up) at every node of the characteristic grid, section by section,
+with the top drive's and the bit's states. :func:`kernel_layout` lays the grid out for
+:mod:`torsio.solvers.characteristics`: the buffers that make transport free, and the
+point dampers into which the distributed drag is lumped
+(:func:`torsio.model.wave.drag_lumping`).
+
+Examples
+--------
+>>> from torsio.model.wave import WaveStrategy
+>>> from torsio.examples import ritto2017_string
+>>> grid = WaveStrategy(drag_spacing=4).discretize(ritto2017_string())
+>>> layout = kernel_layout(grid, alpha=0.35)
+>>> layout.integers[:, 5].tolist()  # regular inner dampers per section (nodes 4, 8, ...)
+[247, 8, 14]
+>>> round(float(layout.end_dampers.sum() + layout.floats[:, 2] @ layout.integers[:, 5]
+...             + layout.floats[:, 4].sum()) / (0.35 * float(grid.impedances @ grid.cells)
+...             * grid.time_step), 12)  # every cell's drag, once
+1.0
+"""
+
+from __future__ import annotations
+
+import attrs
+import numpy as np
+
+from torsio.model.wave import WaveModel, drag_lumping
+from torsio.solvers.wave_top import TopArrays
+
+# columns of the integer and float layout of a section (kernel_layout)
+(CELLS, NODE_START, BUFFER_START, WIDTH, LIVE, INNER, SPECIAL, LAST_ROW, LAST_COLUMN,
+ SPECIAL_ROW, SPECIAL_COLUMN) = range(11)  # fmt: skip
+Z, RATIO_INNER, C_INNER, RATIO_SPECIAL, C_SPECIAL = range(5)
+
+
+@attrs.frozen(eq=False)
+class WaveState:
+    """State of the distributed model: invariants at every node, top and bit states.
+
+    ``p`` and ``m`` hold every section's nodes (a junction node once per section),
+    section s at ``offsets[s] .. offsets[s] + cells[s]``. ``bit`` = [w_b, w_b one step
+    earlier, steps taken]. ``top`` = [Omega_0, z...] (empty when held).
+    """
+
+    p: np.ndarray
+    m: np.ndarray
+    top: np.ndarray
+    bit: np.ndarray
+
+    def copy(self) -> WaveState:
+        """An independent copy."""
+        return WaveState(self.p.copy(), self.m.copy(), self.top.copy(), self.bit.copy())
+
+
+def node_offsets(grid: WaveModel) -> np.ndarray:
+    """Start of each section's node block in the state arrays, and the total size."""
+    return np.concatenate([[0], np.cumsum(np.array(grid.cells) + 1)]).astype(np.int64)
+
+
+def rest_state(grid: WaveModel, top: TopArrays) -> WaveState:
+    """Everything at rest: zero speed and torque along the string, top and bit still."""
+    size = int(node_offsets(grid)[-1])
+    return WaveState(np.zeros(size), np.zeros(size), np.zeros(max(top.states, 1)), np.zeros(3))
+
+
+@attrs.frozen(eq=False)
+class KernelLayout:
+    """The grid and its lumped drag as arrays for the stepping kernel.
+
+    Each section keeps its p and its m in a buffer of k = ``drag_spacing`` rows of W
+    columns; slot sigma (row sigma % k, column sigma // k) holds node sigma - head, and a
+    step moves the head by one slot (back for p, on for m). The nodes in use span L + 1
+    columns (``live``); the buffer has W = 2 L of them, and when the span reaches an end
+    it is copied to the other (every L k steps), so it never wraps: the regular dampers'
+    p (and m) are one contiguous run of a row.
+
+    ``integers[s]``: cells n, first node in the state arrays, first slot of the buffer, W,
+    L, the regular inner dampers at nodes k, 2k, ... (their count), the node of the one
+    inner damper with another share (-1: none), the row and column offsets of node n and
+    of that damper. ``floats[s]``: Z, then (2 Z / (2 Z + c), c) of the regular inner
+    dampers and of the other one. ``end_dampers``: c at the top node, at each junction,
+    at the bit [N m s/rad]. ``impedances``: per node, Z' with speed = (p - m) / (2 Z')
+    (Z - c/2 at an inner damper, where p and m are the outgoing pair, else Z).
+    """
+
+    integers: np.ndarray
+    floats: np.ndarray
+    end_dampers: np.ndarray
+    impedances: np.ndarray
+    buffer_size: int
+
+
+def kernel_layout(grid: WaveModel, alpha: float) -> KernelLayout:
+    """The buffers and the point dampers of ``grid`` with drag ``alpha`` [1/s]."""
+    k = grid.drag_spacing
+    dt = grid.time_step
+    sections = len(grid.cells)
+    integers = np.zeros((sections, 11), dtype=np.int64)
+    floats = np.zeros((sections, 5))
+    end_dampers = np.zeros(sections + 1)
+    offsets = node_offsets(grid)
+    impedances = np.repeat(np.asarray(grid.impedances, dtype=float), np.array(grid.cells) + 1)
+    buffer = 0
+    for s, (n, z) in enumerate(zip(grid.cells, grid.impedances, strict=True)):
+        n = int(n)
+        nodes, shares = drag_lumping(n, k)
+        dampers = alpha * float(z) * shares * dt  # c of each drag node [N m s/rad]
+        end_dampers[s] += dampers[0]
+        end_dampers[s + 1] += dampers[-1]
+        inner = nodes[1:-1]
+        regular = int(np.sum(shares[1:-1] == k))  # nodes k, 2k, ...: the first ones
+        special = int(inner[regular]) if regular < inner.size else -1
+        live = (k - 1 + n) // k + 1
+        integers[s] = (
+            n, offsets[s], buffer, 2 * live, live, regular, special, n % k, n // k,
+            max(special, 0) % k, max(special, 0) // k,
+        )  # fmt: skip
+        c_regular = alpha * float(z) * k * dt
+        floats[s, :3] = (z, 2.0 * z / (2.0 * z + c_regular), c_regular)
+        if special >= 0:
+            c_special = float(dampers[1 + regular])
+            floats[s, 3:] = (2.0 * z / (2.0 * z + c_special), c_special)
+        impedances[offsets[s] + inner] -= 0.5 * dampers[1:-1]
+        buffer += 2 * live * k
+    return KernelLayout(integers, floats, end_dampers, impedances, buffer)
+
+
+def state_from_fields(
+    grid: WaveModel, speed: np.ndarray, torque: np.ndarray, top: TopArrays, alpha: float = 0.0
+) -> WaveState:
+    """A state with angular speed [rad/s] and torque [N m] given at every node.
+
+    ``speed`` and ``torque`` follow the state layout (:func:`node_offsets`); the bit
+    starts at the speed of the last node. With drag ``alpha`` [1/s] the inner damper
+    nodes get the outgoing pair of that speed and mean torque (:func:`node_impedances`).
+    """
+    state = rest_state(grid, top)
+    z = node_impedances(grid, alpha)
+    state.p[:] = torque + z * speed
+    state.m[:] = torque - z * speed
+    state.bit[:2] = speed[-1]
+    if not top.held:
+        state.top[0] = speed[0]
+    return state
+
+
+def node_impedances(grid: WaveModel, alpha: float) -> np.ndarray:
+    """Per node, Z' [N m s/rad] with speed = (p - m) / (2 Z') and torque = (p + m) / 2.
+
+    Z at every node but the inner drag nodes, where the stored pair is the one leaving
+    the damper c: Z - c / 2 (module docstring).
+    """
+    return kernel_layout(grid, alpha).impedances
+
+
+def node_speeds(grid: WaveModel, state: WaveState, alpha: float) -> np.ndarray:
+    """Angular speed at every node [rad/s] (state layout)."""
+    return (state.p - state.m) / (2.0 * node_impedances(grid, alpha))
+
+
+# --- the compiled step ----------------------------------------------------------------------
