@@ -202,3 +202,48 @@ def test_drag_spacing_is_read_from_the_configuration(tmp_path) -> None:  # type:
     path.write_text(text.replace('strategy = "C"', 'strategy = "C"\ndrag_spacing = 4'))
     with pytest.raises(ConfigError, match="discretization.drag_spacing: strategy 'C' takes no"):
         load_config(path)
+
+
+class _ContractLaw:
+    """A bit-rock law written from the plugin contract alone: a name and torque(), no
+    slope, no kernel, no base class (Tucker-Wang's formula, rad/s reading)."""
+
+    name = "contract-tucker-wang"
+
+    def torque(self, speed, wob, radius):  # type: ignore[no-untyped-def]
+        w = np.asarray(speed, dtype=float)
+        return wob * radius * 0.221 * (np.tanh(1.91 * w) + 8.5 * w / (1.0 + 5.47 * w * w))
+
+
+def test_a_plugin_law_without_kernel_or_slope_runs_the_same_steps_in_python() -> None:
+    # the plain-Python stepping (a law without a compiled kernel) against the compiled one
+    # with the same law written as a kernel: the same algorithm, the same numbers up to
+    # round-off and the slope's central difference (Newton converges to the same root)
+    from torsio.analysis.wave import wave_response
+
+    def kernel_torque(parameters, speed, wob, radius):  # type: ignore[no-untyped-def]
+        return (
+            wob
+            * radius
+            * 0.221
+            * (math.tanh(1.91 * speed) + 8.5 * speed / (1.0 + 5.47 * speed * speed))
+        )
+
+    def kernel_slope(parameters, speed, wob, radius):  # type: ignore[no-untyped-def]
+        sech = 1.0 / math.cosh(1.91 * speed)
+        rational = 8.5 * (1.0 - 5.47 * speed * speed) / (1.0 + 5.47 * speed * speed) ** 2
+        return wob * radius * 0.221 * (1.91 * sech * sech + rational)
+
+    system = attrs.evolve(_wave_system(), law=_ContractLaw()).at(wob=150e3, rpm=60.0)
+    python = wave_response(
+        system, duration=2.0, steady_window=1.0, output_step=system.model.time_step
+    )
+    assert python.run.engine == "python"
+    kernel = (compile_law_function(kernel_torque), compile_law_function(kernel_slope), np.zeros(1))
+    grid = system.model
+    from torsio.solvers.wave_top import top_boundary
+
+    steps = python.run.records.shape[0] - 1
+    compiled = march(grid, top_boundary(system, grid), system.law, system.wob, system.bit_radius,
+                     0.35, steps, record_every=1, kernel=kernel)  # fmt: skip
+    np.testing.assert_allclose(python.run.records, compiled.records, rtol=1e-9, atol=1e-9)

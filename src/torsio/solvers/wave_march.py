@@ -77,9 +77,9 @@ def _python_march() -> Any:
 def law_functions(law: Any) -> tuple[Any, Any, np.ndarray, str]:
     """(torque, slope, parameters, engine) of a law: its compiled kernel when it has one.
 
-    Without a kernel (or without numba) the law's Python ``torque``/``slope`` are wrapped
-    to the kernel's call convention and the steps run as plain Python (slow: minutes for a
-    default run).
+    Without a kernel (or without numba) the law's Python ``torque`` and ``slope`` (a central
+    difference when it has none) are wrapped to the kernel's call convention and the steps
+    run as plain Python (slow: about 30 s for a default run of the paper's string).
     """
     try:
         from torsio.solvers.law_kernels import law_kernel
@@ -90,11 +90,13 @@ def law_functions(law: Any) -> tuple[Any, Any, np.ndarray, str]:
     if kernel is not None:
         return kernel.torque, kernel.slope, kernel.parameters, "numba"
 
+    from torsio.physics.dynamics import bit_slope
+
     def torque(parameters: np.ndarray, speed: float, wob: float, radius: float) -> float:
         return float(law.torque(speed, wob, radius))
 
     def slope(parameters: np.ndarray, speed: float, wob: float, radius: float) -> float:
-        return float(law.slope(speed, wob, radius))
+        return float(bit_slope(law, speed, wob, radius))  # the law's, or a difference
 
     return torque, slope, np.zeros(1), "python"
 
