@@ -73,8 +73,9 @@ def dimensionless_section(ctx: ReportContext) -> ReportSection | None:
     table = Table.grid(padding=(0, 2))
     table.add_column(style="dim")
     table.add_column()
+    stiffness = "k_eq = 1/Σ L/(G J)" if ctx.is_wave else "k_eq = 1/[K⁻¹]_NN"  # continuum
     rows = [
-        ("k_eq = 1/[K⁻¹]_NN", f"{groups.k_eq:.5g} N m/rad (Eq. 9)"),
+        (stiffness, f"{groups.k_eq:.5g} N m/rad (Eq. 9)"),
         ("ω₁", f"{groups.omega1:.5g} rad/s"),
         ("I_eq = k_eq/ω₁²", f"{groups.i_eq:.5g} kg m² (Eq. 10)"),
         ("Π₁ = Ω/ω₁", f"{groups.pi1:.5g}"),
