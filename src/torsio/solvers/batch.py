@@ -54,6 +54,7 @@ from torsio.solvers.batch_results import (
     STATUS_SOLVER_FAILED,
     BatchResults,
     batch_points,
+    check_steady_tolerance,
 )
 from torsio.solvers.compiled import HAVE_NUMBA, numba
 from torsio.solvers.law_kernels import LawKernel, law_kernel
@@ -318,16 +319,7 @@ def simulate_batch(
     for key, value in (("rtol", rtol), ("atol", atol)):
         if not (math.isfinite(value) and value > 0):
             raise ConfigError(key, f"expected a positive tolerance, got {value!r}")
-    if isinstance(steady_tolerance, bool) or not (
-        isinstance(steady_tolerance, int | float)
-        and math.isfinite(steady_tolerance)
-        and 0 <= steady_tolerance <= 0.1
-    ):
-        raise ConfigError(
-            "steady_tolerance",
-            f"expected a tolerance in S_SS units in [0, 0.1] (0: run to the end), "
-            f"got {steady_tolerance!r}",
-        )
+    check_steady_tolerance(steady_tolerance)
     duration, steady_window = run_times(system, duration, steady_window)
     name, kernel = resolve_engine(engine, system.law)
     model = BatchModel.from_system(system) if name != "scipy" else None

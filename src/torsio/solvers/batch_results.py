@@ -31,6 +31,18 @@ STATUS_MESSAGES = {
 """What each per-point status code means."""
 
 
+def check_steady_tolerance(value: Any) -> float:
+    """A steady-cycle tolerance [S_SS units] in [0, 0.1], else a ConfigError naming it."""
+    if isinstance(value, bool) or not (
+        isinstance(value, int | float) and math.isfinite(value) and 0 <= value <= 0.1
+    ):
+        raise ConfigError(
+            "steady_tolerance",
+            f"expected a tolerance in S_SS units in [0, 0.1] (0: run to the end), got {value!r}",
+        )
+    return float(value)
+
+
 def batch_points(system: Any, wob: Any, rpm: Any) -> tuple[np.ndarray, np.ndarray, bool]:
     """(wob [N], rpm [rpm], torque_driven) of a batch, broadcast, flat and checked.
 

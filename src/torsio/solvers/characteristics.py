@@ -69,6 +69,7 @@ from torsio.solvers.wave_buffers import (
     _copy_nodes,
     _dampers,
     _dampers_with_power,
+    _end_slots,
     _read_nodes,
     _slot,
 )
@@ -77,8 +78,6 @@ from torsio.solvers.wave_state import (
     C_INNER,
     C_SPECIAL,
     INNER,
-    LAST_COLUMN,
-    LAST_ROW,
     RATIO_INNER,
     RATIO_SPECIAL,
     SPECIAL,
@@ -296,18 +295,8 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
         # 3. junctions (with the damper of the junction node)
         end_power = 0.0
         for s in range(last):
-            upper_start = layout[s, BUFFER_START]
-            upper_width = layout[s, WIDTH]
-            lower_start = layout[s + 1, BUFFER_START]
-            lower_width = layout[s + 1, WIDTH]
-            last_row = layout[s, LAST_ROW]
-            last_column = layout[s, LAST_COLUMN]
-            ia = _slot(upper_start, upper_width, spacing, heads[s, 0], heads[s, 1], last_row,
-                       last_column)  # fmt: skip
-            ja = _slot(upper_start, upper_width, spacing, heads[s, 2], heads[s, 3], last_row,
-                       last_column)  # fmt: skip
-            ib = _slot(lower_start, lower_width, spacing, heads[s + 1, 0], heads[s + 1, 1], 0, 0)
-            jb = _slot(lower_start, lower_width, spacing, heads[s + 1, 2], heads[s + 1, 3], 0, 0)
+            ia, ja = _end_slots(layout, spacing, heads, s, True)
+            ib, jb = _end_slots(layout, spacing, heads, s + 1, False)
             z1 = sections[s, Z]
             z2 = sections[s + 1, Z]
             c = end_dampers[s + 1]
@@ -316,10 +305,7 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
             P[ib] = M[jb] + 2.0 * z2 * speed
             end_power += c * speed * speed
         # 4. top
-        top_width = layout[0, WIDTH]
-        top_start = layout[0, BUFFER_START]
-        i_top = _slot(top_start, top_width, spacing, heads[0, 0], heads[0, 1], 0, 0)
-        j_top = _slot(top_start, top_width, spacing, heads[0, 2], heads[0, 3], 0, 0)
+        i_top, j_top = _end_slots(layout, spacing, heads, 0, False)
         m_in = M[j_top]
         if held:
             top_speed = set_speed
@@ -361,14 +347,7 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
         surface_torque = m_in + z_top * top_speed
         end_power += c_top * top_speed * top_speed
         # 5. bit
-        bit_start = layout[last, BUFFER_START]
-        bit_width = layout[last, WIDTH]
-        last_row = layout[last, LAST_ROW]
-        last_column = layout[last, LAST_COLUMN]
-        i_bit = _slot(bit_start, bit_width, spacing, heads[last, 0], heads[last, 1], last_row,
-                      last_column)  # fmt: skip
-        j_bit = _slot(bit_start, bit_width, spacing, heads[last, 2], heads[last, 3], last_row,
-                      last_column)  # fmt: skip
+        i_bit, j_bit = _end_slots(layout, spacing, heads, last, True)
         p_in = P[i_bit]
         w_old = bit_state[1]
         if bit_state[2] < 1.0:

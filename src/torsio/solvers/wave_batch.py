@@ -21,9 +21,14 @@ from typing import Any
 import numpy as np
 
 from torsio.analysis.severity import default_times
-from torsio.errors import ConfigError, SolverError
+from torsio.errors import SolverError
 from torsio.model.wave import check_wave_damping, first_frequency
-from torsio.solvers.batch_results import DEFAULT_STEADY_TOLERANCE, BatchResults, batch_points
+from torsio.solvers.batch_results import (
+    DEFAULT_STEADY_TOLERANCE,
+    BatchResults,
+    batch_points,
+    check_steady_tolerance,
+)
 from torsio.solvers.wave_march import march
 from torsio.solvers.wave_top import top_boundary
 
@@ -69,16 +74,7 @@ def simulate_wave_batch(
     count, as the lumped engine; one thread off the main thread, e.g. in a Dask worker).
     ``steady_tolerance``: as for the lumped engine (S_SS units; 0 runs to the end).
     """
-    if isinstance(steady_tolerance, bool) or not (
-        isinstance(steady_tolerance, int | float)
-        and math.isfinite(steady_tolerance)
-        and 0 <= steady_tolerance <= 0.1
-    ):
-        raise ConfigError(
-            "steady_tolerance",
-            f"expected a tolerance in S_SS units in [0, 0.1] (0: run to the end), "
-            f"got {steady_tolerance!r}",
-        )
+    check_steady_tolerance(steady_tolerance)
     grid = system.model
     alpha = check_wave_damping(system.damping, system.model)
     wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)

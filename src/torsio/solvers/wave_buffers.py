@@ -14,7 +14,15 @@ Python without numba.
 from __future__ import annotations
 
 from torsio.solvers.compiled import njit
-from torsio.solvers.wave_state import BUFFER_START, CELLS, LIVE, NODE_START, WIDTH
+from torsio.solvers.wave_state import (
+    BUFFER_START,
+    CELLS,
+    LAST_COLUMN,
+    LAST_ROW,
+    LIVE,
+    NODE_START,
+    WIDTH,
+)
 
 
 @njit(cache=True, nogil=True, _nrt=False)
@@ -91,19 +99,22 @@ def _advance(layout, spacing, P, M, heads):  # type: ignore[no-untyped-def,unuse
 
 
 @njit(cache=True, nogil=True, _nrt=False)
-def _read_nodes(layout, spacing, P, M, heads, impedances, speeds, torques):  # type: ignore[no-untyped-def,unused-ignore]
-    """Speed [rad/s] and torque / Z' [rad/s] of every node, in the state layout."""
+def _copy_nodes(layout, spacing, P, M, heads, p, m, to_buffers):  # type: ignore[no-untyped-def,unused-ignore]
+    """Node-ordered (p, m) into the buffers (``to_buffers``) or back."""
     for s in range(layout.shape[0]):
         start = layout[s, BUFFER_START]
         width = layout[s, WIDTH]
         first = layout[s, NODE_START]
         p_row, p_column, m_row, m_column = heads[s, 0], heads[s, 1], heads[s, 2], heads[s, 3]
-        for j in range(layout[s, CELLS] + 1):
-            p = P[start + p_row * width + p_column]
-            m = M[start + m_row * width + m_column]
-            z = impedances[first + j]
-            speeds[first + j] = (p - m) / (2.0 * z)
-            torques[first + j] = 0.5 * (p + m) / z
+        for j in range(first, first + layout[s, CELLS] + 1):
+            ip = start + p_row * width + p_column
+            im = start + m_row * width + m_column
+            if to_buffers:
+                P[ip] = p[j]
+                M[im] = m[j]
+            else:
+                p[j] = P[ip]
+                m[j] = M[im]
             p_row += 1  # the next node: the next slot of either buffer
             if p_row == spacing:
                 p_row = 0
@@ -115,20 +126,23 @@ def _read_nodes(layout, spacing, P, M, heads, impedances, speeds, torques):  # t
 
 
 @njit(cache=True, nogil=True, _nrt=False)
-def _copy_nodes(layout, spacing, P, M, heads, p, m, to_buffers):  # type: ignore[no-untyped-def,unused-ignore]
-    """Node-ordered (p, m) into the buffers (``to_buffers``) or back."""
-    for s in range(layout.shape[0]):
-        start = layout[s, BUFFER_START]
-        width = layout[s, WIDTH]
-        first = layout[s, NODE_START]
-        for j in range(layout[s, CELLS] + 1):
-            on_rows = j % spacing
-            on_columns = j // spacing
-            ip = _slot(start, width, spacing, heads[s, 0], heads[s, 1], on_rows, on_columns)
-            im = _slot(start, width, spacing, heads[s, 2], heads[s, 3], on_rows, on_columns)
-            if to_buffers:
-                P[ip] = p[first + j]
-                M[im] = m[first + j]
-            else:
-                p[first + j] = P[ip]
-                m[first + j] = M[im]
+def _read_nodes(layout, spacing, P, M, heads, impedances, speeds, torques):  # type: ignore[no-untyped-def,unused-ignore]
+    """Speed [rad/s] and torque / Z' [rad/s] of every node, in the state layout."""
+    _copy_nodes(layout, spacing, P, M, heads, speeds, torques, False)  # p into speeds, m ...
+    for j in range(speeds.size):
+        p, m, z = speeds[j], torques[j], impedances[j]
+        speeds[j] = (p - m) / (2.0 * z)
+        torques[j] = 0.5 * (p + m) / z
+
+
+@njit(cache=True, nogil=True, _nrt=False)
+def _end_slots(layout, spacing, heads, s, last_node):  # type: ignore[no-untyped-def,unused-ignore]
+    """(slot of p, slot of m) of node 0 of section ``s``, or of its last node."""
+    start = layout[s, BUFFER_START]
+    width = layout[s, WIDTH]
+    rows_on = layout[s, LAST_ROW] if last_node else 0
+    columns_on = layout[s, LAST_COLUMN] if last_node else 0
+    return (
+        _slot(start, width, spacing, heads[s, 0], heads[s, 1], rows_on, columns_on),
+        _slot(start, width, spacing, heads[s, 2], heads[s, 3], rows_on, columns_on),
+    )
