@@ -4,8 +4,8 @@ The state is the pair of Riemann invariants at every node: p = T + Z w travels d
 m = T - Z w travels up. One step of length dt:
 
 1. **transport**: in every section each p moves one node down and each m one node up
-   (exact: the grid matches the wave speed). The invariants live in ring buffers, one
-   pair per section, so a step moves the buffers' read positions, not the values;
+   (exact: the grid matches the wave speed). The invariants live in buffers, one pair
+   per section, so a step moves the buffers' read positions, not the values;
 2. **drag**: the distributed drag alpha rho J of each section is lumped into point
    dampers c = alpha Z s dt at every ``drag_spacing``-th node, s the node's share of the
    section in cells (:func:`torsio.model.wave.drag_lumping`). A damper at an inner node
@@ -90,7 +90,6 @@ from torsio.solvers.wave_state import (
     kernel_layout,
     node_impedances,
     node_offsets,
-    node_speeds,
     rest_state,
     state_from_fields,
 )
@@ -104,7 +103,6 @@ __all__ = [
     "kernel_layout",
     "node_impedances",
     "node_offsets",
-    "node_speeds",
     "rest_state",
     "state_from_fields",
 ]
@@ -233,9 +231,9 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     spacing = int(settings[14])
     steady_tolerance = settings[15]
     reference = settings[16]
-    end_step = settings[17]
-    window_length = settings[18]
-    cycle_gap = settings[19]
+    cycle_gap = settings[17]
+    t_end = steps * dt  # this call's end, for the cycles left, and its window's length
+    window_length = (steps - window_start + 1) * dt
     track = steady_tolerance > 0.0 and reference > 0.0
     count = layout.shape[0]
     last = count - 1
@@ -258,7 +256,7 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     t_now = torque(parameters, w_now, wob, radius)
     taken = 0
     for step in range(steps):
-        m_top_old = M[layout[0, BUFFER_START] + heads[0, 2] * layout[0, WIDTH] + heads[0, 3]]
+        m_top_old = M[_end_slots(layout, spacing, heads, 0, False)[1]]
         # 1. transport
         _advance(layout, spacing, P, M, heads)
         # 2. inner dampers: the regular ones a run of one row of p and one of m
@@ -425,7 +423,7 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
                 continue
             steady = _crossing(
                 layout, spacing, P, M, heads, impedances, speeds, torques, cross, summary,
-                w_bit, top_speed, t_cross, reference, end_step * dt, window_length,
+                w_bit, top_speed, t_cross, reference, t_end, window_length,
                 steady_tolerance,
             )  # fmt: skip
             if steady:  # its extremes are those of the rest of the window

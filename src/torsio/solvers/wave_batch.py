@@ -78,7 +78,7 @@ def simulate_wave_batch(
     grid = system.model
     alpha = check_wave_damping(system.damping, system.model)
     wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)
-    omega_1 = wave_scales(grid)[1]
+    omega_1 = first_frequency(grid)
     if duration is None or steady_window is None:
         default_duration, default_window = default_times(omega_1)
         duration = default_duration if duration is None else duration

@@ -223,7 +223,7 @@ def march(
             dt, grid.bit_inertia, alpha, wob, radius, 1.0 if top.held else 0.0, top.set_speed,
             top.max_torque, steps, window_start, record_every, field_every, top.drag,
             1.0 if track_energy else 0.0, grid.drag_spacing, steady_tolerance, reference,
-            steps, (steps - window_start + 1) * dt, cycle_gap,
+            cycle_gap,
         ]
     )  # fmt: skip
     cross = np.zeros((2, state.p.size + 2))

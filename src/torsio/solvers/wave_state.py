@@ -153,11 +153,3 @@ def node_impedances(grid: WaveModel, alpha: float) -> np.ndarray:
     the damper c: Z - c / 2 (module docstring).
     """
     return kernel_layout(grid, alpha).impedances
-
-
-def node_speeds(grid: WaveModel, state: WaveState, alpha: float) -> np.ndarray:
-    """Angular speed at every node [rad/s] (state layout)."""
-    return (state.p - state.m) / (2.0 * node_impedances(grid, alpha))
-
-
-# --- the compiled step ----------------------------------------------------------------------
