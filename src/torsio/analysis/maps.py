@@ -90,6 +90,7 @@ from torsio.analysis.sweep import (
     open_executor,
     worker_count,
 )
+from torsio.analysis.time_scales import check_time_scales
 from torsio.errors import ConfigError, SolverError
 from torsio.physics.system import System
 from torsio.solvers.batch import (
@@ -301,6 +302,7 @@ def _build_map(
     duration, steady_window = run_times(system, duration, steady_window)
     k_eq, omega1 = _scales(system)
     check_batch_work(system, wob, duration, rtol, 2.0 * math.pi / omega1, DEFAULT_MAX_STEPS)
+    check_time_scales(system, duration)
     serial = executor is None or executor == "serial"
     options: dict[str, Any] = {
         "duration": duration,

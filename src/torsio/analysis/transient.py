@@ -67,6 +67,7 @@ from torsio.analysis.simulation_options import (
     MIN_WINDOW_SAMPLES,
     SimulationOptions,
 )
+from torsio.analysis.time_scales import check_time_scales
 from torsio.analysis.transient_results import TransientResults, window_mask
 from torsio.errors import ConfigError, SolverError
 from torsio.io.config import Config
@@ -189,14 +190,7 @@ def simulate(
     """
     from torsio.model.wave import is_wave_model
 
-    if is_wave_model(system.model):  # the distributed model: torsio.analysis.wave
-        from torsio.analysis.wave import wave_response
-
-        return wave_response(
-            system, duration, steady_window, output_step, stick_threshold,
-            initial_state=initial_state,
-        ).transient  # fmt: skip
-    options = SimulationOptions(
+    options = SimulationOptions(  # validated once, whatever the model
         duration=duration,
         steady_window=steady_window,
         method=method,
@@ -205,6 +199,13 @@ def simulate(
         output_step=output_step,
         stick_threshold=stick_threshold,
     )
+    if is_wave_model(system.model):  # the distributed model: torsio.analysis.wave
+        from torsio.analysis.wave import wave_response
+
+        return wave_response(
+            system, options.duration, options.steady_window, options.output_step,
+            options.stick_threshold, initial_state=initial_state,
+        ).transient  # fmt: skip
     if not (math.isfinite(system.omega) and system.omega > 0):  # System validates this
         raise ConfigError("operation.rpm", f"expected a positive rotary speed, got {system.rpm!r}")
     run, window = run_times(system, options.duration, options.steady_window)
@@ -215,6 +216,7 @@ def simulate(
     )
     intervals = check_output_size(run, step, 3 * system.model.dofs + 4)
     check_law_time_scale(system, system.wob, run)
+    check_time_scales(system, run)
     time_grid = np.linspace(0.0, run, intervals + 1)
     in_window = window_mask(time_grid, window)
     if step > window / MIN_WINDOW_SAMPLES:
