@@ -41,6 +41,7 @@ from typing import Any
 import numpy as np
 
 from torsio.errors import ConfigError, SolverError
+from torsio.model.wave import DEFAULT_TRAVEL_TIME_TOLERANCE
 
 __all__ = [
     "EVALUATIONS_PER_SAMPLE",
@@ -285,13 +286,19 @@ def check_wave_steps(
         f"more than a run may take ({max_steps:,} steps and {MAX_WAVE_WORK:g} node-steps, "
         "about 20 s of stepping)"
     )
-    if _finer_than_default(grid) and duration <= _longest_default_run(grid, max_steps):
+    deciding = _deciding_grid_key(grid, duration, max_steps)
+    if deciding is not None:
+        hint = (
+            f"expected a time step of at least about {finest:.3g} s for this run"
+            if deciding == "discretization.time_step"
+            else "expected a larger travel-time tolerance (the default "
+            f"{DEFAULT_TRAVEL_TIME_TOLERANCE:g} gives a grid this run fits on)"
+        )
         raise ConfigError(
-            "discretization.time_step",
+            deciding,
             f"with the grid's time step of {dt:g} s ({nodes:,} nodes) a run of {duration:g} s "
             f"takes {steps_float:,.0f} steps and {steps_float * nodes:.3g} node-steps, {limits}; "
-            f"expected a time step of at least about {finest:.3g} s for this run, or a run of "
-            f"at most {longest:g} s on this grid",
+            f"{hint}, or a run of at most {longest:g} s on this grid",
         )
     raise ConfigError(
         key,
@@ -301,22 +308,24 @@ def check_wave_steps(
     )
 
 
-def _default_grid(grid: Any) -> Any:
+def _deciding_grid_key(grid: Any, duration: float, max_steps: int) -> str | None:
+    """The grid's key that makes a run too long: None when the default grid is no coarser
+    or too fine for it as well (the duration decides), else ``discretization.time_step`` or,
+    when the time step alone would give a coarser grid, ``travel_time_tolerance``."""
     from torsio.model.wave import WaveStrategy
 
-    return WaveStrategy(rigid_bha=grid.rigid_bha).discretize(grid.string)
-
-
-def _finer_than_default(grid: Any) -> bool:
-    try:
-        return float(grid.time_step) < float(_default_grid(grid).time_step) * (1 - 1e-9)
-    except ConfigError:  # pragma: no cover - the default grid of a string always exists
-        return False
-
-
-def _longest_default_run(grid: Any, max_steps: int) -> float:
-    default = _default_grid(grid)
-    return min(float(max_steps), MAX_WAVE_WORK / default.dofs) * float(default.time_step)
+    dt = float(grid.time_step)
+    default = WaveStrategy(rigid_bha=grid.rigid_bha).discretize(grid.string)
+    fits = min(float(max_steps), MAX_WAVE_WORK / default.dofs) * float(default.time_step)
+    if not dt < float(default.time_step) * (1 - 1e-9) or duration > fits:
+        return None
+    requested = grid.details.get("max_time_step_s")
+    if requested is None:  # a grid built otherwise: its time step is what it has
+        return "discretization.time_step"
+    alone = WaveStrategy(time_step=requested, rigid_bha=grid.rigid_bha).discretize(grid.string)
+    if float(alone.time_step) > dt * (1 + 1e-9):
+        return "discretization.travel_time_tolerance"
+    return "discretization.time_step"
 
 
 def check_batch_work(

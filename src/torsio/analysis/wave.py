@@ -51,6 +51,42 @@ DEFAULT_SAMPLES_PER_PERIOD = 200
 DEFAULT_STICK_THRESHOLD = 0.1
 """The bit sticks while |bit speed| < 0.1 Omega (as the lumped transient)."""
 
+INTEGRATOR_OPTIONS = ("method", "rtol", "atol")
+"""Options of the lumped integrators that have no meaning on the characteristic grid."""
+
+
+def refuse_integrator_options(given: dict[str, Any]) -> None:
+    """ConfigError on the first option of ``given`` (key -> value, None: not given).
+
+    The wave model steps on the fixed grid of its characteristics: no integrator to
+    choose, no tolerance; its accuracy is the grid's (``discretization.time_step``,
+    ``travel_time_tolerance``). The command line refuses ``--method``, ``--rtol``,
+    ``--atol`` and ``--engine`` for it rather than record them unused.
+
+    >>> refuse_integrator_options({"--rtol": None})
+    >>> refuse_integrator_options({"--rtol": 1e-8})
+    Traceback (most recent call last):
+    ...
+    torsio.errors.ConfigError: --rtol: has no effect on the wave model (strategy = "wave"), ...
+    """
+    for key, value in given.items():
+        if value is not None:
+            raise ConfigError(
+                key, f"has no effect on the wave model {_NO_INTEGRATOR}; got {value!r}"
+            )
+
+
+def integrator_note(keys: list[str]) -> str:
+    """The note for ``[simulation]`` keys of a file that a wave run does not use."""
+    return f"[simulation] {', '.join(keys)} not used: the wave model {_NO_INTEGRATOR}"
+
+
+_NO_INTEGRATOR = (
+    '(strategy = "wave"), which steps on the fixed grid of its characteristics with no '
+    "integrator to choose and no tolerance; its accuracy is set by discretization.time_step "
+    "and travel_time_tolerance (docs/wave.md)"
+)
+
 
 @attrs.frozen(eq=False)
 class WaveResponse:
