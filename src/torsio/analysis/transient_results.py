@@ -68,6 +68,9 @@ class TransientResults:
     severity_speed : float
         Omega [rad/s] that S_SS divides by: the set speed, or the mean top-drive
         speed over the steady window for a torque-driven top.
+    warnings : tuple of str
+        What limits the meaning of the result (:mod:`torsio.analysis.limits`): e.g. a
+        bit stuck throughout the window, a window shorter than a period; empty if none.
     """
 
     time: np.ndarray
@@ -88,6 +91,7 @@ class TransientResults:
     states: np.ndarray
     reference_speed: float
     severity_speed: float
+    warnings: tuple[str, ...] = ()
 
     def __repr__(self) -> str:  # short: no time series
         return (
@@ -188,6 +192,7 @@ class TransientResults:
             "bit_radius": float(system.bit_radius),
             "dimensionless": self.dimensionless,
             "solver": dict(self.solver),
+            "warnings": list(self.warnings),
         }
         if self.dimensionless:
             data["pi1"] = float(self.omega)
