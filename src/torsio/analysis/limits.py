@@ -16,7 +16,7 @@ True
 >>> short_window(2.0, 7.65)
 'the steady window (2 s) is shorter than one period of the first mode (7.65 s): ...'
 >>> stuck_points(3, 100)
-'at 3 of 100 points the bit is stuck throughout the steady window: ...'
+"at 3 of 100 points the bit is stuck throughout the steady window: ..."
 """
 
 from __future__ import annotations

@@ -42,6 +42,14 @@ STICK_SLIP_THRESHOLD = 0.05
 """S_SS above which a point is a sustained torsional oscillation ("stick-slip")."""
 
 CLASSES = ("stable", "stick-slip", "severe")
+
+_NPZ_ARRAYS = (
+    *("wob", "rpm", "critical_wob", "critical_pi2", "stability_wob", "pi1", "pi2"),
+    *("status", "steps", "done", "stuck", "classification", "critical_status"),
+)
+"""Keys of :meth:`SeverityMap.to_dict` that ``.npz`` holds as arrays."""
+_EXACT = ("status", "steps", "done", "stuck", "classification", "critical_status")
+"""Of those, the ones not stored as floats."""
 """Class names, in increasing severity (``"failed"`` marks a point the solver failed on)."""
 
 
@@ -347,37 +355,8 @@ class SeverityMap:
             with open(temporary, "xb") as stream:  # ordinary permissions (umask)
                 if path.suffix == ".npz":
                     arrays: dict[str, Any] = {
-                        key: np.array(
-                            value,
-                            dtype=float
-                            if key
-                            not in (
-                                "status",
-                                "steps",
-                                "done",
-                                "stuck",
-                                "classification",
-                                "critical_status",
-                            )
-                            else None,
-                        )
-                        for key, value in data.items()
-                        if key
-                        in (
-                            "wob",
-                            "rpm",
-                            "critical_wob",
-                            "critical_pi2",
-                            "stability_wob",
-                            "status",
-                            "steps",
-                            "done",
-                            "stuck",
-                            "pi1",
-                            "pi2",
-                            "classification",
-                            "critical_status",
-                        )
+                        key: np.array(data[key], dtype=None if key in _EXACT else float)
+                        for key in _NPZ_ARRAYS
                     }
                     arrays["severity"] = self.severity
                     arrays["critical_bracket"] = self.critical_bracket
