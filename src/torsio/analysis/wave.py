@@ -35,6 +35,7 @@ import attrs
 import numpy as np
 
 from torsio.analysis.budget import check_law_time_scale, check_output_size, check_wave_steps
+from torsio.analysis.limits import short_window, stuck_throughout, warning_list
 from torsio.analysis.severity import DEFAULT_DURATION_PERIODS, DEFAULT_WINDOW_PERIODS, check_window
 from torsio.analysis.simulation_options import check_window_samples
 from torsio.analysis.transient_results import TransientResults
@@ -285,5 +286,8 @@ def wave_response(
         "states": np.zeros((t.size, 0)),
         "reference_speed": reference,
         "severity_speed": reference,
+        "warnings": warning_list(  # as the lumped transient says them
+            stuck_throughout(stick, threshold), short_window(float(steady_window), period)
+        ),
     }
     return WaveResponse(_transient_results(values), run, _depths(grid), energy)

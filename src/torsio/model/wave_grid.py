@@ -18,6 +18,7 @@ from torsio.errors import ConfigError
 MAX_CELLS = 200_000
 """Largest number of cells a wave grid may have (memory and run time grow with it)."""
 
+
 def choose_time_step(
     travel_times: np.ndarray, max_time_step: float, tolerance: float, max_cells: int = MAX_CELLS
 ) -> tuple[float, np.ndarray]:
