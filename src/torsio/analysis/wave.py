@@ -178,7 +178,8 @@ def wave_response(
         False: none.
     **ignored
         Options of the lumped integrator (``method``, ``rtol``, ``atol``) that have no
-        meaning on a fixed characteristic grid; they are recorded, not used.
+        meaning on a fixed characteristic grid: not used (the command line refuses them,
+        :func:`refuse_integrator_options`).
     """
     grid = system.model
     if not is_wave_model(grid):
