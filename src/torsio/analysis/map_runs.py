@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from torsio.analysis.severity import DEFAULT_STICK_THRESHOLD
 from torsio.analysis.sweep import SweepError, SweepInterrupted, run_tasks_on
 from torsio.errors import ConfigError
 from torsio.physics.system import System
@@ -149,11 +150,12 @@ def _bytes(value: float) -> str:
 def _chunk_task(
     system: System, wob: np.ndarray, rpm: np.ndarray, options: dict[str, Any]
 ) -> np.ndarray:
-    """Worker side: S_SS, status, steps, rejected steps and the time each run ended [s],
-    shape (k, 5)."""
+    """Worker side: S_SS, status, steps, rejected steps, the time each run ended [s] and
+    whether the bit stuck throughout the window (1.0 or 0.0), shape (k, 6)."""
     result = simulate_batch(system, wob, rpm, **options)
+    stuck = result.stuck(DEFAULT_STICK_THRESHOLD)
     return np.column_stack(
-        [result.severity, result.status, result.steps, result.rejected, result.ended]
+        [result.severity, result.status, result.steps, result.rejected, result.ended, stuck]
     )
 
 

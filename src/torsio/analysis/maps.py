@@ -342,6 +342,7 @@ def _build_map(
     status = np.zeros((rpm.size, wob.size), dtype=np.int64)
     steps = np.zeros((rpm.size, wob.size), dtype=np.int64)
     done = np.zeros((rpm.size, wob.size), dtype=bool)
+    stuck = np.zeros((rpm.size, wob.size), dtype=bool)
     ended_early = np.zeros((rpm.size, wob.size), dtype=bool)
     grid_rpm, grid_wob = np.meshgrid(rpm, wob, indexing="ij")
     flat_wob = grid_wob.ravel()
@@ -370,6 +371,7 @@ def _build_map(
         status[i, j] = rows[:, 1].astype(np.int64)
         steps[i, j] = rows[:, 2].astype(np.int64)
         ended_early[i, j] = rows[:, 4] < duration
+        stuck[i, j] = rows[:, 5] > 0.5
         done[i, j] = True
 
     def partial_map() -> SeverityMap:
@@ -394,6 +396,7 @@ def _build_map(
             dimensionless=dimensionless,
             info={**info, "elapsed_s": time.perf_counter() - start},
             engine=engine_name,
+            stuck=stuck.copy(),
         )
 
     try:
@@ -475,4 +478,5 @@ def _build_map(
         dimensionless=dimensionless,
         info=info,
         engine=engine_name,
+        stuck=stuck,
     )

@@ -53,6 +53,7 @@ from torsio.analysis.budget import (
     check_law_time_scale,
     check_output_size,
 )
+from torsio.analysis.limits import short_window, stuck_throughout, warning_list
 from torsio.analysis.severity import (
     DEFAULT_SAMPLES_PER_PERIOD,
     DEFAULT_STICK_THRESHOLD,
@@ -209,10 +210,11 @@ def simulate(
     if not (math.isfinite(system.omega) and system.omega > 0):  # System validates this
         raise ConfigError("operation.rpm", f"expected a positive rotary speed, got {system.rpm!r}")
     run, window = run_times(system, options.duration, options.steady_window)
+    period = 2.0 * math.pi / first_natural_frequency(system)
     step = (
         options.output_step
         if options.output_step is not None
-        else 2.0 * math.pi / first_natural_frequency(system) / DEFAULT_SAMPLES_PER_PERIOD
+        else period / DEFAULT_SAMPLES_PER_PERIOD
     )
     intervals = check_output_size(run, step, 3 * system.model.dofs + 4)
     check_law_time_scale(system, system.wob, run)
@@ -300,6 +302,9 @@ def simulate(
         states=states.T.copy(),
         reference_speed=float(reference),
         severity_speed=float(omega),
+        warnings=warning_list(
+            stuck_throughout(stick, threshold), short_window(float(window), period)
+        ),
     )
 
 

@@ -230,6 +230,7 @@ def _run(args: argparse.Namespace) -> int:
         severity_map,
     )
     from torsio.errors import ConfigError
+    from torsio.model.wave import is_wave_model
     from torsio.physics.system import System
 
     if args.wob is not None and args.pi2 is not None:
@@ -288,6 +289,13 @@ def _run(args: argparse.Namespace) -> int:
     if args.rtol is not None:
         options["rtol"] = args.rtol
     single_run_only = sorted(set(simulation) & {"method", "output_step", "stick_threshold"})
+    if is_wave_model(system.model):  # no integrator: --rtol is an error, the file's a note
+        from torsio.analysis.wave import integrator_note, refuse_integrator_options
+
+        refuse_integrator_options({"--rtol (simulation.rtol)": args.rtol})
+        unused = sorted(set(simulation) & {"rtol", "atol"})
+        if unused:
+            print(f"torsio map: {integrator_note(unused)}", file=sys.stderr)
     if single_run_only:
         print(
             f"torsio map: [simulation] {', '.join(single_run_only)} apply to single runs "

@@ -314,6 +314,7 @@ def simulate_batch(
             atol,
             threads=threads,
             steady_tolerance=steady_tolerance,
+            engine=engine,
         )
     wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)
     for key, value in (("rtol", rtol), ("atol", atol)):
