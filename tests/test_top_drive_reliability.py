@@ -200,9 +200,41 @@ def test_severity_map_reads_units_and_names_its_arguments():
     from torsio.analysis.maps import severity_map
 
     system = System.from_config(builtin_config(), strategy="A")
-    result = severity_map(system, wob="100 kN", rpm=["60 rpm"], refine=0, duration=60.0)
+    result = severity_map(
+        system, wob="100 kN", rpm=["60 rpm"], refine=0, duration=60.0, engine="numpy"
+    )
     assert (result.wob.tolist(), result.rpm.tolist()) == ([100e3], [60.0])
     with pytest.raises(ConfigError, match="^wob: expected a number"):
         severity_map(system, wob=["100 kN", None], rpm=[60])
     with pytest.raises(ConfigError, match="^rpm: '60 kN' is not a angular speed"):
         severity_map(system, wob=[1e5], rpm="60 kN")
+
+
+# --- case 11: a motor torque limit below the steady load is said -------------------------------
+
+
+@pytest.mark.parametrize("kind", ["pi", "soft-torque"])
+def test_a_saturated_motor_is_said(tmp_path, capsys, kind):
+    gains = "kp = 23250.0\nki = 14500.0\n" if kind == "pi" else ""
+    top = f'\n[top_drive]\nkind = "{kind}"\ninertia = 2900.0\n{gains}max_torque = 1000.0\n'
+    text = ONE_DOF + top
+    system = System.from_config(parse_config_text(text))
+    # the steady load at the set speed: the bit torque plus the Rayleigh drag alpha I_1 Omega
+    # (4.4 kN m at 100 kN, 100 rpm) is above the motor's 1 kN m, so the top never gets there
+    load = float(system.bit_torque(system.omega)) + 0.35 * system.model.inertia[0, 0] * system.omega
+    assert load > 4000.0
+    status, out, err = run_cli(tmp_path, capsys, text, "--duration", "60")
+    assert status == 0, err
+    data = json.loads(out)
+    (saturated,) = [w for w in data["warnings"] if "torque limit" in w]
+    assert "max_torque = 1000 N m) during 100% of the steady window" in saturated
+    assert "against the set 100 rpm" in saturated and "never reaches" in saturated
+    assert data["top_speed_mean"] < 0.05 * system.omega
+    assert f"warning: {saturated}" in err
+
+
+def test_a_motor_limit_above_the_load_says_nothing(tmp_path, capsys):
+    top = '\n[top_drive]\nkind = "soft-torque"\ninertia = 2900.0\nmax_torque = 60000.0\n'
+    status, out, err = run_cli(tmp_path, capsys, ONE_DOF + top, "--duration", "60")
+    assert status == 0, err
+    assert not [w for w in json.loads(out)["warnings"] if "torque limit" in w]

@@ -53,7 +53,7 @@ from torsio.analysis.budget import (
     check_law_time_scale,
     check_output_size,
 )
-from torsio.analysis.limits import short_window, stuck_throughout, warning_list
+from torsio.analysis.limits import saturated_motor, short_window, stuck_throughout, warning_list
 from torsio.analysis.severity import (
     DEFAULT_SAMPLES_PER_PERIOD,
     DEFAULT_STICK_THRESHOLD,
@@ -303,7 +303,11 @@ def simulate(
         reference_speed=float(reference),
         severity_speed=float(omega),
         warnings=warning_list(
-            stuck_throughout(stick, threshold), short_window(float(window), period)
+            stuck_throughout(stick, threshold),
+            short_window(float(window), period),
+            saturated_motor(
+                motor_torque[in_window], dynamics.top.max_torque, mean_top_speed, dynamics.set_speed
+            ),
         ),
     )
 
