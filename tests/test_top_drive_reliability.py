@@ -238,3 +238,21 @@ def test_a_motor_limit_above_the_load_says_nothing(tmp_path, capsys):
     status, out, err = run_cli(tmp_path, capsys, ONE_DOF + top, "--duration", "60")
     assert status == 0, err
     assert not [w for w in json.loads(out)["warnings"] if "torque limit" in w]
+
+
+def test_a_top_drive_that_never_gets_up_to_speed_is_said(tmp_path, capsys):
+    # J = 1e300 kg m^2: J/kp = 4e295 s, the top drive cannot be turned within any run
+    text = PI_STRING.replace("inertia = 2900.0", "inertia = 1e300")
+    status, out, err = run_cli(tmp_path, capsys, text, "--duration", "30")
+    assert status == 0, err
+    (short,) = [w for w in json.loads(out)["warnings"] if "set speed" in w]
+    assert short.startswith("the top drive never reaches its set speed: its mean speed is 0 rpm")
+    assert f"warning: {short}" in err
+
+
+def test_a_torque_driven_top_that_does_not_turn_names_the_torque(tmp_path, capsys):
+    # 1e-300 N m against drag and a bit at rest: the top does not turn, S_SS has no speed
+    text = TORQUE_CHAIN.replace("torque = 10000.0", "torque = 1e-300")
+    status, out, err = run_cli(tmp_path, capsys, text, "--duration", "30")
+    assert status == 2, out
+    assert "error: top_drive.torque: the top drive did not turn" in err, err

@@ -269,6 +269,13 @@ def simulate(
     top_speed = speeds_by_node[0].copy() if first else np.full(bit_speed.shape, reference)
     mean_top_speed = float(top_speed[in_window].mean())
     omega = dynamics.set_speed if math.isfinite(dynamics.set_speed) else mean_top_speed
+    if not omega > 0:  # a torque-driven top that did not turn: no speed to read S_SS against
+        raise ConfigError(
+            "top_drive.torque",
+            f"the top drive did not turn (mean speed {mean_top_speed:.3g} rad/s over the steady "
+            f"window) with a motor torque of {dynamics.top.u0:.6g} N m; expected a torque "
+            "above what the drag and the bit at rest hold",
+        )
     window_speeds = bit_speed[in_window]
     stick = float(np.mean(np.abs(window_speeds) < threshold * omega))
     solver_info = {
