@@ -111,6 +111,9 @@ CASES = {
         "[top_drive]\nhighpass_period = 1e-300",
     ),
     "z-torque zeta 1e-300": (Z_STRING, "[top_drive]", "[top_drive]\nzeta = 1e-300"),
+    "z-torque zeta 1e-5": (Z_STRING, "[top_drive]", "[top_drive]\nzeta = 1e-5"),
+    # an unstable loop: a run at 50 gave S_SS = 2336 and the top at -571 rad/s
+    "z-torque zeta 50": (Z_STRING, "[top_drive]", "[top_drive]\nzeta = 50.0"),
     "chain drag[2] 1e300": (HELD_CHAIN, "drag = [0.0, 0.0, 50.0]", "drag = [0.0, 0.0, 1e300]"),
     "chain stiffnesses[0] 1e300, torque top": (TORQUE_CHAIN, "[698.063,", "[1e300,"),
     # case 12
@@ -153,6 +156,7 @@ def test_values_in_scale_stay_accepted():
         PITopDrive(inertia=2900.0, kp=23250.0, ki=1e8),  # sqrt(ki/J) = 220 omega_1: 13 s
         SoftTorqueTopDrive(inertia=2900.0),
         ZTorqueTopDrive(inertia=2900.0),
+        ZTorqueTopDrive(inertia=2900.0, zeta=80.0),  # stable: S_SS 2e-14
     ):
         check_time_scales(system.with_top(top), 297.7)
     check_time_scales(System.from_config(parse_config_text(CHAIN)), 600.0)

@@ -99,6 +99,7 @@ def check_time_scales(system: Any, duration: float) -> None:
     if dynamics.has_top_node:
         _check_spin_up(system, dynamics, duration)
         _check_node(_top_terms(system, dynamics, chain), duration, groups.omega1, scales)
+        _check_top_loop(system, dynamics, duration)
     if chain:
         for i in range(first, dynamics.dofs):
             terms = _chain_terms(dynamics, i, i - first)
@@ -125,6 +126,7 @@ def _top_terms(system: Any, dynamics: Any, chain: bool) -> dict[str, list[_Term]
             _Term("top_drive.drag", float(top.drag), "damping", float(top.drag)),
         ],
         "rates": [],
+        "loops": [],
     }
     if d_e:
         terms["damping"].append(_Term("top_drive.kp", d_e, "damping", d_e))
@@ -143,6 +145,9 @@ def _top_terms(system: Any, dynamics: Any, chain: bool) -> dict[str, list[_Term]
         if through_torque:  # z' = e - g T_pipe, u = ki z: a rate ki g
             zeta = params.get("zeta", math.nan)
             terms["rates"].append(_Term("top_drive.zeta", zeta, "damping", through_torque))
+            # and a third-order loop, J phi_0 (3rd derivative) = -ki g k_1 phi_0
+            loop = (through_torque * k1 / float(top.inertia)) ** (1.0 / 3.0)
+            terms["loops"].append(_Term("top_drive.zeta", zeta, "damping", loop))
     return terms
 
 
@@ -177,6 +182,7 @@ def _chain_terms(dynamics: Any, i: int, node: int) -> dict[str, list[_Term]]:
         "stiffness": stiffness,
         "damping": damping,
         "rates": [],
+        "loops": [],
     }
 
 
@@ -210,6 +216,17 @@ def _check_node(
                 f" s, {duration * rate.contribution:.3g} times shorter than the run of "
                 f"{duration:.4g} s (at most {MAX_RELAXATION_RATIO:.0e} can be integrated); "
                 f"expected a value {_rate_bound(rate, duration)}",
+            )
+    for loop in terms["loops"]:  # its frequency goes as zeta^(-1/3)
+        if loop.contribution > MAX_FREQUENCY_RATIO * omega1:
+            least = loop.value * (loop.contribution / (MAX_FREQUENCY_RATIO * omega1)) ** 3
+            _refuse(
+                loop,
+                f"closes the torque feedback (ki alpha/zeta through the top spring) at "
+                f"{loop.contribution:.3g} rad/s, {loop.contribution / omega1:.3g} times the "
+                f"string's first natural frequency ({omega1:.3g} rad/s); the integrator "
+                f"resolves every cycle and affords at most {MAX_FREQUENCY_RATIO:g} omega_1; "
+                f"expected a value of at least {least:.3g} N m s/rad",
             )
     if stiffness <= 0 or damping >= 2.0 * math.sqrt(stiffness * inertia):
         return  # overdamped: its fast scale is the relaxation checked above
@@ -297,4 +314,70 @@ def _check_spin_up(system: Any, dynamics: Any, duration: float) -> None:
         f"the top drive and the string ({total:.3g} kg m^2) need {spin_up:.3g} s to reach "
         f"the balance speed {speed:.4g} rad/s, longer than the run of {duration:.4g} s, so "
         f"the top never reaches a steady speed; expected {expected}",
+    )
+
+
+MAX_LOOP_STATES = 1000
+"""Largest state size whose eigenvalues the loop check computes (dense, O(size^3))."""
+
+
+def _loop_growth(dynamics: Any) -> float:
+    """Largest growth rate [1/s] of the string with its top drive, the bit law's slope 0.
+
+    The linearization about steady rotation (:meth:`Dynamics.linearized`) with the bit
+    neither feeding nor damping the motion: what grows then is the controller's own doing,
+    not stick-slip.
+    """
+    with np.errstate(all="ignore"):
+        matrix = np.asarray(dynamics.linearized(bit_slope=0.0), dtype=float)
+        if not np.all(np.isfinite(matrix)):
+            return math.inf
+        return float(np.linalg.eigvals(matrix).real.max())
+
+
+def _check_top_loop(system: Any, dynamics: Any, duration: float) -> None:
+    """ConfigError if a controller that feeds the pipe torque back destabilises the string.
+
+    Z-Torque (alpha/zeta) can make the string grow by itself, the bit aside: with
+    J = 2900 kg m^2 on the paper's 1-DOF string it grows for zeta <= 50 N m s/rad (a run
+    at 50 gave S_SS = 2336 and a top drive at -571 rad/s), and is stable at 80 (S_SS
+    2e-14). Refused when the linearization with the bit law's slope 0 grows by more than
+    a factor e over the run (skipped above :data:`MAX_LOOP_STATES` states).
+    """
+    top = dynamics.top
+    feeds_back = np.any(np.asarray(top.d, dtype=float)[1:]) or np.any(
+        np.asarray(top.b, dtype=float)[:, 1]
+    )
+    if not feeds_back or dynamics.size > MAX_LOOP_STATES:
+        return
+    growth = _loop_growth(dynamics)
+    if growth * duration <= 1.0:
+        return
+    drive = system.top
+    if not hasattr(drive, "zeta") or not hasattr(drive, "parameters"):
+        raise ConfigError(
+            "top_drive",
+            f"the controller of {getattr(drive, 'name', drive)!r} makes the string unstable (with "
+            f"the bit aside, it grows at {growth:.3g}/s, by e^{growth * duration:.3g} "
+            f"over the run of {duration:.4g} s); expected a stable tuning",
+        )
+    zeta = float(drive.parameters(system)[2])
+
+    def grows(value: float) -> bool:
+        trial = system.with_top(attrs.evolve(drive, zeta=value)).dynamics()
+        return _loop_growth(trial) * duration > 1.0
+
+    low, high = math.log10(zeta), math.log10(zeta) + 12.0
+    bound = ""
+    if not grows(10.0**high):
+        for _ in range(50):
+            middle = 0.5 * (low + high)
+            low, high = (middle, high) if grows(10.0**middle) else (low, middle)
+        bound = f"; expected at least {10.0**high:.3g} N m s/rad with the other values as given"
+    raise ConfigError(
+        "top_drive.zeta",
+        f"{zeta:.6g} N m s/rad makes the Z-Torque loop (the pipe torque fed back through "
+        f"alpha/zeta = {drive.alpha / zeta:.3g} rad/s per N m) unstable: with the bit aside, "
+        f"the string and top drive grow at {growth:.3g}/s, by e^{growth * duration:.3g}"
+        f" over the run of {duration:.4g} s, and the run means nothing{bound}",
     )
