@@ -111,6 +111,7 @@ CASES = {
         "[top_drive]\nhighpass_period = 1e-300",
     ),
     "z-torque zeta 1e-300": (Z_STRING, "[top_drive]", "[top_drive]\nzeta = 1e-300"),
+    "z-torque ki 1e300": (Z_STRING, "[top_drive]", "[top_drive]\nki = 1e300"),
     "z-torque zeta 1e-5": (Z_STRING, "[top_drive]", "[top_drive]\nzeta = 1e-5"),
     # an unstable loop: a run at 50 gave S_SS = 2336 and the top at -571 rad/s
     "z-torque zeta 50": (Z_STRING, "[top_drive]", "[top_drive]\nzeta = 50.0"),

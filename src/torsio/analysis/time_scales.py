@@ -75,6 +75,22 @@ class _Term:
     contribution: float  # what it adds to the node's K or C (its value for an inertia)
 
 
+@attrs.frozen
+class _Rate:
+    """A controller rate or loop frequency [1/s], proportional to each term's value**power."""
+
+    rate: float
+    terms: tuple[tuple[_Term, float], ...]
+
+    def refuse(self, limit: float, scales: dict[str, float], reason: str) -> None:
+        """ConfigError on the term furthest from its scale, with its bound for ``limit``."""
+        term = _blame([t for t, _ in self.terms], scales, every=True)
+        power = dict((t.key, p) for t, p in self.terms)[term.key]
+        bound = term.value * (limit / self.rate) ** (1.0 / power)
+        side = "at most" if power > 0 else "at least"
+        _refuse(term, f"{reason}; expected {side} {bound:.3g} {_UNITS[term.dimension]}")
+
+
 def check_time_scales(system: Any, duration: float) -> None:
     """ConfigError if the top drive or a chain node is out of scale for a run of ``duration`` s.
 
@@ -106,7 +122,7 @@ def check_time_scales(system: Any, duration: float) -> None:
             _check_node(terms, duration, groups.omega1, scales)
 
 
-def _top_terms(system: Any, dynamics: Any, chain: bool) -> dict[str, list[_Term]]:
+def _top_terms(system: Any, dynamics: Any, chain: bool) -> dict[str, list[Any]]:
     """The top drive's node: J; K = k_1 (1 + kp g) + ki; C = c_1 (1 + kp g) + kp + drag."""
     top = dynamics.top
     k1 = float(dynamics.stiffness_matrix[0, 0])
@@ -118,7 +134,7 @@ def _top_terms(system: Any, dynamics: Any, chain: bool) -> dict[str, list[_Term]
     b = np.asarray(top.b, dtype=float)
     ki = float(c[0] * b[0, 0]) if top.states else 0.0
     params = _parameters(system)
-    terms: dict[str, list[_Term]] = {
+    terms: dict[str, list[Any]] = {
         "inertia": [_Term("top_drive.inertia", float(top.inertia), "inertia", float(top.inertia))],
         "stiffness": [_Term(spring, k1, "stiffness", k1)],
         "damping": [
@@ -140,14 +156,16 @@ def _top_terms(system: Any, dynamics: Any, chain: bool) -> dict[str, list[_Term]
         own = abs(float(np.asarray(top.a, dtype=float)[j, j]))
         if own:
             period = params.get("highpass_period", 2.0 * math.pi / own)
-            terms["rates"].append(_Term("top_drive.highpass_period", period, "time", own))
+            hp = _Term("top_drive.highpass_period", period, "time", own)
+            terms["rates"].append(_Rate(own, ((hp, -1.0),)))
         through_torque = abs(float(c[j] * b[j, 1])) if j == 0 else 0.0
-        if through_torque:  # z' = e - g T_pipe, u = ki z: a rate ki g
-            zeta = params.get("zeta", math.nan)
-            terms["rates"].append(_Term("top_drive.zeta", zeta, "damping", through_torque))
-            # and a third-order loop, J phi_0 (3rd derivative) = -ki g k_1 phi_0
+        if through_torque:  # z' = e - g T_pipe, u = ki z: a rate ki alpha / zeta
+            impedance = _Term("top_drive.zeta", params.get("zeta", math.nan), "damping", 0.0)
+            gain = _Term("top_drive.ki", float(c[j]), "stiffness", 0.0)
+            terms["rates"].append(_Rate(through_torque, ((impedance, -1.0), (gain, 1.0))))
+            # and a third-order loop, J phi_0 (3rd derivative) = -ki alpha/zeta k_1 phi_0
             loop = (through_torque * k1 / float(top.inertia)) ** (1.0 / 3.0)
-            terms["loops"].append(_Term("top_drive.zeta", zeta, "damping", loop))
+            terms["loops"].append(_Rate(loop, ((impedance, -1.0 / 3.0), (gain, 1.0 / 3.0))))
     return terms
 
 
@@ -161,7 +179,7 @@ def _parameters(system: Any) -> dict[str, float]:
     return values
 
 
-def _chain_terms(dynamics: Any, i: int, node: int) -> dict[str, list[_Term]]:
+def _chain_terms(dynamics: Any, i: int, node: int) -> dict[str, list[Any]]:
     """Chain node ``node`` (dynamics node i): its inertia, its two springs and dampers, drag."""
     n = dynamics.dofs
     below_k = -float(dynamics.stiffness_matrix[i, i + 1]) if i + 1 < n else 0.0
@@ -187,7 +205,7 @@ def _chain_terms(dynamics: Any, i: int, node: int) -> dict[str, list[_Term]]:
 
 
 def _check_node(
-    terms: dict[str, list[_Term]],
+    terms: dict[str, list[Any]],
     duration: float,
     omega1: float,
     scales: dict[str, float],
@@ -208,25 +226,25 @@ def _check_node(
             f"the run of {duration:.4g} s (runs of more than {MAX_RELAXATION_RATIO:.0e} relaxation "
             f"times fail in double precision); expected {bound}",
         )
+    slowest = MAX_RELAXATION_RATIO / duration  # the largest rate [1/s] a run integrates
     for rate in terms["rates"]:
-        if duration * rate.contribution > MAX_RELAXATION_RATIO:
-            _refuse(
-                rate,
-                f"gives the top drive's controller a time constant of {1 / rate.contribution:.3g}"
-                f" s, {duration * rate.contribution:.3g} times shorter than the run of "
-                f"{duration:.4g} s (at most {MAX_RELAXATION_RATIO:.0e} can be integrated); "
-                f"expected a value {_rate_bound(rate, duration)}",
+        if rate.rate > slowest:
+            rate.refuse(
+                slowest,
+                scales,
+                f"gives the top drive's controller a time constant of {1 / rate.rate:.3g} s, "
+                f"{duration * rate.rate:.3g} times shorter than the run of {duration:.4g} s (at "
+                f"most {MAX_RELAXATION_RATIO:.0e} can be integrated)",
             )
-    for loop in terms["loops"]:  # its frequency goes as zeta^(-1/3)
-        if loop.contribution > MAX_FREQUENCY_RATIO * omega1:
-            least = loop.value * (loop.contribution / (MAX_FREQUENCY_RATIO * omega1)) ** 3
-            _refuse(
-                loop,
+    for loop in terms["loops"]:
+        if loop.rate > MAX_FREQUENCY_RATIO * omega1:
+            loop.refuse(
+                MAX_FREQUENCY_RATIO * omega1,
+                scales,
                 f"closes the torque feedback (ki alpha/zeta through the top spring) at "
-                f"{loop.contribution:.3g} rad/s, {loop.contribution / omega1:.3g} times the "
-                f"string's first natural frequency ({omega1:.3g} rad/s); the integrator "
-                f"resolves every cycle and affords at most {MAX_FREQUENCY_RATIO:g} omega_1; "
-                f"expected a value of at least {least:.3g} N m s/rad",
+                f"{loop.rate:.3g} rad/s, {loop.rate / omega1:.3g} times the string's first "
+                f"natural frequency ({omega1:.3g} rad/s); the integrator resolves every cycle "
+                f"and affords at most {MAX_FREQUENCY_RATIO:g} omega_1",
             )
     if stiffness <= 0 or damping >= 2.0 * math.sqrt(stiffness * inertia):
         return  # overdamped: its fast scale is the relaxation checked above
@@ -246,21 +264,17 @@ def _check_node(
     )
 
 
-def _rate_bound(term: _Term, duration: float) -> str:
-    slowest = MAX_RELAXATION_RATIO / duration  # the largest rate [1/s]
-    if term.key.endswith("highpass_period"):
-        return f"of at least {2.0 * math.pi / slowest:.3g} s"
-    return f"of at least {term.value * term.contribution / slowest:.3g} N m s/rad"
-
-
-def _blame(candidates: list[_Term], scales: dict[str, float]) -> _Term:
-    """The inertia or a dominant term: the one furthest in decades from the string's scale."""
+def _blame(candidates: list[_Term], scales: dict[str, float], every: bool = False) -> _Term:
+    """The inertia or a dominant term (``every``: any term): the one furthest in decades
+    from the string's scale."""
     others = [t for t in candidates if t.dimension != "inertia"]
     total = sum(abs(t.contribution) for t in others)
     dominant = [
         t
         for t in candidates
-        if t.dimension == "inertia" or (t.contribution > 0 and t.contribution >= 0.1 * total)
+        if every
+        or t.dimension == "inertia"
+        or (t.contribution > 0 and t.contribution >= 0.1 * total)
     ]
 
     def decades(term: _Term) -> float:
