@@ -120,10 +120,6 @@ __all__ = [
 DEFAULT_REFINE = 4
 """Bisection steps per critical-WOB cell: the bracket shrinks 16 times."""
 
-# the names tests and older code reach for
-_critical_wob = locate_critical_wob
-_Runner = PointRunner
-
 
 def _scales(system: System) -> tuple[float, float]:
     from torsio.model.modal import first_natural_frequency
