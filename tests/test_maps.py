@@ -24,7 +24,7 @@ import math
 import numpy as np
 import pytest
 
-from torsio.analysis import map_runs, maps
+from torsio.analysis import map_runs
 from torsio.analysis.critical_wob import locate_critical_wob
 from torsio.analysis.maps import (
     MapInterrupted,
