@@ -26,14 +26,9 @@ import pytest
 
 from torsio.analysis import map_runs
 from torsio.analysis.critical_wob import locate_critical_wob
-from torsio.analysis.maps import (
-    MapInterrupted,
-    SeverityMap,
-    check_grid_size,
-    dimensionless_map,
-    load_map,
-    severity_map,
-)
+from torsio.analysis.map_results import MapInterrupted, SeverityMap, load_map
+from torsio.analysis.map_runs import check_grid_size
+from torsio.analysis.maps import dimensionless_map, severity_map
 from torsio.analysis.sweep import run_tasks
 from torsio.analysis.transient import simulate
 from torsio.errors import ConfigError, SolverError
