@@ -194,6 +194,18 @@ class Survey:
         )
         return step, tangent, curvature
 
+    def interval(self, md: float) -> int:
+        """Index i of the interval from station i to i + 1 that holds ``md`` (at a station,
+        the interval below it; at the last station, the last interval)."""
+        return int(self._interval(np.atleast_1d(np.asarray(md, dtype=float)))[0])
+
+    def frame(self, interval: int, md: float) -> tuple[np.ndarray, np.ndarray]:
+        """Unit tangent and curvature vector [1/m] at ``md`` on the arc of ``interval``
+        (:meth:`interval`), also at its end stations, where the neighbour's arc differs."""
+        f = (md - self.md[interval]) / (self.md[interval + 1] - self.md[interval])
+        _, tangent, curvature = self._arc(interval, f)
+        return tangent, curvature
+
     def _evaluate(self, md: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         depth = np.atleast_1d(np.asarray(md, dtype=float))
         index = self._interval(depth)
