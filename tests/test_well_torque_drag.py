@@ -185,3 +185,25 @@ def test_friction_override_replaces_every_hole_section():
         torque_drag(cased, string(2000.0)).surface_torque_rotating
         < torque_drag(well(survey), string(2000.0)).surface_torque_rotating
     )
+
+
+def test_published_buoyed_hookload_example():
+    # worked example "how to calculate overpull on a drill pipe" (J. Whitehouse; the
+    # textbook buoyancy factor BF = (65.5 - MW) / 65.5 with steel at 65.5 lb/gal, as in
+    # Lyons et al., Formulas and Calculations for Drilling, Production and Workover):
+    # 10,000 ft of 25 lb/ft pipe in 20 lb/gal mud, BF = 0.6947, hookload 173,675 lb. The
+    # example rounds BF to four digits: exact 45.5/65.5 = 0.694656, 173,664 lbf; the test
+    # allows the published rounding (half a unit of BF's fourth digit: 12.5 lbf)
+    ppg, lbf, ft = 119.82642731689663, 4.4482216152605, 0.3048  # kg/m^3, N, m (exact)
+    steel = Material(shear_modulus=80e9, density=65.5 * ppg)
+    area = 25 * lbf / ft / (GRAVITY * steel.density)  # 25 lbf/ft in air
+    od = 0.127
+    inner = math.sqrt(od**2 - 4 * area / math.pi)
+    length = 10_000 * ft
+    pipe = DrillString([DrillPipe(od=od, id=inner, length=length - 0.3, material=steel),
+                        Bit(od=od, id=inner, length=0.3, material=steel)])  # fmt: skip
+    survey = Survey([0.0, length], [0.0, 0.0], [0.0, 0.0])
+    hole = Wellbore(survey, mud_density=20 * ppg)
+    results = torque_drag(hole, pipe)
+    assert results.hookload_rotating / lbf == pytest.approx(250_000 * 45.5 / 65.5, rel=1e-12)
+    assert results.hookload_rotating / lbf == pytest.approx(173_675, abs=12.5)

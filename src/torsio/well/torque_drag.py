@@ -60,7 +60,7 @@ def _grid(well: Wellbore, string: DrillString, top: float, cell_length: float) -
     """Cell boundaries [m]: every section end, survey station and hole bottom in the string,
     and at most ``cell_length`` apart."""
     lengths = np.array([s.length for s in string.sections])
-    bottom = top + float(lengths.sum())
+    bottom = well.survey.depth  # the bit at the last station (top + the length, to round-off)
     marks = [top + np.concatenate([[0.0], np.cumsum(lengths)]), well.survey.md, well.hole_bottoms]
     edges = np.unique(np.clip(np.concatenate(marks), top, bottom))
     edges[-1] = bottom

@@ -199,4 +199,5 @@ def string_top_md(well: Wellbore, string_length: float, key: str = "md") -> floa
             "the bit sits at the last station, so the survey must reach at least the "
             "string's length (add stations or shorten the string)",
         )
-    return max(depth - string_length, 0.0)
+    top = depth - string_length
+    return top if top > 1e-12 * depth else 0.0  # a string as long as the survey, to round-off
