@@ -82,7 +82,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     ),
 }
 _LAZY = {name: module for module, names in _EXPORTS.items() for name in names}
-_SUBPACKAGES = ("analysis", "cli", "io", "model", "physics", "solvers")
+_SUBPACKAGES = ("analysis", "cli", "io", "model", "physics", "solvers", "well")
 
 if TYPE_CHECKING:  # for type checkers and editors; at run time see __getattr__
     from torsio.analysis.energy import EnergyBalance, energy_balance
