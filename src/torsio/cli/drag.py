@@ -74,7 +74,10 @@ def _option(value: str | None, dimension: str, key: str, default: float) -> floa
 
 def run(args: argparse.Namespace) -> int:
     """Run ``torsio drag`` with parsed arguments; return the exit status."""
+    import attrs
+
     from torsio.errors import ConfigError
+    from torsio.well.break_off import break_off
     from torsio.well.torque_drag import torque_drag
 
     outputs = common.check_outputs(args, ["plot"])
@@ -88,6 +91,7 @@ def run(args: argparse.Namespace) -> int:
     results = torque_drag(
         config.well, config.string, friction=args.friction, wob=wob, bit_torque=bit_torque
     )
+    results = attrs.evolve(results, break_off=break_off(config.well, config.string))
     return common.write_and_print(args, results, outputs, _print_table)
 
 
@@ -125,6 +129,13 @@ def _print_table(results: Any, written: dict[str, str]) -> None:
             else f"; sliding friction {results.friction:g} everywhere"
         ),
     ]
+    if results.break_off is not None:
+        lines.append(
+            f"break-off from rest (static friction): {results.break_off.torque / 1e3:.2f} kN m "
+            f"at the top after a twist of {results.break_off.twist:.2f} rad "
+            f"({results.break_off.twist / (2 * 3.141592653589793):.2f} turns); sliding "
+            f"{results.break_off.sliding_torque / 1e3:.2f} kN m"
+        )
     if "plot" in written:
         lines.append(f"wrote {written['plot']}")
     for line in lines:

@@ -53,6 +53,9 @@ class TorqueDragResults:
         ``soft-string`` or ``gravity``.
     friction : float or None
         The sliding friction factor that replaced the well's, if any.
+    break_off : BreakOff or None
+        The break-off torque and twist with the well's static friction
+        (:func:`torsio.well.break_off.break_off`), when computed.
     """
 
     md: np.ndarray
@@ -65,6 +68,7 @@ class TorqueDragResults:
     buoyed_weight: float = float("nan")
     normal_force_model: str = "soft-string"
     friction: float | None = None
+    break_off: Any = None
 
     def __repr__(self) -> str:
         return (
@@ -139,6 +143,7 @@ class TorqueDragResults:
             "tension_on_bottom": self.tension[:, 3].tolist(),
             "torque_on_bottom": self.torque[:, 1].tolist(),
             "normal_force_rotating": self.normal_force[:, 2].tolist(),
+            **({} if self.break_off is None else self.break_off.to_dict()),
         }
 
     def plot(self, path: str | Path | None = None, ax: Any = None) -> Any:
