@@ -94,13 +94,9 @@ __all__ = ["dimensionless_map", "severity_map"]
 
 
 def _scales(system: System) -> tuple[float, float]:
+    """(k_eq [N m/rad], omega_1 [rad/s]) of the System's model (its protocol's numbers)."""
     from torsio.model.modal import first_natural_frequency
-    from torsio.model.wave import is_wave_model
 
-    if is_wave_model(system.model):
-        from torsio.solvers.wave_batch import wave_scales
-
-        return wave_scales(system.model)
     return float(system.model.equivalent_stiffness), first_natural_frequency(system.model)
 
 
@@ -375,12 +371,10 @@ def _build_map(
     info["elapsed_s"] = time.perf_counter() - start
     info["extra_runs"] = runner.runs - points
     info["ended_on_steady_cycle"] = int(ended_early.sum())  # grid points that ended early
-    from torsio.model.wave import is_wave_model
-
-    if is_wave_model(system.model):  # no linearization of the distributed model (yet)
-        linear_wob = np.full(rpm.shape, np.nan)
-    else:
+    if system.model.linearizable:
         linear_wob = stability_boundary(system, rpm).critical_wob
+    else:  # e.g. the distributed model: no linearization (yet)
+        linear_wob = np.full(rpm.shape, np.nan)
     return SeverityMap(
         **scales,
         severity=severity,

@@ -136,11 +136,11 @@ def report_sections(ctx: ReportContext) -> list[ReportSection]:
     """
     if ctx.sections is None:
         functions = list(SECTIONS)
-        if ctx.is_wave:
+        if ctx.has_matrices:
+            ctx.modal  # noqa: B018  (computed here, before anything that needs omega_1)
+        else:
             functions = [WAVE_SECTIONS.get(function, function) for function in functions]
             functions.insert(functions.index(response_section) + 1, wave_section)
-        else:
-            ctx.modal  # noqa: B018  (computed here, before anything that needs omega_1)
         sections = (function(ctx) for function in functions)
         ctx.sections = [section for section in sections if section is not None]
     return ctx.sections
