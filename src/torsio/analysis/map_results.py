@@ -30,7 +30,6 @@ from torsio.units import RPM_TO_RAD_S
 __all__ = [
     "BOUNDS",
     "CLASSES",
-    "FORMAT",
     "MapInterrupted",
     "STICK_SLIP_THRESHOLD",
     "SeverityMap",

@@ -1,7 +1,7 @@
 """The grid of a severity map and how its points run.
 
-Axis checks and the memory bound of a grid (:func:`check_grid_size`), the options of a
-map (:func:`check_map_options`), the chunks of points sent to an executor
+Axis checks and the memory bound of a grid (:func:`check_grid_size`), the chunks of
+points sent to an executor
 (:class:`PointRunner`), the error of a map whose executor failed (:class:`MapFailed`),
 and the progress bar.
 """
@@ -22,7 +22,7 @@ from torsio.physics.system import System
 from torsio.solvers.batch import simulate_batch
 from torsio.solvers.batch_results import STATUS_MESSAGES
 
-__all__ = ["BYTES_PER_POINT", "MapFailed", "PointRunner", "check_grid_size", "check_map_options"]
+__all__ = ["BYTES_PER_POINT", "MapFailed", "PointRunner", "check_grid_size"]
 
 BYTES_PER_POINT = 256
 """Memory a grid point costs, results and their JSON text included (an upper estimate)."""
@@ -42,32 +42,6 @@ class MapFailed(SweepError):
             f"{error} (map: {done} of {partial.done.size} points computed)", error.results
         )
         self.partial = partial
-
-
-def check_map_options(
-    threshold: Any, stick_slip_threshold: Any, refine: Any, on_failure: Any, chunk_size: Any
-) -> None:
-    """ConfigError naming the first option of a map that is out of its range."""
-    for key, value in (("threshold", threshold), ("stick_slip_threshold", stick_slip_threshold)):
-        if isinstance(value, bool) or not (
-            isinstance(value, int | float) and math.isfinite(value) and value >= 0
-        ):
-            raise ConfigError(key, f"expected a non-negative number, got {value!r}")
-    if stick_slip_threshold > threshold:
-        raise ConfigError(
-            "stick_slip_threshold",
-            f"expected at most the severe threshold ({threshold:g}), got {stick_slip_threshold!r}",
-        )
-    if isinstance(refine, bool) or not isinstance(refine, int) or not 0 <= refine <= 40:
-        raise ConfigError(
-            "refine", f"expected a whole number of bisection steps in 0..40, got {refine!r}"
-        )
-    if on_failure not in ("raise", "mark"):
-        raise ConfigError("on_failure", f"expected 'raise' or 'mark', got {on_failure!r}")
-    if chunk_size is not None and (
-        isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1
-    ):
-        raise ConfigError("chunk_size", f"expected a whole number >= 1, got {chunk_size!r}")
 
 
 def _axis(key: str, values: Any, positive: bool) -> np.ndarray:
