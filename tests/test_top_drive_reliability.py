@@ -195,7 +195,7 @@ def test_simulate_validates_its_options_on_the_wave_model(option, value, key):
 
 def test_system_refuses_what_is_not_a_model_or_a_law():
     system = System.from_config(builtin_config(), strategy="A")
-    with pytest.raises(ConfigError, match="^model: expected a LumpedModel"):
+    with pytest.raises(ConfigError, match="^model: expected a structural model"):
         System(model=None, law=system.law, bit_radius=0.1)
     with pytest.raises(ConfigError, match="^law: expected a bit-rock law"):
         System(model=system.model, law=None, bit_radius=0.1)

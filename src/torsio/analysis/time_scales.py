@@ -96,10 +96,13 @@ def check_time_scales(system: Any, duration: float) -> None:
 
     Checks the top drive's node (any top drive with inertia) and every node of a
     ``[chain]`` model (strategy ``chain``); a discretized string's nodes come from
-    validated sections and are not checked here.
+    validated sections and are not checked here, nor is the wave model (no nodes; its
+    top drive is stepped by the trapezoidal rule).
     """
     from torsio.physics.dimensionless import dimensionless_groups
 
+    if not system.model.linearizable:  # no chain of nodes (the wave model): nothing to read
+        return
     dynamics = system.dynamics()
     chain = system.model.strategy == "chain"
     if dynamics.top.held and not chain:

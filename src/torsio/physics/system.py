@@ -64,13 +64,14 @@ def _check_top(instance: Any, attribute: Any, value: Any) -> None:
 
 
 def _check_model(instance: Any, attribute: Any, value: Any) -> None:
-    from torsio.model.wave import is_wave_model
+    from torsio.model.protocol import StructuralModel
 
-    if not (isinstance(value, LumpedModel) or is_wave_model(value)):
+    if not isinstance(value, StructuralModel):
         raise ConfigError(
             "model",
-            "expected a LumpedModel (torsio.model.lumped, e.g. from torsio.model.discretize) "
-            f"or the wave strategy's WaveModel, got {value!r}",
+            "expected a structural model (torsio.model.protocol.StructuralModel: a "
+            "LumpedModel from a discretizer or a chain, or the wave strategy's grid), got "
+            f"{value!r}",
         )
 
 
