@@ -48,7 +48,8 @@ def test_simulate_json_contract(capsys):
         steady_window=20.0,
     )
     assert data["severity"] == expected.severity
-    assert data["solver"]["method"] == "LSODA" and data["solver"]["status"] == 0
+    assert data["solver"]["method"] == "RODAS4" and data["solver"]["status"] == 0
+    assert data["solver"]["engine"] == "compiled"
     assert data["duration_s"] == 60.0 and data["steady_window_s"] == 20.0
 
 
@@ -97,9 +98,12 @@ def test_simulate_csv_and_plot(capsys, tmp_path):
     )
     window = table["time_s"] >= 60.0 - 20.0 - 1e-9
     speeds = table["bit_speed_rad_s"][window]
-    assert (speeds.max() - speeds.min()) / (2 * 2 * np.pi) == pytest.approx(
-        data["severity"], rel=1e-8
-    )
+    # the CSV holds the samples; S_SS (compiled engine) is read from the continuous
+    # solution's extremes, which the samples under-read by the output grid's error
+    # (2e-5 here; docs/dynamics.md, "Output step")
+    sampled = (speeds.max() - speeds.min()) / (2 * 2 * np.pi)
+    assert data["solver"]["engine"] == "compiled"
+    assert sampled <= data["severity"] + 1e-12 and data["severity"] - sampled < 5e-5
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
@@ -125,7 +129,7 @@ def test_plot_without_matplotlib(capsys, tmp_path, monkeypatch):
 def test_human_summary(capsys):
     assert main(["simulate", "--wob", "100 kN", "--rpm", "60", *FAST]) == 0
     out = capsys.readouterr().out
-    assert "S_SS" in out and "LSODA" in out
+    assert "S_SS" in out and "RODAS4 (compiled engine)" in out
 
 
 @pytest.mark.parametrize(

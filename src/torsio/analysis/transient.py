@@ -1,8 +1,9 @@
 """Transient response of a System: start-up from rest, stick-slip, severity S_SS.
 
 :func:`simulate` integrates the equations of motion in twist coordinates (see
-:mod:`torsio.physics.system` and :mod:`torsio.physics.equations`) with ``scipy.integrate.solve_ivp``
-and samples the response on a uniform time grid.
+:mod:`torsio.physics.dynamics`) with the compiled RODAS4 engine of severity maps
+(:mod:`torsio.solvers.single_run`) or with ``scipy.integrate.solve_ivp``, and samples the
+response on a uniform time grid.
 
 Defaults (the paper states none; see ``docs/dynamics.md``):
 
@@ -15,10 +16,13 @@ Defaults (the paper states none; see ``docs/dynamics.md``):
 * **Top drive**: any top drive of the System (:mod:`torsio.physics.top_drives`); the
   equations are those of :class:`torsio.physics.dynamics.Dynamics`. For a torque-driven
   top S_SS is read relative to the mean top-drive speed over the steady window.
-* **Integrator**: LSODA (switches between a non-stiff Adams method and a stiff BDF
-  method by itself; the bit law makes the equations stiff during sticking and not
-  otherwise) with the analytic Jacobian in banded form, rtol = 1e-6, atol = 1e-9.
-  Radau and BDF get the sparse Jacobian; explicit methods need none.
+* **Integrator**: RODAS4 (L-stable, linearly implicit, order 4) on the compiled engine
+  that also integrates severity maps, where it can run the System (a chain, a law with a
+  compiled kernel or one numba compiles from its Python ``torque``); otherwise LSODA
+  (switches between a non-stiff Adams method and a stiff BDF method by itself) with the
+  analytic Jacobian in banded form, and ``solver["fallback"]`` says why. rtol = 1e-6,
+  atol = 1e-9 for either. Any ``solve_ivp`` method can be asked for by name (the
+  independent check); Radau and BDF get the sparse Jacobian, explicit methods none.
 * **Output step**: :data:`torsio.analysis.severity.DEFAULT_SAMPLES_PER_PERIOD` (200)
   samples per period of the first mode. S_SS reads the extrema of the sampled bit
   speed; at the stick-slip points of the Ritto et al. (2017) string checked, this
@@ -33,23 +37,19 @@ Examples
 >>> round(results.severity, 3), results.severe
 (1.099, True)
 >>> data = results.to_dict()
->>> data["wob"], data["rpm"], data["solver"]["method"]
-(175000.0, 100.0, 'LSODA')
+>>> data["wob"], data["rpm"], data["solver"]["engine"], data["solver"]["method"]
+(175000.0, 100.0, 'compiled', 'RODAS4')
 """
 
 from __future__ import annotations
 
 import math
-import time
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
-import scipy.integrate
 
 from torsio.analysis.budget import (
-    BudgetExceeded,
-    EvaluationBudget,
     check_law_time_scale,
     check_output_size,
 )
@@ -62,7 +62,6 @@ from torsio.analysis.severity import (
     severity,
 )
 from torsio.analysis.simulation_options import (
-    IMPLICIT_METHODS,
     METHODS,
     MIN_WINDOW_SAMPLES,
     SimulationOptions,
@@ -122,29 +121,17 @@ def _initial_state(dynamics: Dynamics, initial_state: Any) -> np.ndarray:
     return y0
 
 
-def _band_jacobian(dynamics: Dynamics, lower: int, upper: int) -> Any:
-    """The Jacobian in LSODA's packed banded format: packed[upper + i - j, j] = J[i, j]."""
-    size = dynamics.size
-
-    def jac(t: float, y: np.ndarray) -> np.ndarray:
-        coo = dynamics.jacobian(t, y).tocoo()
-        packed = np.zeros((lower + upper + 1, size))
-        packed[upper + coo.row - coo.col, coo.col] = coo.data
-        return packed
-
-    return jac
-
-
 def simulate(
     system: System,
     duration: float | None = None,
     steady_window: float | None = None,
-    method: Any = "LSODA",
+    method: Any = "auto",
     rtol: float = 1e-6,
     atol: float = 1e-9,
     output_step: float | None = None,
     initial_state: Any = None,
     stick_threshold: float | None = None,
+    progress: Callable[[float, float], None] | None = None,
 ) -> TransientResults:
     """Integrate a System's equations of motion and read S_SS over the steady window.
 
@@ -159,7 +146,11 @@ def simulate(
         S_SS and the stick fraction are read; default 15 periods of the first
         mode, at most half the run.
     method : str or scipy OdeSolver class
-        Any ``solve_ivp`` method; default LSODA with the banded Jacobian.
+        ``"auto"`` (default): RODAS4 on the compiled engine of severity maps
+        (:mod:`torsio.solvers.single_run`) where it can run the System, else LSODA, with
+        the reason in ``solver["fallback"]``. ``"RODAS4"``: the compiled engine only (a
+        ConfigError if it cannot run the System). Any ``solve_ivp`` method (``"LSODA"``
+        with the banded Jacobian, ``"Radau"``, ...): scipy, the independent check.
     rtol, atol : float
         Relative and absolute tolerances (atol applies to twists [rad] and
         relative speeds [rad/s]).
@@ -174,6 +165,9 @@ def simulate(
     stick_threshold : float, optional
         The bit sticks while ``|bit speed| < stick_threshold * Omega``; default
         :data:`DEFAULT_STICK_THRESHOLD`.
+    progress : callable, optional
+        ``progress(t_reached, t_end)`` [s] during the run (at most every 0.1 s of wall
+        time), e.g. :class:`torsio.solvers.chunks.TerminalProgress`.
 
     Returns
     -------
@@ -228,18 +222,22 @@ def simulate(
         options.stick_threshold if options.stick_threshold is not None else DEFAULT_STICK_THRESHOLD
     )
 
+    from torsio.solvers.single_run import integrate_run  # numba only when a run starts
+
     dynamics = Dynamics.from_system(system)
     y0 = _initial_state(dynamics, initial_state)
     where = f"WOB = {system.wob:g} N, {system.rpm:g} rpm"
-    solution, name, elapsed = _integrate(dynamics, y0, time_grid, options, where)
-    states = solution.y
+    states, solver_info = integrate_run(
+        system, dynamics, y0, time_grid, window, options, where, progress
+    )
+    name = solver_info["method"]
     finite = np.all(np.isfinite(states), axis=0)
     if not finite.all():
         bad = float(time_grid[int(np.argmin(finite))])
         raise SolverError(
             f"the {name} integrator returned non-finite values from t = {bad:.6g} s "
             f"(of {run:.6g} s) with the bit-rock law {_law_name(system.law)}: a law torque "
-            f"that is NaN or infinite, or an unstable model ({solution.message})"
+            f"that is NaN or infinite, or an unstable model ({solver_info['message']})"
         )
     z, twists_by_node, relative_by_node = dynamics.split(states)
     reference = dynamics.reference_speed
@@ -267,17 +265,8 @@ def simulate(
     omega = dynamics.set_speed if math.isfinite(dynamics.set_speed) else mean_top_speed
     window_speeds = bit_speed[in_window]
     stick = float(np.mean(np.abs(window_speeds) < threshold * omega))
-    solver_info = {
-        "method": name,
-        "rtol": options.rtol,
-        "atol": options.atol,
-        "nfev": int(solution.nfev),
-        "njev": int(solution.njev),
-        "nlu": int(solution.nlu),
-        "status": int(solution.status),
-        "message": str(solution.message),
-        "wall_time_s": elapsed,
-    }
+    extremes = solver_info.pop("bit_speed_extremes", None)  # the continuous solution's
+    read = np.array(extremes) if extremes is not None else window_speeds
     twists = twists_by_node[first:].T.copy()
     return TransientResults(
         time=time_grid,
@@ -287,7 +276,7 @@ def simulate(
         node_twists=twists,
         bit_torque=bit_torque,
         surface_torque=surface_torque,
-        severity=severity(window_speeds, omega),
+        severity=severity(read, omega),
         stick_fraction=stick,
         steady_window=float(window),
         stick_threshold=float(threshold),
@@ -298,61 +287,8 @@ def simulate(
         states=states.T.copy(),
         reference_speed=float(reference),
         severity_speed=float(omega),
+        bit_speed_extremes=extremes,
     )
-
-
-def _integrate(
-    dynamics: Dynamics,
-    y0: np.ndarray,
-    time_grid: np.ndarray,
-    options: SimulationOptions,
-    where: str,
-) -> tuple[Any, str, float]:
-    """solve_ivp over the grid with the Jacobian each method can use; errors never hidden."""
-    solver_kwargs: dict[str, Any] = {}
-    chosen = options.method
-    name = chosen if isinstance(chosen, str) else chosen.__name__
-    bands = dynamics.jacobian_bands
-    if chosen == "LSODA":
-        if bands is not None:
-            lower, upper = bands
-            solver_kwargs.update(
-                lband=lower, uband=upper, jac=_band_jacobian(dynamics, lower, upper)
-            )
-        else:
-            solver_kwargs["jac"] = lambda t, y: dynamics.jacobian(t, y).toarray()
-    elif chosen in IMPLICIT_METHODS or (
-        isinstance(chosen, type) and issubclass(chosen, scipy.integrate.Radau | scipy.integrate.BDF)
-    ):
-        solver_kwargs["jac"] = dynamics.jacobian
-    run = float(time_grid[-1])
-    budget = EvaluationBudget.for_samples(time_grid.size - 1)
-    start = time.perf_counter()
-    with np.errstate(all="ignore"):
-        try:
-            solution = scipy.integrate.solve_ivp(
-                budget.wrap(dynamics.rhs),
-                (0.0, run),
-                y0,
-                method=chosen,
-                t_eval=time_grid,
-                rtol=options.rtol,
-                atol=options.atol,
-                **solver_kwargs,
-            )
-        except BudgetExceeded:
-            raise budget.error(name, run, where) from None
-    elapsed = time.perf_counter() - start
-    times = np.asarray(solution.t, dtype=float)
-    reached = float(times[-1]) if times.size else 0.0
-    states = np.asarray(solution.y, dtype=float)
-    if solution.status < 0 or states.ndim != 2 or states.shape[1] != time_grid.size:
-        raise SolverError(
-            f"the {name} integrator failed at t = {reached:.6g} s of {run:.6g} s: "
-            f"{solution.message} (operating point {where}; try another method or tighter "
-            "tolerances)"
-        )
-    return solution, name, elapsed
 
 
 def _law_name(law: Any) -> str:
@@ -425,7 +361,7 @@ def simulate_config(
         Options overriding ``[discretization]`` (``strategy``, ``dp_elements``, ...).
     **overrides
         Options of :func:`simulate` overriding ``[simulation]`` (``None`` ignored),
-        plus ``initial_state``.
+        plus ``initial_state`` and ``progress``.
 
     Examples
     --------
@@ -436,6 +372,7 @@ def simulate_config(
     1.099
     """
     initial_state = overrides.pop("initial_state", None)
+    progress = overrides.pop("progress", None)
     options = SimulationOptions.from_config(config).replace(**overrides)
     system = system_from_config(config, wob, rpm, discretization)
-    return simulate(system, initial_state=initial_state, **options.kwargs())
+    return simulate(system, initial_state=initial_state, progress=progress, **options.kwargs())
