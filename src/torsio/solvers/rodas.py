@@ -1,7 +1,10 @@
-"""The compiled batch kernel: RODAS4 on the chain of :mod:`torsio.physics.dynamics`.
+"""The compiled kernel: RODAS4 on the chain of :mod:`torsio.physics.dynamics`.
 
-One kernel for every chain length, bit-rock law and top drive. The chain (n nodes,
-node n-1 the bit) in twist coordinates about Omega_ref, with [C] = [C_rel] + diag(drag)::
+One kernel for every chain length, bit-rock law and top drive, for batches of points
+(:func:`integrate_serial`, :func:`integrate_parallel`) and single runs sampled on an output
+grid (:func:`run_start`, :func:`run_chunk`; :mod:`torsio.solvers.single_run`).
+The chain (n nodes, node n-1 the bit) in twist coordinates about Omega_ref, with
+[C] = [C_rel] + diag(drag)::
 
     phi' = v
     [I] v' = applied - drag Omega_ref - [K] phi - [C] v - T_bit(Omega_ref + v_{n-1}) e_{n-1} + u e_0
