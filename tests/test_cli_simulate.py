@@ -240,3 +240,27 @@ def test_small_bare_wob_warns_on_stderr(capsys):
     assert "--wob 150 is 150 N (bare numbers are N); did you mean '150 kN'?" in captured.err
     assert main(["simulate", *FAST, "--wob", "150 kN", "--rpm", "100", "--json"]) == 0
     assert "warning" not in capsys.readouterr().err
+
+
+def test_fallback_to_scipy_is_one_line_on_stderr(capsys, monkeypatch):
+    # a model the compiled engine cannot run (stood in for by its check saying so): the run
+    # goes to LSODA, the JSON names the engine and the reason, stderr says it in one line
+    import torsio.solvers.single_run as single_run
+
+    monkeypatch.setattr(single_run, "compiled_engine", lambda system, dynamics: (None, "a test"))
+    status = main(["simulate", "--wob", "100 kN", "--rpm", "60", *FAST, "--json"])
+    captured = capsys.readouterr()
+    assert status == 0
+    data = json.loads(captured.out)  # stdout: one JSON object and nothing else
+    assert data["solver"]["engine"] == "scipy" and data["solver"]["method"] == "LSODA"
+    assert data["solver"]["fallback"] == "a test"
+    lines = captured.err.strip().splitlines()
+    assert len(lines) == 1 and "scipy LSODA" in lines[0] and "(a test)" in lines[0]
+
+
+def test_progress_only_for_long_runs_off_a_terminal(capsys):
+    # stderr is not a terminal here and the run is short: no progress line at all
+    assert main(["simulate", "--wob", "100 kN", "--rpm", "60", *FAST, "--json"]) == 0
+    captured = capsys.readouterr()
+    json.loads(captured.out)
+    assert captured.err == ""
