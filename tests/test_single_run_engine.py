@@ -159,3 +159,24 @@ def test_a_plain_law_runs_compiled_in_maps_too() -> None:
     system = _system(1, "plain")
     batch = simulate_batch(system, [100e3, 150e3], [30.0, 30.0], duration=30.0)
     assert batch.engine == "compiled" and batch.ok.all()
+
+
+def test_terminal_progress_is_one_line_updated_in_place() -> None:
+    import io
+
+    from torsio.solvers.chunks import TerminalProgress
+
+    class Terminal(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    stream = Terminal()
+    with TerminalProgress("torsio simulate", lambda t: f"{t:.4g} s", stream) as progress:
+        progress(10.0, 100.0)  # within the first second: nothing shown
+        assert stream.getvalue() == ""
+        progress.start -= 2.0  # the run has lasted 2 s
+        progress(50.0, 100.0)
+        progress(100.0, 100.0)
+    text = stream.getvalue()
+    assert text.startswith("\rtorsio simulate:  50 % (50 s of 100 s, 2 s)")
+    assert text.count("\r") == 2 and text.endswith("\n") and text.count("\n") == 1

@@ -99,7 +99,7 @@ class TerminalProgress:
         isatty = getattr(self.stream, "isatty", None)
         self.terminal = bool(isatty and isatty())
         self.start = time.monotonic()
-        self.last = self.start
+        self.last = -float("inf")  # when a line was last shown
         self.shown = False
 
     def __call__(self, done: float, total: float) -> None:
