@@ -28,7 +28,8 @@ import attrs
 import numpy as np
 
 from torsio import DrillPipe, DrillString, System, builtin_config
-from torsio.analysis.maps import SeverityMap, dimensionless_map, severity_map
+from torsio.analysis.map_results import SeverityMap
+from torsio.analysis.maps import dimensionless_map, severity_map
 from torsio.plotting import pyplot, save_figure
 
 

@@ -26,7 +26,8 @@ from typing import Any
 import numpy as np
 
 from torsio import System, builtin_config
-from torsio.analysis.maps import SeverityMap, severity_map
+from torsio.analysis.map_results import SeverityMap
+from torsio.analysis.maps import severity_map
 from torsio.io.config import parse_config_text
 from torsio.physics.top_drives import (
     PITopDrive,

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from torsio.analysis import maps
+from torsio.analysis import map_results, maps
 from torsio.cli import main
 from torsio.physics.system import System, builtin_config
 
@@ -26,7 +26,7 @@ def run_json(capsys: pytest.CaptureFixture[str], *args: str) -> dict:
 
 
 @pytest.fixture(scope="module")
-def library_map() -> maps.SeverityMap:
+def library_map() -> map_results.SeverityMap:
     system = System.from_config(builtin_config(), strategy="A")
     return maps.severity_map(system, [25e3, 125e3, 225e3], [40.0, 90.0, 140.0])
 
@@ -75,12 +75,12 @@ def test_human_output(capsys) -> None:
 def test_files(tmp_path: Path, capsys) -> None:
     out, csv, plot = tmp_path / "m.json", tmp_path / "m.csv", tmp_path / "m.png"
     data = run_json(capsys, *ARGS, "--out", str(out), "--csv", str(csv), "--plot", str(plot))
-    assert maps.load_map(out).to_dict()["severity"] == data["severity"]
+    assert map_results.load_map(out).to_dict()["severity"] == data["severity"]
     assert len(csv.read_text().splitlines()) == 1 + 9
     assert plot.read_bytes()[:4] == b"\x89PNG"
     npz = tmp_path / "m.npz"
     run_json(capsys, *ARGS, "--out", str(npz))
-    assert maps.load_map(npz).to_dict()["severity"] == data["severity"]
+    assert map_results.load_map(npz).to_dict()["severity"] == data["severity"]
 
 
 def test_workers_give_the_serial_result(capsys) -> None:

@@ -23,7 +23,7 @@ from pathlib import Path
 import pytest
 from test_sweep_faults import _alive, _descendants, _server, _wait_until_gone
 
-from torsio.analysis.maps import load_map
+from torsio.analysis.map_results import load_map
 
 TORSIO = [sys.executable, "-m", "torsio"]
 SLACK_S = 12.0

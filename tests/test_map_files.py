@@ -7,7 +7,7 @@ import json
 import numpy as np
 import pytest
 
-from torsio.analysis.maps import load_map
+from torsio.analysis.map_results import load_map
 from torsio.errors import ConfigError
 
 BAD_JSON = {

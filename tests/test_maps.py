@@ -24,15 +24,11 @@ import math
 import numpy as np
 import pytest
 
-from torsio.analysis import map_runs, maps
-from torsio.analysis.maps import (
-    MapInterrupted,
-    SeverityMap,
-    check_grid_size,
-    dimensionless_map,
-    load_map,
-    severity_map,
-)
+from torsio.analysis import map_runs
+from torsio.analysis.critical_wob import locate_critical_wob
+from torsio.analysis.map_results import MapInterrupted, SeverityMap, load_map
+from torsio.analysis.map_runs import check_grid_size
+from torsio.analysis.maps import dimensionless_map, severity_map
 from torsio.analysis.sweep import run_tasks
 from torsio.analysis.transient import simulate
 from torsio.errors import ConfigError, SolverError
@@ -139,7 +135,7 @@ def test_critical_rule_on_given_severities() -> None:
             [0.0, np.nan, 1.0, 1.0],
         ]
     )  # a failed point
-    critical, status, bracket = maps._critical_wob(None, wob, np.ones(4), severity, 0.8, 0, "mark")
+    critical, status, bracket = locate_critical_wob(None, wob, np.ones(4), severity, 0.8, 0, "mark")
     assert status == ("grid", "none", "below_range", "unresolved")
     assert critical[0] == 35.0 and tuple(bracket[0]) == (30.0, 40.0)
     assert math.isnan(critical[1]) and math.isnan(critical[2]) and math.isnan(critical[3])
@@ -149,7 +145,7 @@ def test_off_grid_critical_wob_is_marked_not_drawn(tmp_path) -> None:
     # the rows of test_critical_rule_on_given_severities, as a map
     wob = np.array([10e3, 20e3, 30e3, 40e3])
     severity = np.array([[0.0, 0.0, 1.0, 1.1], [0.0, 0.0, 0.0, 0.5], [0.9, 1.0, 1.1, 1.2]])
-    critical, status, bracket = maps._critical_wob(None, wob, np.ones(3), severity, 0.8, 0, "mark")
+    critical, status, bracket = locate_critical_wob(None, wob, np.ones(3), severity, 0.8, 0, "mark")
     ones = np.ones(severity.shape)
     result = SeverityMap(
         wob, np.array([40.0, 90.0, 140.0]), severity, critical, status, bracket,

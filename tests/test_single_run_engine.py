@@ -136,11 +136,18 @@ def test_chunks_do_not_change_a_step() -> None:
     assert len(seen) > 100 and seen == sorted(seen) and seen[-1] == grid.size
 
 
-def test_progress_reports_the_time_reached() -> None:
-    seen: list[tuple[float, float]] = []
-    results = simulate(_system(1), duration=30.0, progress=lambda t, end: seen.append((t, end)))
-    assert seen and seen[-1] == (results.duration, results.duration)
-    assert [t for t, _ in seen] == sorted(t for t, _ in seen)
+@pytest.mark.parametrize("method", ["auto", "LSODA"])
+def test_progress_reports_the_samples_reached(method: str) -> None:
+    seen: list[tuple[int, int]] = []
+    results = simulate(
+        _system(5), method=method, rtol=1e-10, atol=1e-12,
+        progress=lambda done, total: seen.append((done, total)),
+    )  # fmt: skip
+    samples = results.time.size
+    assert seen and all(total == samples for _, total in seen)
+    assert [done for done, _ in seen] == sorted(done for done, _ in seen)
+    if method == "auto":  # the compiled engine reports its last chunk: every sample
+        assert seen[-1] == (samples, samples)
 
 
 def test_a_law_numba_cannot_compile_runs_on_scipy_and_says_why() -> None:
@@ -159,24 +166,3 @@ def test_a_plain_law_runs_compiled_in_maps_too() -> None:
     system = _system(1, "plain")
     batch = simulate_batch(system, [100e3, 150e3], [30.0, 30.0], duration=30.0)
     assert batch.engine == "compiled" and batch.ok.all()
-
-
-def test_terminal_progress_is_one_line_updated_in_place() -> None:
-    import io
-
-    from torsio.solvers.chunks import TerminalProgress
-
-    class Terminal(io.StringIO):
-        def isatty(self) -> bool:
-            return True
-
-    stream = Terminal()
-    with TerminalProgress("torsio simulate", lambda t: f"{t:.4g} s", stream) as progress:
-        progress(10.0, 100.0)  # within the first second: nothing shown
-        assert stream.getvalue() == ""
-        progress.start -= 2.0  # the run has lasted 2 s
-        progress(50.0, 100.0)
-        progress(100.0, 100.0)
-    text = stream.getvalue()
-    assert text.startswith("\rtorsio simulate:  50 % (50 s of 100 s, 2 s)")
-    assert text.count("\r") == 2 and text.endswith("\n") and text.count("\n") == 1

@@ -14,7 +14,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from torsio.analysis.maps import SeverityMap, severity_map
+from torsio.analysis.map_results import SeverityMap
+from torsio.analysis.maps import severity_map
 from torsio.analysis.sweep import SweepError, SweepInterrupted, run_tasks
 from torsio.errors import ConfigError
 from torsio.physics.system import System, builtin_config

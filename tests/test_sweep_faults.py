@@ -202,7 +202,7 @@ def _descendants(pid: int) -> list[int]:
 @pytest.mark.slow
 def test_sigterm_to_a_map_on_two_workers(tmp_path) -> None:
     """SIGTERM: within 10 s no process of the map is left, and the partial file holds its points."""
-    from torsio.analysis.maps import load_map
+    from torsio.analysis.map_results import load_map
 
     out = tmp_path / "m.json"
     command = [sys.executable, "-m", "torsio", "map", "--workers", "2", "--strategy", "A"]

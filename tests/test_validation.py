@@ -6,7 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from torsio.io.validation import CHECKS, Check, difference_text, page
+from torsio.io.validation import CHECKS, Check, page
+from torsio.io.validation_page import difference_text
 
 PAGE = Path(__file__).parents[1] / "docs" / "validation.md"
 

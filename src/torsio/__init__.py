@@ -71,7 +71,9 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
         "ZTorqueTopDrive",
     ),
     "torsio.plugins": ("top_drive_from_parameters",),
-    "torsio.analysis.maps": ("SeverityMap", "severity_map", "dimensionless_map", "load_map"),
+    "torsio.analysis.maps": ("severity_map", "dimensionless_map"),
+    "torsio.analysis.map_results": ("SeverityMap", "load_map"),
+    "torsio.analysis.map_options": ("MapOptions",),
     "torsio.solvers.batch": ("simulate_batch",),
     "torsio.analysis.stability": (
         "StabilityBoundary",
@@ -80,11 +82,13 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     ),
 }
 _LAZY = {name: module for module, names in _EXPORTS.items() for name in names}
-_SUBPACKAGES = ("analysis", "cli", "io", "model", "physics", "solvers")
+_SUBPACKAGES = ("analysis", "cli", "io", "model", "physics", "solvers", "well")
 
 if TYPE_CHECKING:  # for type checkers and editors; at run time see __getattr__
     from torsio.analysis.energy import EnergyBalance, energy_balance
-    from torsio.analysis.maps import SeverityMap, dimensionless_map, load_map, severity_map
+    from torsio.analysis.map_options import MapOptions
+    from torsio.analysis.map_results import SeverityMap, load_map
+    from torsio.analysis.maps import dimensionless_map, severity_map
     from torsio.analysis.stability import (
         StabilityBoundary,
         critical_bit_damping,
@@ -214,6 +218,7 @@ __all__ = [
     "dimensional_system",
     "dimensionless_groups",
     "dimensionless_system",
+    "MapOptions",
     "SeverityMap",
     "severity_map",
     "dimensionless_map",

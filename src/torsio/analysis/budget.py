@@ -15,6 +15,10 @@ silently wrong answer, an exhausted memory or a run that never ends:
   bit inertia over the law's slope at zero speed, must not be more than
   :data:`MAX_STIFFNESS_RATIO` times shorter than the run (a law that no integrator
   resolves in double precision, e.g. Tucker-Wang with a0 = 1e20).
+* :func:`check_wave_steps`: a run of the distributed model (fixed steps of its grid)
+  takes at least one step, at most :data:`MAX_WAVE_STEPS` of them and at most
+  :data:`MAX_WAVE_WORK` node-steps; the error names the key that decides it (the
+  duration, or the grid's time step).
 * :func:`check_batch_work`: the same checks for the runs of a map, and a run length the
   batch engine's step limit can cover (a map and one run refuse the same inputs).
 
@@ -37,10 +41,13 @@ from typing import Any
 import numpy as np
 
 from torsio.errors import ConfigError, SolverError
+from torsio.model.wave import DEFAULT_TRAVEL_TIME_TOLERANCE
 
 __all__ = [
     "EVALUATIONS_PER_SAMPLE",
     "MAX_STIFFNESS_RATIO",
+    "MAX_WAVE_STEPS",
+    "MAX_WAVE_WORK",
     "MIN_EVALUATIONS",
     "RTOL_RANGE",
     "BudgetExceeded",
@@ -49,6 +56,7 @@ __all__ = [
     "check_law_time_scale",
     "check_output_size",
     "check_rtol",
+    "check_wave_steps",
 ]
 
 RTOL_RANGE = (1e-13, 1e-2)
@@ -60,6 +68,16 @@ MIN_EVALUATIONS = 200_000
 EVALUATIONS_PER_SAMPLE = 50
 """Further evaluations allowed per output sample (the default run of the Ritto et al.
 2017 string uses about 0.4 per sample at rtol = 1e-6 and 5 at rtol = 1e-10)."""
+
+MAX_WAVE_STEPS = 2_000_000
+"""Time steps one run of the distributed model may take: the step limit of a map point
+(``torsio.solvers.batch.DEFAULT_MAX_STEPS``), for single runs and maps alike (2877 s of
+run on the default grid of the Ritto et al. 2017 string, Delta t = 1.4386 ms)."""
+
+MAX_WAVE_WORK = 5e10
+"""Node-steps (grid nodes x time steps) one run of the distributed model may take: about
+20 s of stepping at 0.4 ns a node-step (measured on 2 busy cores, grids of 1 094 to
+157 241 nodes: 0.35-0.8 ns); the default run of the Ritto et al. 2017 string takes 2.3e8."""
 
 MAX_STIFFNESS_RATIO = 1e10
 """Largest ratio of run length to the bit-rock law's time scale at sticking (about 1e4
@@ -206,7 +224,7 @@ def check_law_time_scale(system: Any, wob: float, duration: float) -> None:
     slope = law_slope_at_rest(system.law, wob, system.bit_radius)
     if slope == 0.0:
         return
-    bit_inertia = _bit_inertia(system.model)
+    bit_inertia = float(system.model.bit_inertia)
     scale = bit_inertia / slope
     if math.isfinite(scale) and scale > 0 and duration / scale <= MAX_STIFFNESS_RATIO:
         return
@@ -221,11 +239,86 @@ def check_law_time_scale(system: Any, wob: float, duration: float) -> None:
     )
 
 
-def _bit_inertia(model: Any) -> float:
-    """Inertia of the bit's node [kg m^2]: a lumped model's last one, or a wave model's bit."""
-    if hasattr(model, "bit_inertia"):
-        return float(model.bit_inertia)
-    return float(np.asarray(model.inertia)[-1, -1])
+def check_wave_steps(
+    grid: Any, duration: float, key: str = "simulation.duration", max_steps: int = MAX_WAVE_STEPS
+) -> int:
+    """Time steps of a run of ``duration`` [s] on the wave ``grid``; ConfigError if out of bounds.
+
+    A run takes round(duration / dt) steps: at least one, at most ``max_steps`` and at
+    most :data:`MAX_WAVE_WORK` node-steps. The error names ``key`` (the duration) when
+    the run is too short, or too long even on the grid of the default time step; it names
+    ``discretization.time_step`` when a shorter step than the default makes the work.
+
+    Examples
+    --------
+    >>> from torsio.model.wave import WaveStrategy
+    >>> from torsio.examples import ritto2017_string
+    >>> grid = WaveStrategy().discretize(ritto2017_string())
+    >>> check_wave_steps(grid, 306.0)
+    212706
+    >>> check_wave_steps(grid, 1e6)
+    Traceback (most recent call last):
+    ...
+    torsio.errors.ConfigError: simulation.duration: a run of 1e+06 s is 695,118,327 steps ...
+    """
+    dt = float(grid.time_step)
+    nodes = int(grid.dofs)
+    steps_float = float(duration) / dt
+    if not steps_float >= 0.5:
+        raise ConfigError(
+            key,
+            f"a run of {duration:g} s is shorter than one time step of the wave grid "
+            f"({dt:g} s); expected a run of at least {dt:g} s",
+        )
+    most = min(float(max_steps), MAX_WAVE_WORK / nodes)
+    if steps_float <= most + 0.5:
+        return int(round(steps_float))
+    longest = math.floor(most) * dt
+    finest = max(duration / max_steps, math.sqrt(duration * nodes * dt / MAX_WAVE_WORK))
+    limits = (
+        f"more than a run may take ({max_steps:,} steps and {MAX_WAVE_WORK:g} node-steps, "
+        "about 20 s of stepping)"
+    )
+    deciding = _deciding_grid_key(grid, duration, max_steps)
+    if deciding is not None:
+        hint = (
+            f"expected a time step of at least about {finest:.3g} s for this run"
+            if deciding == "discretization.time_step"
+            else "expected a larger travel-time tolerance (the default "
+            f"{DEFAULT_TRAVEL_TIME_TOLERANCE:g} gives a grid this run fits on)"
+        )
+        raise ConfigError(
+            deciding,
+            f"with the grid's time step of {dt:g} s ({nodes:,} nodes) a run of {duration:g} s "
+            f"takes {steps_float:,.0f} steps and {steps_float * nodes:.3g} node-steps, {limits}; "
+            f"{hint}, or a run of at most {longest:g} s on this grid",
+        )
+    raise ConfigError(
+        key,
+        f"a run of {duration:g} s is {steps_float:,.0f} steps of the wave grid's {dt:g} s "
+        f"({nodes:,} nodes, {steps_float * nodes:.3g} node-steps), {limits}; expected a run "
+        f"of at most {longest:g} s on this grid (or a longer discretization.time_step)",
+    )
+
+
+def _deciding_grid_key(grid: Any, duration: float, max_steps: int) -> str | None:
+    """The grid's key that makes a run too long: None when the default grid is no coarser
+    or too fine for it as well (the duration decides), else ``discretization.time_step`` or,
+    when the time step alone would give a coarser grid, ``travel_time_tolerance``."""
+    from torsio.model.wave import WaveStrategy
+
+    dt = float(grid.time_step)
+    default = WaveStrategy(rigid_bha=grid.rigid_bha).discretize(grid.string)
+    fits = min(float(max_steps), MAX_WAVE_WORK / default.dofs) * float(default.time_step)
+    if not dt < float(default.time_step) * (1 - 1e-9) or duration > fits:
+        return None
+    requested = grid.details.get("max_time_step_s")
+    if requested is None:  # a grid built otherwise: its time step is what it has
+        return "discretization.time_step"
+    alone = WaveStrategy(time_step=requested, rigid_bha=grid.rigid_bha).discretize(grid.string)
+    if float(alone.time_step) > dt * (1 + 1e-9):
+        return "discretization.travel_time_tolerance"
+    return "discretization.time_step"
 
 
 def check_batch_work(
@@ -237,10 +330,15 @@ def check_batch_work(
     :data:`RTOL_RANGE` and the law's time scale (:func:`check_law_time_scale`, at the
     largest weight on bit ``wob`` [N], the stiffest point for laws proportional to it).
     The batch engine takes steps of at most a quarter of the first-mode ``period`` [s]
-    and at most ``max_steps`` of them, so a longer ``duration`` [s] is refused.
+    and at most ``max_steps`` of them, so a longer ``duration`` [s] is refused. The wave
+    model's runs take the fixed steps of its grid (:func:`check_wave_steps`, checked
+    first: it is the cause when a long run would also exceed the law's time-scale bound).
     """
+    fixed_step = system.model.time_step  # None: the engine chooses its steps
+    if fixed_step is not None:  # the wave model: fixed steps of its grid
+        check_wave_steps(system.model, duration, "duration", max_steps)
     check_rtol(rtol, "rtol")
-    if 4.0 * duration / period > max_steps:
+    if fixed_step is None and 4.0 * duration / period > max_steps:
         raise ConfigError(
             "duration",
             f"a run of {duration:g} s is {duration / period:.3g} periods of the first mode "

@@ -131,11 +131,12 @@ def check_map_data(data: Any, where: str) -> None:
         _shape(array, grid, key, where)
         if not (np.isfinite(array).all() and (array == np.round(array)).all()):
             raise ConfigError(f"{where}: {key}", "expected whole numbers")
-    done = data["done"]
-    done_array = np.asarray(done, dtype=object)
-    _shape(done_array, grid, "done", where)
-    if not all(isinstance(v, bool | np.bool_) for v in done_array.ravel()):
-        raise ConfigError(f"{where}: done", "expected true or false at every point")
+    for key in ("done", "stuck") if "stuck" in data else ("done",):
+        flags = np.asarray(data[key], dtype=object)
+        _shape(flags, grid, key, where)
+        if not all(isinstance(v, bool | np.bool_) for v in flags.ravel()):
+            raise ConfigError(f"{where}: {key}", "expected true or false at every point")
+    done_array = np.asarray(data["done"], dtype=object)
     statuses = data["critical_status"]
     if (
         not isinstance(statuses, list | tuple | np.ndarray)

@@ -21,6 +21,7 @@ from typing import Any
 import attrs
 import numpy as np
 
+from torsio.analysis.limits import stuck_points, warning_list
 from torsio.analysis.map_checks import FORMAT, FORMAT_VERSION, check_map_data
 from torsio.errors import ConfigError
 from torsio.solvers.batch_results import STATUS_MESSAGES
@@ -29,7 +30,6 @@ from torsio.units import RPM_TO_RAD_S
 __all__ = [
     "BOUNDS",
     "CLASSES",
-    "FORMAT",
     "MapInterrupted",
     "STICK_SLIP_THRESHOLD",
     "SeverityMap",
@@ -41,6 +41,14 @@ STICK_SLIP_THRESHOLD = 0.05
 """S_SS above which a point is a sustained torsional oscillation ("stick-slip")."""
 
 CLASSES = ("stable", "stick-slip", "severe")
+
+_NPZ_ARRAYS = (
+    *("wob", "rpm", "critical_wob", "critical_pi2", "stability_wob", "pi1", "pi2"),
+    *("status", "steps", "done", "stuck", "classification", "critical_status"),
+)
+"""Keys of :meth:`SeverityMap.to_dict` that ``.npz`` holds as arrays."""
+_EXACT = ("status", "steps", "done", "stuck", "classification", "critical_status")
+"""Of those, the ones not stored as floats."""
 """Class names, in increasing severity (``"failed"`` marks a point the solver failed on)."""
 
 
@@ -141,6 +149,10 @@ class SeverityMap:
     engine : str
         The batch engine that ran: ``"compiled"``, ``"numpy"`` or ``"scipy"``
         (:mod:`torsio.solvers.batch`; ``""`` in maps saved before it was recorded).
+    stuck : ndarray of bool, shape (n, m)
+        Whether the bit stuck throughout each point's steady window (S_SS then reads
+        near 0 and says nothing of stick-slip: such points are classified ``"stuck"``);
+        all False in maps saved before it was recorded.
     """
 
     wob: np.ndarray
@@ -162,6 +174,9 @@ class SeverityMap:
     dimensionless: bool = False
     info: dict[str, Any] = attrs.field(factory=dict)
     engine: str = ""
+    stuck: np.ndarray = attrs.field(
+        default=attrs.Factory(lambda self: np.zeros(self.severity.shape, dtype=bool), True)
+    )
 
     # --- derived ----------------------------------------------------------------------
     @property
@@ -197,18 +212,25 @@ class SeverityMap:
         labels[ok & (s <= self.stick_slip_threshold)] = "stable"
         labels[ok & (s > self.stick_slip_threshold) & (s <= self.threshold)] = "stick-slip"
         labels[ok & (s > self.threshold)] = "severe"
+        labels[ok & self.stuck] = "stuck"
         labels[~self.done] = "missing"
         return labels.astype(str)
 
     def counts(self) -> dict[str, int]:
         """Number of points of each class."""
         labels = self.classification()
-        names = (*CLASSES, "failed", "missing")
+        names = (*CLASSES, "stuck", "failed", "missing")
         return {
             name: int((labels == name).sum())
             for name in names
             if (labels == name).any() or name in CLASSES
         }
+
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """What limits the meaning of the map (:mod:`torsio.analysis.limits`)."""
+        stuck = int((self.stuck & self.done).sum())
+        return warning_list(stuck_points(stuck, self.severity.size))
 
     def failures(self) -> list[str]:
         """One line per point the solver failed on."""
@@ -252,6 +274,8 @@ class SeverityMap:
             "done": self.done.tolist(),
             "info": self.info,
             "engine": self.engine,
+            "stuck": self.stuck.tolist(),
+            "warnings": list(self.warnings),
         }
 
     @classmethod
@@ -305,6 +329,11 @@ class SeverityMap:
             dimensionless=bool(data.get("dimensionless")),
             info=dict(data.get("info", {})),
             engine=str(data.get("engine", "")),
+            stuck=(
+                array("stuck", bool).reshape(rpm.size, wob.size)
+                if "stuck" in data
+                else np.zeros((rpm.size, wob.size), dtype=bool)
+            ),
         )
 
     def save(self, path: str | Path) -> Path:
@@ -325,29 +354,8 @@ class SeverityMap:
             with open(temporary, "xb") as stream:  # ordinary permissions (umask)
                 if path.suffix == ".npz":
                     arrays: dict[str, Any] = {
-                        key: np.array(
-                            value,
-                            dtype=float
-                            if key
-                            not in ("status", "steps", "done", "classification", "critical_status")
-                            else None,
-                        )
-                        for key, value in data.items()
-                        if key
-                        in (
-                            "wob",
-                            "rpm",
-                            "critical_wob",
-                            "critical_pi2",
-                            "stability_wob",
-                            "status",
-                            "steps",
-                            "done",
-                            "pi1",
-                            "pi2",
-                            "classification",
-                            "critical_status",
-                        )
+                        key: np.array(data[key], dtype=None if key in _EXACT else float)
+                        for key in _NPZ_ARRAYS
                     }
                     arrays["severity"] = self.severity
                     arrays["critical_bracket"] = self.critical_bracket

@@ -1,7 +1,7 @@
 """The grid of a severity map and how its points run.
 
-Axis checks and the memory bound of a grid (:func:`check_grid_size`), the options of a
-map (:func:`check_map_options`), the chunks of points sent to an executor
+Axis checks and the memory bound of a grid (:func:`check_grid_size`), the chunks of
+points sent to an executor
 (:class:`PointRunner`), the error of a map whose executor failed (:class:`MapFailed`),
 and the progress bar.
 """
@@ -15,13 +15,14 @@ from typing import Any
 
 import numpy as np
 
+from torsio.analysis.severity import DEFAULT_STICK_THRESHOLD
 from torsio.analysis.sweep import SweepError, SweepInterrupted, run_tasks_on
 from torsio.errors import ConfigError
 from torsio.physics.system import System
 from torsio.solvers.batch import simulate_batch
 from torsio.solvers.batch_results import STATUS_MESSAGES
 
-__all__ = ["BYTES_PER_POINT", "MapFailed", "PointRunner", "check_grid_size", "check_map_options"]
+__all__ = ["BYTES_PER_POINT", "MapFailed", "PointRunner", "check_grid_size"]
 
 BYTES_PER_POINT = 256
 """Memory a grid point costs, results and their JSON text included (an upper estimate)."""
@@ -41,32 +42,6 @@ class MapFailed(SweepError):
             f"{error} (map: {done} of {partial.done.size} points computed)", error.results
         )
         self.partial = partial
-
-
-def check_map_options(
-    threshold: Any, stick_slip_threshold: Any, refine: Any, on_failure: Any, chunk_size: Any
-) -> None:
-    """ConfigError naming the first option of a map that is out of its range."""
-    for key, value in (("threshold", threshold), ("stick_slip_threshold", stick_slip_threshold)):
-        if isinstance(value, bool) or not (
-            isinstance(value, int | float) and math.isfinite(value) and value >= 0
-        ):
-            raise ConfigError(key, f"expected a non-negative number, got {value!r}")
-    if stick_slip_threshold > threshold:
-        raise ConfigError(
-            "stick_slip_threshold",
-            f"expected at most the severe threshold ({threshold:g}), got {stick_slip_threshold!r}",
-        )
-    if isinstance(refine, bool) or not isinstance(refine, int) or not 0 <= refine <= 40:
-        raise ConfigError(
-            "refine", f"expected a whole number of bisection steps in 0..40, got {refine!r}"
-        )
-    if on_failure not in ("raise", "mark"):
-        raise ConfigError("on_failure", f"expected 'raise' or 'mark', got {on_failure!r}")
-    if chunk_size is not None and (
-        isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1
-    ):
-        raise ConfigError("chunk_size", f"expected a whole number >= 1, got {chunk_size!r}")
 
 
 def _axis(key: str, values: Any, positive: bool) -> np.ndarray:
@@ -128,11 +103,12 @@ def _bytes(value: float) -> str:
 def _chunk_task(
     system: System, wob: np.ndarray, rpm: np.ndarray, options: dict[str, Any]
 ) -> np.ndarray:
-    """Worker side: S_SS, status, steps, rejected steps and the time each run ended [s],
-    shape (k, 5)."""
+    """Worker side: S_SS, status, steps, rejected steps, the time each run ended [s] and
+    whether the bit stuck throughout the window (1.0 or 0.0), shape (k, 6)."""
     result = simulate_batch(system, wob, rpm, **options)
+    stuck = result.stuck(DEFAULT_STICK_THRESHOLD)
     return np.column_stack(
-        [result.severity, result.status, result.steps, result.rejected, result.ended]
+        [result.severity, result.status, result.steps, result.rejected, result.ended, stuck]
     )
 
 

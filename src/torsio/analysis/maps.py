@@ -52,7 +52,6 @@ Examples
 
 from __future__ import annotations
 
-import inspect
 import math
 import warnings
 from collections.abc import Callable
@@ -62,17 +61,12 @@ import numpy as np
 
 from torsio.analysis.budget import check_batch_work
 from torsio.analysis.critical_wob import locate_critical_wob
+from torsio.analysis.map_options import MapOptions
 from torsio.analysis.map_results import (
-    CLASSES,
-    FORMAT,
-    FORMAT_VERSION,
-    STICK_SLIP_THRESHOLD,
     MapInterrupted,
     SeverityMap,
-    load_map,
 )
 from torsio.analysis.map_runs import (
-    BYTES_PER_POINT,
     MapFailed,
     PointRunner,
     _axis,
@@ -80,9 +74,7 @@ from torsio.analysis.map_runs import (
     _failure_lines,
     _rich_progress,
     check_grid_size,
-    check_map_options,
 )
-from torsio.analysis.severity import SEVERE_THRESHOLD
 from torsio.analysis.sweep import (
     ExecutorSpec,
     SweepError,
@@ -93,46 +85,18 @@ from torsio.analysis.sweep import (
 from torsio.errors import ConfigError, SolverError
 from torsio.physics.system import System
 from torsio.solvers.batch import (
-    DEFAULT_ATOL,
     DEFAULT_MAX_STEPS,
-    DEFAULT_RTOL,
-    DEFAULT_STEADY_TOLERANCE,
     simulate_batch,
 )
 from torsio.units import RPM_TO_RAD_S
 
-__all__ = [
-    "BYTES_PER_POINT",
-    "CLASSES",
-    "DEFAULT_REFINE",
-    "FORMAT",
-    "FORMAT_VERSION",
-    "MapFailed",
-    "MapInterrupted",
-    "STICK_SLIP_THRESHOLD",
-    "SeverityMap",
-    "check_grid_size",
-    "dimensionless_map",
-    "load_map",
-    "severity_map",
-]
-
-DEFAULT_REFINE = 4
-"""Bisection steps per critical-WOB cell: the bracket shrinks 16 times."""
-
-# the names tests and older code reach for
-_critical_wob = locate_critical_wob
-_Runner = PointRunner
+__all__ = ["dimensionless_map", "severity_map"]
 
 
 def _scales(system: System) -> tuple[float, float]:
+    """(k_eq [N m/rad], omega_1 [rad/s]) of the System's model (its protocol's numbers)."""
     from torsio.model.modal import first_natural_frequency
-    from torsio.model.wave import is_wave_model
 
-    if is_wave_model(system.model):
-        from torsio.solvers.wave_batch import wave_scales
-
-        return wave_scales(system.model)
     return float(system.model.equivalent_stiffness), first_natural_frequency(system.model)
 
 
@@ -140,21 +104,11 @@ def severity_map(
     system: System,
     wob: Any,
     rpm: Any,
-    duration: float | None = None,
-    steady_window: float | None = None,
+    options: MapOptions | None = None,
+    *,
     executor: ExecutorSpec = None,
-    chunk_size: int | None = None,
     progress: bool | Callable[[int, int], None] | None = None,
-    threshold: float = SEVERE_THRESHOLD,
-    stick_slip_threshold: float = STICK_SLIP_THRESHOLD,
-    refine: int = DEFAULT_REFINE,
-    rtol: float = DEFAULT_RTOL,
-    atol: float = DEFAULT_ATOL,
-    engine: str = "auto",
-    retries: int = 2,
-    on_failure: str = "raise",
-    timeout: float | None = None,
-    steady_tolerance: float = DEFAULT_STEADY_TOLERANCE,
+    **values: Any,
 ) -> SeverityMap:
     """S_SS over the grid ``rpm`` x ``wob``, its classification and critical curve.
 
@@ -166,40 +120,22 @@ def severity_map(
         Weights on bit [N], >= 0, strictly increasing.
     rpm : array_like
         Surface rotary speeds [rpm], > 0, strictly increasing.
-    duration, steady_window : float, optional
-        Run length and steady window [s] of every run (defaults: 40 and 15
-        first-mode periods, :mod:`torsio.analysis.severity`). Every run starts from rest.
+    options : MapOptions, optional
+        How every point runs and how the map reads it (run length and window,
+        thresholds, bisection, tolerances, engine, steady-cycle ends, failures):
+        :class:`torsio.analysis.map_options.MapOptions`; default its defaults.
+        Every run starts from rest.
     executor : None, int, str or concurrent.futures.Executor
         Serial (default), N local processes, a Dask scheduler address, or an
         executor (:mod:`torsio.analysis.sweep`). The result does not depend on it.
-    chunk_size : int, optional
-        Grid points per task (default: about four tasks per worker, or one task
-        serially, each at most 4096/DOFs points, 8192/DOFs serially).
     progress : bool or callable, optional
         ``progress(done_runs, total_runs)`` after each chunk; True shows a
         rich progress bar on stderr. The total is fixed from the start: the grid
         points plus ``refine`` bisection runs per rpm (runs a row turns out not
         to need are counted as done when that is known).
-    threshold : float
-        S_SS above which a point is severe (paper: 0.8).
-    stick_slip_threshold : float
-        S_SS above which a point is a sustained oscillation.
-    refine : int
-        Bisection steps of each critical-WOB cell (extra runs per rpm).
-    rtol, atol : float
-        Tolerances of the batch engine.
-    engine : str
-        Batch engine (:func:`torsio.solvers.batch.simulate_batch`).
-    retries : int
-        Resubmissions of a chunk whose worker died.
-    on_failure : {"raise", "mark"}
-        On points the solver failed on: raise :class:`~torsio.errors.SolverError`
-        naming them, or keep them as NaN with their status (and warn).
-    timeout : float, optional
-        Seconds to wait for a Dask scheduler.
-    steady_tolerance : float
-        A run ends once the motion is on a steady cycle, within this S_SS (0: every
-        run to the end; :mod:`torsio.solvers.cycles`).
+    **values
+        Fields of :class:`MapOptions` given by name (``refine=2``, ``rtol=1e-6``, ...),
+        on top of ``options``.
 
     Returns
     -------
@@ -210,32 +146,22 @@ def severity_map(
     MapInterrupted
         On Ctrl-C; its ``partial`` map has ``complete = False``.
     """
+    chosen = MapOptions.of(options, values)
     wob_axis = _axis("wob", wob, positive=False)
     rpm_axis = _axis("rpm", rpm, positive=True)
-    return _build_map(
-        system,
-        wob_axis,
-        rpm_axis,
-        duration,
-        steady_window,
-        executor,
-        chunk_size,
-        progress,
-        threshold,
-        stick_slip_threshold,
-        refine,
-        rtol,
-        atol,
-        engine,
-        retries,
-        on_failure,
-        timeout,
-        steady_tolerance,
-        dimensionless=False,
-    )
+    return _build_map(system, wob_axis, rpm_axis, chosen, executor, progress, dimensionless=False)
 
 
-def dimensionless_map(system: System, pi1: Any, pi2: Any, **options: Any) -> SeverityMap:
+def dimensionless_map(
+    system: System,
+    pi1: Any,
+    pi2: Any,
+    options: MapOptions | None = None,
+    *,
+    executor: ExecutorSpec = None,
+    progress: bool | Callable[[int, int], None] | None = None,
+    **values: Any,
+) -> SeverityMap:
     """S_SS over the grid Pi_1 x Pi_2 (Eq. 11) of ``system``.
 
     Pi_1 = Omega / omega_1 and Pi_2 = W_ob R_bit / k_eq (ERRATA 3) map linearly to
@@ -254,40 +180,22 @@ def dimensionless_map(system: System, pi1: Any, pi2: Any, **options: Any) -> Sev
     >>> result.classification().tolist()
     [['stable', 'severe'], ['stable', 'severe']]
     """
+    chosen = MapOptions.of(options, values)
     pi1_axis = _axis("pi1", pi1, positive=True)
     pi2_axis = _axis("pi2", pi2, positive=False)
     k_eq, omega1 = _scales(system)
     rpm = pi1_axis * omega1 / RPM_TO_RAD_S
     wob = pi2_axis * k_eq / system.bit_radius
-    parameters = inspect.signature(severity_map).parameters
-    keys = [key for key in parameters if key not in ("system", "wob", "rpm")]
-    unknown = sorted(set(options) - set(keys))
-    if unknown:
-        raise ConfigError(unknown[0], f"unknown option; expected one of {', '.join(keys)}")
-    defaults: dict[str, Any] = {key: parameters[key].default for key in keys}
-    defaults.update(options)
-    return _build_map(system, wob, rpm, dimensionless=True, **defaults)
+    return _build_map(system, wob, rpm, chosen, executor, progress, dimensionless=True)
 
 
 def _build_map(
     system: System,
     wob: np.ndarray,
     rpm: np.ndarray,
-    duration: float | None,
-    steady_window: float | None,
+    options: MapOptions,
     executor: ExecutorSpec,
-    chunk_size: int | None,
     progress: bool | Callable[[int, int], None] | None,
-    threshold: float,
-    stick_slip_threshold: float,
-    refine: int,
-    rtol: float,
-    atol: float,
-    engine: str,
-    retries: int,
-    on_failure: str,
-    timeout: float | None,
-    steady_tolerance: float,
     dimensionless: bool,
 ) -> SeverityMap:
     import time
@@ -296,20 +204,16 @@ def _build_map(
     from torsio.analysis.sweep import CONNECT_TIMEOUT
     from torsio.solvers.reference import run_times
 
-    check_map_options(threshold, stick_slip_threshold, refine, on_failure, chunk_size)
     check_grid_size(rpm.size, wob.size)
-    duration, steady_window = run_times(system, duration, steady_window)
+    duration, steady_window = run_times(system, options.duration, options.steady_window)
     k_eq, omega1 = _scales(system)
-    check_batch_work(system, wob, duration, rtol, 2.0 * math.pi / omega1, DEFAULT_MAX_STEPS)
+    check_batch_work(system, wob, duration, options.rtol, 2.0 * math.pi / omega1, DEFAULT_MAX_STEPS)
     serial = executor is None or executor == "serial"
-    options: dict[str, Any] = {
+    batch: dict[str, Any] = {
         "duration": duration,
         "steady_window": steady_window,
-        "rtol": rtol,
-        "atol": atol,
-        "engine": engine,
         "threads": None if serial else 1,
-        "steady_tolerance": steady_tolerance,
+        **options.batch_options(),
     }
     boundary = system.top.boundary(system)
     if not boundary.held and not math.isfinite(boundary.set_speed):
@@ -321,9 +225,20 @@ def _build_map(
             "torsio.solvers.batch.simulate_batch(system, wob) over weights on bit",
         )
     # validate options (engine, tolerances) here rather than in every worker
-    engine_name = simulate_batch(system, np.empty(0), np.empty(0), **options).engine
+    engine_name = simulate_batch(system, np.empty(0), np.empty(0), **batch).engine
+    scales: dict[str, Any] = {  # what every map of this call shares, partial or not
+        "wob": wob,
+        "rpm": rpm,
+        "threshold": options.threshold,
+        "stick_slip_threshold": options.stick_slip_threshold,
+        "k_eq": k_eq,
+        "omega1": omega1,
+        "bit_radius": system.bit_radius,
+        "dimensionless": dimensionless,
+        "engine": engine_name,
+    }
     points = rpm.size * wob.size
-    size = chunk_size or _default_chunk_size(
+    size = options.chunk_size or _default_chunk_size(
         points, worker_count(executor), serial, system.model.dofs
     )
 
@@ -340,6 +255,7 @@ def _build_map(
     status = np.zeros((rpm.size, wob.size), dtype=np.int64)
     steps = np.zeros((rpm.size, wob.size), dtype=np.int64)
     done = np.zeros((rpm.size, wob.size), dtype=bool)
+    stuck = np.zeros((rpm.size, wob.size), dtype=bool)
     ended_early = np.zeros((rpm.size, wob.size), dtype=bool)
     grid_rpm, grid_wob = np.meshgrid(rpm, wob, indexing="ij")
     flat_wob = grid_wob.ravel()
@@ -355,11 +271,11 @@ def _build_map(
         "damping": repr(system.damping),
         "duration": duration,
         "steady_window": steady_window,
-        "rtol": rtol,
-        "atol": atol,
-        "refine": refine,
+        "rtol": options.rtol,
+        "atol": options.atol,
+        "refine": options.refine,
         "initial_state": "rest",
-        "steady_tolerance": steady_tolerance,
+        "steady_tolerance": options.steady_tolerance,
     }
 
     def store(rows: np.ndarray, at: np.ndarray) -> None:
@@ -368,38 +284,40 @@ def _build_map(
         status[i, j] = rows[:, 1].astype(np.int64)
         steps[i, j] = rows[:, 2].astype(np.int64)
         ended_early[i, j] = rows[:, 4] < duration
+        stuck[i, j] = rows[:, 5] > 0.5
         done[i, j] = True
 
     def partial_map() -> SeverityMap:
         nan_rows = np.full(rpm.size, np.nan)
         return SeverityMap(
-            wob,
-            rpm,
-            severity.copy(),
-            nan_rows,
-            ("unresolved",) * rpm.size,
-            np.full((rpm.size, 2), np.nan),
-            nan_rows.copy(),
-            float(threshold),
-            float(stick_slip_threshold),
-            k_eq,
-            omega1,
-            system.bit_radius,
-            status.copy(),
-            steps.copy(),
-            done.copy(),
+            **scales,
+            severity=severity.copy(),
+            critical_wob=nan_rows,
+            critical_status=("unresolved",) * rpm.size,
+            critical_bracket=np.full((rpm.size, 2), np.nan),
+            stability_wob=nan_rows.copy(),
+            status=status.copy(),
+            steps=steps.copy(),
+            done=done.copy(),
+            stuck=stuck.copy(),
             complete=False,
-            dimensionless=dimensionless,
             info={**info, "elapsed_s": time.perf_counter() - start},
-            engine=engine_name,
         )
 
     try:
-        with open_executor(executor, CONNECT_TIMEOUT if timeout is None else timeout) as handle:
+        with open_executor(
+            executor, CONNECT_TIMEOUT if options.timeout is None else options.timeout
+        ) as handle:
             info["executor"] = handle.name
             # a fixed progress total: the grid and every possible bisection run
             runner = PointRunner(
-                system, handle, options, size, retries, callback, total=points + refine * rpm.size
+                system,
+                handle,
+                batch,
+                size,
+                options.retries,
+                callback,
+                total=points + options.refine * rpm.size,
             )
             indices = np.arange(points)
 
@@ -415,7 +333,7 @@ def _build_map(
                 raise MapFailed(exc, partial_map()) from exc
             store(rows, indices)
             failed = done & (status != 0)
-            if failed.any() and on_failure == "raise":
+            if failed.any() and options.on_failure == "raise":
                 lines = _failure_lines(wob, rpm, status)
                 from torsio.plugins import describe_bit_law
 
@@ -428,7 +346,13 @@ def _build_map(
                 )
             try:
                 critical, crit_status, bracket = locate_critical_wob(
-                    runner, wob, rpm, severity, threshold, refine, on_failure
+                    runner,
+                    wob,
+                    rpm,
+                    severity,
+                    options.threshold,
+                    options.refine,
+                    options.on_failure,
                 )
             except SweepInterrupted:
                 raise MapInterrupted(partial_map()) from None
@@ -447,30 +371,21 @@ def _build_map(
     info["elapsed_s"] = time.perf_counter() - start
     info["extra_runs"] = runner.runs - points
     info["ended_on_steady_cycle"] = int(ended_early.sum())  # grid points that ended early
-    from torsio.model.wave import is_wave_model
-
-    if is_wave_model(system.model):  # no linearization of the distributed model (yet)
-        linear_wob = np.full(rpm.shape, np.nan)
-    else:
+    if system.model.linearizable:
         linear_wob = stability_boundary(system, rpm).critical_wob
+    else:  # e.g. the distributed model: no linearization (yet)
+        linear_wob = np.full(rpm.shape, np.nan)
     return SeverityMap(
-        wob,
-        rpm,
-        severity,
-        critical,
-        crit_status,
-        bracket,
-        linear_wob,
-        float(threshold),
-        float(stick_slip_threshold),
-        k_eq,
-        omega1,
-        system.bit_radius,
-        status,
-        steps,
-        done,
+        **scales,
+        severity=severity,
+        critical_wob=critical,
+        critical_status=crit_status,
+        critical_bracket=bracket,
+        stability_wob=linear_wob,
+        status=status,
+        steps=steps,
+        done=done,
+        stuck=stuck,
         complete=True,
-        dimensionless=dimensionless,
         info=info,
-        engine=engine_name,
     )

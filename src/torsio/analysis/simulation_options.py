@@ -24,6 +24,7 @@ __all__ = [
     "METHODS",
     "MIN_WINDOW_SAMPLES",
     "SimulationOptions",
+    "check_window_samples",
 ]
 
 COMPILED_METHODS = ("auto", "RODAS4")
@@ -38,6 +39,54 @@ IMPLICIT_METHODS = ("Radau", "BDF")
 
 MIN_WINDOW_SAMPLES = 10
 """Fewest output samples the steady-state window may hold."""
+
+
+def check_window_samples(
+    window: float,
+    output_step: float | None,
+    time_step: float = 0.0,
+    window_given: bool = True,
+    duration: float | None = None,
+) -> None:
+    """ConfigError unless the steady window holds :data:`MIN_WINDOW_SAMPLES` samples.
+
+    ``output_step`` [s] samples the window (None: none, as in a map, which reads S_SS
+    from every step). ``time_step`` [s] is the finest sampling a run has (the wave
+    model's grid step): a window shorter than :data:`MIN_WINDOW_SAMPLES` of them cannot
+    be sampled finer, and the error names the window, or the run length ``duration``
+    when the window was not given (half the run by default).
+
+    Examples
+    --------
+    >>> check_window_samples(10.0, 0.5)
+    >>> check_window_samples(1e-6, 0.04, time_step=1.4e-3)
+    Traceback (most recent call last):
+    ...
+    torsio.errors.ConfigError: simulation.steady_window: the steady window (1e-06 s) holds ...
+    """
+    if window < MIN_WINDOW_SAMPLES * time_step * (1.0 - 1e-9):
+        shortest = MIN_WINDOW_SAMPLES * time_step
+        if window_given or duration is None:
+            raise ConfigError(
+                "simulation.steady_window",
+                f"the steady window ({window:g} s) holds fewer than {MIN_WINDOW_SAMPLES} time "
+                f"steps of the grid ({time_step:g} s each); expected a window of at least "
+                f"{shortest:g} s",
+            )
+        raise ConfigError(
+            "simulation.duration",
+            f"a run of {duration:g} s leaves a steady window (by default half the run, "
+            f"{window:g} s) of fewer than {MIN_WINDOW_SAMPLES} time steps of the grid "
+            f"({time_step:g} s each); expected a run of at least {2.0 * shortest:g} s, or "
+            "give the window (--window, simulation.steady_window)",
+        )
+    if output_step is not None and output_step > window / MIN_WINDOW_SAMPLES:
+        raise ConfigError(
+            "simulation.output_step",
+            f"the output step ({output_step:g} s) leaves fewer than {MIN_WINDOW_SAMPLES} "
+            f"samples in the steady window ({window:g} s); expected a step of at most "
+            f"{window / MIN_WINDOW_SAMPLES:g} s",
+        )
 
 
 def _positive(key: str, value: Any, what: str) -> float:

@@ -73,6 +73,9 @@ class TransientResults:
         continuous solution (the compiled engine: the cubic interpolant of every step,
         as severity maps read them), which S_SS is read from; None: S_SS and the
         extremes are those of the samples.
+    warnings : tuple of str
+        What limits the meaning of the result (:mod:`torsio.analysis.limits`): e.g. a
+        bit stuck throughout the window, a window shorter than a period; empty if none.
     """
 
     time: np.ndarray
@@ -94,6 +97,7 @@ class TransientResults:
     reference_speed: float
     severity_speed: float
     bit_speed_extremes: tuple[float, float] | None = None
+    warnings: tuple[str, ...] = ()
 
     def __repr__(self) -> str:  # short: no time series
         return (
@@ -202,6 +206,7 @@ class TransientResults:
             "bit_radius": float(system.bit_radius),
             "dimensionless": self.dimensionless,
             "solver": dict(self.solver),
+            "warnings": list(self.warnings),
         }
         if self.dimensionless:
             data["pi1"] = float(self.omega)
@@ -259,12 +264,13 @@ class TransientResults:
             raise ConfigError("csv", f"cannot write {str(path)!r}: {exc.strerror or exc}") from None
         return path
 
-    def plot(self, path: str | Path | None = None, axes: Any = None) -> Any:
+    def plot(self, path: str | Path | None = None, ax: Any = None) -> Any:
         """Bit speed, surface torque and torque on bit against time (matplotlib).
 
         With a top drive that has inertia the top-drive speed and the motor torque
         are drawn too. The steady-state window is shaded. ``path`` writes the figure (PNG by
-        extension); ``axes`` (three matplotlib axes) draws into existing ones.
+        extension); ``ax`` (a sequence of three matplotlib axes: speeds, surface torque,
+        torque on bit) draws into existing ones, as ``ax=`` of every results' ``plot``.
         Returns the figure.
 
         Raises
@@ -278,7 +284,10 @@ class TransientResults:
             raise ImportError(
                 "plotting needs matplotlib, which is not installed: pip install 'torsio[plot]'"
             ) from exc
+        axes = ax
         if axes is not None:
+            if len(axes) != 3:
+                raise ConfigError("ax", f"expected three matplotlib axes, got {len(axes)}")
             fig = axes[0].figure
         elif path is not None:  # no pyplot: no GUI backend, nothing left open
             fig = Figure(figsize=(8.0, 7.0))

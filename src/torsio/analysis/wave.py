@@ -5,7 +5,9 @@ with the characteristic stepping of :mod:`torsio.solvers.characteristics`: start
 rest, the same defaults as the lumped transient (40 periods of the first exact continuum
 mode, S_SS over the last 15, 200 output samples per period), the same bit-rock law and
 top drive. S_SS takes the bit-speed extremes over every time step of the window.
-:func:`torsio.analysis.transient.simulate` hands wave systems to it.
+:func:`torsio.analysis.transient.simulate` hands wave systems to it; :func:`simulate_wave`,
+the transient engine the model names (:data:`torsio.model.wave.WAVE_ENGINES`), takes the
+parameters of ``simulate``.
 
 Integrator: exact transport along characteristics, exact junctions, the distributed drag
 lumped into point dampers every ``drag_spacing`` cells (exact junctions too), BDF2 for
@@ -34,11 +36,15 @@ from typing import Any
 import attrs
 import numpy as np
 
+from torsio.analysis.budget import check_law_time_scale, check_output_size, check_wave_steps
+from torsio.analysis.limits import short_window, stuck_throughout, warning_list
 from torsio.analysis.severity import DEFAULT_DURATION_PERIODS, DEFAULT_WINDOW_PERIODS, check_window
+from torsio.analysis.simulation_options import check_window_samples
 from torsio.analysis.transient_results import TransientResults
 from torsio.errors import ConfigError
-from torsio.model.wave import WaveModel, check_wave_damping, first_frequency, is_wave_model
-from torsio.solvers.characteristics import WaveState, node_offsets
+from torsio.model.wave import WAVE_ENGINES, WaveModel, check_wave_damping, first_frequency
+from torsio.solvers.characteristics import RECORD_CHANNELS, WaveState, node_offsets
+from torsio.solvers.run_chunks import QUIET_SECONDS, stderr_progress
 from torsio.solvers.wave_march import WaveRun, march
 from torsio.solvers.wave_top import top_boundary
 
@@ -47,6 +53,42 @@ DEFAULT_SAMPLES_PER_PERIOD = 200
 
 DEFAULT_STICK_THRESHOLD = 0.1
 """The bit sticks while |bit speed| < 0.1 Omega (as the lumped transient)."""
+
+INTEGRATOR_OPTIONS = ("method", "rtol", "atol")
+"""Options of the lumped integrators that have no meaning on the characteristic grid."""
+
+
+def refuse_integrator_options(given: dict[str, Any]) -> None:
+    """ConfigError on the first option of ``given`` (key -> value, None: not given).
+
+    The wave model steps on the fixed grid of its characteristics: no integrator to
+    choose, no tolerance; its accuracy is the grid's (``discretization.time_step``,
+    ``travel_time_tolerance``). The command line refuses ``--method``, ``--rtol``,
+    ``--atol`` and ``--engine`` for it rather than record them unused.
+
+    >>> refuse_integrator_options({"--rtol": None})
+    >>> refuse_integrator_options({"--rtol": 1e-8})
+    Traceback (most recent call last):
+    ...
+    torsio.errors.ConfigError: --rtol: has no effect on the wave model (strategy = "wave"), ...
+    """
+    for key, value in given.items():
+        if value is not None:
+            raise ConfigError(
+                key, f"has no effect on the wave model {_NO_INTEGRATOR}; got {value!r}"
+            )
+
+
+def integrator_note(keys: list[str]) -> str:
+    """The note for ``[simulation]`` keys of a file that a wave run does not use."""
+    return f"[simulation] {', '.join(keys)} not used: the wave model {_NO_INTEGRATOR}"
+
+
+_NO_INTEGRATOR = (
+    '(strategy = "wave"), which steps on the fixed grid of its characteristics with no '
+    "integrator to choose and no tolerance; its accuracy is set by discretization.time_step "
+    "and travel_time_tolerance (docs/wave.md)"
+)
 
 
 @attrs.frozen(eq=False)
@@ -89,10 +131,45 @@ def _depths(grid: WaveModel) -> np.ndarray:
     return depths
 
 
+def _field_every(field_step: float, dt: float, duration: float, grid: WaveModel) -> int:
+    """Steps between snapshots of the speed along the string; their memory checked."""
+    if not (math.isfinite(field_step) and field_step > 0):
+        raise ConfigError("field_step", f"expected a positive time in s, got {field_step!r}")
+    every = max(1, int(round(field_step / dt)))
+    check_output_size(duration, every * dt, int(grid.dofs) + len(grid.cells))
+    return every
+
+
 def _transient_results(values: dict[str, Any]) -> Any:
     """A TransientResults from the values it has fields for."""
     cls = TransientResults
     return cls(**{k: v for k, v in values.items() if k in attrs.fields_dict(cls)})
+
+
+def simulate_wave(
+    system: Any,
+    duration: float | None = None,
+    steady_window: float | None = None,
+    method: Any = None,
+    rtol: float | None = None,
+    atol: float | None = None,
+    output_step: float | None = None,
+    initial_state: WaveState | None = None,
+    stick_threshold: float | None = None,
+    **ignored: Any,
+) -> TransientResults:
+    """The transient engine of the distributed model (:data:`torsio.model.wave.WAVE_ENGINES`).
+
+    Takes the parameters of :func:`torsio.analysis.transient.simulate` and returns the
+    transient results of :func:`wave_response`; ``method``, ``rtol`` and ``atol`` have no
+    meaning on the fixed grid and are not used (the command line refuses them,
+    :func:`refuse_integrator_options`).
+    """
+    response = wave_response(
+        system, duration, steady_window, output_step, stick_threshold,
+        initial_state=initial_state,
+    )  # fmt: skip
+    return response.transient
 
 
 def wave_response(
@@ -103,6 +180,7 @@ def wave_response(
     stick_threshold: float | None = None,
     field_step: float | None = None,
     initial_state: WaveState | None = None,
+    progress: Any = None,
     **ignored: Any,
 ) -> WaveResponse:
     """Run the distributed model of ``system`` (its model must be a WaveModel).
@@ -121,17 +199,24 @@ def wave_response(
         Record the angular speed along the string every so often [s] (default: never).
     initial_state : WaveState, optional
         Default: start-up from rest.
+    progress : callable or bool, optional
+        ``progress(steps_done, steps)`` between chunks of steps; None (default): a bar on
+        stderr (a line every 10 s when stderr is not a terminal) once the run has taken
+        2 s (:func:`torsio.solvers.run_chunks.stderr_progress`); True: from the start;
+        False: none.
     **ignored
         Options of the lumped integrator (``method``, ``rtol``, ``atol``) that have no
-        meaning on a fixed characteristic grid; they are recorded, not used.
+        meaning on a fixed characteristic grid: not used (the command line refuses them,
+        :func:`refuse_integrator_options`).
     """
     grid = system.model
-    if not is_wave_model(grid):
+    if getattr(grid, "engines", None) != WAVE_ENGINES:  # a model this stepping runs
         raise ConfigError("discretization.strategy", f"expected the wave model, got {grid!r}")
     alpha = check_wave_damping(system.damping, system.model)
     dt = grid.time_step
     period = 2.0 * math.pi / first_frequency(grid)
     duration = DEFAULT_DURATION_PERIODS * period if duration is None else float(duration)
+    window_given = steady_window is not None
     if steady_window is None:
         steady_window = min(DEFAULT_WINDOW_PERIODS * period, 0.5 * duration)
     check_window(duration, float(steady_window))
@@ -139,18 +224,30 @@ def wave_response(
     if not (math.isfinite(output_step) and output_step > 0):
         raise ConfigError("simulation.output_step", f"expected a positive time, got {output_step}")
     threshold = DEFAULT_STICK_THRESHOLD if stick_threshold is None else float(stick_threshold)
-    steps = max(1, int(round(duration / dt)))
+    steps = check_wave_steps(grid, duration)  # the work, up front
     record_every = max(1, int(round(output_step / dt)))
-    field_every = 0 if field_step is None else max(1, int(round(field_step / dt)))
-    window_steps = max(1, int(round(steady_window / dt)))
+    check_window_samples(
+        float(steady_window), record_every * dt, dt, window_given, duration
+    )  # the rule of the lumped transient, on the grid's steps
+    check_output_size(duration, record_every * dt, len(RECORD_CHANNELS) + 4)
+    field_every = 0 if field_step is None else _field_every(field_step, dt, duration, grid)
+    check_law_time_scale(system, system.wob, duration)  # as a lumped run and a map
+    window_steps = int(round(steady_window / dt))
     top = top_boundary(system, grid)
     started = time.perf_counter()
-    state0 = initial_state
-    run = march(
-        grid, top, system.law, system.wob, system.bit_radius, alpha, steps,
-        window_start=steps - window_steps + 1, record_every=record_every,
-        field_every=field_every, state=state0,
-    )  # fmt: skip
+    reporter = None
+    if progress is None or progress is True:
+        reporter = stderr_progress("wave run", quiet=0.0 if progress else QUIET_SECONDS)
+    try:
+        run = march(
+            grid, top, system.law, system.wob, system.bit_radius, alpha, steps,
+            window_start=steps - window_steps + 1, record_every=record_every,
+            field_every=field_every, state=initial_state,
+            progress=reporter if reporter is not None else (progress or None),
+        )  # fmt: skip
+    finally:
+        if reporter is not None:
+            reporter.close()
     wall = time.perf_counter() - started
     t = run.time
     bit_speed, bit_torque, surface_torque, top_speed, motor = run.records.T
@@ -218,5 +315,8 @@ def wave_response(
         "states": np.zeros((t.size, 0)),
         "reference_speed": reference,
         "severity_speed": reference,
+        "warnings": warning_list(  # as the lumped transient says them
+            stuck_throughout(stick, threshold), short_window(float(steady_window), period)
+        ),
     }
     return WaveResponse(_transient_results(values), run, _depths(grid), energy)

@@ -91,7 +91,10 @@ def write_and_print(
     """Write the files ``outputs`` names (``out``: ``results.save``, ``csv``:
     ``results.to_csv``, ``plot``: ``results.plot``), then print ``results.to_dict()`` with
     the paths written as one JSON object (``--json``) or ``summary(results, written)``.
-    Returns the exit status, 0."""
+    Each of ``results.warnings`` (what limits the meaning of the result) goes to stderr
+    as ``torsio COMMAND: warning: ...``. Returns the exit status, 0."""
+    for text in getattr(results, "warnings", ()):
+        print(f"torsio {args.command}: warning: {text}", file=sys.stderr)
     written: dict[str, str] = {}
     if "out" in outputs:
         written["out"] = str(results.save(outputs["out"]))

@@ -185,28 +185,8 @@ def _range_bounds(text: str, option: str, kind: str) -> tuple[float, float, int]
     return start, stop, count
 
 
-_KEYS = {
-    "wob": "--wob",
-    "rpm": "--rpm",
-    "pi1": "--pi1",
-    "pi2": "--pi2",
-    "grid": "--wob/--rpm",
-    "duration": "--duration (simulation.duration)",
-    "steady_window": "--window",
-    "simulation.duration": "--duration",
-    "simulation.steady_window": "--window",
-    "threshold": "--threshold",
-    "refine": "--refine",
-    "rtol": "--rtol (simulation.rtol)",
-    "atol": "simulation.atol",
-    "steady_tolerance": "--steady-tol",
-    "engine": "--engine",
-    "workers": "--workers",
-    "scheduler": "--scheduler",
-    "out": "--out",
-    "timeout": "--timeout",
-    "on_failure": "--on-failure",
-}
+_ARGUMENTS = {"grid": "--wob/--rpm", "wob": "--wob", "rpm": "--rpm", "pi1": "--pi1", "pi2": "--pi2"}
+"""Names of the grid's arguments in errors (the options name themselves: MapOptions.flag)."""
 
 
 def run(args: argparse.Namespace) -> int:
@@ -216,19 +196,20 @@ def run(args: argparse.Namespace) -> int:
     try:
         return _run(args)
     except ConfigError as exc:
-        raise ConfigError(_KEYS.get(exc.key, exc.key), exc.message) from None
+        from torsio.analysis.map_options import MapOptions
+
+        key = _ARGUMENTS.get(exc.key) or MapOptions.flag(exc.key)
+        if key == exc.key and exc.key in ("workers", "scheduler", "out"):
+            key = f"--{exc.key}"
+        raise ConfigError(key, exc.message) from None
 
 
 def _run(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from torsio.analysis.maps import (
-        MapFailed,
-        MapInterrupted,
-        check_grid_size,
-        dimensionless_map,
-        severity_map,
-    )
+    from torsio.analysis.map_results import MapInterrupted
+    from torsio.analysis.map_runs import MapFailed, check_grid_size
+    from torsio.analysis.maps import dimensionless_map, severity_map
     from torsio.errors import ConfigError
     from torsio.physics.system import System
 
@@ -268,26 +249,15 @@ def _run(args: argparse.Namespace) -> int:
         config, **{k: v for k, v in common.discretization_overrides(args).items() if v is not None}
     )
     simulation = dict(config.simulation.options)
-    duration = common.parse_time(args.duration, "--duration")
-    window = common.parse_time(args.window, "--window")
-    options: dict[str, Any] = {
-        "duration": duration if duration is not None else simulation.get("duration"),
-        "steady_window": window if window is not None else simulation.get("steady_window"),
-        "executor": args.workers if args.workers is not None else args.scheduler,
-        "engine": args.engine,
-        "timeout": args.timeout,
-        "progress": (not args.json) and sys.stdout.isatty() or None,
-    }
-    if args.threshold is not None:
-        options["threshold"] = args.threshold
-    if args.refine is not None:
-        options["refine"] = args.refine
-    for key in ("rtol", "atol"):  # the file's tolerances, unless --rtol says otherwise
-        if key in simulation:
-            options[key] = simulation[key]
-    if args.rtol is not None:
-        options["rtol"] = args.rtol
+    options = _map_options(args, simulation)
     single_run_only = sorted(set(simulation) & {"method", "output_step", "stick_threshold"})
+    if system.model.time_step is not None:  # fixed steps, no integrator: --rtol is an error
+        from torsio.analysis.wave import integrator_note, refuse_integrator_options
+
+        refuse_integrator_options({"--rtol (simulation.rtol)": args.rtol})
+        unused = sorted(set(simulation) & {"rtol", "atol"})
+        if unused:
+            print(f"torsio map: {integrator_note(unused)}", file=sys.stderr)
     if single_run_only:
         print(
             f"torsio map: [simulation] {', '.join(single_run_only)} apply to single runs "
@@ -295,17 +265,17 @@ def _run(args: argparse.Namespace) -> int:
             "engine (--engine) and reads S_SS from the extremes of the bit speed",
             file=sys.stderr,
         )
-    if args.steady_tol is not None:
-        options["steady_tolerance"] = args.steady_tol
-    if args.on_failure is not None:
-        options["on_failure"] = args.on_failure
     x = np.linspace(x_start, x_stop, x_count)
     y = np.linspace(y_start, y_stop, y_count)
+    run_on: dict[str, Any] = {
+        "executor": args.workers if args.workers is not None else args.scheduler,
+        "progress": (not args.json) and sys.stdout.isatty() or None,
+    }
     try:
         if dimensionless:
-            result = dimensionless_map(system, pi1=x, pi2=y, **options)
+            result = dimensionless_map(system, x, y, options, **run_on)
         else:
-            result = severity_map(system, wob=y, rpm=x, **options)
+            result = severity_map(system, y, x, options, **run_on)
     except MapInterrupted as exc:
         if args.out is not None:
             partial = _partial_path(Path(args.out))
@@ -322,6 +292,26 @@ def _run(args: argparse.Namespace) -> int:
             exc.args = (f"{exc}; partial results written to {partial} (marked incomplete)",)
         raise
     return common.write_and_print(args, result, outputs, _print_summary)
+
+
+def _map_options(args: argparse.Namespace, simulation: dict[str, Any]) -> Any:
+    """The map's options from its flags, each read where the option says (its flag, else
+    its ``[simulation]`` key): :class:`torsio.analysis.map_options.MapOptions`."""
+    import attrs
+
+    from torsio.analysis.map_options import MapOptions
+
+    values: dict[str, Any] = {}
+    for field in attrs.fields(MapOptions):
+        flag, key = field.metadata["flag"], field.metadata["key"]
+        value = getattr(args, flag[2:].replace("-", "_")) if flag else None
+        if value is not None and field.name in ("duration", "steady_window"):
+            value = common.parse_time(value, flag)
+        if value is None and key:
+            value = simulation.get(key.removeprefix("simulation."))
+        if value is not None:
+            values[field.name] = value
+    return MapOptions(**values)
 
 
 def _use_threads(count: int) -> None:

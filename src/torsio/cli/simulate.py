@@ -65,23 +65,19 @@ def run(args: argparse.Namespace) -> int:
         "rtol": args.rtol,
         "atol": args.atol,
     }
+    _refuse_integrator_options(config, args, overrides)
     common.require_plotting(args)
     common.warn_small_bare_wob(args.wob)
-    from torsio.solvers.chunks import TerminalProgress
-
-    # on stderr only: on a terminal from 1 s on, else a line every 10 s of a long run
-    with TerminalProgress("torsio simulate", lambda t: f"{t:.4g} s") as progress:
-        try:
-            results = simulate_config(
-                config,
-                wob=args.wob,
-                rpm=args.rpm,
-                discretization=common.discretization_overrides(args),
-                progress=progress,
-                **overrides,
-            )
-        except ConfigError as exc:
-            raise ConfigError(_option_name(exc.key), exc.message) from None
+    try:  # a long run shows progress on stderr (simulate's default), never on stdout
+        results = simulate_config(
+            config,
+            wob=args.wob,
+            rpm=args.rpm,
+            discretization=common.discretization_overrides(args),
+            **overrides,
+        )
+    except ConfigError as exc:
+        raise ConfigError(_option_name(exc.key), exc.message) from None
     fallback = results.solver.get("fallback")
     if fallback:
         print(
@@ -90,6 +86,23 @@ def run(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
     return common.write_and_print(args, results, outputs, _print_summary)
+
+
+def _refuse_integrator_options(config: Any, args: argparse.Namespace, given: dict) -> None:
+    """The wave model has no integrator: --method/--rtol/--atol are errors, the file's a note."""
+    import sys
+
+    from torsio.analysis.wave import INTEGRATOR_OPTIONS, integrator_note, refuse_integrator_options
+
+    strategy = common.discretization_overrides(args).get("strategy")
+    if (strategy or config.discretization.strategy) != "wave" or config.chain is not None:
+        return
+    refuse_integrator_options(
+        {_option_name(f"simulation.{k}"): given[k] for k in INTEGRATOR_OPTIONS}
+    )
+    unused = sorted(set(config.simulation.options) & set(INTEGRATOR_OPTIONS))
+    if unused:
+        print(f"torsio simulate: {integrator_note(unused)}", file=sys.stderr)
 
 
 _OPTIONS = {

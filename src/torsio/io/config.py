@@ -40,9 +40,11 @@ from torsio.io.config_tables import (
     _table,
 )
 from torsio.io.top_drive_config import TopDriveConfig, parse_top_drive
+from torsio.io.well_config import well_table
 from torsio.model.components import STEEL
 from torsio.model.drillstring import DrillString
 from torsio.units import RPM_TO_RAD_S, to_si
+from torsio.well.wellbore import Wellbore
 
 TOP_LEVEL_KEYS = {
     "name",
@@ -55,6 +57,7 @@ TOP_LEVEL_KEYS = {
     "operation",
     "simulation",
     "top_drive",
+    "well",
 }
 DISCRETIZATION_KEYS = {
     "strategy",
@@ -69,15 +72,8 @@ DISCRETIZATION_KEYS = {
 }
 DAMPING_KEYS = {"alpha", "beta", "ratios", "modes"}
 OPERATION_KEYS = {"wob", "rpm"}
-SIMULATION_KEYS = {
-    "duration",
-    "steady_window",
-    "method",
-    "rtol",
-    "atol",
-    "output_step",
-    "stick_threshold",
-}
+SIMULATION_KEYS = {"duration", "steady_window", "method", "rtol", "atol", "output_step"}
+SIMULATION_KEYS |= {"stick_threshold"}
 
 
 @attrs.frozen
@@ -162,6 +158,7 @@ class Config:
     source: str = ""
     chain: ChainConfig | None = None
     top_drive: TopDriveConfig = attrs.field(factory=TopDriveConfig)
+    well: Wellbore | None = None  # [well] (io/well_config.py); None: vertical, no contact
 
     def model(self, **overrides: Any) -> Any:
         """Discretize the string: the configured strategy, with ``overrides`` of its options.
@@ -291,7 +288,8 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
             f"the top drive is {top_drive.kind!r}: its speed follows from the torque balance, "
             "so no rotary speed may be set; remove operation.rpm",
         )
-    return attrs.evolve(config, top_drive=top_drive)
+    well = well_table(table, config.string, source)
+    return attrs.evolve(config, top_drive=top_drive, well=well)
 
 
 def _string_config(table: Mapping[str, Any], name: str, source: str) -> Config:

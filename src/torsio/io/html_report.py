@@ -114,7 +114,7 @@ def report_figures(ctx: ReportContext) -> list[tuple[Any, str]]:
     results = ctx.transient
     if results is not None:
         figure = Figure(figsize=(8.0, 7.0))
-        results.plot(axes=figure.subplots(3, 1, sharex=True))
+        results.plot(ax=figure.subplots(3, 1, sharex=True))
         figures.append(
             (
                 figure,

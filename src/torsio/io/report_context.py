@@ -101,20 +101,17 @@ class ReportContext:
         return damping
 
     @functools.cached_property
-    def is_wave(self) -> bool:
-        """Whether the model is the distributed (wave) model rather than a lumped one."""
-        from torsio.model.wave import is_wave_model
-
-        return is_wave_model(self.model)
+    def has_matrices(self) -> bool:
+        """Whether the model has matrices [I], [K] (a lumped model): the report shows its
+        modal analysis; otherwise (the distributed model) its grid and exact continuum."""
+        return bool(self.model.has_matrices)
 
     @functools.cached_property
     def first_frequency(self) -> float:
         """omega_1 [rad/s]: the model's first mode (the wave model's: its exact continuum)."""
-        if self.is_wave:
-            from torsio.model.wave import first_frequency
-
-            return first_frequency(self.model)  # type: ignore[arg-type]
-        return float(self.modal.frequencies_rad[0])
+        if self.has_matrices:  # the modal analysis the report shows
+            return float(self.modal.frequencies_rad[0])
+        return self.model.first_frequency()
 
     @functools.cached_property
     def modal(self) -> ModalResults:

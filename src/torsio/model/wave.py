@@ -53,6 +53,8 @@ import numpy as np
 from torsio.errors import ConfigError
 from torsio.model.continuum import continuum_modes
 from torsio.model.drillstring import DrillString
+from torsio.model.protocol import ModelEngines
+from torsio.model.wave_grid import MAX_CELLS, choose_time_step
 
 DEFAULT_MAX_TIME_STEP = 5e-3
 """Default largest time step of the characteristic grid [s]."""
@@ -64,8 +66,13 @@ DEFAULT_DRAG_SPACING = 4
 """Default number of cells between the nodes that carry the distributed drag (docs/wave.md
 gives its effect on S_SS: less than that of halving the time step)."""
 
-MAX_CELLS = 200_000
-"""Largest number of cells a wave grid may have (memory and run time grow with it)."""
+
+WAVE_ENGINES = ModelEngines(
+    transient="torsio.analysis.wave:simulate_wave",
+    batch="torsio.solvers.wave_batch:simulate_wave_batch",
+)
+"""The engines of the distributed model: its stepping along characteristics, for one run
+and for many."""
 
 
 def _as_tuple(values: Any) -> tuple[Any, ...]:
@@ -102,7 +109,18 @@ class WaveModel:
         strategy C's string, the limit its discretization converges to.
     drag_spacing : int
         Cells between the nodes that carry the distributed drag (:func:`drag_lumping`).
+
+    The grid is a :class:`torsio.model.protocol.StructuralModel`: it has no matrices and
+    no linearization (yet), steps with its own fixed ``time_step`` and runs on
+    :data:`WAVE_ENGINES`.
     """
+
+    linearizable: ClassVar[bool] = False
+    """No linearization of the distributed model (yet): no linear stability analysis."""
+    has_matrices: ClassVar[bool] = False
+    """No [I], [K]: its modes are the exact continuum of :meth:`grid_string`."""
+    engines: ClassVar[ModelEngines] = WAVE_ENGINES
+    """The engines that run the grid (:func:`torsio.model.protocol.resolve`)."""
 
     string: DrillString
     time_step: float
@@ -178,15 +196,18 @@ class WaveModel:
 
     @property
     def equivalent_stiffness(self) -> float:
-        """k_eq of Eq. 9 for the string on the grid: :attr:`static_stiffness` [N m/rad]."""
-        return self.static_stiffness
-
-    @property
-    def static_stiffness(self) -> float:
-        """k_eq = 1 / sum(L_i / (G_i J_i)) over the grid's sections (top held) [N m/rad]."""
+        """k_eq of Eq. 9 for the string on the grid [N m/rad]: its static stiffness seen at
+        the bit with the top held, 1 / sum(L_i / (G_i J_i)) over the grid's sections (the
+        drill pipes only with ``rigid_bha``)."""
         grid = self.grid_string()
         sections = grid.drill_pipe_sections if self.rigid_bha else grid.flexible_sections
         return 1.0 / sum(1.0 / s.stiffness for s in sections)
+
+    def first_frequency(self) -> float:
+        """First natural frequency [rad/s] of the string on the grid (top held, exact
+        continuum; the rigid-BHA continuum with ``rigid_bha``)."""
+        modes = continuum_modes(self.grid_string(), count=1, rigid_bha=self.rigid_bha)
+        return float(modes.frequencies_rad[0])
 
     def describe(self) -> dict[str, Any]:
         """Grid facts for reports and JSON."""
@@ -242,29 +263,6 @@ def drag_lumping(cells: int, spacing: int) -> tuple[np.ndarray, np.ndarray]:
     return nodes, shares
 
 
-def choose_time_step(
-    travel_times: np.ndarray, max_time_step: float, tolerance: float
-) -> tuple[float, np.ndarray]:
-    """The largest dt <= ``max_time_step`` whose rounding of travel times stays within tolerance.
-
-    Candidates make one section's travel time a whole number of steps (tau_k / n); among
-    those up to four times finer than ``max_time_step`` the largest meeting ``tolerance``
-    is taken, else the one with the smallest error. Returns (dt, cells per section).
-    """
-    taus = np.asarray(travel_times, dtype=float)
-    candidates = []
-    for tau in taus:
-        first = max(1, math.ceil(tau / max_time_step - 1e-12))
-        candidates.append(tau / np.arange(first, 4 * first + 8))
-    steps = np.sort(np.concatenate(candidates))[::-1]
-    steps = steps[steps <= max_time_step * (1 + 1e-12)]
-    cells = np.maximum(1, np.round(taus[None, :] / steps[:, None]))
-    errors = (np.abs(cells * steps[:, None] - taus[None, :]) / taus[None, :]).max(axis=1)
-    good = np.flatnonzero(errors <= tolerance)
-    index = int(good[0]) if good.size else int(np.argmin(errors))
-    return float(steps[index]), cells[index].astype(int)
-
-
 class WaveStrategy:
     """The ``wave`` strategy: the distributed model on a characteristic grid.
 
@@ -309,13 +307,15 @@ class WaveStrategy:
             "travel_time_tolerance", travel_time_tolerance, DEFAULT_TRAVEL_TIME_TOLERANCE
         )
         if rigid_bha is not None and not isinstance(rigid_bha, bool):
-            raise ConfigError("rigid_bha", f"expected true or false, got {rigid_bha!r}")
+            raise ConfigError(
+                "discretization.rigid_bha", f"expected true or false, got {rigid_bha!r}"
+            )
         self.rigid_bha = bool(rigid_bha)
         if drag_spacing is None:
             drag_spacing = DEFAULT_DRAG_SPACING
         if isinstance(drag_spacing, bool) or not isinstance(drag_spacing, int) or drag_spacing < 1:
             raise ConfigError(
-                "drag_spacing",
+                "discretization.drag_spacing",
                 f"expected a whole number of cells >= 1 between the drag nodes, got "
                 f"{drag_spacing!r}",
             )
@@ -325,15 +325,28 @@ class WaveStrategy:
         """The characteristic grid of ``string``."""
         sections = string.drill_pipe_sections if self.rigid_bha else string.flexible_sections
         if not sections:
-            raise ConfigError("rigid_bha", "the string has no drill pipes above its BHA")
+            raise ConfigError(
+                "discretization.rigid_bha", "the string has no drill pipes above its BHA"
+            )
         taus = np.array([s.wave_travel_time for s in sections])
         if taus.sum() / self.time_step > MAX_CELLS:
             raise ConfigError(
-                "time_step",
-                f"{taus.sum() / self.time_step:.0f} cells exceed the limit of {MAX_CELLS}; "
-                f"give a time step of at least {taus.sum() / MAX_CELLS:.3g} s",
+                "discretization.time_step",
+                f"a time step of {self.time_step:g} s gives {taus.sum() / self.time_step:.3g} "
+                f"cells, more than the limit of {MAX_CELLS:,}; expected a time step of at least "
+                f"{taus.sum() / MAX_CELLS:.3g} s",
             )
         dt, cells = choose_time_step(taus, self.time_step, self.travel_time_tolerance)
+        most = int(cells.max())
+        if self.drag_spacing > most:
+            longest = sections[int(np.argmax(cells))]
+            raise ConfigError(
+                "discretization.drag_spacing",
+                f"expected 1 to {most} cells between the drag nodes (the most cells of any "
+                f"section on this grid: {longest.name or longest.kind}, {most} cells of "
+                f"{float(longest.material.wave_speed) * dt:.3g} m), got {self.drag_spacing}; "
+                f"a spacing of {most} or more leaves every section its end dampers only",
+            )
         polar = np.array([s.polar_moment for s in sections])
         density = np.array([s.material.density for s in sections])
         speed = np.array([s.material.wave_speed for s in sections])
@@ -348,6 +361,8 @@ class WaveStrategy:
             bit_inertia=float(string.bha_inertia if self.rigid_bha else string.bit.inertia),
             details={
                 "time_step_s": dt,
+                "max_time_step_s": self.time_step,
+                "travel_time_tolerance": self.travel_time_tolerance,
                 "cells": {s.name or s.kind: int(n) for s, n in zip(sections, cells, strict=True)},
                 "drag_spacing": self.drag_spacing,
             },
@@ -361,12 +376,16 @@ def _positive(key: str, value: Any, default: float) -> float:
         return default
     ok = isinstance(value, int | float) and not isinstance(value, bool)
     if not ok or not (math.isfinite(value) and value > 0):
-        raise ConfigError(key, f"expected a positive number, got {value!r}")
+        raise ConfigError(f"discretization.{key}", f"expected a positive number, got {value!r}")
     return float(value)
 
 
 def is_wave_model(model: Any) -> bool:
-    """Whether ``model`` is the wave strategy's grid (not a lumped model)."""
+    """Whether ``model`` is the wave strategy's grid (not a lumped model).
+
+    For ``torsio.model`` itself: elsewhere a model is read through its protocol
+    (:class:`torsio.model.protocol.StructuralModel`), never by its kind.
+    """
     return isinstance(model, WaveModel)
 
 
@@ -421,12 +440,8 @@ def equivalent_alpha(alpha: float, beta: float, first_frequency: float) -> float
 
 
 def first_frequency(grid: WaveModel) -> float:
-    """First natural frequency [rad/s] of the string on the grid (top held, exact continuum).
-
-    The rigid-BHA continuum with ``rigid_bha``.
-    """
-    modes = continuum_modes(grid.grid_string(), count=1, rigid_bha=grid.rigid_bha)
-    return float(modes.frequencies_rad[0])
+    """omega_1 [rad/s] of the string on the grid (:meth:`WaveModel.first_frequency`)."""
+    return grid.first_frequency()
 
 
 from torsio.hookspecs import hookimpl  # noqa: E402  (after the class it registers)

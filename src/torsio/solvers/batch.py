@@ -73,6 +73,7 @@ __all__ = [
     "reference_severity",
     "resolve_engine",
     "simulate_batch",
+    "simulate_lumped_batch",
 ]
 
 ENGINES = ("auto", "compiled", "numba", "numpy", "scipy")
@@ -307,22 +308,41 @@ def simulate_batch(
         Failed points have NaN severity and a non-zero status; they are never
         silently dropped.
     """
-    from torsio.model.wave import is_wave_model
+    from torsio.model.protocol import resolve
 
-    if is_wave_model(system.model):  # the distributed model: its own stepping
-        from torsio.solvers.wave_batch import simulate_wave_batch
+    run = resolve(system.model.engines.batch)  # the model names what runs it
+    return run(
+        system,
+        wob,
+        rpm,
+        duration=duration,
+        steady_window=steady_window,
+        rtol=rtol,
+        atol=atol,
+        max_step=max_step,
+        max_steps=max_steps,
+        engine=engine,
+        threads=threads,
+        steady_tolerance=steady_tolerance,
+    )
 
-        return simulate_wave_batch(
-            system,
-            wob,
-            rpm,
-            duration,
-            steady_window,
-            rtol,
-            atol,
-            threads=threads,
-            steady_tolerance=steady_tolerance,
-        )
+
+def simulate_lumped_batch(
+    system: System,
+    wob: Any,
+    rpm: Any = None,
+    duration: float | None = None,
+    steady_window: float | None = None,
+    rtol: float = DEFAULT_RTOL,
+    atol: float = DEFAULT_ATOL,
+    max_step: float | None = None,
+    max_steps: int = DEFAULT_MAX_STEPS,
+    engine: str = "auto",
+    threads: int | None = None,
+    steady_tolerance: float = DEFAULT_STEADY_TOLERANCE,
+) -> BatchResults:
+    """:func:`simulate_batch` of a lumped model (its batch engine,
+    :data:`torsio.model.lumped.LUMPED_ENGINES`): the arguments of :func:`simulate_batch`."""
     wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)
     for key, value in (("rtol", rtol), ("atol", atol)):
         if not (math.isfinite(value) and value > 0):

@@ -140,6 +140,15 @@ class BatchResults:
         """Whether each point was integrated successfully."""
         return self.status == STATUS_OK
 
+    def stuck(self, stick_threshold: float) -> np.ndarray:
+        """Whether the bit stuck throughout each point's steady window: |bit speed| below
+        ``stick_threshold`` times Omega (the set speed, or the mean top-drive speed of a
+        torque-driven top) at every step there; False where the point failed."""
+        reference = np.where(np.isnan(self.rpm), self.top_speed_mean, self.rpm * math.pi / 30.0)
+        with np.errstate(invalid="ignore"):
+            fastest = np.maximum(np.abs(self.bit_speed_max), np.abs(self.bit_speed_min))
+            return self.ok & (fastest < stick_threshold * reference)
+
     def failures(self) -> list[str]:
         """One line per failed point: operating point and reason."""
         return [

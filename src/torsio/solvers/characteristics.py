@@ -141,13 +141,15 @@ SUMMARY_FIELDS = (
 )
 """Entries of the run summary: extremes and sums over the window; energies [J] over the run."""
 
-SUMMARY_SIZE = 25
+SUMMARY_SIZE = 26
 """Length of the kernel's summary array: :data:`SUMMARY_FIELDS`, the powers of the last
-step (10-14), the steps taken before (15), the steady-cycle tracker (16-22, 24) and the
-step the run ended on a steady cycle (23, 0: it did not)."""
+step (10-14), the steps taken before (15), the steady-cycle tracker (16-22, 24), the
+step the run ended on a steady cycle (23, 0: it did not) and the torque on bit of the
+last step (25), so that a run continued by another call takes the same steps."""
 
 # the steady-cycle tracker in the summary array
 _COUNT, _T_LAST, _RUN_MAX, _RUN_MIN, _CYCLE_MAX, _CYCLE_MIN, _CHANGE, _ENDED, _KEPT = range(16, 25)
+_BIT_TORQUE = 25
 
 
 @njit(cache=True, nogil=True, _nrt=False)
@@ -210,7 +212,9 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     propagator, forcing, constant, coefficients,
     torque, slope, parameters, records, field, summary, cross, buffers, scratch, heads, top_work,
 ):  # fmt: skip
-    """Advance ``settings[8]`` steps; see the module docstring. Works in place on the
+    """Advance ``settings[8]`` steps of a run of ``settings[18]`` steps (the ``summary``
+    counts those taken before: a run may take its steps in several calls, with the same
+    result); see the module docstring. Works in place on the
     node-ordered state (p, m, top_state, bit_state) and the ``summary``; ``buffers``
     (2, KernelLayout.buffer_size), ``scratch`` (2, nodes), ``heads`` (sections, 4) and
     ``top_work`` (top states) are its work space, allocated by the caller."""
@@ -232,8 +236,9 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     steady_tolerance = settings[15]
     reference = settings[16]
     cycle_gap = settings[17]
-    t_end = steps * dt  # this call's end, for the cycles left, and its window's length
-    window_length = (steps - window_start + 1) * dt
+    run_steps = int(settings[18])
+    t_end = run_steps * dt  # the run's end, for the cycles left, and its window's length
+    window_length = (run_steps - window_start + 1) * dt
     track = steady_tolerance > 0.0 and reference > 0.0
     count = layout.shape[0]
     last = count - 1
@@ -253,7 +258,10 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     speeds = scratch[0]
     torques = scratch[1]
     w_now = bit_state[0]
-    t_now = torque(parameters, w_now, wob, radius)
+    if summary[15] > 0.0:  # a run continued: the torque the last step solved for
+        t_now = summary[_BIT_TORQUE]
+    else:
+        t_now = torque(parameters, w_now, wob, radius)
     taken = 0
     for step in range(steps):
         m_top_old = M[_end_slots(layout, spacing, heads, 0, False)[1]]
@@ -432,4 +440,5 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
                 summary[_ENDED] = absolute
                 break
     summary[15] += taken
+    summary[_BIT_TORQUE] = t_now
     _copy_nodes(layout, spacing, P, M, heads, p, m, False)

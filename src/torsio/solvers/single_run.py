@@ -5,9 +5,9 @@ the same chain, top drive, law kernel and steps, from any initial state, writing
 state ``[z, phi_0, v_0, ...]`` of :class:`torsio.physics.dynamics.Dynamics` at each time
 of the output grid from the cubic Hermite interpolant of the step that covers it
 (fourth-order accurate, like the method; the steps are not shortened to hit the grid).
-It runs over chunks of the grid of bounded wall time (:mod:`torsio.solvers.chunks`),
-state carried exactly, so Ctrl-C and SIGTERM stop it within about 0.1 s and a long run
-reports its progress; the chunking does not change a step.
+It runs over chunks of the grid of bounded wall time (:mod:`torsio.solvers.run_chunks`),
+state carried exactly, so Ctrl-C and SIGTERM stop it within about 0.2 s and a long run
+reports its progress (in output samples); the chunking does not change a step.
 
 :func:`compiled_engine` says whether the engine can run a System, and if not, why.
 """
@@ -27,8 +27,8 @@ from torsio.errors import ConfigError, SolverError
 from torsio.physics.dynamics import Dynamics
 from torsio.physics.system import System
 from torsio.solvers.batch_results import STATUS_MESSAGES
-from torsio.solvers.chunks import CHUNK_SECONDS, run_in_chunks
 from torsio.solvers.law_kernels import LawKernel, law_kernel, python_law_kernel
+from torsio.solvers.run_chunks import CHUNK_SECONDS, run_in_chunks
 
 __all__ = [
     "STEPS_PER_SAMPLE",
@@ -143,12 +143,18 @@ def integrate_compiled(
     run_start(model.chain, top, kernel.torque, kernel.parameters, settings, wob, omega, omega_set,
               vectors, small)  # fmt: skip
 
-    def advance(stop: int) -> int:
-        run_chunk(model.chain, top, *law, settings, wob, omega, omega_set, vectors, small,
-                  grid, out, stop)  # fmt: skip
+    def written() -> int:
         return int(small[CARRY + 1, 3])
 
-    run_in_chunks(advance, samples, progress, first=max(1, samples // 1000), seconds=chunk_seconds)
+    def advance(count: int) -> bool:
+        """The next ``count`` samples (or more, if a step covers them); True: it ended."""
+        stop = written() + count
+        run_chunk(model.chain, top, *law, settings, wob, omega, omega_set, vectors, small,
+                  grid, out, stop)  # fmt: skip
+        return written() < stop  # the end of the run, or a failure (the status says)
+
+    report = None if progress is None else (lambda done, total: progress(written(), total))
+    run_in_chunks(samples, advance, report, first=max(1, samples // 1000), seconds=chunk_seconds)
     carry, more = small[CARRY], small[CARRY + 1]
     return CompiledRun(
         out,
@@ -169,7 +175,7 @@ def integrate_run(
     window: float,
     options: SimulationOptions,
     where: str,
-    progress: Callable[[float, float], None] | None,
+    progress: Callable[[int, int], None] | None,
 ) -> tuple[np.ndarray, dict[str, Any]]:
     """The states (size, samples) on the grid and the solver's record; errors never hidden.
 
@@ -207,15 +213,12 @@ def _integrate_compiled(
     window: float,
     options: SimulationOptions,
     where: str,
-    progress: Callable[[float, float], None] | None,
+    progress: Callable[[int, int], None] | None,
 ) -> tuple[np.ndarray, dict[str, Any]]:
     """The compiled RODAS4 engine (:mod:`torsio.solvers.single_run`) over the grid."""
     run = float(time_grid[-1])
-    report = None
-    if progress is not None:
-        report = lambda done, total: progress(float(time_grid[done - 1]), run)  # noqa: E731
     result = integrate_compiled(
-        system, dynamics, kernel, y0, time_grid, window, options.rtol, options.atol, report
+        system, dynamics, kernel, y0, time_grid, window, options.rtol, options.atol, progress
     )
     if result.status != 0:
         raise SolverError(

@@ -7,7 +7,13 @@ fixed grid (no tolerances: ``rtol`` and ``atol`` are kept for the record only); 
 the bit-speed extremes over every step of the window. A run ends early once it is on a
 steady cycle within ``steady_tolerance`` (:mod:`torsio.solvers.characteristics`; not with
 a torque-driven top). The engine is ``"wave"`` (the law's compiled kernel) or
-``"wave-python"`` (a law without one).
+``"wave-python"`` (a law without one); ``engine`` may be ``"auto"`` or ``"numba"`` (the
+compiled kernel, required), the lumped engines' ``"numpy"`` and ``"scipy"`` are refused.
+
+The runs are bounded up front (:func:`torsio.analysis.budget.check_wave_steps`, the
+window's steps: :func:`torsio.analysis.simulation_options.check_window_samples`) and step
+in chunks (:mod:`torsio.solvers.run_chunks`): on Ctrl-C the points running on other
+threads stop at their next chunk.
 """
 
 from __future__ import annotations
@@ -20,27 +26,19 @@ from typing import Any
 
 import numpy as np
 
-from torsio.analysis.severity import default_times
-from torsio.errors import SolverError
-from torsio.model.wave import check_wave_damping, first_frequency
+from torsio.analysis.budget import check_wave_steps
+from torsio.analysis.severity import check_window, default_times
+from torsio.analysis.simulation_options import check_window_samples
+from torsio.errors import ConfigError, SolverError
+from torsio.model.wave import check_wave_damping
 from torsio.solvers.batch_results import (
     DEFAULT_STEADY_TOLERANCE,
     BatchResults,
     batch_points,
     check_steady_tolerance,
 )
-from torsio.solvers.wave_march import march
+from torsio.solvers.wave_march import RunCancelled, law_functions, march
 from torsio.solvers.wave_top import top_boundary
-
-
-def wave_scales(grid: Any) -> tuple[float, float]:
-    """(k_eq [N m/rad], omega_1 [rad/s]) of the continuum on the grid.
-
-    k_eq = 1 / sum(L_i / (G_i J_i)): the static stiffness seen at the bit with the top
-    held (Eq. 9 for the continuous string); omega_1 the grid string's first exact mode
-    (the rigid-BHA continuum with ``rigid_bha``).
-    """
-    return grid.static_stiffness, first_frequency(grid)
 
 
 def _worker_count(threads: int | None, points: int) -> int:
@@ -56,6 +54,33 @@ def _worker_count(threads: int | None, points: int) -> int:
     return max(1, min(int(threads), points))
 
 
+WAVE_ENGINES = ("auto", "numba", "compiled")
+"""Engines a wave map accepts: its own stepping (compiled with numba when the law has a
+kernel); ``numba`` and ``compiled`` require the kernel."""
+
+
+def _check_engine(engine: Any, law: Any) -> tuple[Any, Any, np.ndarray] | None:
+    """The law's compiled kernel functions for ``engine`` (None: the law's own choice)."""
+    if engine not in WAVE_ENGINES:
+        raise ConfigError(
+            "engine",
+            f"the wave model steps along characteristics with its own kernel; expected one "
+            f"of {', '.join(WAVE_ENGINES)}, got {engine!r} (numpy and scipy are engines of "
+            "the lumped strategies)",
+        )
+    if engine == "auto":
+        return None
+    torque, slope, parameters, name = law_functions(law)
+    if name != "numba":
+        raise ConfigError(
+            "engine",
+            f"engine {engine!r} needs the bit-rock law's compiled kernel, and "
+            f"{getattr(law, 'name', type(law).__name__)!r} has none (or numba is not "
+            "installed); use engine='auto' (plain Python steps, slowly)",
+        )
+    return torque, slope, parameters
+
+
 def simulate_wave_batch(
     system: Any,
     wob: Any,
@@ -66,6 +91,7 @@ def simulate_wave_batch(
     atol: float = math.nan,
     threads: int | None = None,
     steady_tolerance: float = DEFAULT_STEADY_TOLERANCE,
+    engine: str = "auto",
     **ignored: Any,
 ) -> Any:
     """S_SS of the wave model at each (wob[k], rpm[k]); returns a ``BatchResults``.
@@ -73,24 +99,31 @@ def simulate_wave_batch(
     ``threads``: points run side by side on so many threads (default: numba's thread
     count, as the lumped engine; one thread off the main thread, e.g. in a Dask worker).
     ``steady_tolerance``: as for the lumped engine (S_SS units; 0 runs to the end).
+    ``rtol`` and ``atol`` are kept for the record (the grid has no tolerance).
     """
     check_steady_tolerance(steady_tolerance)
     grid = system.model
     alpha = check_wave_damping(system.damping, system.model)
+    kernel = _check_engine(engine, system.law)
     wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)
-    omega_1 = first_frequency(grid)
-    if duration is None or steady_window is None:
-        default_duration, default_window = default_times(omega_1)
-        duration = default_duration if duration is None else duration
-        steady_window = default_window if steady_window is None else steady_window
+    omega_1 = grid.first_frequency()
+    default_duration, default_window = default_times(omega_1)
+    if duration is not None:  # the window at most half a given run, as run_times says
+        default_window = min(default_window, 0.5 * float(duration))
+    duration = default_duration if duration is None else float(duration)
+    window_given = steady_window is not None and float(steady_window) != default_window
+    steady_window = default_window if steady_window is None else float(steady_window)
+    check_window(duration, steady_window)
     dt = grid.time_step
-    steps = max(1, int(round(float(duration) / dt)))
-    window_steps = max(1, int(round(float(steady_window) / dt)))
+    steps = check_wave_steps(grid, duration)
+    check_window_samples(steady_window, None, dt, window_given, duration)
+    window_steps = int(round(steady_window / dt))
     out = np.full((wob_arr.size, 3), np.nan)
     status = np.zeros(wob_arr.size, dtype=np.int64)
     taken = np.zeros(wob_arr.size, dtype=np.int64)
     steady = 0.0 if torque_driven else float(steady_tolerance)
     engines = set()
+    cancelled = threading.Event()
 
     def run_point(k: int) -> None:
         point = system.at(wob=float(wob_arr[k]), **({} if torque_driven else {"rpm": rpm_arr[k]}))
@@ -98,9 +131,12 @@ def simulate_wave_batch(
         try:
             run = march(grid, top, point.law, point.wob, point.bit_radius, alpha, steps,
                         window_start=steps - window_steps + 1, track_energy=False,
-                        steady_tolerance=steady, cycle_gap=0.5 * math.pi / omega_1)  # fmt: skip
+                        steady_tolerance=steady, cycle_gap=0.5 * math.pi / omega_1,
+                        kernel=kernel, should_stop=cancelled.is_set)  # fmt: skip
         except SolverError:
             status[k] = 1
+            return
+        except RunCancelled:
             return
         summary = run.summary
         engines.add(run.engine)
@@ -119,7 +155,11 @@ def simulate_wave_batch(
             run_point(k)
     else:  # the compiled stepping releases the GIL: points run side by side
         with ThreadPoolExecutor(max_workers=workers) as pool:
-            list(pool.map(run_point, range(wob_arr.size)))
+            try:
+                list(pool.map(run_point, range(wob_arr.size)))
+            except BaseException:  # Ctrl-C: the other points stop at their next chunk
+                cancelled.set()
+                raise
     engine = "wave-python" if "python" in engines else "wave"
     elapsed = time.perf_counter() - start
     reference = out[:, 2] if torque_driven else rpm_arr * (math.pi / 30.0)

@@ -9,6 +9,7 @@ snapshots along the string and energy integrals.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import attrs
@@ -26,7 +27,12 @@ from torsio.solvers.characteristics import (
     node_offsets,
     rest_state,
 )
+from torsio.solvers.run_chunks import run_in_chunks
 from torsio.solvers.wave_top import TopArrays, with_node_damper
+
+
+class RunCancelled(Exception):
+    """Raised by :func:`march` when its ``should_stop`` says so between two chunks."""
 
 
 @attrs.frozen(eq=False)
@@ -152,6 +158,8 @@ def march(
     track_energy: bool = True,
     steady_tolerance: float = 0.0,
     cycle_gap: float = 0.0,
+    progress: Callable[[int, int], None] | None = None,
+    should_stop: Callable[[], bool] | None = None,
 ) -> WaveRun:
     """Advance the distributed model ``steps`` time steps from ``state`` (default: rest).
 
@@ -178,6 +186,16 @@ def march(
     cycle_gap : float
         Least time [s] between two ends of a cycle for ``steady_tolerance`` (a quarter of
         the first natural period in maps).
+    progress : callable, optional
+        ``progress(steps_done, steps)`` between chunks (:mod:`torsio.solvers.run_chunks`).
+    should_stop : callable, optional
+        Asked between chunks; when it returns true the run stops with
+        :class:`RunCancelled` (a map's other points after Ctrl-C).
+
+    The compiled steps run in chunks of about 0.2 s of wall time
+    (:func:`torsio.solvers.run_chunks.run_in_chunks`), so that Ctrl-C and SIGTERM stop a
+    run within that; the state passes from chunk to chunk unchanged, and the result is
+    the same to the last bit as that of one call over every step.
     """
     dt = grid.time_step
     if kernel is not None:
@@ -223,7 +241,7 @@ def march(
             dt, grid.bit_inertia, alpha, wob, radius, 1.0 if top.held else 0.0, top.set_speed,
             top.max_torque, steps, window_start, record_every, field_every, top.drag,
             1.0 if track_energy else 0.0, grid.drag_spacing, steady_tolerance, reference,
-            cycle_gap,
+            cycle_gap, steps,
         ]
     )  # fmt: skip
     cross = np.zeros((2, state.p.size + 2))
@@ -236,10 +254,16 @@ def march(
         state.p, state.m, state.top, state.bit, top.propagator, top.forcing, top.constant,
         top.coefficients, torque, slope, parameters, records, field, summary, cross, *work,
     )  # fmt: skip
-    if engine == "numba":
-        _march(*arguments)
-    else:
-        _python_march()(*arguments)
+    stepping = _march if engine == "numba" else _python_march()
+
+    def advance(count: int) -> bool:
+        if should_stop is not None and should_stop():
+            raise RunCancelled
+        settings[8] = count  # the steps of this call (settings[18]: of the run)
+        stepping(*arguments)
+        return bool(summary[9] or summary[23] > 0)  # a failed step, or a steady cycle
+
+    run_in_chunks(steps, advance, progress)
     if summary[9]:
         raise SolverError(
             f"the bit equation has no solution at step {int(summary[9])} "

@@ -1,0 +1,142 @@
+"""``torsio drag``: soft-string torque and drag of the string in its ``[well]``."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+from torsio.cli import common
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add the ``drag`` command to the ``torsio`` parser."""
+    parser = common.add_command(
+        subparsers,
+        "drag",
+        run,
+        "soft-string torque and drag: hookloads, surface torque, tension and torque vs depth",
+        "Soft-string torque and drag (Johancsik et al. 1984) of the string in the well of "
+        "[well]: hookloads tripping out, tripping in, rotating off and on bottom, the "
+        "surface torque, and tension and torque against depth. Without CONFIG: the "
+        "built-in deviated well (src/torsio/data/deviated_well.toml).",
+    )
+    parser.add_argument(
+        "config",
+        nargs="?",
+        metavar="CONFIG",
+        help="TOML configuration file with [well] (default: the built-in deviated well)",
+    )
+    parser.add_argument(
+        "--friction",
+        type=common.finite_float,
+        metavar="MU",
+        help="sliding friction factor for every hole section (instead of the well's)",
+    )
+    parser.add_argument(
+        "--wob", metavar="W", help="weight on bit on bottom: N or with units (default [operation])"
+    )
+    parser.add_argument(
+        "--bit-torque", metavar="T", help="torque on bit on bottom: N m or with units (default 0)"
+    )
+    parser.add_argument(
+        "--plot", metavar="FILE", help="tension and torque against depth (needs matplotlib)"
+    )
+    common.add_json_argument(parser)
+
+
+def _load(args: argparse.Namespace) -> Any:
+    from torsio.errors import ConfigError
+    from torsio.examples import deviated_well_config
+    from torsio.io.config import load_config
+
+    config = deviated_well_config() if args.config is None else load_config(args.config)
+    if config.well is None:
+        raise ConfigError(
+            "well",
+            f"{args.config} has no [well] table; torque and drag needs the hole: add [well] "
+            'with md, inclination and azimuth (or survey = "file.csv"), see '
+            "docs/configuration.md; `torsio drag` alone runs the built-in deviated well",
+        )
+    return config
+
+
+def _option(value: str | None, dimension: str, key: str, default: float) -> float:
+    from torsio.errors import ConfigError
+    from torsio.units import to_si
+
+    if value is None:
+        return default
+    number = to_si(value, dimension, key=key)
+    if number < 0.0:
+        raise ConfigError(key, f"expected a non-negative value, got {value!r}")
+    return number
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run ``torsio drag`` with parsed arguments; return the exit status."""
+    import attrs
+
+    from torsio.errors import ConfigError
+    from torsio.well.break_off import break_off
+    from torsio.well.torque_drag import torque_drag
+
+    outputs = common.check_outputs(args, ["plot"])
+    common.require_plotting(args)
+    if args.friction is not None and args.friction < 0.0:
+        raise ConfigError("--friction", f"expected a non-negative factor, got {args.friction:g}")
+    common.warn_small_bare_wob(args.wob)
+    config = _load(args)
+    wob = _option(args.wob, "force", "--wob", config.operation.wob or 0.0)
+    bit_torque = _option(args.bit_torque, "torque", "--bit-torque", 0.0)
+    results = torque_drag(
+        config.well, config.string, friction=args.friction, wob=wob, bit_torque=bit_torque
+    )
+    results = attrs.evolve(results, break_off=break_off(config.well, config.string))
+    return common.write_and_print(args, results, outputs, _print_table)
+
+
+def _print_table(results: Any, written: dict[str, str]) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    table = Table(title="Soft-string torque and drag")
+    for name in ("operation", "hookload [kN]", "surface torque [kN m]"):
+        table.add_column(name, justify="left" if name == "operation" else "right")
+    table.add_row("tripping out (pick-up)", f"{results.hookload_trip_out / 1e3:.1f}", "-")
+    table.add_row("tripping in (slack-off)", f"{results.hookload_trip_in / 1e3:.1f}", "-")
+    table.add_row(
+        "rotating off bottom",
+        f"{results.hookload_rotating / 1e3:.1f}",
+        f"{results.surface_torque_rotating / 1e3:.2f}",
+    )
+    table.add_row(
+        f"rotating on bottom (WOB {results.wob / 1e3:g} kN, bit {results.bit_torque / 1e3:g} kN m)",
+        f"{results.hookload_on_bottom / 1e3:.1f}",
+        f"{results.surface_torque_on_bottom / 1e3:.2f}",
+    )
+    console = Console()
+    console.print(table)
+    neutral = results.neutral_point_md
+    lines = [
+        f"buoyed weight of the string {results.buoyed_weight / 1e3:.1f} kN; "
+        f"string top at md {results.string_top_md:g} m, bit at md {results.md[-1]:g} m",
+        "neutral point on bottom: "
+        + ("none (no compression)" if neutral is None else f"md {neutral:.0f} m"),
+        f"normal force: {results.normal_force_model}"
+        + (
+            ""
+            if results.friction is None
+            else f"; sliding friction {results.friction:g} everywhere"
+        ),
+    ]
+    if results.break_off is not None:
+        lines.append(
+            f"break-off from rest (static friction): {results.break_off.torque / 1e3:.2f} kN m "
+            f"at the top after a twist of {results.break_off.twist:.2f} rad "
+            f"({results.break_off.twist / (2 * 3.141592653589793):.2f} turns); sliding "
+            f"{results.break_off.sliding_torque / 1e3:.2f} kN m"
+        )
+    if "plot" in written:
+        lines.append(f"wrote {written['plot']}")
+    for line in lines:
+        console.print(line, highlight=False)

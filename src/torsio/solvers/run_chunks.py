@@ -1,0 +1,183 @@
+"""Long compiled loops run in chunks of bounded wall time, with progress on stderr.
+
+A compiled loop (numba, no GIL) does not return to the interpreter until it is done, so
+Python's signal handlers (Ctrl-C, SIGTERM turned into KeyboardInterrupt by the command
+line) wait for it. :func:`run_in_chunks` calls a function that advances a loop by ``k``
+steps again and again, ``k`` chosen so that each call lasts about
+:data:`CHUNK_SECONDS`; between calls the interpreter runs (signals are handled there) and
+progress is reported. The function keeps the loop's state between calls, so the result
+is the one a single call of every step would give.
+
+:func:`stderr_progress` is the progress reporter of a single run: nothing for a run that
+ends within :data:`QUIET_SECONDS`; then a transient rich progress bar on stderr when
+stderr is a terminal, else one line every :data:`LINE_SECONDS` (never on stdout, which
+``--json`` keeps for one JSON object).
+
+Examples
+--------
+>>> done = []
+>>> run_in_chunks(10, lambda k: done.append(k), first=4)
+10
+>>> done
+[4, 6]
+>>> run_in_chunks(10, lambda k: True, first=3)  # the loop stopped by itself
+3
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+from collections.abc import Callable
+from typing import Any, TextIO
+
+__all__ = ["CHUNK_SECONDS", "LINE_SECONDS", "QUIET_SECONDS", "run_in_chunks", "stderr_progress"]
+
+CHUNK_SECONDS = 0.2
+"""Wall time aimed at for one chunk [s]: a signal is handled within about that."""
+
+FIRST_CHUNK = 1000
+"""Steps of the first chunk (its time, compilation included, sets the next ones)."""
+
+QUIET_SECONDS = 2.0
+"""A run that ends within this wall time [s] shows no progress."""
+
+LINE_SECONDS = 10.0
+"""Seconds between progress lines when stderr is not a terminal."""
+
+Progress = Callable[[int, int], None]
+
+
+def run_in_chunks(
+    total: int,
+    advance: Callable[[int], bool | None],
+    progress: Progress | None = None,
+    *,
+    first: int = FIRST_CHUNK,
+    seconds: float = CHUNK_SECONDS,
+) -> int:
+    """Advance a loop of ``total`` steps by chunks; return the steps handed to ``advance``.
+
+    Parameters
+    ----------
+    total : int
+        Steps of the whole loop.
+    advance : callable
+        ``advance(k)`` runs the next ``k`` steps; a true return value means the loop
+        ended by itself (e.g. on a steady cycle, or a failed step) and no chunk follows.
+    progress : callable, optional
+        ``progress(done, total)`` after every chunk.
+    first : int
+        Steps of the first chunk.
+    seconds : float
+        Wall time aimed at per chunk [s]; the chunk grows or shrinks (at most four times
+        per chunk) by the time the last one took.
+    """
+    done = 0
+    chunk = max(1, int(first))
+    while done < total:
+        k = min(chunk, total - done)
+        started = time.perf_counter()
+        stopped = advance(k)
+        elapsed = time.perf_counter() - started
+        done += k
+        if progress is not None:
+            progress(done, total)
+        if stopped:
+            break
+        rate = k / elapsed if elapsed > 0 else math.inf
+        chunk = int(min(4 * k, max(k / 4, rate * seconds, 1)))
+    return done
+
+
+class _StderrProgress:
+    """:func:`stderr_progress`'s reporter (a callable with ``close``)."""
+
+    def __init__(self, label: str, stream: TextIO | None, quiet: float, every: float) -> None:
+        self.label = label
+        self.stream = stream
+        self.quiet = quiet
+        self.every = every
+        self.started = time.perf_counter()
+        self.last_line = -math.inf
+        self.bar: Any = None
+        self.task: Any = None
+
+    def _output(self) -> TextIO:
+        return self.stream if self.stream is not None else sys.stderr
+
+    def __call__(self, done: int, total: int) -> None:
+        elapsed = time.perf_counter() - self.started
+        if elapsed < self.quiet or done >= total:
+            if self.bar is not None and done >= total:
+                self.bar.update(self.task, completed=done, total=total)
+            return
+        output = self._output()
+        if output.isatty():
+            if self.bar is None:
+                self._start_bar(output, total)
+            self.bar.update(self.task, completed=done, total=total)
+        elif elapsed - self.last_line >= self.every:
+            self.last_line = elapsed
+            left = elapsed * (total - done) / done if done else math.inf
+            print(
+                f"torsio: {self.label}: {done / total:.0%} ({done:,} of {total:,} steps), "
+                f"{elapsed:.0f} s, about {left:.0f} s left",
+                file=output,
+                flush=True,
+            )
+
+    def _start_bar(self, output: TextIO, total: int) -> None:
+        from rich.console import Console
+        from rich.progress import (
+            BarColumn,
+            MofNCompleteColumn,
+            Progress,
+            TextColumn,
+            TimeElapsedColumn,
+            TimeRemainingColumn,
+        )
+
+        self.bar = Progress(
+            TextColumn(self.label),
+            BarColumn(),
+            MofNCompleteColumn(),
+            TextColumn("steps"),
+            TimeElapsedColumn(),
+            TimeRemainingColumn(),
+            transient=True,
+            console=Console(file=output),
+        )
+        self.task = self.bar.add_task(self.label, total=total)
+        self.bar.start()
+
+    def close(self) -> None:
+        """Remove the bar (if one was shown)."""
+        if self.bar is not None:
+            self.bar.stop()
+            self.bar = None
+
+
+def stderr_progress(
+    label: str,
+    stream: TextIO | None = None,
+    quiet: float = QUIET_SECONDS,
+    every: float = LINE_SECONDS,
+) -> _StderrProgress:
+    """A ``progress(done, total)`` reporter for one long run; call ``close()`` at the end.
+
+    Silent for the first ``quiet`` seconds; then a rich bar when ``stream`` (default:
+    stderr at the time of the call) is a terminal, else a line every ``every`` seconds.
+
+    Examples
+    --------
+    >>> import io
+    >>> stream = io.StringIO()
+    >>> report = stderr_progress("wave run", stream, quiet=0.0, every=0.0)
+    >>> report(50, 200)
+    >>> report.close()
+    >>> stream.getvalue().startswith("torsio: wave run: 25% (50 of 200 steps)")
+    True
+    """
+    return _StderrProgress(label, stream, quiet, every)
