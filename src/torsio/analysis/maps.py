@@ -82,6 +82,7 @@ from torsio.analysis.sweep import (
     open_executor,
     worker_count,
 )
+from torsio.analysis.time_scales import check_time_scales
 from torsio.errors import ConfigError, SolverError
 from torsio.physics.system import System
 from torsio.solvers.batch import (
@@ -208,6 +209,7 @@ def _build_map(
     duration, steady_window = run_times(system, options.duration, options.steady_window)
     k_eq, omega1 = _scales(system)
     check_batch_work(system, wob, duration, options.rtol, 2.0 * math.pi / omega1, DEFAULT_MAX_STEPS)
+    check_time_scales(system, duration)
     serial = executor is None or executor == "serial"
     batch: dict[str, Any] = {
         "duration": duration,

@@ -54,7 +54,7 @@ from torsio.analysis.budget import (
     check_law_time_scale,
     check_output_size,
 )
-from torsio.analysis.limits import short_window, stuck_throughout, warning_list
+from torsio.analysis.limits import saturated_motor, short_window, stuck_throughout, warning_list
 from torsio.analysis.severity import (
     DEFAULT_SAMPLES_PER_PERIOD,
     DEFAULT_STICK_THRESHOLD,
@@ -68,6 +68,7 @@ from torsio.analysis.simulation_options import (
     MIN_WINDOW_SAMPLES,
     SimulationOptions,
 )
+from torsio.analysis.time_scales import check_time_scales
 from torsio.analysis.transient_results import TransientResults, window_mask
 from torsio.errors import ConfigError, SolverError
 from torsio.io.config import Config
@@ -188,6 +189,15 @@ def simulate(
     """
     from torsio.model.protocol import resolve
 
+    SimulationOptions(  # invalid options are refused whatever the model
+        duration=duration,
+        steady_window=steady_window,
+        method=method,
+        rtol=rtol,
+        atol=atol,
+        output_step=output_step,
+        stick_threshold=stick_threshold,
+    )
     engine = resolve(system.model.engines.transient)  # the model names what runs it
     return engine(
         system,
@@ -237,6 +247,7 @@ def simulate_lumped(
     )
     intervals = check_output_size(run, step, 3 * system.model.dofs + 4)
     check_law_time_scale(system, system.wob, run)
+    check_time_scales(system, run)
     time_grid = np.linspace(0.0, run, intervals + 1)
     in_window = window_mask(time_grid, window)
     if step > window / MIN_WINDOW_SAMPLES:
@@ -300,6 +311,15 @@ def simulate_lumped(
     top_speed = speeds_by_node[0].copy() if first else np.full(bit_speed.shape, reference)
     mean_top_speed = float(top_speed[in_window].mean())
     omega = dynamics.set_speed if math.isfinite(dynamics.set_speed) else mean_top_speed
+    # a torque-driven top that did not turn: no speed to read S_SS against (a mean speed
+    # below atol is not resolved by the integrator: RODAS4 gives 6e-304 rad/s for 1e-300 N m)
+    if not omega > options.atol:
+        raise ConfigError(
+            "top_drive.torque",
+            f"the top drive did not turn (mean speed {mean_top_speed:.3g} rad/s over the steady "
+            f"window) with a motor torque of {dynamics.top.u0:.6g} N m; expected a torque "
+            "above what the drag and the bit at rest hold",
+        )
     window_speeds = bit_speed[in_window]
     stick = float(np.mean(np.abs(window_speeds) < threshold * omega))
     extremes = solver_info.pop("bit_speed_extremes", None)  # the continuous solution's
@@ -326,7 +346,11 @@ def simulate_lumped(
         severity_speed=float(omega),
         bit_speed_extremes=extremes,
         warnings=warning_list(
-            stuck_throughout(stick, threshold), short_window(float(window), period)
+            stuck_throughout(stick, threshold),
+            short_window(float(window), period),
+            saturated_motor(
+                motor_torque[in_window], dynamics.top.max_torque, mean_top_speed, dynamics.set_speed
+            ),
         ),
     )
 
