@@ -121,13 +121,8 @@ def test_deferred_imports_are_edges_and_type_checking_blocks_are_not(tmp_path):
 # --- one model protocol (torsio.model.protocol) -------------------------------------------------
 MODEL_KINDS = {"WaveModel", "LumpedModel"}
 
-KIND_TESTS_ALLOWED = {
-    # these two hand wave systems on with is_wave_model until the one-engine change (issue 17,
-    # item 1) rewrites them: then each is `resolve(system.model.engines.<role>)(...)` and its
-    # entry goes
-    "torsio.analysis.transient",
-    "torsio.solvers.batch",
-}
+KIND_TESTS_ALLOWED: set[str] = set()
+# (analysis.transient and solvers.batch hand a run to resolve(system.model.engines.<role>))
 
 
 def _names(node: ast.AST) -> set[str]:

@@ -93,6 +93,6 @@ def test_report_critical_wob_is_bracketed_by_single_runs(capsys):
     system = System.from_config(builtin_config())
     from torsio.analysis.transient import simulate
 
-    assert simulate(system.at(wob=low), rtol=1e-8).severity < SEVERE_THRESHOLD
-    assert simulate(system.at(wob=high), rtol=1e-8).severity > SEVERE_THRESHOLD
+    assert simulate(system.at(wob=low), method="LSODA", rtol=1e-8).severity < SEVERE_THRESHOLD
+    assert simulate(system.at(wob=high), method="LSODA", rtol=1e-8).severity > SEVERE_THRESHOLD
     assert critical["margin_n"] == critical["critical_wob_n"] - 100e3

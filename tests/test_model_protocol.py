@@ -166,12 +166,6 @@ def test_wave_engines_resolve_to_its_stepping():
     assert resolve(WAVE_ENGINES.batch) is simulate_wave_batch
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=LookupError,
-    reason="the lumped engines get functions of their own with the one-engine change "
-    "(issue 17 item 1): then remove this mark",
-)
 @pytest.mark.parametrize("role", ["transient", "batch"])
 def test_lumped_engines_resolve(role):
     assert callable(resolve(getattr(LUMPED_ENGINES, role)))

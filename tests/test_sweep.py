@@ -188,3 +188,22 @@ def test_unreachable_scheduler_is_a_clear_error(system: System) -> None:
         r"'tcp://127.0.0.1:9' within 1 s",
     ):
         severity_map(system, WOB, RPM, executor="tcp://127.0.0.1:9", timeout=1.0)
+
+
+def test_a_serial_map_imports_nothing_of_dask() -> None:
+    # importing distributed costs about 0.8 s; a serial map (the CLI's default) must not pay
+    # for it: the Dask error types are looked up only once a Dask executor is in use
+    import subprocess
+    import sys
+
+    pytest.importorskip("distributed")
+    code = (
+        "import sys\n"
+        "from torsio.cli import main\n"
+        "main(['map', '--strategy', 'A', '--wob', '50kN:200kN:2', '--rpm', '60:100:2',"
+        " '--json'])\n"
+        "loaded = sorted(m for m in sys.modules if m.split('.')[0] in ('dask', 'distributed'))\n"
+        "print('DASK', loaded, file=sys.stderr)\n"
+    )
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert "DASK []" in result.stderr, result.stderr

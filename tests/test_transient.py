@@ -184,7 +184,13 @@ def test_default_times_and_grid(config):
     # S_SS read over the window (Eq. 12) and stick phases found
     window = results.window_mask
     speeds = results.bit_speed[window]
-    assert results.severity == pytest.approx((speeds.max() - speeds.min()) / (2 * system.omega))
+    # the compiled engine reads S_SS from the extremes of its continuous solution (the cubic
+    # interpolant of every step), which bound the samples; the default grid under-reads
+    # them by at most 1.4e-5 at the points of docs/dynamics.md ("Output step")
+    assert results.solver["engine"] == "compiled"
+    sampled = (speeds.max() - speeds.min()) / (2 * system.omega)
+    assert sampled <= results.severity + 1e-12
+    assert results.severity - sampled < 1.4e-5
     assert 0.0 < results.stick_fraction < 0.5
     assert results.severe
 
@@ -198,7 +204,9 @@ def test_shorter_run_default_window(config):
 
 @pytest.mark.parametrize("method", ["Radau", "BDF", "DOP853", "RK45"])
 def test_other_integrators_agree(config, method):
-    """Every solve_ivp method gives the same S_SS (LSODA is the reference here)."""
+    """Every solve_ivp method gives the same S_SS as the default, the compiled RODAS4 engine
+    (1e-5: solver tolerance 1e-8 plus the output grid, whose samples under-read the
+    continuous extremes RODAS4's S_SS is read from by at most 1.4e-5, docs/dynamics.md)."""
     system = System.from_config(config, strategy="A").at(wob=100e3, rpm=60)
     reference = simulate(system, duration=120.0, steady_window=40.0, rtol=1e-8, atol=1e-10)
     other = simulate(
@@ -214,7 +222,11 @@ def test_solver_statistics_and_dict(config):
     results = simulate(System.from_config(config, strategy="A").at(wob=100e3, rpm=60))
     solver = results.solver
     assert set(solver) >= {"method", "rtol", "atol", "nfev", "njev", "nlu", "status", "message"}
-    assert solver["method"] == "LSODA" and solver["status"] == 0 and solver["nfev"] > 0
+    assert solver["engine"] == "compiled" and solver["method"] == "RODAS4"
+    assert solver["status"] == 0 and solver["nfev"] > 0 and solver["steps"] > 0
+    assert solver["fallback"] is None
+    lsoda = simulate(results.system, method="LSODA").solver
+    assert lsoda["engine"] == "scipy" and lsoda["method"] == "LSODA" and lsoda["nfev"] > 0
     data = results.to_dict()
     assert data["wob"] == 100e3 and data["rpm"] == 60.0
     assert data["severity"] == results.severity

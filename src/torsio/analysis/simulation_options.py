@@ -19,6 +19,7 @@ from torsio.errors import ConfigError
 from torsio.io.config import Config
 
 __all__ = [
+    "COMPILED_METHODS",
     "IMPLICIT_METHODS",
     "METHODS",
     "MIN_WINDOW_SAMPLES",
@@ -26,8 +27,12 @@ __all__ = [
     "check_window_samples",
 ]
 
-METHODS = ("LSODA", "RK45", "RK23", "DOP853", "Radau", "BDF")
-"""The integrators of ``scipy.integrate.solve_ivp`` accepted by name."""
+COMPILED_METHODS = ("auto", "RODAS4")
+"""``"auto"``: the compiled RODAS4 engine where it can run the System, else LSODA;
+``"RODAS4"``: the compiled engine only."""
+
+METHODS = (*COMPILED_METHODS, "LSODA", "RK45", "RK23", "DOP853", "Radau", "BDF")
+"""The integrators accepted by name: the compiled engine's, then ``scipy.integrate.solve_ivp``'s."""
 
 IMPLICIT_METHODS = ("Radau", "BDF")
 """Methods that take the (sparse) Jacobian."""
@@ -138,7 +143,7 @@ class SimulationOptions:
         default=None,
         converter=lambda v: _optional_positive("steady_window", v, "a positive time in s"),
     )
-    method: Any = attrs.field(default="LSODA", converter=_check_method)
+    method: Any = attrs.field(default="auto", converter=_check_method)
     rtol: float = attrs.field(default=1e-6, converter=lambda v: check_rtol(v, "simulation.rtol"))
     atol: float = attrs.field(
         default=1e-9, converter=lambda v: _positive("atol", v, "a positive tolerance")

@@ -68,6 +68,11 @@ class TransientResults:
     severity_speed : float
         Omega [rad/s] that S_SS divides by: the set speed, or the mean top-drive
         speed over the steady window for a torque-driven top.
+    bit_speed_extremes : tuple of float or None
+        (max, min) of the bit speed over the steady window [rad/s] from the integrator's
+        continuous solution (the compiled engine: the cubic interpolant of every step,
+        as severity maps read them), which S_SS is read from; None: S_SS and the
+        extremes are those of the samples.
     warnings : tuple of str
         What limits the meaning of the result (:mod:`torsio.analysis.limits`): e.g. a
         bit stuck throughout the window, a window shorter than a period; empty if none.
@@ -91,6 +96,7 @@ class TransientResults:
     states: np.ndarray
     reference_speed: float
     severity_speed: float
+    bit_speed_extremes: tuple[float, float] | None = None
     warnings: tuple[str, ...] = ()
 
     def __repr__(self) -> str:  # short: no time series
@@ -101,6 +107,14 @@ class TransientResults:
         )
 
     # --- derived views (no recomputation of the analysis) ---------------------------------
+    @property
+    def _extremes(self) -> tuple[float, float]:
+        """(max, min) of the bit speed over the window that S_SS is read from [rad/s]."""
+        if self.bit_speed_extremes is not None:
+            return self.bit_speed_extremes
+        speeds = self.bit_speed[self.window_mask]
+        return float(speeds.max()), float(speeds.min())
+
     @property
     def omega(self) -> float:
         """Omega [rad/s] of S_SS (for a dimensionless system: Pi_1); see ``severity_speed``."""
@@ -191,8 +205,8 @@ class TransientResults:
             "stick_fraction": float(self.stick_fraction),
             "stick_threshold": float(self.stick_threshold),
             "omega_rad_s": float(self.omega),
-            "bit_speed_min": float(self.bit_speed[window].min()),
-            "bit_speed_max": float(self.bit_speed[window].max()),
+            "bit_speed_min": float(self._extremes[1]),
+            "bit_speed_max": float(self._extremes[0]),
             "top_speed_mean": self.top_speed_mean,
             "top_drive": getattr(system.top, "name", type(system.top).__name__),
             "mean_motor_torque": float(self.motor_torque[window].mean()),

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from typing import Any
 
 from torsio.cli import common
@@ -29,7 +30,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     common.add_discretization_arguments(parser)
     common.add_run_time_arguments(parser)
     parser.add_argument(
-        "--method", help="solve_ivp integrator: LSODA (default), Radau, BDF, RK45, DOP853, RK23"
+        "--method",
+        help="integrator: auto (default: RODAS4 on the compiled engine where it can run the "
+        "model, else LSODA), RODAS4, or a solve_ivp method: LSODA, Radau, BDF, RK45, DOP853, "
+        "RK23",
     )
     tolerance = common.finite_float
     parser.add_argument("--rtol", type=tolerance, help="relative tolerance (default 1e-6)")
@@ -64,7 +68,7 @@ def run(args: argparse.Namespace) -> int:
     _refuse_integrator_options(config, args, overrides)
     common.require_plotting(args)
     common.warn_small_bare_wob(args.wob)
-    try:
+    try:  # a long run shows progress on stderr (simulate's default), never on stdout
         results = simulate_config(
             config,
             wob=args.wob,
@@ -74,6 +78,13 @@ def run(args: argparse.Namespace) -> int:
         )
     except ConfigError as exc:
         raise ConfigError(_option_name(exc.key), exc.message) from None
+    fallback = results.solver.get("fallback")
+    if fallback:
+        print(
+            f"torsio simulate: integrated with scipy {results.solver['method']}: the compiled "
+            f"engine cannot run this model ({fallback})",
+            file=sys.stderr,
+        )
     return common.write_and_print(args, results, outputs, _print_summary)
 
 
@@ -150,8 +161,10 @@ def _print_summary(results: Any, written: dict[str, str]) -> None:
         ("mean torque on bit", f"{results.bit_torque[window].mean() / 1e3:.4g} kN m"),
         (
             "solver",
-            f"{solver['method']} rtol={solver['rtol']:g} atol={solver['atol']:g}: "
-            f"{solver['nfev']} f-evals, {solver['njev']} Jacobians, "
+            f"{solver['method']} ({solver.get('engine', 'scipy')} engine) "
+            f"rtol={solver['rtol']:g} atol={solver['atol']:g}: "
+            + (f"{solver['steps']} steps, " if solver.get("steps") is not None else "")
+            + f"{solver['nfev']} f-evals, {solver['njev']} Jacobians, "
             f"{solver['wall_time_s']:.2f} s",
         ),
     ]

@@ -424,7 +424,7 @@ def map_point_against_single_run() -> Check:
 
     system = _ritto_system()
     result = severity_map(system, wob=[150e3], rpm=[60.0], refine=0)
-    single = simulate(system.at(wob=150e3, rpm=60.0), rtol=1e-9, atol=1e-12)
+    single = simulate(system.at(wob=150e3, rpm=60.0), method="LSODA", rtol=1e-9, atol=1e-12)
     return Check(
         "S_SS of a map point (batch engine), 5 DOF at 150 kN, 60 rpm [-]",
         "single transient run, LSODA rtol 1e-9",

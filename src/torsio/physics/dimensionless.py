@@ -61,6 +61,7 @@ from torsio.errors import ConfigError
 from torsio.model.lumped import LumpedModel
 from torsio.model.modal import first_natural_frequency
 from torsio.physics.damping import ModelDamping, RayleighDamping
+from torsio.physics.law_slope import bit_slope
 from torsio.physics.laws import TuckerWang
 from torsio.physics.system import System
 from torsio.physics.top_drives import ConstantSpeedTop, ScaledTopDrive
@@ -212,15 +213,8 @@ class DimensionlessLaw:
         """d torque / d theta' (dimensionless)."""
         w = self.omega1 * np.asarray(speed, dtype=float)
         wob_si = self._wob(wob, radius)
-        if hasattr(self.law, "slope"):
-            dimensional = self.law.slope(w, wob_si, self.bit_radius)
-        else:
-            step = 1e-6 * np.maximum(1.0, np.abs(w))
-            dimensional = (
-                self.law.torque(w + step, wob_si, self.bit_radius)
-                - self.law.torque(w - step, wob_si, self.bit_radius)
-            ) / (2.0 * step)
-        return np.asarray(dimensional) * self.omega1 / self.k_eq
+        dimensional = bit_slope(self.law, w, wob_si, self.bit_radius)
+        return dimensional * self.omega1 / self.k_eq
 
     def __repr__(self) -> str:
         return (

@@ -45,21 +45,10 @@ import scipy.optimize
 import scipy.sparse
 
 from torsio.errors import ConfigError
+from torsio.physics.law_slope import bit_slope
 from torsio.physics.top_drives import TopDriveBoundary
 
 __all__ = ["Dynamics", "bit_slope", "tridiagonal_bands"]
-
-
-def bit_slope(law: Any, speed: Any, wob: Any, radius: Any) -> np.ndarray:
-    """d T_bit / d speed [N m s/rad]: the law's ``slope`` or a central difference."""
-    if hasattr(law, "slope"):
-        return np.asarray(law.slope(speed, wob, radius), dtype=float)
-    w = np.asarray(speed, dtype=float)
-    step = 1e-6 * np.maximum(1.0, np.abs(w))
-    return (
-        np.asarray(law.torque(w + step, wob, radius))
-        - np.asarray(law.torque(w - step, wob, radius))
-    ) / (2.0 * step)
 
 
 def tridiagonal_bands(matrix: np.ndarray, key: str) -> tuple[np.ndarray, np.ndarray]:

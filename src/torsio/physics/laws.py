@@ -29,6 +29,7 @@ import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.hookspecs import hookimpl
+from torsio.physics.law_slope import central_difference
 
 SPEED_UNITS: dict[str, float] = {"rad/s": 1.0, "rpm": 30.0 / math.pi}
 """Per speed unit, how many of that unit one rad/s is (1 rad/s = 30/pi rpm)."""
@@ -119,11 +120,7 @@ class BitRockLaw:
 
     def slope(self, speed: Any, wob: Any, radius: Any) -> np.ndarray:
         """d torque / d speed [N m s/rad]; a central difference unless a law overrides it."""
-        w = np.asarray(speed, dtype=float)
-        step = 1e-6 * np.maximum(1.0, np.abs(w))
-        return (self.torque(w + step, wob, radius) - self.torque(w - step, wob, radius)) / (
-            2.0 * step
-        )
+        return np.asarray(central_difference(self.torque, np.asarray(speed, float), wob, radius))
 
     def values(self) -> dict[str, float]:
         """The parameters in the rad/s reading."""

@@ -14,14 +14,16 @@ Engines
 ``"compiled"`` (alias ``"numba"``)
     :mod:`torsio.solvers.rodas`, compiled with numba, points shared dynamically
     between threads. Needs a bit-rock law with a compiled kernel (``kernel()``,
-    :mod:`torsio.solvers.law_kernels`): the built-in laws and the bundled plugin's have one.
+    :mod:`torsio.solvers.law_kernels`; the built-in laws and the bundled plugin's have one),
+    or one numba compiles from the law's Python ``torque``.
 ``"numpy"``
     :mod:`torsio.solvers.numpy_engine`: the same method vectorized with numpy
-    across the batch; works with any law (its vectorized ``torque``). Slower.
+    across the batch; works with any law (its vectorized ``torque``). Slower; ``"auto"``
+    uses it for a law numba cannot compile, and without numba.
 ``"scipy"``
     One :func:`scipy.integrate.solve_ivp` run per point (:mod:`torsio.solvers.reference`).
 ``"auto"``
-    ``"compiled"`` when numba is installed and the law has a kernel, else ``"numpy"``.
+    ``"compiled"`` when numba is installed and the law has or gets a kernel, else ``"numpy"``.
 
 :attr:`BatchResults.engine` says which one ran.
 
@@ -57,7 +59,7 @@ from torsio.solvers.batch_results import (
     check_steady_tolerance,
 )
 from torsio.solvers.compiled import HAVE_NUMBA, numba
-from torsio.solvers.law_kernels import LawKernel, law_kernel
+from torsio.solvers.law_kernels import LawKernel, law_kernel, python_law_kernel
 from torsio.solvers.reference import reference_severity, run_times
 from torsio.solvers.rodas import OUT_COLUMNS, TOP_SIZE
 
@@ -71,6 +73,7 @@ __all__ = [
     "reference_severity",
     "resolve_engine",
     "simulate_batch",
+    "simulate_lumped_batch",
 ]
 
 ENGINES = ("auto", "compiled", "numba", "numpy", "scipy")
@@ -215,8 +218,10 @@ def _top_vector(boundary: Any, chain: np.ndarray) -> np.ndarray:
 def resolve_engine(engine: str, law: Any) -> tuple[str, LawKernel | None]:
     """The engine that ``engine`` ("auto" or a name) means for ``law``, with its kernel.
 
-    With ``"auto"`` a law without ``kernel()`` (or whose kernel does not compile,
-    with a warning saying why) runs on ``"numpy"``.
+    A law without ``kernel()`` gets one compiled from its Python ``torque`` where numba
+    can (:func:`torsio.solvers.law_kernels.python_law_kernel`). With ``"auto"`` a law
+    whose kernel cannot be had that way (or whose ``kernel()`` does not compile, with a
+    warning saying why) runs on ``"numpy"``.
     """
     if engine not in ENGINES:
         raise ConfigError("engine", f"expected one of {', '.join(ENGINES)}, got {engine!r}")
@@ -234,14 +239,18 @@ def resolve_engine(engine: str, law: Any) -> tuple[str, LawKernel | None]:
             raise
         warnings.warn(f"{exc}; using the numpy engine", RuntimeWarning, stacklevel=3)
         return "numpy", None
-    if kernel is None:
-        if engine == "auto":
-            return "numpy", None
-        raise ConfigError(
-            "engine",
-            f"bit-rock law {name!r} has no compiled kernel (a kernel() method, see the "
-            "plugin guide); use engine='numpy' (any law) or 'auto'",
-        )
+    if kernel is None:  # numba may compile the law's own Python torque
+        try:
+            kernel = python_law_kernel(law)
+        except ConfigError as exc:
+            if engine == "auto":
+                return "numpy", None
+            raise ConfigError(
+                "engine",
+                f"bit-rock law {name!r} has no compiled kernel (a kernel() method, see the "
+                f"plugin guide) and {exc.message.split(' and ', 1)[-1]}; use engine='numpy' "
+                "(any law) or 'auto'",
+            ) from None
     return "compiled", kernel
 
 
@@ -299,23 +308,41 @@ def simulate_batch(
         Failed points have NaN severity and a non-zero status; they are never
         silently dropped.
     """
-    from torsio.model.wave import is_wave_model
+    from torsio.model.protocol import resolve
 
-    if is_wave_model(system.model):  # the distributed model: its own stepping
-        from torsio.solvers.wave_batch import simulate_wave_batch
+    run = resolve(system.model.engines.batch)  # the model names what runs it
+    return run(
+        system,
+        wob,
+        rpm,
+        duration=duration,
+        steady_window=steady_window,
+        rtol=rtol,
+        atol=atol,
+        max_step=max_step,
+        max_steps=max_steps,
+        engine=engine,
+        threads=threads,
+        steady_tolerance=steady_tolerance,
+    )
 
-        return simulate_wave_batch(
-            system,
-            wob,
-            rpm,
-            duration,
-            steady_window,
-            rtol,
-            atol,
-            threads=threads,
-            steady_tolerance=steady_tolerance,
-            engine=engine,
-        )
+
+def simulate_lumped_batch(
+    system: System,
+    wob: Any,
+    rpm: Any = None,
+    duration: float | None = None,
+    steady_window: float | None = None,
+    rtol: float = DEFAULT_RTOL,
+    atol: float = DEFAULT_ATOL,
+    max_step: float | None = None,
+    max_steps: int = DEFAULT_MAX_STEPS,
+    engine: str = "auto",
+    threads: int | None = None,
+    steady_tolerance: float = DEFAULT_STEADY_TOLERANCE,
+) -> BatchResults:
+    """:func:`simulate_batch` of a lumped model (its batch engine,
+    :data:`torsio.model.lumped.LUMPED_ENGINES`): the arguments of :func:`simulate_batch`."""
     wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)
     for key, value in (("rtol", rtol), ("atol", atol)):
         if not (math.isfinite(value) and value > 0):

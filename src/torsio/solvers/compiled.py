@@ -29,14 +29,14 @@ except ImportError:  # pragma: no cover - exercised only without numba
 
     njit = _identity
 
-__all__ = ["HAVE_NUMBA", "kernel_signature", "njit", "numba", "prange"]
+__all__ = ["HAVE_NUMBA", "kernel_signature", "njit", "numba", "prange", "run_signatures"]
 
 
 def kernel_signature() -> Any:
     """Explicit signature of the batch kernels (None without numba).
 
     (chain[8, n], top, torque function, slope function, law parameters, settings,
-    wob[k], Omega_ref[k], Omega_set[k], out[k, 6]) -> None. The two law functions are
+    wob[k], Omega_ref[k], Omega_set[k], out[k, 7]) -> None. The two law functions are
     first-class function types, so one compiled kernel serves every law.
     """
     if not HAVE_NUMBA:
@@ -59,3 +59,39 @@ def kernel_signature() -> Any:
         vector,
         types.float64[:, ::1],
     )
+
+
+def run_signatures() -> tuple[Any, Any]:
+    """Explicit signatures of a single run's two kernels (None, None without numba).
+
+    ``run_start(chain, top, torque, parameters, settings, wob, Omega_ref, Omega_set,
+    vectors, small)`` and ``run_chunk(chain, top, torque, slope, parameters, settings, wob,
+    Omega_ref, Omega_set, vectors, small, grid, samples, stop)``
+    (:mod:`torsio.solvers.rodas`).
+    """
+    if not HAVE_NUMBA:
+        return None, None
+    from numba import types
+
+    from torsio.solvers.law_kernels import law_type
+
+    vector, matrix, f8 = types.float64[::1], types.float64[:, ::1], types.float64
+    law = law_type()
+    start = types.void(matrix, vector, law, vector, vector, f8, f8, f8, matrix, matrix)
+    chunk = types.void(
+        matrix,
+        vector,
+        law,
+        law,
+        vector,
+        vector,
+        f8,
+        f8,
+        f8,
+        matrix,
+        matrix,
+        vector,
+        matrix,
+        types.int64,
+    )
+    return start, chunk

@@ -20,7 +20,11 @@ signature (lazily, cached on disk). Written with numpy ufuncs (``np.tanh``,
 ``np.exp``, ``np.abs``), the same function also serves the law's vectorized
 ``torque`` over arrays, so the formula is written once.
 
-A law without ``kernel()`` runs through the numpy engine.
+A law without ``kernel()`` gets one from its Python ``torque`` (and ``slope``, or the
+central difference of :func:`torsio.physics.law_slope.central_difference`) where numba can
+compile them (:func:`python_law_kernel`): the law's numeric attributes are handed to the
+compiled method as a named tuple in place of ``self``. Where it cannot, single runs use
+scipy and maps the numpy engine, and say so.
 
 Examples
 --------
@@ -45,7 +49,14 @@ import numpy as np
 
 from torsio.errors import ConfigError
 
-__all__ = ["LAW_SIGNATURE", "LawKernel", "compile_law_function", "law_kernel", "law_type"]
+__all__ = [
+    "LAW_SIGNATURE",
+    "LawKernel",
+    "compile_law_function",
+    "law_kernel",
+    "law_type",
+    "python_law_kernel",
+]
 
 LAW_SIGNATURE = "float64(float64[::1], float64, float64, float64)"
 """numba signature of a law's torque and slope functions: (parameters, speed, wob, radius)."""
@@ -134,3 +145,112 @@ def law_kernel(law: Any) -> LawKernel | None:
     if array.size == 0:
         array = np.zeros(1)  # numba needs an array; a law without parameters ignores it
     return LawKernel(torque, slope, array)
+
+
+CHECK_SPEEDS = (-20.0, -1.0, -0.05, 0.0, 1e-3, 0.05, 0.5, 2.0, 7.0, 30.0)
+"""Bit speeds [rad/s] at which a kernel compiled from Python is checked against the law."""
+
+
+def python_law_kernel(law: Any, wob: float = 1e5, radius: float = 0.1) -> LawKernel:
+    """A kernel compiled by numba from a law's own Python ``torque`` and ``slope``.
+
+    The methods are compiled with ``self`` replaced by a named tuple of the law's numeric
+    attributes; without ``slope``, the slope is the compiled central difference of the
+    torque (:func:`torsio.physics.law_slope.central_difference`). The compiled torque and slope
+    must equal the law's at :data:`CHECK_SPEEDS` (at ``wob`` [N], ``radius`` [m]) to 1e-12
+    relative, or the kernel is refused. A ConfigError says why it cannot be compiled.
+    """
+    import collections
+
+    import numba
+
+    from torsio.physics.law_slope import bit_slope, central_difference
+
+    name = getattr(law, "name", type(law).__name__)
+    values = {
+        key: float(value)
+        for key, value in _attributes(law).items()
+        if key.isidentifier()
+        and not key.startswith("_")
+        and isinstance(value, int | float | np.integer | np.floating)
+        and not isinstance(value, bool)
+    }
+    key = (type(law), tuple(values.items()))
+    if key in _COMPILED:
+        return _COMPILED[key]
+    this = collections.namedtuple("LawParameters", list(values))(**values)
+
+    def method(label: str) -> Any:
+        function = getattr(type(law), label, None)
+        if function is None or isinstance(function, staticmethod):
+            return None
+        inner = numba.njit(function)
+
+        def bound(speed: float, wob: float, radius: float) -> float:
+            return inner(this, speed, wob, radius)
+
+        return numba.njit(bound)
+
+    try:
+        torque3 = method("torque")
+        if torque3 is None:
+            raise TypeError("no torque method")
+        slope3 = method("slope") if hasattr(law, "slope") else None
+        difference = numba.njit(central_difference)
+
+        def torque(p: np.ndarray, speed: float, wob: float, radius: float) -> float:
+            return torque3(speed, wob, radius)
+
+        if slope3 is not None:
+
+            def slope(p: np.ndarray, speed: float, wob: float, radius: float) -> float:
+                return slope3(speed, wob, radius)
+        else:
+
+            def slope(p: np.ndarray, speed: float, wob: float, radius: float) -> float:
+                return difference(torque3, speed, wob, radius)
+
+        kernel = LawKernel(
+            numba.njit(LAW_SIGNATURE)(torque), numba.njit(LAW_SIGNATURE)(slope), np.zeros(1)
+        )
+        speeds = np.array(CHECK_SPEEDS)
+        compiled = [
+            np.array([f(kernel.parameters, w, wob, radius) for w in speeds])
+            for f in (kernel.torque, kernel.slope)
+        ]
+    except Exception as exc:  # numba's typing errors are long: the first line says enough
+        raise ConfigError(
+            "bit_rock.law",
+            f"law {name!r} has no kernel() and numba cannot compile its Python torque/slope "
+            f"({type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else exc!r})",
+        ) from None
+    with np.errstate(all="ignore"):
+        python = [
+            np.broadcast_to(np.asarray(law.torque(speeds, wob, radius), dtype=float), speeds.shape),
+            np.broadcast_to(bit_slope(law, speeds, wob, radius), speeds.shape),
+        ]
+    for label, ours, theirs in zip(("torque", "slope"), compiled, python, strict=True):
+        scale = np.maximum(np.abs(theirs), np.max(np.abs(theirs)) * 1e-9 + 1e-300)
+        if not np.all(np.abs(ours - theirs) <= 1e-12 * scale):
+            raise ConfigError(
+                "bit_rock.law",
+                f"law {name!r}: its {label} compiled by numba differs from its Python {label} "
+                f"(at bit speeds {list(CHECK_SPEEDS)} rad/s)",
+            )
+    _COMPILED[key] = kernel
+    return kernel
+
+
+_COMPILED: dict[tuple[Any, ...], LawKernel] = {}
+"""Kernels compiled from Python, by law class and numeric attributes (once per process)."""
+
+
+def _attributes(law: Any) -> dict[str, Any]:
+    """A law's instance attributes (``__dict__``, attrs fields or ``__slots__``)."""
+    found: dict[str, Any] = dict(getattr(law, "__dict__", {}))
+    if attrs.has(type(law)):
+        found.update({f.name: getattr(law, f.name) for f in attrs.fields(type(law))})
+    for slot in getattr(type(law), "__slots__", ()):
+        if hasattr(law, slot):
+            found[slot] = getattr(law, slot)
+    return found

@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from torsio.physics.law_slope import bit_slope
 from torsio.solvers.rodas import GAMMA, OUT_COLUMNS, RODAS_A, RODAS_C
 
 __all__ = ["extremes_numpy", "integrate_numpy"]
@@ -24,15 +25,6 @@ def _tri_mul(diag: np.ndarray, upper: np.ndarray, x: np.ndarray) -> np.ndarray:
         y[:, :-1] += upper[:-1] * x[:, 1:]
         y[:, 1:] += upper[:-1] * x[:, :-1]
     return y
-
-
-def _bit_slope(law: Any, speed: np.ndarray, wob: np.ndarray, radius: float) -> np.ndarray:
-    """d T_bit / d speed: the law's ``slope``, else a central difference."""
-    if hasattr(law, "slope"):
-        return np.asarray(law.slope(speed, wob, radius), dtype=float)
-    step = 1e-6 * np.maximum(1.0, np.abs(speed))
-    ahead = np.asarray(law.torque(speed + step, wob, radius), dtype=float)
-    return (ahead - np.asarray(law.torque(speed - step, wob, radius), dtype=float)) / (2 * step)
 
 
 class _Chain:
@@ -181,7 +173,7 @@ def _step(sys_: _Chain, s: dict[str, np.ndarray], t_end, t_window, rtol, atol, h
     phi, v, z = s["phi"], s["v"], s["z"]
     h = np.minimum(s["h"], t_end - s["t"])
     g = GAMMA * h
-    slope = _bit_slope(sys_.law, om + v[:, -1], wob, sys_.radius)
+    slope = bit_slope(sys_.law, om + v[:, -1], wob, sys_.radius)
     count = h.size
     diag0 = np.zeros(count)
     extra01 = np.zeros(count)

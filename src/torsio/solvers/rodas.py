@@ -1,7 +1,10 @@
-"""The compiled batch kernel: RODAS4 on the chain of :mod:`torsio.physics.dynamics`.
+"""The compiled kernel: RODAS4 on the chain of :mod:`torsio.physics.dynamics`.
 
-One kernel for every chain length, bit-rock law and top drive. The chain (n nodes,
-node n-1 the bit) in twist coordinates about Omega_ref, with [C] = [C_rel] + diag(drag)::
+One kernel for every chain length, bit-rock law and top drive, for batches of points
+(:func:`integrate_serial`, :func:`integrate_parallel`) and single runs sampled on an output
+grid (:func:`run_start`, :func:`run_chunk`; :mod:`torsio.solvers.single_run`).
+The chain (n nodes, node n-1 the bit) in twist coordinates about Omega_ref, with
+[C] = [C_rel] + diag(drag)::
 
     phi' = v
     [I] v' = applied - drag Omega_ref - [K] phi - [C] v - T_bit(Omega_ref + v_{n-1}) e_{n-1} + u e_0
@@ -40,12 +43,13 @@ from torsio.solvers.chain_kernel import (
     mass_factors,
     saturated,
 )
-from torsio.solvers.compiled import kernel_signature, njit, prange
+from torsio.solvers.compiled import kernel_signature, njit, prange, run_signatures
 from torsio.solvers.cycles import (
     CYCLE_MAX,
     CYCLE_MIN,
     CYCLE_SIZE,
     extremes_of_cubic,
+    hermite,
     integral_of_cubic,
     track_cycle,
 )
@@ -59,6 +63,8 @@ __all__ = [
     "TOP_SIZE",
     "integrate_parallel",
     "integrate_serial",
+    "run_chunk",
+    "run_start",
 ]
 
 # --- RODAS4 (Hairer and Wanner, Solving ODEs II, Sec. IV.7; rodas.f, METH = 1) --------------
@@ -93,20 +99,70 @@ step [s], steps allowed, bit radius [m], steady-cycle tolerance (0: run to t_end
 :mod:`torsio.solvers.cycles`), omega_1 [rad/s]."""
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
-def _integrate_point(
-    chain, top, torque, slope, p, settings, wob, omega, omega_set, out, vectors, small
-) -> None:
-    """RODAS4 from rest to t_end; ``out`` gets the :data:`OUT_COLUMNS` of the point.
+VECTOR_ROWS = 33
+"""Rows of the per-point work space of length n (:func:`_advance`)."""
+SMALL_ROWS = 21
+"""Rows of the per-point work space of length 8 (controller states, their solve, the
+steady-cycle tracker, the carried scalars of a run)."""
+CARRY = 19
+"""Rows ``CARRY`` (t, h, the last accepted h and its error, last step rejected, steps,
+rejected steps, status) and ``CARRY + 1`` (bit-speed max and min [twist rate], the top
+speed's integral over the window, next output sample, ended on a steady cycle) of the
+small work space."""
 
-    ``vectors`` (:data:`VECTOR_ROWS`, n) and ``small`` (:data:`SMALL_ROWS`, 8): zeroed work space.
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def _start(chain, top, torque, p, settings, wob, omega, omega_set, vectors, small) -> None:
+    """Prepare a run from the state (phi, v, z) already in the work space, at t = 0.
+
+    ``vectors`` (:data:`VECTOR_ROWS`, n) and ``small`` (:data:`SMALL_ROWS`, 8): work space,
+    zero but for the state; the run's scalars are carried in ``small`` (:data:`CARRY`).
     """
-    t_end, t_window, rtol, atol, h0, hmax = (
+    n = chain.shape[1]
+    mass_factors(chain, vectors[26], vectors[27])
+    radius = settings[7]
+    z, f0z = small[6, 0:3], small[7, 3:6]
+    forces(chain, top, torque, p, wob, radius, omega, omega_set, vectors[12], vectors[13], z,
+           vectors[18], f0z)  # fmt: skip
+    accelerations(chain, vectors[26], vectors[27], vectors[18], vectors[25])
+    cycle_settings = small[17, 0:5]
+    cycle_settings[0] = 2.0 * abs(omega)
+    cycle_settings[1] = settings[9]
+    cycle_settings[2] = settings[0]
+    cycle_settings[3] = settings[0] - settings[1]
+    cycle_settings[4] = settings[8]
+    carry, more = small[CARRY], small[CARRY + 1]
+    h = min(settings[4], settings[5], settings[0])
+    for j in range(8):  # t, h, h accepted, its error, last rejected, steps, rejected, status
+        carry[j] = 0.0
+    carry[1] = h
+    carry[2] = h
+    carry[3] = 1.0
+    more[0] = -np.inf  # the bit's extremes, the top's integral, next sample, done
+    more[1] = np.inf
+    more[2] = 0.0
+    more[3] = 0.0
+    more[4] = 0.0 if n > 0 else 1.0
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def _advance(
+    chain, top, torque, slope, p, settings, wob, omega, omega_set, vectors, small, grid,
+    samples, stop,
+) -> None:  # fmt: skip
+    """RODAS4 steps from the carried state until t_end, a steady cycle, a failure, or (with
+    an output grid) until the samples up to index ``stop`` are written.
+
+    ``grid`` (times [s], ascending, within [0, t_end]) and ``samples`` (grid.size, 2n + m):
+    the state ``[z, phi_0, v_0, ...]`` at each grid time, from the cubic Hermite interpolant
+    of the step that covers it; empty arrays for none. Chunked calls take the same steps
+    as one call: the state, the step and the controller's memory are carried in ``small``.
+    """
+    t_end, t_window, rtol, atol, hmax = (
         settings[0],
         settings[1],
         settings[2],
         settings[3],
-        settings[4],
         settings[5],
     )
     max_steps = int(settings[6])
@@ -140,42 +196,31 @@ def _integrate_point(
         vectors[27],
     )
     phi0, v0, acc0, cross = vectors[28], vectors[29], vectors[30], vectors[31:33]
-    for i in range(n):
-        v[i] = -omega  # start-up from rest: theta' = 0, controller states 0
-    steady_tolerance = settings[8]
-    track = steady_tolerance > 0.0
+    track = settings[8] > 0.0
+    dense = grid.size > 0
     cycle = small[16, 0:CYCLE_SIZE]
     cycle_settings = small[17, 0:5]
-    cycle_settings[0] = 2.0 * abs(omega)
-    cycle_settings[1] = settings[9]
-    cycle_settings[2] = t_end
-    cycle_settings[3] = t_end - t_window
-    cycle_settings[4] = steady_tolerance
     kz = small[0:6, 0:3]
     z, az, fz, f0z, uz = small[6, 0:3], small[6, 3:6], small[7, 0:3], small[7, 3:6], small[8, 0:3]
     q = small[9:12, 0:3]
     zy = small[9:12, 3:5]
     gains = small[12, 0:5]
     solve_work = small[13:16]
-    mass_factors(chain, mpiv, mlow)
+    z0, fz0 = small[18, 0:3], small[18, 3:6]
+    carry, more = small[CARRY], small[CARRY + 1]
+    t, h, h_accepted, err_accepted = carry[0], carry[1], carry[2], carry[3]
+    last_rejected = carry[4] != 0.0
+    steps, rejected, status = int(carry[5]), int(carry[6]), int(carry[7])
+    vmax, vmin, top_integral = more[0], more[1], more[2]
+    next_sample = int(more[3])
+    done = more[4] != 0.0
     tiny = 1e-12 * max(1.0, t_end)
-
-    forces(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, f0v, f0z)
-    accelerations(chain, mpiv, mlow, f0v, acc)
     bit_acc0 = acc[n - 1]
     top_acc0 = acc[0]
-    t = 0.0
-    h = min(h0, hmax, t_end)
-    vmax = -np.inf
-    vmin = np.inf
-    top_integral = 0.0
-    steps = 0
-    rejected = 0
-    status = 0
-    last_rejected = False
-    h_accepted = h
-    err_accepted = 1.0
-    while t < t_end:
+    while next_sample < grid.size and grid[next_sample] <= t:  # samples at the current time
+        _sample(samples[next_sample], phi, v, z, n, m)
+        next_sample += 1
+    while t < t_end and status == 0 and not done and not (dense and next_sample >= stop):
         if steps >= max_steps:
             status = 1
             break
@@ -311,11 +356,14 @@ def _integrate_point(
             err_accepted = max(1e-2, err)
             bit0 = v[n - 1]
             top0 = v[0]
-            if track and bit0 < 0.0 <= av[n - 1] + kv[5, n - 1]:  # keep the step's start
+            if dense or (track and bit0 < 0.0 <= av[n - 1] + kv[5, n - 1]):  # the step's start
                 for i in range(n):
                     phi0[i] = phi[i]
                     v0[i] = v[i]
                     acc0[i] = acc[i]
+                for i in range(m):
+                    z0[i] = z[i]
+                    fz0[i] = f0z[i]
             for i in range(n):
                 phi[i] = aphi[i] + kphi[5, i]
                 v[i] = av[i] + kv[5, i]
@@ -324,6 +372,18 @@ def _integrate_point(
             forces(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, f0v, f0z)
             accelerations(chain, mpiv, mlow, f0v, acc)
             t_new = t + h
+            while next_sample < grid.size and grid[next_sample] <= t_new:
+                position = (grid[next_sample] - t) / h
+                if position >= 1.0:
+                    _sample(samples[next_sample], phi, v, z, n, m)
+                else:
+                    row = samples[next_sample]
+                    for i in range(m):
+                        row[i] = hermite(z0[i], z[i], h * fz0[i], h * f0z[i], position)
+                    for i in range(n):
+                        row[m + 2 * i] = hermite(phi0[i], phi[i], h * v0[i], h * v[i], position)
+                        row[m + 2 * i + 1] = hermite(v0[i], v[i], h * acc0[i], h * acc[i], position)
+                next_sample += 1
             if t_new > t_window:
                 lo = (t_window - t) / h if t < t_window else 0.0
                 vmax, vmin = extremes_of_cubic(
@@ -338,6 +398,7 @@ def _integrate_point(
                 vmin = min(vmin, cycle[CYCLE_MIN])
                 t = t_new
                 steps += 1
+                done = True
                 break
             bit_acc0 = acc[n - 1]
             top_acc0 = acc[0]
@@ -351,41 +412,56 @@ def _integrate_point(
             rejected += 1
             last_rejected = True
             h = h_new
-    out[0] = vmax + omega
-    out[1] = vmin + omega
-    out[2] = steps
-    out[3] = rejected
-    out[4] = status
-    out[5] = omega + (top_integral / (t_end - t_window) if has_top else 0.0)
-    out[6] = t
+    carry[0] = t
+    carry[1] = h
+    carry[2] = h_accepted
+    carry[3] = err_accepted
+    carry[4] = 1.0 if last_rejected else 0.0
+    carry[5] = steps
+    carry[6] = rejected
+    carry[7] = status
+    more[0] = vmax
+    more[1] = vmin
+    more[2] = top_integral
+    more[3] = next_sample
+    more[4] = 1.0 if done else 0.0
 
 
-VECTOR_ROWS = 33
-"""Rows of the per-point work space of length n (:func:`_integrate_point`)."""
-SMALL_ROWS = 18
-"""Rows of the per-point work space of length 8 (controller states, their solve, the
-steady-cycle tracker)."""
+@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+def _sample(row, phi, v, z, n, m) -> None:
+    """The state [z, phi_0, v_0, ...] at a step's end, into one row of the output."""
+    for i in range(m):
+        row[i] = z[i]
+    for i in range(n):
+        row[m + 2 * i] = phi[i]
+        row[m + 2 * i + 1] = v[i]
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def _finish(settings, omega, has_top, small, out) -> None:
+    """The :data:`OUT_COLUMNS` of a run from its carried scalars."""
+    carry, more = small[CARRY], small[CARRY + 1]
+    t_end, t_window = settings[0], settings[1]
+    out[0] = more[0] + omega
+    out[1] = more[1] + omega
+    out[2] = carry[5]
+    out[3] = carry[6]
+    out[4] = carry[7]
+    out[5] = omega + (more[2] / (t_end - t_window) if has_top else 0.0)
+    out[6] = carry[0]
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
 def _point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k) -> None:
-    """Point k with its own zeroed work space (allocated here, outside the step loop)."""
+    """Point k from rest, with its own zeroed work space (allocated outside the step loop)."""
     vectors = np.zeros((VECTOR_ROWS, chain.shape[1]))
     small = np.zeros((SMALL_ROWS, 8))
-    _integrate_point(
-        chain,
-        top,
-        torque,
-        slope,
-        p,
-        settings,
-        wob[k],
-        omega[k],
-        omega_set[k],
-        out[k],
-        vectors,
-        small,
-    )
+    for i in range(chain.shape[1]):
+        vectors[13, i] = -omega[k]  # start-up from rest: theta' = 0, controller states 0
+    _start(chain, top, torque, p, settings, wob[k], omega[k], omega_set[k], vectors, small)
+    _advance(chain, top, torque, slope, p, settings, wob[k], omega[k], omega_set[k], vectors,
+             small, np.zeros(0), np.zeros((0, 1)), 0)  # fmt: skip
+    _finish(settings, omega[k], top[0] != 0.0, small, out[k])
 
 
 @njit(kernel_signature(), cache=True, nogil=True, error_model="numpy")
@@ -400,3 +476,19 @@ def integrate_parallel(chain, top, torque, slope, p, settings, wob, omega, omega
     """Every point on numba's thread pool (dynamic sharing: set the chunk size to 1)."""
     for k in prange(wob.size):
         _point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k)
+
+
+@njit(run_signatures()[0], cache=True, nogil=True, error_model="numpy")
+def run_start(chain, top, torque, p, settings, wob, omega, omega_set, vectors, small) -> None:
+    """A single run: prepare it from the state in the work space (:func:`_start`)."""
+    _start(chain, top, torque, p, settings, wob, omega, omega_set, vectors, small)
+
+
+@njit(run_signatures()[1], cache=True, nogil=True, error_model="numpy")
+def run_chunk(
+    chain, top, torque, slope, p, settings, wob, omega, omega_set, vectors, small, grid,
+    samples, stop,
+) -> None:  # fmt: skip
+    """A single run: advance it until the output sample ``stop`` is written (:func:`_advance`)."""
+    _advance(chain, top, torque, slope, p, settings, wob, omega, omega_set, vectors, small,
+             grid, samples, stop)  # fmt: skip
