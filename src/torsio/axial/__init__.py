@@ -9,13 +9,23 @@ drilling over rpm (:mod:`torsio.axial.stability`). The equations are in docs/axi
 
 from __future__ import annotations
 
+from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
+from torsio.axial.linearization import axial_linearization, drilling_linearization
 from torsio.axial.rgd import RGDBit, rgd_example, rgd_from_table
+from torsio.axial.stability import DrillingStability, crossing_rpm, drilling_stability
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 
 __all__ = [
+    "DrillingStability",
+    "LinearDelaySystem",
     "RGDBit",
     "SteadyDrilling",
+    "axial_linearization",
+    "crossing_rpm",
+    "drilling_linearization",
+    "drilling_stability",
     "rgd_example",
     "rgd_from_table",
+    "rightmost_roots",
     "steady_drilling",
 ]
