@@ -76,3 +76,18 @@ def test_stuck_flags_survive_save_and_load(one_dof, tmp_path, suffix):
     loaded = load_map(result.save(tmp_path / f"map{suffix}"))
     assert loaded.stuck.tolist() == result.stuck.tolist()
     assert loaded.classification().tolist() == result.classification().tolist()
+
+
+@pytest.mark.parametrize(
+    ("flag", "named", "shortest"),
+    # 10 samples of the default step, 1/200 of the 7.4413 s period: 0.372 s (a run: twice)
+    [
+        ("--window", "--window (simulation.steady_window)", "0.372066 s"),
+        ("--duration", "--duration (simulation.duration)", "0.744131 s"),
+    ],
+)
+def test_too_short_a_window_names_what_was_given(capsys, flag, named, shortest):
+    status = main(["simulate", "--strategy", "A", "--wob", "100kN", "--rpm", "60", flag, "1e-6"])
+    err = capsys.readouterr().err
+    assert status == 2
+    assert f"error: {named}:" in err and shortest in err and "Traceback" not in err

@@ -250,6 +250,18 @@ def simulate_lumped(
     check_time_scales(system, run)
     time_grid = np.linspace(0.0, run, intervals + 1)
     in_window = window_mask(time_grid, window)
+    if step > window / MIN_WINDOW_SAMPLES and options.output_step is None:
+        # the default sampling: what is too short is the window (or the run it halves)
+        key = "simulation.steady_window" if options.steady_window is not None else None
+        raise ConfigError(
+            key or "simulation.duration",
+            f"the steady window ({window:g} s{'' if key else ', half the run by default'}) "
+            f"holds fewer than {MIN_WINDOW_SAMPLES} samples of the default output step "
+            f"({step:g} s, 1/{DEFAULT_SAMPLES_PER_PERIOD} of the first period {period:.4g} s); "
+            f"expected a {'window' if key else 'run'} of at least "
+            f"{(1 if key else 2) * MIN_WINDOW_SAMPLES * step:g} s (S_SS over a shorter window "
+            "reads a fragment of a cycle), or give a finer --output-step",
+        )
     if step > window / MIN_WINDOW_SAMPLES:
         raise ConfigError(
             "simulation.output_step",
