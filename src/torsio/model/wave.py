@@ -100,6 +100,9 @@ class WaveModel:
         strategy C's string, the limit its discretization converges to.
     drag_spacing : int
         Cells between the nodes that carry the distributed drag (:func:`drag_lumping`).
+    contacts : StringContacts or None
+        Coulomb friction of the drag nodes with the borehole
+        (:class:`torsio.model.contacts.StringContacts`; None: no contact).
     """
 
     string: DrillString
@@ -114,6 +117,7 @@ class WaveModel:
     details: dict[str, Any] = attrs.field(factory=dict, eq=False)
     rigid_bha: bool = False
     drag_spacing: int = DEFAULT_DRAG_SPACING
+    contacts: Any = attrs.field(default=None, eq=False)
 
     @property
     def sections(self) -> tuple[Any, ...]:
@@ -197,6 +201,7 @@ class WaveModel:
             "bit_inertia_kg_m2": self.bit_inertia,
             "rigid_bha": self.rigid_bha,
             "drag_spacing": self.drag_spacing,
+            **({} if self.contacts is None else {"contacts": self.contacts.describe()}),
         }
 
 
