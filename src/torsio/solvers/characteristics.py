@@ -398,7 +398,7 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
                 top_state[i] = mode_x[i]
             top_speed = top_state[0]
         P[i_top] = m_in + 2.0 * z_top * top_speed
-        surface_torque = m_in + z_top * top_speed
+        surface_torque = m_in + (z_top + c_top) * top_speed  # the top node's drag: the string's
         end_power += c_top * top_speed * top_speed
         # 5. bit
         i_bit, j_bit = _end_slots(layout, spacing, heads, last, True)

@@ -224,7 +224,7 @@ def march(
     threshold = 0.0 if grid.contacts is None else float(grid.contacts.threshold_speed)
     # powers at t = 0 for the trapezoidal energies
     speed0 = state.top[0] if not top.held else top.set_speed
-    surface0 = state.m[0] + z_top * speed0
+    surface0 = state.m[0] + (z_top + layout.end_dampers[0]) * speed0  # with the top node's drag
     if not top.held:
         x0 = state.top
         u0 = top.coefficients[0] + top.coefficients[1:-1] @ x0 + top.coefficients[-1] * state.m[0]
