@@ -246,6 +246,7 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     cycle_gap = settings[17]
     run_steps = int(settings[18])
     threshold = settings[19]
+    below = settings[21]  # the largest speed under the threshold: the static branch
     rubbing = settings[20] != 0.0
     t_end = run_steps * dt  # the run's end, for the cycles left, and its window's length
     window_length = (run_steps - window_start + 1) * dt
@@ -293,9 +294,8 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
                     z = sections[s, Z]
                     c = sections[s, C_INNER]
                     squares, rub = _contacts(
-                        P[ip : ip + regular], M[im : im + regular], 2.0 * z, 2.0 * z + c,
-                        contacts[0, a:b], contacts[1, a:b], contacts[2, a:b], contacts[3, a:b],
-                        threshold,
+                        P[ip : ip + regular], M[im : im + regular], 2.0 * z, 1.0 / (2.0 * z + c),
+                        contacts[0, a:b], contacts[1, a:b], contacts[2, a:b], below,
                     )  # fmt: skip
                     inner_power += c * squares
                     friction_power += rub
@@ -320,13 +320,11 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
                 if rubbing:
                     j = contact_index[s, 1]
                     v = _contact_speed(
-                        difference, 2.0 * z + c, contacts[0, j], contacts[1, j], contacts[2, j],
-                        threshold,
+                        difference, 1.0 / (2.0 * z + c), contacts[0, j], contacts[1, j],
+                        contacts[2, j], below,
                     )  # fmt: skip
-                    rub = difference - (2.0 * z + c) * v
                     contacts[2, j] = v
-                    contacts[3, j] = rub
-                    friction_power += rub * v
+                    friction_power += (difference - (2.0 * z + c) * v) * v
                     jump = 2.0 * z * v
                     inner_power += c * v * v
                 else:
@@ -346,13 +344,11 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
             if rubbing:
                 j = contact_index[s, 2]
                 speed = _contact_speed(
-                    difference, z1 + z2 + c, contacts[0, j], contacts[1, j], contacts[2, j],
-                    threshold,
+                    difference, 1.0 / (z1 + z2 + c), contacts[0, j], contacts[1, j],
+                    contacts[2, j], below,
                 )  # fmt: skip
-                rub = difference - (z1 + z2 + c) * speed
                 contacts[2, j] = speed
-                contacts[3, j] = rub
-                friction_power += rub * speed
+                friction_power += (difference - (z1 + z2 + c) * speed) * speed
             else:
                 speed = difference / (z1 + z2 + c)
             M[ja] = P[ia] - 2.0 * z1 * speed

@@ -27,11 +27,12 @@ energy leaving the node's pair of waves in a step is exactly (c v^2 + F v) dt.
 Examples
 --------
 >>> import numpy as np
->>> round(_contact_speed(10.0, 2.0, 4.0, 3.0, 0.0, 0.5), 12)  # from rest: C_s, then fast
+>>> below = speed_below(0.5)
+>>> round(_contact_speed(10.0, 0.5, 4.0, 3.0, 0.0, below), 12)  # from rest: C_s, then fast
 3.5
->>> _contact_speed(3.9, 2.0, 4.0, 3.0, 0.0, 0.5)  # held: |d| <= C_s
+>>> _contact_speed(3.9, 0.5, 4.0, 3.0, 0.0, below)  # held: |d| <= C_s
 0.0
->>> round(_contact_speed(4.5, 2.0, 4.0, 3.0, 0.0, 0.5), 12)  # slow slip on C_s
+>>> round(_contact_speed(4.5, 0.5, 4.0, 3.0, 0.0, below), 12)  # slow slip on C_s
 0.25
 """
 
@@ -45,50 +46,57 @@ import numpy as np
 from torsio.model.wave import drag_lumping
 from torsio.solvers.compiled import njit
 
-__all__ = ["contact_arrays"]
+__all__ = ["contact_arrays", "speed_below"]
 
 
 @njit(cache=True, nogil=True, _nrt=False)
-def _contact_speed(d, total, static, dynamic, previous, threshold):  # type: ignore[no-untyped-def,unused-ignore]
-    """Speed [rad/s] of a contact node: the solution of total v + F(v) = d (module
-    docstring) on the branch of its ``previous`` speed."""
+def _contact_speed(d, inverse, static, dynamic, previous, below):  # type: ignore[no-untyped-def,unused-ignore]
+    """Speed [rad/s] of a contact node: the solution of v / inverse + F(v) = d (module
+    docstring) on the branch of its ``previous`` speed. ``inverse`` = 1 / (2 Z + c);
+    ``below`` the largest speed under the threshold (:func:`speed_below`), so that
+    |v| <= below is the static branch (v = 0 too with a threshold of 0). Written without
+    branches, so that a run of nodes vectorizes."""
     a = abs(d)
-    slow = max(a - static, 0.0) / total
-    fast = max(a - dynamic, 0.0) / total
-    if abs(previous) < threshold or previous == 0.0:  # was on the static branch
-        v = slow if (slow < threshold or slow == 0.0) else fast
-    else:
-        v = fast if fast >= threshold else slow
-    return math.copysign(v, d)
+    slow = max(a - static, 0.0) * inverse
+    fast = max(a - dynamic, 0.0) * inverse
+    was_slow = abs(previous) <= below
+    # static branch: was on it and it has a solution, or was not and the dynamic has none
+    on_slow = (was_slow & (slow <= below)) | ((not was_slow) & (fast <= below))
+    return math.copysign(slow if on_slow else fast, d)
 
 
-@njit(cache=True, nogil=True, _nrt=False)
-def _contacts(p, m, two_z, total, static, dynamic, speed, force, threshold):  # type: ignore[no-untyped-def,unused-ignore]
+@njit(cache=True, nogil=True, _nrt=False, error_model="numpy", fastmath={"reassoc"})
+def _contacts(p, m, two_z, inverse, static, dynamic, speed, below):  # type: ignore[no-untyped-def,unused-ignore]
     """Regular contact nodes on contiguous slices of arriving (p, m); in place, with the
-    nodes' ``speed`` and ``force`` (their last step's, updated). Returns (sum of v^2, sum of
-    F v) for the dampers' and the friction's power."""
+    nodes' ``speed`` (their last step's, updated). Returns (sum of v^2, sum of F v) for the
+    dampers' and the friction's power. The sums may be reassociated (``fastmath`` reassoc
+    only: the loop vectorizes, 1.1 instead of 5 ns a node); the invariants are not."""
     squares = 0.0
     work = 0.0
+    total = 1.0 / inverse
     for i in range(p.size):
         arriving_p = p[i]
         d = arriving_p - m[i]
-        v = _contact_speed(d, total, static[i], dynamic[i], speed[i], threshold)
-        f = d - total * v
+        v = _contact_speed(d, inverse, static[i], dynamic[i], speed[i], below)
         speed[i] = v
-        force[i] = f
         squares += v * v
-        work += f * v
+        work += (d - total * v) * v
         jump = two_z * v
         p[i] = m[i] + jump
         m[i] = arriving_p - jump
     return squares, work
 
 
+def speed_below(threshold: float) -> float:
+    """The largest float below ``threshold`` (0 for 0): |v| <= it is |v| < threshold."""
+    return float(np.nextafter(threshold, 0.0)) if threshold > 0.0 else 0.0
+
+
 def contact_arrays(grid: Any) -> tuple[np.ndarray, np.ndarray]:
     """(index, table) of ``grid.contacts`` for the kernel.
 
-    ``table`` (4, contacts): C_s, C_d [N m], then the speed and the friction torque of the
-    last step (zero: at rest). Per section s, ``index[s]`` = (first of its regular inner
+    ``table`` (3, contacts): C_s, C_d [N m], then the speed of the last step [rad/s]
+    (zero: at rest). Per section s, ``index[s]`` = (first of its regular inner
     nodes k, 2k, ... in ``table``, its other inner drag node, its bottom junction; -1:
     none). Without contacts: one empty column, and the kernel takes the damper-only path.
     """
@@ -96,7 +104,7 @@ def contact_arrays(grid: Any) -> tuple[np.ndarray, np.ndarray]:
     index = np.full((sections, 3), -1, dtype=np.int64)
     contacts = grid.contacts
     if contacts is None:
-        return index, np.zeros((4, 1))
+        return index, np.zeros((3, 1))
     offsets = np.concatenate([[0], np.cumsum(np.array(grid.cells) + 1)]).astype(int)
     columns: list[int] = []
     k = grid.drag_spacing
@@ -112,7 +120,7 @@ def contact_arrays(grid: Any) -> tuple[np.ndarray, np.ndarray]:
         if s < sections - 1:
             index[s, 2] = len(columns)
             columns.append(int(offsets[s + 1] - 1))
-    table = np.zeros((4, max(len(columns), 1)))
+    table = np.zeros((3, max(len(columns), 1)))
     table[0, : len(columns)] = contacts.static[columns]
     table[1, : len(columns)] = contacts.dynamic[columns]
     return index, table

@@ -28,7 +28,7 @@ from torsio.solvers.characteristics import (
     rest_state,
 )
 from torsio.solvers.run_chunks import run_in_chunks
-from torsio.solvers.wave_contacts import contact_arrays
+from torsio.solvers.wave_contacts import contact_arrays, speed_below
 from torsio.solvers.wave_top import TopArrays, with_node_damper
 
 
@@ -250,6 +250,7 @@ def march(
             top.max_torque, steps, window_start, record_every, field_every, top.drag,
             1.0 if track_energy else 0.0, grid.drag_spacing, steady_tolerance, reference,
             cycle_gap, steps, threshold, 0.0 if grid.contacts is None else 1.0,
+            speed_below(threshold),
         ]
     )  # fmt: skip
     cross = np.zeros((2, state.p.size + 2))
