@@ -73,7 +73,7 @@ from torsio.solvers.wave_buffers import (
     _read_nodes,
     _slot,
 )
-from torsio.solvers.wave_contacts import _contact_speed, _contacts
+from torsio.solvers.wave_contacts import _contact_node_speeds, _contact_speed, _contacts
 from torsio.solvers.wave_state import (
     BUFFER_START,
     C_INNER,
@@ -465,6 +465,8 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
             row = absolute // field_every
             if row < field.shape[0]:
                 _read_nodes(layout, spacing, P, M, heads, impedances, speeds, torques)
+                if rubbing:
+                    _contact_node_speeds(contacts, speeds)
                 for j in range(nodes):
                     field[row, j] = speeds[j]
         # 6. a steady cycle? (upward crossings of the reference speed by the bit)

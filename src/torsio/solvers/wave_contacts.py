@@ -87,6 +87,14 @@ def _contacts(p, m, two_z, inverse, static, dynamic, speed, below):  # type: ign
     return squares, work
 
 
+@njit(cache=True, nogil=True, _nrt=False)
+def _contact_node_speeds(contacts, speeds):  # type: ignore[no-untyped-def,unused-ignore]
+    """Put the contact nodes' speeds into ``speeds`` (state layout): at a contact the
+    stored pair leaves it, (p - m) / (2 Z - c) = v - F / (2 Z - c), not its speed."""
+    for j in range(contacts.shape[1]):
+        speeds[int(contacts[3, j])] = contacts[2, j]
+
+
 def speed_below(threshold: float) -> float:
     """The largest float below ``threshold`` (0 for 0): |v| <= it is |v| < threshold."""
     return float(np.nextafter(threshold, 0.0)) if threshold > 0.0 else 0.0
@@ -95,16 +103,18 @@ def speed_below(threshold: float) -> float:
 def contact_arrays(grid: Any) -> tuple[np.ndarray, np.ndarray]:
     """(index, table) of ``grid.contacts`` for the kernel.
 
-    ``table`` (3, contacts): C_s, C_d [N m], then the speed of the last step [rad/s]
-    (zero: at rest). Per section s, ``index[s]`` = (first of its regular inner
-    nodes k, 2k, ... in ``table``, its other inner drag node, its bottom junction; -1:
-    none). Without contacts: one empty column, and the kernel takes the damper-only path.
+    ``table`` (4, contacts): C_s, C_d [N m], the speed of the last step [rad/s] (zero: at
+    rest) and the node in the state layout (as a float; its stored pair is the one leaving
+    the contact, so its speed is read from here, :func:`_contact_node_speeds`). Per
+    section s, ``index[s]`` = (first of its regular inner nodes k, 2k, ... in ``table``,
+    its other inner drag node, its bottom junction; -1: none). Without contacts: one
+    empty column, and the kernel takes the damper-only path.
     """
     sections = len(grid.cells)
     index = np.full((sections, 3), -1, dtype=np.int64)
     contacts = grid.contacts
     if contacts is None:
-        return index, np.zeros((3, 1))
+        return index, np.zeros((4, 1))
     offsets = np.concatenate([[0], np.cumsum(np.array(grid.cells) + 1)]).astype(int)
     columns: list[int] = []
     k = grid.drag_spacing
@@ -120,7 +130,8 @@ def contact_arrays(grid: Any) -> tuple[np.ndarray, np.ndarray]:
         if s < sections - 1:
             index[s, 2] = len(columns)
             columns.append(int(offsets[s + 1] - 1))
-    table = np.zeros((3, max(len(columns), 1)))
+    table = np.zeros((4, max(len(columns), 1)))
     table[0, : len(columns)] = contacts.static[columns]
     table[1, : len(columns)] = contacts.dynamic[columns]
+    table[3, : len(columns)] = columns
     return index, table
