@@ -116,3 +116,80 @@ def test_deferred_imports_are_edges_and_type_checking_blocks_are_not(tmp_path):
     )
     edges = _imports(source, "torsio.model.probe")
     assert edges == {"torsio.model.modal", "torsio.model.wave"}
+
+
+# --- one model protocol (torsio.model.protocol) -------------------------------------------------
+MODEL_KINDS = {"WaveModel", "LumpedModel"}
+
+KIND_TESTS_ALLOWED = {
+    # these two hand wave systems on with is_wave_model until the one-engine change (issue 17,
+    # item 1) rewrites them: then each is `resolve(system.model.engines.<role>)(...)` and its
+    # entry goes
+    "torsio.analysis.transient",
+    "torsio.solvers.batch",
+}
+
+
+def _names(node: ast.AST) -> set[str]:
+    """Names and attribute names in an expression (``wave.WaveModel`` gives both)."""
+    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name)} | {
+        n.attr for n in ast.walk(node) if isinstance(n, ast.Attribute)
+    }
+
+
+def _kind_tests(source: str) -> list[str]:
+    """Where a module tests the kind of a model: a use of ``is_wave_model`` (a call, an
+    import, a reference), an ``isinstance``/``issubclass`` against a model class."""
+    found = []
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.ImportFrom) and any(a.name == "is_wave_model" for a in node.names):
+            found.append(f"line {node.lineno}: imports is_wave_model")
+        elif (isinstance(node, ast.Name) and node.id == "is_wave_model") or (
+            isinstance(node, ast.Attribute) and node.attr == "is_wave_model"
+        ):
+            found.append(f"line {node.lineno}: is_wave_model")
+        elif (
+            isinstance(node, ast.Call)
+            and isinstance(node.func, ast.Name)
+            and node.func.id in ("isinstance", "issubclass")
+            and len(node.args) == 2
+            and _names(node.args[1]) & MODEL_KINDS
+        ):
+            found.append(f"line {node.lineno}: {ast.unparse(node)}")
+    return found
+
+
+KIND_TESTS = {
+    name: tests
+    for name, path in MODULES.items()
+    if not name.startswith("torsio.model")
+    and (tests := _kind_tests(path.read_text(encoding="utf-8")))
+}
+
+
+def test_no_module_outside_the_model_tests_the_kind_of_a_model():
+    # docs/architecture.md, "The model protocol": analyzers, solvers, reports and the CLI
+    # read a model through torsio.model.protocol.StructuralModel, never by its class
+    offenders = {k: v for k, v in KIND_TESTS.items() if k not in KIND_TESTS_ALLOWED}
+    assert not offenders, f"kind tests outside torsio.model: {offenders}"
+
+
+def test_the_kind_test_allow_list_holds_only_modules_that_still_test():
+    # an entry goes as soon as its module reads the protocol instead
+    assert set(KIND_TESTS_ALLOWED) <= set(KIND_TESTS), sorted(
+        set(KIND_TESTS_ALLOWED) - set(KIND_TESTS)
+    )
+
+
+def test_the_kind_test_finder_sees_calls_imports_and_isinstance():
+    source = (
+        "from torsio.model.wave import is_wave_model\n"
+        "import torsio.model.wave as wave\n"
+        "def run(model):\n"
+        "    a = wave.is_wave_model(model)\n"
+        "    b = isinstance(model, (wave.WaveModel, int))\n"
+        "    c = isinstance(model, LumpedModel)\n"
+        "    return model.linearizable and isinstance(model, dict)\n"
+    )
+    lines = [entry.split(":")[0] for entry in _kind_tests(source)]
+    assert sorted(lines) == ["line 1", "line 4", "line 5", "line 6"]

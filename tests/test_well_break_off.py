@@ -109,3 +109,17 @@ def test_bad_cell_length_is_named():
     config = deviated_well_config()
     with pytest.raises(Exception, match="cell_length"):
         break_off(config.well, config.string, cell_length=0.0)
+
+
+def test_report_well_section_gives_the_same_numbers():
+    from torsio.io.report import report_data
+
+    config = deviated_well_config()
+    data = report_data(config, modes=1)["well"]
+    start = break_off(config.well, config.string)
+    drag = torque_drag(config.well, config.string, wob=config.operation.wob)
+    # the report computes nothing of its own: the same functions, the same numbers
+    assert data["break_off_torque"] == start.torque
+    assert data["break_off_twist"] == start.twist
+    assert data["surface_torque_on_bottom"] == drag.surface_torque_on_bottom
+    assert data["max_inclination_deg"] == pytest.approx(35.0, abs=1e-9)  # the tangent's

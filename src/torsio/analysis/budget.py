@@ -224,7 +224,7 @@ def check_law_time_scale(system: Any, wob: float, duration: float) -> None:
     slope = law_slope_at_rest(system.law, wob, system.bit_radius)
     if slope == 0.0:
         return
-    bit_inertia = _bit_inertia(system.model)
+    bit_inertia = float(system.model.bit_inertia)
     scale = bit_inertia / slope
     if math.isfinite(scale) and scale > 0 and duration / scale <= MAX_STIFFNESS_RATIO:
         return
@@ -237,13 +237,6 @@ def check_law_time_scale(system: Any, wob: float, duration: float) -> None:
         f"{MAX_STIFFNESS_RATIO:.0e} times faster than the run of {duration:.4g} s can be "
         "integrated; check the law's parameters (e.g. a0, a1) and the bit radius",
     )
-
-
-def _bit_inertia(model: Any) -> float:
-    """Inertia of the bit's node [kg m^2]: a lumped model's last one, or a wave model's bit."""
-    if hasattr(model, "bit_inertia"):
-        return float(model.bit_inertia)
-    return float(np.asarray(model.inertia)[-1, -1])
 
 
 def check_wave_steps(
@@ -341,12 +334,11 @@ def check_batch_work(
     model's runs take the fixed steps of its grid (:func:`check_wave_steps`, checked
     first: it is the cause when a long run would also exceed the law's time-scale bound).
     """
-    from torsio.model.wave import is_wave_model
-
-    if is_wave_model(system.model):  # fixed steps of its grid
+    fixed_step = system.model.time_step  # None: the engine chooses its steps
+    if fixed_step is not None:  # the wave model: fixed steps of its grid
         check_wave_steps(system.model, duration, "duration", max_steps)
     check_rtol(rtol, "rtol")
-    if not is_wave_model(system.model) and 4.0 * duration / period > max_steps:
+    if fixed_step is None and 4.0 * duration / period > max_steps:
         raise ConfigError(
             "duration",
             f"a run of {duration:g} s is {duration / period:.3g} periods of the first mode "

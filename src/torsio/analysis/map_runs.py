@@ -45,7 +45,7 @@ class MapFailed(SweepError):
 
 
 def _axis(key: str, values: Any, positive: bool) -> np.ndarray:
-    array = np.atleast_1d(np.asarray(values, dtype=float))
+    array = _axis_values(key, values)
     if array.ndim != 1 or array.size == 0:
         raise ConfigError(
             key, f"expected a non-empty 1-D sequence of values, got shape {array.shape}"
@@ -60,6 +60,27 @@ def _axis(key: str, values: Any, positive: bool) -> np.ndarray:
             key, f"expected strictly increasing values, got {array[k]!r} then {array[k + 1]!r}"
         )
     return array
+
+
+def _axis_values(key: str, values: Any) -> np.ndarray:
+    """The values of an axis as floats: numbers, or strings with units for ``wob`` (a
+    force, "100 kN") and ``rpm`` (a speed, "10 rad/s"); a ConfigError naming ``key``."""
+    from torsio.units import as_rpm, to_si
+
+    def one(value: Any) -> float:
+        if isinstance(value, str) and key == "wob":
+            return to_si(value, "force", key=key)
+        if isinstance(value, str) and key == "rpm":
+            return as_rpm(value, key)
+        if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+            raise ConfigError(key, f"expected a number or a sequence of numbers, got {value!r}")
+        return float(value)
+
+    try:
+        return np.atleast_1d(np.asarray(values, dtype=float))
+    except (TypeError, ValueError):
+        items = [values] if isinstance(values, str) or not np.iterable(values) else list(values)
+        return np.asarray([one(item) for item in items], dtype=float)
 
 
 def _available_memory() -> float | None:

@@ -82,6 +82,7 @@ from torsio.analysis.sweep import (
     open_executor,
     worker_count,
 )
+from torsio.analysis.time_scales import check_time_scales
 from torsio.errors import ConfigError, SolverError
 from torsio.physics.system import System
 from torsio.solvers.batch import (
@@ -94,13 +95,9 @@ __all__ = ["dimensionless_map", "severity_map"]
 
 
 def _scales(system: System) -> tuple[float, float]:
+    """(k_eq [N m/rad], omega_1 [rad/s]) of the System's model (its protocol's numbers)."""
     from torsio.model.modal import first_natural_frequency
-    from torsio.model.wave import is_wave_model
 
-    if is_wave_model(system.model):
-        from torsio.solvers.wave_batch import wave_scales
-
-        return wave_scales(system.model)
     return float(system.model.equivalent_stiffness), first_natural_frequency(system.model)
 
 
@@ -212,6 +209,7 @@ def _build_map(
     duration, steady_window = run_times(system, options.duration, options.steady_window)
     k_eq, omega1 = _scales(system)
     check_batch_work(system, wob, duration, options.rtol, 2.0 * math.pi / omega1, DEFAULT_MAX_STEPS)
+    check_time_scales(system, duration)
     serial = executor is None or executor == "serial"
     batch: dict[str, Any] = {
         "duration": duration,
@@ -375,12 +373,10 @@ def _build_map(
     info["elapsed_s"] = time.perf_counter() - start
     info["extra_runs"] = runner.runs - points
     info["ended_on_steady_cycle"] = int(ended_early.sum())  # grid points that ended early
-    from torsio.model.wave import is_wave_model
-
-    if is_wave_model(system.model):  # no linearization of the distributed model (yet)
-        linear_wob = np.full(rpm.shape, np.nan)
-    else:
+    if system.model.linearizable:
         linear_wob = stability_boundary(system, rpm).critical_wob
+    else:  # e.g. the distributed model: no linearization (yet)
+        linear_wob = np.full(rpm.shape, np.nan)
     return SeverityMap(
         **scales,
         severity=severity,

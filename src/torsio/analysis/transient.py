@@ -53,7 +53,7 @@ from torsio.analysis.budget import (
     check_law_time_scale,
     check_output_size,
 )
-from torsio.analysis.limits import short_window, stuck_throughout, warning_list
+from torsio.analysis.limits import saturated_motor, short_window, stuck_throughout, warning_list
 from torsio.analysis.severity import (
     DEFAULT_SAMPLES_PER_PERIOD,
     DEFAULT_STICK_THRESHOLD,
@@ -68,6 +68,7 @@ from torsio.analysis.simulation_options import (
     MIN_WINDOW_SAMPLES,
     SimulationOptions,
 )
+from torsio.analysis.time_scales import check_time_scales
 from torsio.analysis.transient_results import TransientResults, window_mask
 from torsio.errors import ConfigError, SolverError
 from torsio.io.config import Config
@@ -190,14 +191,7 @@ def simulate(
     """
     from torsio.model.wave import is_wave_model
 
-    if is_wave_model(system.model):  # the distributed model: torsio.analysis.wave
-        from torsio.analysis.wave import wave_response
-
-        return wave_response(
-            system, duration, steady_window, output_step, stick_threshold,
-            initial_state=initial_state,
-        ).transient  # fmt: skip
-    options = SimulationOptions(
+    options = SimulationOptions(  # validated once, whatever the model
         duration=duration,
         steady_window=steady_window,
         method=method,
@@ -206,6 +200,13 @@ def simulate(
         output_step=output_step,
         stick_threshold=stick_threshold,
     )
+    if is_wave_model(system.model):  # the distributed model: torsio.analysis.wave
+        from torsio.analysis.wave import wave_response
+
+        return wave_response(
+            system, options.duration, options.steady_window, options.output_step,
+            options.stick_threshold, initial_state=initial_state,
+        ).transient  # fmt: skip
     if not (math.isfinite(system.omega) and system.omega > 0):  # System validates this
         raise ConfigError("operation.rpm", f"expected a positive rotary speed, got {system.rpm!r}")
     run, window = run_times(system, options.duration, options.steady_window)
@@ -217,6 +218,7 @@ def simulate(
     )
     intervals = check_output_size(run, step, 3 * system.model.dofs + 4)
     check_law_time_scale(system, system.wob, run)
+    check_time_scales(system, run)
     time_grid = np.linspace(0.0, run, intervals + 1)
     in_window = window_mask(time_grid, window)
     if step > window / MIN_WINDOW_SAMPLES:
@@ -267,6 +269,13 @@ def simulate(
     top_speed = speeds_by_node[0].copy() if first else np.full(bit_speed.shape, reference)
     mean_top_speed = float(top_speed[in_window].mean())
     omega = dynamics.set_speed if math.isfinite(dynamics.set_speed) else mean_top_speed
+    if not omega > 0:  # a torque-driven top that did not turn: no speed to read S_SS against
+        raise ConfigError(
+            "top_drive.torque",
+            f"the top drive did not turn (mean speed {mean_top_speed:.3g} rad/s over the steady "
+            f"window) with a motor torque of {dynamics.top.u0:.6g} N m; expected a torque "
+            "above what the drag and the bit at rest hold",
+        )
     window_speeds = bit_speed[in_window]
     stick = float(np.mean(np.abs(window_speeds) < threshold * omega))
     solver_info = {
@@ -301,7 +310,11 @@ def simulate(
         reference_speed=float(reference),
         severity_speed=float(omega),
         warnings=warning_list(
-            stuck_throughout(stick, threshold), short_window(float(window), period)
+            stuck_throughout(stick, threshold),
+            short_window(float(window), period),
+            saturated_motor(
+                motor_torque[in_window], dynamics.top.max_torque, mean_top_speed, dynamics.set_speed
+            ),
         ),
     )
 

@@ -119,6 +119,19 @@ class TransientResults:
         return bool(getattr(self.system.top, "name", "") != "constant-speed")
 
     @property
+    def has_set_speed(self) -> bool:
+        """Whether the top drive turns at a set speed (False for a torque-driven top)."""
+        return bool(np.isfinite(self.system.top.boundary(self.system).set_speed))
+
+    @property
+    def rpm(self) -> float:
+        """The rotary speed the run had [rpm]: the set speed, or for a top drive without
+        one (``torque``) the mean top-drive speed over the steady window."""
+        if self.has_set_speed:
+            return float(self.system.rpm)
+        return self.top_speed_mean / RPM_TO_RAD_S
+
+    @property
     def top_speed_mean(self) -> float:
         """Mean top-drive speed over the steady window [rad/s]."""
         return float(self.top_speed[self.window_mask].mean())
@@ -167,7 +180,9 @@ class TransientResults:
     def to_dict(self, series: bool = False) -> dict[str, Any]:
         """Plain data for JSON: operating point, S_SS, window, solver statistics.
 
-        Keys ``wob`` [N], ``rpm`` and ``severity`` are always present. For a
+        Keys ``wob`` [N], ``rpm`` and ``severity`` are always present; ``rpm`` is the set
+        speed, or for a top drive without one the mean top-drive speed over the steady
+        window, and ``rpm_source`` says which (``"set"`` or ``"top_speed_mean"``). For a
         dimensionless system ``wob`` and ``rpm`` are those of its System (Pi_2 and
         Pi_1 in rpm form) and ``pi1``, ``pi2`` are added. ``series=True`` adds the
         time series.
@@ -176,7 +191,8 @@ class TransientResults:
         system = self.system
         data: dict[str, Any] = {
             "wob": float(system.wob),
-            "rpm": float(system.rpm),
+            "rpm": self.rpm,
+            "rpm_source": "set" if self.has_set_speed else "top_speed_mean",
             "severity": float(self.severity),
             "severe": self.severe,
             "stick_fraction": float(self.stick_fraction),
@@ -322,7 +338,8 @@ class TransientResults:
         op = (
             f"Pi1 = {self.omega:.4g}, Pi2 = {self.system.wob * self.system.bit_radius:.4g}"
             if self.dimensionless
-            else f"WOB = {self.system.wob / 1e3:.4g} kN, {self.system.rpm:.4g} rpm"
+            else f"WOB = {self.system.wob / 1e3:.4g} kN, {self.rpm:.4g} rpm"
+            + ("" if self.has_set_speed else " (mean top speed)")
         )
         axes[0].set_title(f"{op}: S_SS = {self.severity:.3f} (steady window shaded)")
         fig.tight_layout()

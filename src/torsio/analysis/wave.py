@@ -5,7 +5,9 @@ with the characteristic stepping of :mod:`torsio.solvers.characteristics`: start
 rest, the same defaults as the lumped transient (40 periods of the first exact continuum
 mode, S_SS over the last 15, 200 output samples per period), the same bit-rock law and
 top drive. S_SS takes the bit-speed extremes over every time step of the window.
-:func:`torsio.analysis.transient.simulate` hands wave systems to it.
+:func:`torsio.analysis.transient.simulate` hands wave systems to it; :func:`simulate_wave`,
+the transient engine the model names (:data:`torsio.model.wave.WAVE_ENGINES`), takes the
+parameters of ``simulate``.
 
 Integrator: exact transport along characteristics, exact junctions, the distributed drag
 lumped into point dampers every ``drag_spacing`` cells (exact junctions too), BDF2 for
@@ -40,7 +42,7 @@ from torsio.analysis.severity import DEFAULT_DURATION_PERIODS, DEFAULT_WINDOW_PE
 from torsio.analysis.simulation_options import check_window_samples
 from torsio.analysis.transient_results import TransientResults
 from torsio.errors import ConfigError
-from torsio.model.wave import WaveModel, check_wave_damping, first_frequency, is_wave_model
+from torsio.model.wave import WAVE_ENGINES, WaveModel, check_wave_damping, first_frequency
 from torsio.solvers.characteristics import RECORD_CHANNELS, WaveState, node_offsets
 from torsio.solvers.run_chunks import QUIET_SECONDS, stderr_progress
 from torsio.solvers.wave_march import WaveRun, march
@@ -162,6 +164,32 @@ def _transient_results(values: dict[str, Any]) -> Any:
     return cls(**{k: v for k, v in values.items() if k in attrs.fields_dict(cls)})
 
 
+def simulate_wave(
+    system: Any,
+    duration: float | None = None,
+    steady_window: float | None = None,
+    method: Any = None,
+    rtol: float | None = None,
+    atol: float | None = None,
+    output_step: float | None = None,
+    initial_state: WaveState | None = None,
+    stick_threshold: float | None = None,
+    **ignored: Any,
+) -> TransientResults:
+    """The transient engine of the distributed model (:data:`torsio.model.wave.WAVE_ENGINES`).
+
+    Takes the parameters of :func:`torsio.analysis.transient.simulate` and returns the
+    transient results of :func:`wave_response`; ``method``, ``rtol`` and ``atol`` have no
+    meaning on the fixed grid and are not used (the command line refuses them,
+    :func:`refuse_integrator_options`).
+    """
+    response = wave_response(
+        system, duration, steady_window, output_step, stick_threshold,
+        initial_state=initial_state,
+    )  # fmt: skip
+    return response.transient
+
+
 def wave_response(
     system: Any,
     duration: float | None = None,
@@ -200,7 +228,7 @@ def wave_response(
         :func:`refuse_integrator_options`).
     """
     grid = system.model
-    if not is_wave_model(grid):
+    if getattr(grid, "engines", None) != WAVE_ENGINES:  # a model this stepping runs
         raise ConfigError("discretization.strategy", f"expected the wave model, got {grid!r}")
     alpha = check_wave_damping(system.damping, system.model)
     dt = grid.time_step

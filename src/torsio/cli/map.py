@@ -211,7 +211,6 @@ def _run(args: argparse.Namespace) -> int:
     from torsio.analysis.map_runs import MapFailed, check_grid_size
     from torsio.analysis.maps import dimensionless_map, severity_map
     from torsio.errors import ConfigError
-    from torsio.model.wave import is_wave_model
     from torsio.physics.system import System
 
     if args.wob is not None and args.pi2 is not None:
@@ -252,7 +251,7 @@ def _run(args: argparse.Namespace) -> int:
     simulation = dict(config.simulation.options)
     options = _map_options(args, simulation)
     single_run_only = sorted(set(simulation) & {"method", "output_step", "stick_threshold"})
-    if is_wave_model(system.model):  # no integrator: --rtol is an error, the file's a note
+    if system.model.time_step is not None:  # fixed steps, no integrator: --rtol is an error
         from torsio.analysis.wave import integrator_note, refuse_integrator_options
 
         refuse_integrator_options({"--rtol (simulation.rtol)": args.rtol})

@@ -42,9 +42,7 @@ def run(args: argparse.Namespace) -> int:
     model = config.model(**common.discretization_overrides(args))
     if args.count is not None and args.count < 1:
         raise ConfigError("--count", f"expected a whole number of modes >= 1, got {args.count}")
-    from torsio.model.wave import is_wave_model
-
-    if is_wave_model(model):
+    if not model.has_matrices:  # the distributed model: the exact continuum of its grid
         return _wave_modes(model, args.count or 10, args.json)
     count = args.count if args.count is not None else min(model.dofs, 10)
     results = modal_analysis(model, count, string=config.string)

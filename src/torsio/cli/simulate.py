@@ -123,7 +123,11 @@ def _print_summary(results: Any, written: dict[str, str]) -> None:
     window = results.window_mask
     rows = [
         ("weight on bit", f"{system.wob / 1e3:.4g} kN"),
-        ("rotary speed", f"{system.rpm:.4g} rpm"),
+        (
+            "rotary speed",
+            f"{results.rpm:.4g} rpm"
+            + ("" if results.has_set_speed else "  (mean top-drive speed; none is set)"),
+        ),
         ("bit-rock law", str(getattr(system.law, "name", type(system.law).__name__))),
         (
             "run / steady window",

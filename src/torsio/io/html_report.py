@@ -119,7 +119,9 @@ def report_figures(ctx: ReportContext) -> list[tuple[Any, str]]:
             (
                 figure,
                 f"Start-up from rest at {results.system.wob / 1e3:.4g} kN, "
-                f"{results.system.rpm:.4g} rpm: S_SS = "
+                f"{results.rpm:.4g} rpm"
+                + ("" if results.has_set_speed else " (mean top-drive speed)")
+                + ": S_SS = "
                 f"{results.severity:.3f} over the shaded steady window.",
             )
         )

@@ -7,7 +7,8 @@ a title, plain data for ``--json`` and a rich renderable for the terminal,
 built from the same numbers. To add a section, write one such function and
 append it to :data:`SECTIONS`; :func:`report_data` and :func:`render` pick it up.
 
-Sections now: the drill-string, its discretization, the first modes against
+Sections now: the drill-string, the well (with a ``[well]``: survey, torque and drag,
+break-off; :mod:`torsio.io.report_well`), its discretization, the first modes against
 the exact continuum, the Rayleigh damping ratios of those modes, the operating
 point, the top drive (gains, impedance at omega_1, reflection coefficient), the
 dimensionless groups, the response there (S_SS, stick fraction) and its distance
@@ -75,6 +76,7 @@ from torsio.io.report_wave import (
     wave_modes_section,
     wave_section,
 )
+from torsio.io.report_well import well_section
 
 __all__ = [
     "CRITICAL_SEARCH",
@@ -102,6 +104,7 @@ __all__ = [
 
 SECTIONS: list[Callable[[ReportContext], ReportSection | None]] = [
     string_section,
+    well_section,
     discretization_section,
     modes_section,
     damping_section,
@@ -133,11 +136,11 @@ def report_sections(ctx: ReportContext) -> list[ReportSection]:
     """
     if ctx.sections is None:
         functions = list(SECTIONS)
-        if ctx.is_wave:
+        if ctx.has_matrices:
+            ctx.modal  # noqa: B018  (computed here, before anything that needs omega_1)
+        else:
             functions = [WAVE_SECTIONS.get(function, function) for function in functions]
             functions.insert(functions.index(response_section) + 1, wave_section)
-        else:
-            ctx.modal  # noqa: B018  (computed here, before anything that needs omega_1)
         sections = (function(ctx) for function in functions)
         ctx.sections = [section for section in sections if section is not None]
     return ctx.sections

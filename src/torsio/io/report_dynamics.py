@@ -73,7 +73,7 @@ def dimensionless_section(ctx: ReportContext) -> ReportSection | None:
     table = Table.grid(padding=(0, 2))
     table.add_column(style="dim")
     table.add_column()
-    stiffness = "k_eq = 1/Σ L/(G J)" if ctx.is_wave else "k_eq = 1/[K⁻¹]_NN"  # continuum
+    stiffness = "k_eq = 1/[K⁻¹]_NN" if ctx.has_matrices else "k_eq = 1/Σ L/(G J)"  # continuum
     rows = [
         (stiffness, f"{groups.k_eq:.5g} N m/rad (Eq. 9)"),
         ("ω₁", f"{groups.omega1:.5g} rad/s"),

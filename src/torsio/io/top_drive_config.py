@@ -25,22 +25,13 @@ from typing import Any
 import attrs
 
 from torsio.errors import ConfigError
+from torsio.physics.top_drives import PARAMETER_DIMENSIONS as BUILTIN_DIMENSIONS
 from torsio.units import SI_UNITS, to_si
 
 DEFAULT_KIND = "constant-speed"
 """The top drive when ``[top_drive]`` (or its ``kind``) is absent: the paper's boundary."""
 
-PARAMETER_DIMENSIONS: dict[str, str] = {
-    "inertia": "inertia",
-    "torque": "torque",
-    "max_torque": "torque",
-    "drag": "rotational_damping",
-    "kp": "rotational_damping",
-    "zeta": "rotational_damping",
-    "ki": "stiffness",
-    "alpha": "dimensionless",
-    "highpass_period": "time",
-}
+PARAMETER_DIMENSIONS: dict[str, str] = BUILTIN_DIMENSIONS
 """Physical dimension of each parameter of the built-in top drives (for strings with units).
 
 A plugin top drive may declare its own in a class attribute ``parameter_dimensions``

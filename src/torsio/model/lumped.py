@@ -19,12 +19,20 @@ array([[150., -50.],
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, ClassVar
 
 import attrs
 import numpy as np
 
 from torsio.errors import ConfigError
+from torsio.model.protocol import ModelEngines
+
+LUMPED_ENGINES = ModelEngines(
+    transient="torsio.analysis.transient:simulate_lumped",
+    batch="torsio.solvers.batch:simulate_lumped_batch",
+)
+"""The engines of every lumped model: the integrators of the chain's description
+(:mod:`torsio.physics.dynamics`) for one run and the batch engines for many."""
 
 
 def _as_matrix(value: Any) -> np.ndarray:
@@ -101,7 +109,17 @@ class LumpedModel:
         (``c_1`` on the first node), used with ``damping``.
     details : dict
         What the discretizer chose (elements per section, ...), for reports.
+
+    A lumped model is a :class:`torsio.model.protocol.StructuralModel`: it is linearizable,
+    has matrices, no time step of its own, and runs on :data:`LUMPED_ENGINES`.
     """
+
+    linearizable: ClassVar[bool] = True
+    """The linear stability analysis applies (:mod:`torsio.analysis.stability`)."""
+    has_matrices: ClassVar[bool] = True
+    """[I] and [K]: :func:`torsio.model.modal.modal_analysis` applies."""
+    engines: ClassVar[ModelEngines] = LUMPED_ENGINES
+    """The engines that run a lumped model (:func:`torsio.model.protocol.resolve`)."""
 
     inertia: np.ndarray = attrs.field(converter=_as_matrix)
     stiffness: np.ndarray = attrs.field(converter=_as_matrix)
@@ -252,6 +270,40 @@ class LumpedModel:
         unit_bit_torque = np.zeros(self.dofs)
         unit_bit_torque[-1] = 1.0
         return float(1.0 / np.linalg.solve(self.stiffness, unit_bit_torque)[-1])
+
+    def first_frequency(self) -> float:
+        """omega_1 [rad/s] of the first mode, top held, undamped: solved once per model (or
+        taken from a modal analysis of it, :func:`torsio.model.modal.modal_analysis`)."""
+        from torsio.model.modal import lowest_natural_frequency
+
+        return lowest_natural_frequency(self)
+
+    @property
+    def bit_inertia(self) -> float:
+        """Inertia of the bit's node, the last degree of freedom, [I]_(N,N) [kg m^2]."""
+        return float(self.inertia[-1, -1])
+
+    @property
+    def time_step(self) -> None:
+        """None: a lumped model has no step of its own (its integrators choose theirs)."""
+        return None
+
+    def describe(self) -> dict[str, Any]:
+        """What the model is, for reports and JSON.
+
+        >>> LumpedModel.from_chain(inertias=[2.0, 1.0], stiffnesses=[100.0, 50.0]).describe()
+        {'strategy': 'custom', 'dofs': 2, 'lumped_mass': True, 'own_damping': False, \
+'total_inertia_kg_m2': 3.0, 'equivalent_stiffness_N_m_rad': 33.33..., 'elements': {}}
+        """
+        return {
+            "strategy": self.strategy,
+            "dofs": self.dofs,
+            "lumped_mass": self.has_lumped_mass,
+            "own_damping": self.damping is not None,
+            "total_inertia_kg_m2": self.total_inertia,
+            "equivalent_stiffness_N_m_rad": self.equivalent_stiffness,
+            "elements": dict(self.details.get("elements", {})),
+        }
 
     @property
     def total_inertia(self) -> float:

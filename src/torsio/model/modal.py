@@ -18,7 +18,7 @@ Examples
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import attrs
 import numpy as np
@@ -27,9 +27,10 @@ import scipy.linalg
 from torsio.errors import ConfigError
 from torsio.model.continuum import ContinuumModes, continuum_modes
 from torsio.model.drillstring import DrillString
-from torsio.model.lumped import LumpedModel
 from torsio.model.shapes import normalize_shape
-from torsio.model.wave import first_frequency, is_wave_model
+
+if TYPE_CHECKING:  # the lumped model calls back into this module for its omega_1
+    from torsio.model.lumped import LumpedModel
 
 
 @attrs.frozen(repr=False)
@@ -196,12 +197,18 @@ class ModalComparison:
 def first_natural_frequency(model: Any) -> float:
     """omega_1 [rad/s] of a model (or a System's model), top held, undamped.
 
-    For a lumped model its first mode; for the distributed (``wave``) model the first
-    frequency of its exact continuum. Every default that counts periods reads this.
+    The model's own :meth:`~torsio.model.protocol.StructuralModel.first_frequency`: for a
+    lumped model its first mode (:func:`lowest_natural_frequency`); for the distributed
+    (``wave``) model the first frequency of its exact continuum. Every default that counts
+    periods reads this.
     """
     model = getattr(model, "model", model)
-    if is_wave_model(model):
-        return first_frequency(model)
+    return float(model.first_frequency())
+
+
+def lowest_natural_frequency(model: LumpedModel) -> float:
+    """omega_1 [rad/s] of a lumped model, top held: solved once per model and kept with it
+    (or taken from an earlier modal analysis of it)."""
     known = _memo(model).get("first_frequency")
     if known is not None:  # from an earlier modal analysis of this model
         return float(known)

@@ -53,6 +53,7 @@ import numpy as np
 from torsio.errors import ConfigError
 from torsio.model.continuum import continuum_modes
 from torsio.model.drillstring import DrillString
+from torsio.model.protocol import ModelEngines
 from torsio.model.wave_grid import MAX_CELLS, choose_time_step
 
 DEFAULT_MAX_TIME_STEP = 5e-3
@@ -64,6 +65,14 @@ DEFAULT_TRAVEL_TIME_TOLERANCE = 3e-4
 DEFAULT_DRAG_SPACING = 4
 """Default number of cells between the nodes that carry the distributed drag (docs/wave.md
 gives its effect on S_SS: less than that of halving the time step)."""
+
+
+WAVE_ENGINES = ModelEngines(
+    transient="torsio.analysis.wave:simulate_wave",
+    batch="torsio.solvers.wave_batch:simulate_wave_batch",
+)
+"""The engines of the distributed model: its stepping along characteristics, for one run
+and for many."""
 
 
 def _as_tuple(values: Any) -> tuple[Any, ...]:
@@ -103,7 +112,18 @@ class WaveModel:
     contacts : StringContacts or None
         Coulomb friction of the drag nodes with the borehole
         (:class:`torsio.model.contacts.StringContacts`; None: no contact).
+
+    The grid is a :class:`torsio.model.protocol.StructuralModel`: it has no matrices and
+    no linearization (yet), steps with its own fixed ``time_step`` and runs on
+    :data:`WAVE_ENGINES`.
     """
+
+    linearizable: ClassVar[bool] = False
+    """No linearization of the distributed model (yet): no linear stability analysis."""
+    has_matrices: ClassVar[bool] = False
+    """No [I], [K]: its modes are the exact continuum of :meth:`grid_string`."""
+    engines: ClassVar[ModelEngines] = WAVE_ENGINES
+    """The engines that run the grid (:func:`torsio.model.protocol.resolve`)."""
 
     string: DrillString
     time_step: float
@@ -166,6 +186,11 @@ class WaveModel:
             top += n * dx
         return np.concatenate(depths)
 
+    def with_contacts(self, contacts: Any) -> WaveModel:
+        """The same grid with Coulomb contacts at its drag nodes (a
+        :class:`torsio.model.contacts.StringContacts` of its nodes; None: none)."""
+        return attrs.evolve(self, contacts=contacts)
+
     def grid_string(self) -> DrillString:
         """The string the grid represents exactly: each section's length rounded to whole cells.
 
@@ -180,15 +205,18 @@ class WaveModel:
 
     @property
     def equivalent_stiffness(self) -> float:
-        """k_eq of Eq. 9 for the string on the grid: :attr:`static_stiffness` [N m/rad]."""
-        return self.static_stiffness
-
-    @property
-    def static_stiffness(self) -> float:
-        """k_eq = 1 / sum(L_i / (G_i J_i)) over the grid's sections (top held) [N m/rad]."""
+        """k_eq of Eq. 9 for the string on the grid [N m/rad]: its static stiffness seen at
+        the bit with the top held, 1 / sum(L_i / (G_i J_i)) over the grid's sections (the
+        drill pipes only with ``rigid_bha``)."""
         grid = self.grid_string()
         sections = grid.drill_pipe_sections if self.rigid_bha else grid.flexible_sections
         return 1.0 / sum(1.0 / s.stiffness for s in sections)
+
+    def first_frequency(self) -> float:
+        """First natural frequency [rad/s] of the string on the grid (top held, exact
+        continuum; the rigid-BHA continuum with ``rigid_bha``)."""
+        modes = continuum_modes(self.grid_string(), count=1, rigid_bha=self.rigid_bha)
+        return float(modes.frequencies_rad[0])
 
     def describe(self) -> dict[str, Any]:
         """Grid facts for reports and JSON."""
@@ -363,7 +391,11 @@ def _positive(key: str, value: Any, default: float) -> float:
 
 
 def is_wave_model(model: Any) -> bool:
-    """Whether ``model`` is the wave strategy's grid (not a lumped model)."""
+    """Whether ``model`` is the wave strategy's grid (not a lumped model).
+
+    For ``torsio.model`` itself: elsewhere a model is read through its protocol
+    (:class:`torsio.model.protocol.StructuralModel`), never by its kind.
+    """
     return isinstance(model, WaveModel)
 
 
@@ -418,12 +450,8 @@ def equivalent_alpha(alpha: float, beta: float, first_frequency: float) -> float
 
 
 def first_frequency(grid: WaveModel) -> float:
-    """First natural frequency [rad/s] of the string on the grid (top held, exact continuum).
-
-    The rigid-BHA continuum with ``rigid_bha``.
-    """
-    modes = continuum_modes(grid.grid_string(), count=1, rigid_bha=grid.rigid_bha)
-    return float(modes.frequencies_rad[0])
+    """omega_1 [rad/s] of the string on the grid (:meth:`WaveModel.first_frequency`)."""
+    return grid.first_frequency()
 
 
 from torsio.hookspecs import hookimpl  # noqa: E402  (after the class it registers)

@@ -63,6 +63,27 @@ def _check_top(instance: Any, attribute: Any, value: Any) -> None:
         )
 
 
+def _check_model(instance: Any, attribute: Any, value: Any) -> None:
+    from torsio.model.protocol import StructuralModel
+
+    if not isinstance(value, StructuralModel):
+        raise ConfigError(
+            "model",
+            "expected a structural model (torsio.model.protocol.StructuralModel: a "
+            "LumpedModel from a discretizer or a chain, or the wave strategy's grid), got "
+            f"{value!r}",
+        )
+
+
+def _check_law(instance: Any, attribute: Any, value: Any) -> None:
+    if not callable(getattr(value, "torque", None)):
+        raise ConfigError(
+            "law",
+            "expected a bit-rock law with a torque(speed, wob, radius) method (see "
+            f"torsio.physics.laws), got {value!r}",
+        )
+
+
 def _check_operating_value(key: str, value: float, positive: bool) -> None:
     import math
 
@@ -95,8 +116,8 @@ class System:
         The string the model came from (for reports and the continuum).
     """
 
-    model: LumpedModel
-    law: Any
+    model: LumpedModel = attrs.field(validator=_check_model)
+    law: Any = attrs.field(validator=_check_law)
     bit_radius: float = si_field("length", "bit_radius")
     damping: RayleighDamping | ModelDamping = attrs.field(factory=RayleighDamping)
     wob: float = si_field("force", "wob", default=0.0)

@@ -105,16 +105,42 @@ def _max_torque_field() -> Any:
     return attrs.field(default=math.inf, converter=_max_torque, validator=validator)
 
 
-def _to_float(value: Any) -> Any:
+PARAMETER_DIMENSIONS: dict[str, str] = {
+    "inertia": "inertia",
+    "torque": "torque",
+    "max_torque": "torque",
+    "drag": "rotational_damping",
+    "kp": "rotational_damping",
+    "zeta": "rotational_damping",
+    "ki": "stiffness",
+    "alpha": "dimensionless",
+    "highpass_period": "time",
+}
+"""Physical dimension of each parameter of the built-in top drives (for strings with units,
+in Python as in a file: ``PITopDrive(inertia="2900 kg*m^2", ...)``)."""
+
+
+def _convert(value: Any, field: attrs.Attribute[Any]) -> Any:
     if value is None or isinstance(value, bool):
         return value
     if isinstance(value, int | float | np.integer | np.floating):
         return float(value)
+    if isinstance(value, str):
+        from torsio.units import to_si
+
+        dimension = PARAMETER_DIMENSIONS.get(field.name, "dimensionless")
+        return to_si(value, dimension, key=f"top_drive.{field.name}")
     return value
 
 
-def _max_torque(value: Any) -> Any:
-    return math.inf if value is None else _to_float(value)
+_to_float = attrs.Converter(_convert, takes_field=True)
+
+
+def _max_torque_value(value: Any, field: attrs.Attribute[Any]) -> Any:
+    return math.inf if value is None else _convert(value, field)
+
+
+_max_torque = attrs.Converter(_max_torque_value, takes_field=True)
 
 
 @attrs.frozen

@@ -30,7 +30,7 @@ from torsio.analysis.budget import check_wave_steps
 from torsio.analysis.severity import check_window, default_times
 from torsio.analysis.simulation_options import check_window_samples
 from torsio.errors import ConfigError, SolverError
-from torsio.model.wave import check_wave_damping, first_frequency
+from torsio.model.wave import check_wave_damping
 from torsio.solvers.batch_results import (
     DEFAULT_STEADY_TOLERANCE,
     BatchResults,
@@ -39,16 +39,6 @@ from torsio.solvers.batch_results import (
 )
 from torsio.solvers.wave_march import RunCancelled, law_functions, march
 from torsio.solvers.wave_top import top_boundary
-
-
-def wave_scales(grid: Any) -> tuple[float, float]:
-    """(k_eq [N m/rad], omega_1 [rad/s]) of the continuum on the grid.
-
-    k_eq = 1 / sum(L_i / (G_i J_i)): the static stiffness seen at the bit with the top
-    held (Eq. 9 for the continuous string); omega_1 the grid string's first exact mode
-    (the rigid-BHA continuum with ``rigid_bha``).
-    """
-    return grid.static_stiffness, first_frequency(grid)
 
 
 def _worker_count(threads: int | None, points: int) -> int:
@@ -116,7 +106,7 @@ def simulate_wave_batch(
     alpha = check_wave_damping(system.damping, system.model)
     kernel = _check_engine(engine, system.law)
     wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)
-    omega_1 = first_frequency(grid)
+    omega_1 = grid.first_frequency()
     default_duration, default_window = default_times(omega_1)
     if duration is not None:  # the window at most half a given run, as run_times says
         default_window = min(default_window, 0.5 * float(duration))

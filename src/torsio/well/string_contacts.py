@@ -35,7 +35,7 @@ import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.model.contacts import StringContacts
-from torsio.model.wave import drag_lumping, is_wave_model
+from torsio.model.wave import drag_lumping
 from torsio.well.break_off import break_off
 from torsio.well.wellbore import Wellbore
 
@@ -110,21 +110,22 @@ def string_contacts(grid: Any, well: Wellbore) -> StringContacts:
 
 
 def with_contacts(model: Any, well: Wellbore) -> Any:
-    """``model`` (a wave grid) with the friction of its string in ``well``.
+    """``model`` with the friction of its string in ``well``: a model that can carry
+    contacts (``model.with_contacts``: the wave grid) gets them.
 
     Raises
     ------
     ConfigError
-        On ``well`` for a lumped model: friction along the string runs on the wave model
-        only for now.
+        On ``well`` for a model that cannot (the lumped models): friction along the string
+        runs on the wave model only for now.
     """
-    import attrs
-
-    if not is_wave_model(model):
+    attach = getattr(model, "with_contacts", None)
+    if attach is None:
         raise ConfigError(
             "well",
             f"friction along the string runs on the wave model only "
             f'(discretization.strategy = "wave"), got strategy {model.strategy!r}; set '
-            f'discretization.strategy = "wave" (or --strategy wave), or remove [well]',
+            f'discretization.strategy = "wave" (or --strategy wave; the wave model takes '
+            f"[damping] beta = 0), or remove [well]",
         )
-    return attrs.evolve(model, contacts=string_contacts(model, well))
+    return attach(string_contacts(model, well))

@@ -1,0 +1,96 @@
+"""The report's well section: the survey, torque and drag, and the break-off from rest.
+
+Present when the configuration has a ``[well]`` table (:mod:`torsio.well`): the survey's
+extent and its largest inclination and dogleg, the hookloads and surface torques of
+soft-string torque and drag (on bottom at the operating weight on bit), and the torque
+and twist at which the string lying in the hole breaks free from rest
+(:func:`torsio.well.break_off.break_off`).
+
+Examples
+--------
+>>> from torsio.examples import deviated_well_config
+>>> from torsio.io.report_context import ReportContext
+>>> section = well_section(ReportContext(deviated_well_config()))
+>>> round(section.data["break_off_torque"] / 1e3, 2), round(section.data["break_off_twist"], 2)
+(12.17, 19.26)
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from rich.table import Table
+from rich.text import Text
+
+from torsio.io.report_context import ReportContext, ReportSection
+
+__all__ = ["well_section"]
+
+
+def well_section(ctx: ReportContext) -> ReportSection | None:
+    """The well: survey, torque and drag, break-off torque and twist (None without [well])."""
+    well = getattr(ctx.config, "well", None)
+    string = ctx.config.string
+    if well is None or string is None:
+        return None
+    from torsio.well.break_off import break_off
+    from torsio.well.torque_drag import torque_drag
+
+    survey = well.survey
+    wob = float(ctx.config.operation.wob or 0.0)
+    drag = torque_drag(well, string, wob=wob)
+    start = break_off(well, string)
+    along = np.linspace(0.0, survey.depth, 2001)  # the arcs between stations, every 1/2000
+    inclination = math.degrees(float(np.max(survey.inclination(along))))
+    dogleg = float(np.max(survey.station_doglegs / np.maximum(np.diff(survey.md), 1e-300)))
+    data = {
+        "survey_depth_md": float(survey.depth),
+        "survey_stations": int(survey.md.size),
+        "max_inclination_deg": inclination,
+        "max_dogleg_deg_per_30m": math.degrees(dogleg) * 30.0,
+        "mud_density": float(well.mud_density),
+        "normal_force": well.normal_force,
+        "hookload_trip_out": drag.hookload_trip_out,
+        "hookload_trip_in": drag.hookload_trip_in,
+        "hookload_rotating": drag.hookload_rotating,
+        "surface_torque_rotating": drag.surface_torque_rotating,
+        "wob": wob,
+        "hookload_on_bottom": drag.hookload_on_bottom,
+        "surface_torque_on_bottom": drag.surface_torque_on_bottom,
+        **start.to_dict(),
+    }
+    table = Table.grid(padding=(0, 2))
+    table.add_column(style="dim")
+    table.add_column()
+    rows = [
+        (
+            "survey",
+            f"{data['survey_stations']} stations to md {data['survey_depth_md']:g} m, "
+            f"inclination up to {inclination:.1f}°, dogleg up to "
+            f"{data['max_dogleg_deg_per_30m']:.2f}°/30 m",
+        ),
+        ("mud, normal force", f"{well.mud_density:g} kg/m³, {well.normal_force}"),
+        (
+            "hookload",
+            f"pick-up {drag.hookload_trip_out / 1e3:.1f} kN, slack-off "
+            f"{drag.hookload_trip_in / 1e3:.1f} kN, rotating {drag.hookload_rotating / 1e3:.1f} kN",
+        ),
+        (
+            "surface torque",
+            f"off bottom {drag.surface_torque_rotating / 1e3:.2f} kN m, on bottom "
+            f"{drag.surface_torque_on_bottom / 1e3:.2f} kN m (WOB {wob / 1e3:g} kN, no bit torque)",
+        ),
+        (
+            "break-off from rest",
+            f"{start.torque / 1e3:.2f} kN m after a twist of {start.twist:.2f} rad "
+            f"({start.twist / (2.0 * math.pi):.2f} turns) stored before the bit turns",
+        ),
+    ]
+    _ = ctx.system  # the dynamics with friction along the string, or why not
+    if ctx.dynamics_note:
+        data["dynamics"] = ctx.dynamics_note
+        rows.append(("dynamics", ctx.dynamics_note))
+    for label, value in rows:
+        table.add_row(label, Text(value))
+    return ReportSection("well", "Well: torque and drag", data, table)
