@@ -76,6 +76,12 @@ class TransientResults:
     warnings : tuple of str
         What limits the meaning of the result (:mod:`torsio.analysis.limits`): e.g. a
         bit stuck throughout the window, a window shorter than a period; empty if none.
+    well_summary : dict or None
+        With friction along the string (a ``[well]``): ``surface_torque_min``,
+        ``surface_torque_max`` (steady window), ``surface_torque_peak`` (whole run) [N m],
+        ``bit_first_motion`` [s] (first time the bit is faster than the threshold speed;
+        None if never), ``friction_work`` [J], ``threshold_speed`` [rad/s], ``contacts``;
+        merged into :meth:`to_dict`. None without a well.
     """
 
     time: np.ndarray
@@ -98,6 +104,7 @@ class TransientResults:
     severity_speed: float
     bit_speed_extremes: tuple[float, float] | None = None
     warnings: tuple[str, ...] = ()
+    well_summary: dict[str, Any] | None = None
 
     def __repr__(self) -> str:  # short: no time series
         return (
@@ -224,6 +231,8 @@ class TransientResults:
             "solver": dict(self.solver),
             "warnings": list(self.warnings),
         }
+        if self.well_summary is not None:
+            data.update(self.well_summary)
         if self.dimensionless:
             data["pi1"] = float(self.omega)
             data["pi2"] = float(system.wob * system.bit_radius)

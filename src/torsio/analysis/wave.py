@@ -106,7 +106,8 @@ class WaveResponse:
     energy : dict
         ``work_in``, ``stored``, ``dissipated``, ``residual`` [J] over the run: work of the
         top (motor work for a top drive) = change of stored energy (string, bit, top drive)
-        + dissipation (bit-rock, drags).
+        + dissipation (bit-rock, drags, friction along the string); ``friction`` [J] the
+        contacts' part of it.
     """
 
     transient: Any
@@ -138,6 +139,23 @@ def _field_every(field_step: float, dt: float, duration: float, grid: WaveModel)
     every = max(1, int(round(field_step / dt)))
     check_output_size(duration, every * dt, int(grid.dofs) + len(grid.cells))
     return every
+
+
+def _well_summary(grid: WaveModel, summary: dict[str, float]) -> dict[str, Any] | None:
+    """What a run with friction along the string reports (None without contacts): the
+    surface torque's extremes over every step (window, run), when the bit first moved."""
+    if grid.contacts is None:
+        return None
+    first = summary["bit_first_motion"]
+    return {
+        "surface_torque_min": summary["surface_torque_min"],
+        "surface_torque_max": summary["surface_torque_max"],
+        "surface_torque_peak": summary["surface_torque_peak"],
+        "bit_first_motion": None if math.isnan(first) else first,
+        "friction_work": summary["friction_dissipation"],
+        "threshold_speed": float(grid.contacts.threshold_speed),
+        "contacts": grid.contacts.describe(),
+    }
 
 
 def _transient_results(values: dict[str, Any]) -> Any:
@@ -271,12 +289,14 @@ def wave_response(
         + summary["bit_drag_dissipation"]
         + summary["string_drag_dissipation"]
         + summary["top_drag_dissipation"]
+        + summary["friction_dissipation"]
     )
     energy = {
         "work_in": float(summary["work_in"]),
         "stored": float(stored),
         "dissipated": float(dissipated),
         "residual": float(summary["work_in"] - stored - dissipated),
+        "friction": float(summary["friction_dissipation"]),
     }
     solver = {
         "method": "characteristics (exact transport, point dampers, BDF2 bit, "
@@ -315,6 +335,7 @@ def wave_response(
         "states": np.zeros((t.size, 0)),
         "reference_speed": reference,
         "severity_speed": reference,
+        "well_summary": _well_summary(grid, summary),
         "warnings": warning_list(  # as the lumped transient says them
             stuck_throughout(stick, threshold), short_window(float(steady_window), period)
         ),

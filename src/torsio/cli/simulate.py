@@ -168,6 +168,7 @@ def _print_summary(results: Any, written: dict[str, str]) -> None:
             f"{solver['wall_time_s']:.2f} s",
         ),
     ]
+    rows.extend(_well_rows(results.well_summary))
     if "csv" in written:
         rows.append(("time series", written["csv"]))
     if "plot" in written:
@@ -175,3 +176,23 @@ def _print_summary(results: Any, written: dict[str, str]) -> None:
     for name, value in rows:
         table.add_row(escape(name), escape(value))
     Console().print(table)
+
+
+def _well_rows(summary: Any) -> list[tuple[str, str]]:
+    """Rows of a run with friction along the string (a [well]); none without."""
+    if summary is None:
+        return []
+    first = summary["bit_first_motion"]
+    return [
+        (
+            "surface torque in window",
+            f"{summary['surface_torque_min'] / 1e3:.4g} .. "
+            f"{summary['surface_torque_max'] / 1e3:.4g} kN m",
+        ),
+        ("peak surface torque", f"{summary['surface_torque_peak'] / 1e3:.4g} kN m"),
+        (
+            f"bit first faster than {summary['threshold_speed']:g} rad/s",
+            "never" if first is None else f"at {first:.4g} s",
+        ),
+        ("friction work along the string", f"{summary['friction_work'] / 1e3:.4g} kJ"),
+    ]

@@ -44,6 +44,7 @@ from torsio.io.well_config import well_table
 from torsio.model.components import STEEL
 from torsio.model.drillstring import DrillString
 from torsio.units import RPM_TO_RAD_S, to_si
+from torsio.well.string_contacts import with_contacts
 from torsio.well.wellbore import Wellbore
 
 TOP_LEVEL_KEYS = {
@@ -213,6 +214,7 @@ class Config:
         from torsio.physics.system import System
 
         model = self.model(**discretization)
+        model = model if self.well is None else with_contacts(model, self.well)  # wave only
         damping = self.model_damping(model)
         op = self.operation
         return System(

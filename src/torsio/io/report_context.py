@@ -67,6 +67,8 @@ class ReportContext:
             "bha_elements": bha_elements,
         }
         self.requested_modes = modes
+        self.dynamics_note = ""
+        """Why the dynamic sections are missing ('' when they are not)."""
         self.sections: list[ReportSection] | None = None
         """The report's sections once computed (:func:`torsio.io.report.report_sections`)."""
 
@@ -74,11 +76,20 @@ class ReportContext:
     def system(self) -> System | None:
         """The System of the configuration (model, damping, bit-rock law, operating point).
 
-        None when the configuration has no ``[bit_rock]`` table (modal analyses only).
+        None when the configuration has no ``[bit_rock]`` table (modal analyses only), or
+        has a ``[well]`` whose friction the model cannot carry (a lumped strategy: friction
+        along the string runs on the wave model only for now); :attr:`dynamics_note` then
+        says why.
         """
         if self.config.bit_rock is None:
             return None
-        return System.from_config(self.config, **self.overrides)
+        try:
+            return System.from_config(self.config, **self.overrides)
+        except ConfigError as exc:
+            if exc.key != "well":
+                raise
+            self.dynamics_note = f"not run: {exc.message}"
+            return None
 
     @functools.cached_property
     def law(self) -> Any:

@@ -87,6 +87,10 @@ def well_section(ctx: ReportContext) -> ReportSection | None:
             f"({start.twist / (2.0 * math.pi):.2f} turns) stored before the bit turns",
         ),
     ]
+    _ = ctx.system  # the dynamics with friction along the string, or why not
+    if ctx.dynamics_note:
+        data["dynamics"] = ctx.dynamics_note
+        rows.append(("dynamics", ctx.dynamics_note))
     for label, value in rows:
         table.add_row(label, Text(value))
     return ReportSection("well", "Well: torque and drag", data, table)

@@ -109,6 +109,9 @@ class WaveModel:
         strategy C's string, the limit its discretization converges to.
     drag_spacing : int
         Cells between the nodes that carry the distributed drag (:func:`drag_lumping`).
+    contacts : StringContacts or None
+        Coulomb friction of the drag nodes with the borehole
+        (:class:`torsio.model.contacts.StringContacts`; None: no contact).
 
     The grid is a :class:`torsio.model.protocol.StructuralModel`: it has no matrices and
     no linearization (yet), steps with its own fixed ``time_step`` and runs on
@@ -134,6 +137,7 @@ class WaveModel:
     details: dict[str, Any] = attrs.field(factory=dict, eq=False)
     rigid_bha: bool = False
     drag_spacing: int = DEFAULT_DRAG_SPACING
+    contacts: Any = attrs.field(default=None, eq=False)
 
     @property
     def sections(self) -> tuple[Any, ...]:
@@ -182,6 +186,11 @@ class WaveModel:
             top += n * dx
         return np.concatenate(depths)
 
+    def with_contacts(self, contacts: Any) -> WaveModel:
+        """The same grid with Coulomb contacts at its drag nodes (a
+        :class:`torsio.model.contacts.StringContacts` of its nodes; None: none)."""
+        return attrs.evolve(self, contacts=contacts)
+
     def grid_string(self) -> DrillString:
         """The string the grid represents exactly: each section's length rounded to whole cells.
 
@@ -220,6 +229,7 @@ class WaveModel:
             "bit_inertia_kg_m2": self.bit_inertia,
             "rigid_bha": self.rigid_bha,
             "drag_spacing": self.drag_spacing,
+            **({} if self.contacts is None else {"contacts": self.contacts.describe()}),
         }
 
 

@@ -73,6 +73,7 @@ from torsio.solvers.wave_buffers import (
     _read_nodes,
     _slot,
 )
+from torsio.solvers.wave_contacts import _contact_node_speeds, _contact_speed, _contacts
 from torsio.solvers.wave_state import (
     BUFFER_START,
     C_INNER,
@@ -118,7 +119,7 @@ try:  # numba is optional: without it the same steps run as plain Python (slowly
         types.int64[:, ::1], _MATRIX, _VECTOR, _VECTOR, _VECTOR, _VECTOR, _VECTOR, _VECTOR,
         _VECTOR, types.float64[:, :, ::1], _MATRIX, _MATRIX, _VECTOR,
         _LAW, _LAW, _VECTOR, _MATRIX, _MATRIX, _VECTOR, _MATRIX,
-        _MATRIX, _MATRIX, types.int64[:, ::1], _VECTOR,
+        _MATRIX, _MATRIX, types.int64[:, ::1], _VECTOR, types.int64[:, ::1], _MATRIX,
     )  # fmt: skip
 except ImportError:  # pragma: no cover - exercised only without numba
     _MARCH_SIGNATURE = None
@@ -141,11 +142,14 @@ SUMMARY_FIELDS = (
 )
 """Entries of the run summary: extremes and sums over the window; energies [J] over the run."""
 
-SUMMARY_SIZE = 26
+SUMMARY_SIZE = 31
 """Length of the kernel's summary array: :data:`SUMMARY_FIELDS`, the powers of the last
 step (10-14), the steps taken before (15), the steady-cycle tracker (16-22, 24), the
 step the run ended on a steady cycle (23, 0: it did not) and the torque on bit of the
-last step (25), so that a run continued by another call takes the same steps."""
+last step (25), so that a run continued by another call takes the same steps; then the
+friction's work along the string [J] (26), the largest surface torque of the run and
+the smallest and largest of the window [N m] (27-29), and the first step the bit is
+faster than the contacts' threshold speed (30; 0: not yet)."""
 
 # the steady-cycle tracker in the summary array
 _COUNT, _T_LAST, _RUN_MAX, _RUN_MIN, _CYCLE_MAX, _CYCLE_MIN, _CHANGE, _ENDED, _KEPT = range(16, 25)
@@ -211,13 +215,17 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     layout, sections, end_dampers, impedances, settings, p, m, top_state, bit_state,
     propagator, forcing, constant, coefficients,
     torque, slope, parameters, records, field, summary, cross, buffers, scratch, heads, top_work,
+    contact_index, contacts,
 ):  # fmt: skip
     """Advance ``settings[8]`` steps of a run of ``settings[18]`` steps (the ``summary``
     counts those taken before: a run may take its steps in several calls, with the same
     result); see the module docstring. Works in place on the
     node-ordered state (p, m, top_state, bit_state) and the ``summary``; ``buffers``
     (2, KernelLayout.buffer_size), ``scratch`` (2, nodes), ``heads`` (sections, 4) and
-    ``top_work`` (top states) are its work space, allocated by the caller."""
+    ``top_work`` (top states) are its work space, allocated by the caller. With
+    ``settings[20]`` set, the drag nodes carry Coulomb contacts (``contact_index``,
+    ``contacts``: :func:`torsio.solvers.wave_contacts.contact_arrays`, threshold speed
+    ``settings[19]``), solved exactly at every step (:mod:`torsio.solvers.wave_contacts`)."""
     dt = settings[0]
     bit_inertia = settings[1]
     alpha = settings[2]
@@ -237,6 +245,9 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     reference = settings[16]
     cycle_gap = settings[17]
     run_steps = int(settings[18])
+    threshold = settings[19]
+    below = settings[21]  # the largest speed under the threshold: the static branch
+    rubbing = settings[20] != 0.0
     t_end = run_steps * dt  # the run's end, for the cycles left, and its window's length
     window_length = (run_steps - window_start + 1) * dt
     track = steady_tolerance > 0.0 and reference > 0.0
@@ -269,6 +280,7 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
         _advance(layout, spacing, P, M, heads)
         # 2. inner dampers: the regular ones a run of one row of p and one of m
         inner_power = 0.0
+        friction_power = 0.0
         for s in range(count):
             start = layout[s, BUFFER_START]
             width = layout[s, WIDTH]
@@ -276,7 +288,18 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
             if regular > 0:
                 ip = start + heads[s, 0] * width + heads[s, 1] + 1
                 im = start + heads[s, 2] * width + heads[s, 3] + 1
-                if track_energy:
+                if rubbing:
+                    a = contact_index[s, 0]
+                    b = a + regular
+                    z = sections[s, Z]
+                    c = sections[s, C_INNER]
+                    squares, rub = _contacts(
+                        P[ip : ip + regular], M[im : im + regular], 2.0 * z, 1.0 / (2.0 * z + c),
+                        contacts[0, a:b], contacts[1, a:b], contacts[2, a:b], below,
+                    )  # fmt: skip
+                    inner_power += c * squares
+                    friction_power += rub
+                elif track_energy:
                     total = _dampers_with_power(
                         P[ip : ip + regular], M[im : im + regular], sections[s, RATIO_INNER]
                     )
@@ -292,12 +315,23 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
                 im = _slot(start, width, spacing, heads[s, 2], heads[s, 3], rows_on, columns_on)
                 arriving_p = P[ip]
                 difference = arriving_p - M[im]
-                jump = sections[s, RATIO_SPECIAL] * difference
-                P[ip] = M[im] + jump
-                M[im] = arriving_p - jump
                 z = sections[s, Z]
                 c = sections[s, C_SPECIAL]
-                inner_power += c * difference * difference / ((2.0 * z + c) * (2.0 * z + c))
+                if rubbing:
+                    j = contact_index[s, 1]
+                    v = _contact_speed(
+                        difference, 1.0 / (2.0 * z + c), contacts[0, j], contacts[1, j],
+                        contacts[2, j], below,
+                    )  # fmt: skip
+                    contacts[2, j] = v
+                    friction_power += (difference - (2.0 * z + c) * v) * v
+                    jump = 2.0 * z * v
+                    inner_power += c * v * v
+                else:
+                    jump = sections[s, RATIO_SPECIAL] * difference
+                    inner_power += c * difference * difference / ((2.0 * z + c) * (2.0 * z + c))
+                P[ip] = M[im] + jump
+                M[im] = arriving_p - jump
         # 3. junctions (with the damper of the junction node)
         end_power = 0.0
         for s in range(last):
@@ -306,7 +340,17 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
             z1 = sections[s, Z]
             z2 = sections[s + 1, Z]
             c = end_dampers[s + 1]
-            speed = (P[ia] - M[jb]) / (z1 + z2 + c)
+            difference = P[ia] - M[jb]
+            if rubbing:
+                j = contact_index[s, 2]
+                speed = _contact_speed(
+                    difference, 1.0 / (z1 + z2 + c), contacts[0, j], contacts[1, j],
+                    contacts[2, j], below,
+                )  # fmt: skip
+                contacts[2, j] = speed
+                friction_power += (difference - (z1 + z2 + c) * speed) * speed
+            else:
+                speed = difference / (z1 + z2 + c)
             M[ja] = P[ia] - 2.0 * z1 * speed
             P[ib] = M[jb] + 2.0 * z2 * speed
             end_power += c * speed * speed
@@ -350,7 +394,7 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
                 top_state[i] = mode_x[i]
             top_speed = top_state[0]
         P[i_top] = m_in + 2.0 * z_top * top_speed
-        surface_torque = m_in + z_top * top_speed
+        surface_torque = m_in + (z_top + c_top) * top_speed  # the top node's drag: the string's
         end_power += c_top * top_speed * top_speed
         # 5. bit
         i_bit, j_bit = _end_slots(layout, spacing, heads, last, True)
@@ -389,6 +433,7 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
         summary[6] += 0.5 * dt * (previous[2] + power_bit_drag)
         summary[7] += 0.5 * dt * (previous[3] + end_power) + dt * inner_power
         summary[8] += 0.5 * dt * (previous[4] + power_top_drag)
+        summary[26] += dt * friction_power
         previous[0] = power_in
         previous[1] = power_bit
         previous[2] = power_bit_drag
@@ -396,7 +441,12 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
         previous[4] = power_top_drag
         # window extremes and records
         absolute = int(summary[15]) + step + 1
+        summary[27] = max(summary[27], surface_torque)
+        if summary[30] == 0.0 and abs(w_bit) > threshold:
+            summary[30] = absolute
         if absolute >= window_start:
+            summary[28] = min(summary[28], surface_torque)
+            summary[29] = max(summary[29], surface_torque)
             if w_bit < summary[0]:
                 summary[0] = w_bit
             if w_bit > summary[1]:
@@ -415,6 +465,8 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
             row = absolute // field_every
             if row < field.shape[0]:
                 _read_nodes(layout, spacing, P, M, heads, impedances, speeds, torques)
+                if rubbing:
+                    _contact_node_speeds(contacts, speeds)
                 for j in range(nodes):
                     field[row, j] = speeds[j]
         # 6. a steady cycle? (upward crossings of the reference speed by the bit)

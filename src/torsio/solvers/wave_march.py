@@ -28,6 +28,7 @@ from torsio.solvers.characteristics import (
     rest_state,
 )
 from torsio.solvers.run_chunks import run_in_chunks
+from torsio.solvers.wave_contacts import contact_arrays, speed_below
 from torsio.solvers.wave_top import TopArrays, with_node_damper
 
 
@@ -52,7 +53,11 @@ class WaveRun:
     summary : dict
         :data:`SUMMARY_FIELDS` (energies in J over the run), plus ``stored_initial`` and
         ``stored_final`` [J] (:func:`stored_energy`; the initial state with a held top
-        already turning), ``steps`` (taken) and ``ended_on_steady_cycle``.
+        already turning), ``steps`` (taken), ``ended_on_steady_cycle``, and
+        ``friction_dissipation`` [J] (the contacts' work), ``surface_torque_peak`` (the
+        run's largest), ``surface_torque_min``, ``surface_torque_max`` (the window's) [N m]
+        over every step, ``bit_first_motion`` [s] (first time the bit is faster than the
+        contacts' threshold speed; NaN: never, or no contacts).
     state : WaveState
         Final state.
     engine : str
@@ -214,9 +219,12 @@ def march(
     stored_initial = stored_energy(grid, state, top)
     summary = np.zeros(SUMMARY_SIZE)
     summary[0], summary[1] = math.inf, -math.inf
+    summary[27], summary[28], summary[29] = -math.inf, math.inf, -math.inf
+    contact_index, contacts = contact_arrays(grid)
+    threshold = 0.0 if grid.contacts is None else float(grid.contacts.threshold_speed)
     # powers at t = 0 for the trapezoidal energies
     speed0 = state.top[0] if not top.held else top.set_speed
-    surface0 = state.m[0] + z_top * speed0
+    surface0 = state.m[0] + (z_top + layout.end_dampers[0]) * speed0  # with the top node's drag
     if not top.held:
         x0 = state.top
         u0 = top.coefficients[0] + top.coefficients[1:-1] @ x0 + top.coefficients[-1] * state.m[0]
@@ -241,7 +249,8 @@ def march(
             dt, grid.bit_inertia, alpha, wob, radius, 1.0 if top.held else 0.0, top.set_speed,
             top.max_torque, steps, window_start, record_every, field_every, top.drag,
             1.0 if track_energy else 0.0, grid.drag_spacing, steady_tolerance, reference,
-            cycle_gap, steps,
+            cycle_gap, steps, threshold, 0.0 if grid.contacts is None else 1.0,
+            speed_below(threshold),
         ]
     )  # fmt: skip
     cross = np.zeros((2, state.p.size + 2))
@@ -253,6 +262,7 @@ def march(
         layout.integers, layout.floats, layout.end_dampers, layout.impedances, settings,
         state.p, state.m, state.top, state.bit, top.propagator, top.forcing, top.constant,
         top.coefficients, torque, slope, parameters, records, field, summary, cross, *work,
+        contact_index, contacts,
     )  # fmt: skip
     stepping = _march if engine == "numba" else _python_march()
 
@@ -274,6 +284,11 @@ def march(
     energies["stored_final"] = stored_energy(grid, state, top)
     energies["steps"] = float(summary[15])
     energies["ended_on_steady_cycle"] = float(summary[23] > 0)
+    energies["friction_dissipation"] = float(summary[26])
+    names = ("surface_torque_peak", "surface_torque_min", "surface_torque_max")
+    energies.update(zip(names, summary[27:30].tolist(), strict=True))
+    moved = summary[30] > 0 and grid.contacts is not None
+    energies["bit_first_motion"] = float(summary[30] * dt) if moved else math.nan
     return WaveRun(
         time=np.arange(records.shape[0]) * dt * record_every,
         records=records,

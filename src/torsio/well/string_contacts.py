@@ -1,0 +1,131 @@
+"""The contacts of a wave grid's string with its well: friction capacities per drag node.
+
+Each drag node of the wave grid (:func:`torsio.model.wave.drag_lumping`: nodes 0, k, 2k,
+... and the last of every section) stands for its share of the string's length, half-way
+to its neighbours. Its static capacity is the static friction torque of that share,
+
+    C_s = int_share mu_s N r_o dx,      C_d = int_share mu_d N r_o dx,
+
+with N the normal force per metre of the rotating off-bottom soft-string state (or the
+buoyed weight's normal component alone, ``normal_force = "gravity"``), r_o = od / 2 and the
+friction factors of the hole section there. The integrals are differences of the
+break-off profiles of :func:`torsio.well.break_off.break_off` (torque and drag's per-cell
+integrals), so the capacities add up to the break-off torque and the sliding torque
+exactly. The shares of the two end nodes go to the nearest contact inside the string: the
+top node is the top drive's (held, or its own equation) and the bit node the bit's
+equation; so does the friction of what the grid does not carry (the bit section, and the
+BHA with ``rigid_bha``).
+
+Examples
+--------
+>>> from torsio.examples import deviated_well_config
+>>> from torsio.model.wave import WaveStrategy
+>>> config = deviated_well_config()
+>>> grid = WaveStrategy(drag_spacing=4).discretize(config.string)
+>>> contacts = string_contacts(grid, config.well)
+>>> round(contacts.static_total), round(contacts.dynamic_total), contacts.threshold_speed
+(12174, 10148, 0.5)
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from torsio.errors import ConfigError
+from torsio.model.contacts import StringContacts
+from torsio.model.wave import drag_lumping
+from torsio.well.break_off import break_off
+from torsio.well.wellbore import Wellbore
+
+__all__ = ["CONTACT_CELL_LENGTH", "string_contacts", "with_contacts"]
+
+CONTACT_CELL_LENGTH = 10.0
+"""Cell of the torque-and-drag integrals the capacities are taken from [m]."""
+
+
+def string_contacts(grid: Any, well: Wellbore) -> StringContacts:
+    """Static and sliding capacities [N m] of every drag node of ``grid`` in ``well``.
+
+    Parameters
+    ----------
+    grid : WaveModel
+        The characteristic grid (its string, sections, cells and ``drag_spacing``).
+    well : Wellbore
+        Survey, hole sections (mu_s, mu_d), mud, normal-force model, threshold speed.
+
+    Raises
+    ------
+    ConfigError
+        On ``discretization.drag_spacing`` when the string has no drag node inside it to
+        carry the shares of its ends.
+    """
+    profile = break_off(well, grid.string, cell_length=CONTACT_CELL_LENGTH)
+    md = profile.md
+    top = float(md[0])
+
+    def below(x: np.ndarray, torque: np.ndarray) -> np.ndarray:
+        return np.interp(x, md, torque)  # the friction torque of everything below x [N m]
+
+    cells = np.array(grid.cells)
+    offsets = np.concatenate([[0], np.cumsum(cells + 1)]).astype(int)
+    static = np.zeros(int(offsets[-1]))
+    dynamic = np.zeros_like(static)
+    profiles = ((static, profile.static_torque), (dynamic, profile.sliding_torque_profile))
+    start = top
+    for s, section in enumerate(grid.sections):
+        nodes, _ = drag_lumping(int(cells[s]), grid.drag_spacing)
+        x = start + nodes / cells[s] * section.length  # the section as given, not rounded
+        edges = np.concatenate([[x[0]], 0.5 * (x[:-1] + x[1:]), [x[-1]]])
+        index = offsets[s] + nodes
+        if s > 0:  # a junction node's capacity on the upper section's last node
+            index[0] = offsets[s] - 1
+        for out, torque in profiles:
+            levels = below(edges, torque)
+            np.add.at(out, index, levels[:-1] - levels[1:])
+        start += section.length
+    inside = np.flatnonzero(static[1:-1] > 0.0) + 1
+    if inside.size == 0:
+        raise ConfigError(
+            "discretization.drag_spacing",
+            f"expected a drag node inside the string to carry its friction, but a spacing of "
+            f"{grid.drag_spacing} cells leaves only the top and the bit; give a smaller one",
+        )
+    for out, torque in profiles:
+        out[inside[0]] += out[0]  # the top's share
+        out[inside[-1]] += out[-1] + below(np.array([start]), torque)[0]  # the bit's, the rest
+        out[0] = out[-1] = 0.0
+    return StringContacts(
+        static=static,
+        dynamic=dynamic,
+        threshold_speed=well.threshold_speed,
+        details={
+            "normal_force": well.normal_force,
+            "break_off_torque_N_m": profile.torque,
+            "break_off_twist_rad": profile.twist,
+            "sliding_torque_N_m": profile.sliding_torque,
+        },
+    )
+
+
+def with_contacts(model: Any, well: Wellbore) -> Any:
+    """``model`` with the friction of its string in ``well``: a model that can carry
+    contacts (``model.with_contacts``: the wave grid) gets them.
+
+    Raises
+    ------
+    ConfigError
+        On ``well`` for a model that cannot (the lumped models): friction along the string
+        runs on the wave model only for now.
+    """
+    attach = getattr(model, "with_contacts", None)
+    if attach is None:
+        raise ConfigError(
+            "well",
+            f"friction along the string runs on the wave model only "
+            f'(discretization.strategy = "wave"), got strategy {model.strategy!r}; set '
+            f'discretization.strategy = "wave" (or --strategy wave; the wave model takes '
+            f"[damping] beta = 0), or remove [well]",
+        )
+    return attach(string_contacts(model, well))
