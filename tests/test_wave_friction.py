@@ -204,4 +204,4 @@ def test_lumped_strategies_with_a_well_are_refused():
     from torsio.errors import ConfigError
 
     with pytest.raises(ConfigError, match="well: friction along the string runs on the wave"):
-        deviated_well_config().system()
+        deviated_well_config().system(strategy="C")

@@ -158,8 +158,9 @@ def kernels_cached() -> bool:
 
 
 def _mark_cached() -> None:
-    if "numba" not in sys.modules or "torsio.solvers.batch" not in sys.modules:
-        return
+    engines = ("torsio.solvers.batch", "torsio.solvers.single_run", "torsio.solvers.wave_march")
+    if "numba" not in sys.modules or not any(name in sys.modules for name in engines):
+        return  # nothing was compiled (e.g. the process stopped on an error before a run)
     try:
         path = _stamp_path()
         path.parent.mkdir(parents=True, exist_ok=True)
