@@ -88,6 +88,9 @@ def chain_matrix(springs: np.ndarray) -> np.ndarray:
 class LumpedModel:
     """Inertia and stiffness matrices of a torsional chain fixed at the top.
 
+    A lumped model is a :class:`torsio.model.protocol.StructuralModel`: it is linearizable,
+    has matrices, no time step of its own, and runs on :data:`LUMPED_ENGINES`.
+
     Parameters
     ----------
     inertia : ndarray, shape (n, n)
@@ -109,9 +112,6 @@ class LumpedModel:
         (``c_1`` on the first node), used with ``damping``.
     details : dict
         What the discretizer chose (elements per section, ...), for reports.
-
-    A lumped model is a :class:`torsio.model.protocol.StructuralModel`: it is linearizable,
-    has matrices, no time step of its own, and runs on :data:`LUMPED_ENGINES`.
     """
 
     linearizable: ClassVar[bool] = True

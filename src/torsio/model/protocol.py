@@ -70,6 +70,8 @@ class ModelEngines:
         :func:`torsio.solvers.batch.simulate_batch` (the System, ``wob`` and ``rpm`` first,
         the options by keyword; likewise), returning a ``BatchResults``.
 
+    Examples
+    --------
     >>> ModelEngines(transient="torsio.analysis.wave:simulate_wave", batch="solve")
     Traceback (most recent call last):
     ...

@@ -83,6 +83,10 @@ def _as_tuple(values: Any) -> tuple[Any, ...]:
 class WaveModel:
     """The characteristic grid of a stepped string, returned by the ``wave`` strategy.
 
+    The grid is a :class:`torsio.model.protocol.StructuralModel`: it has no matrices and
+    no linearization (yet), steps with its own fixed ``time_step`` and runs on
+    :data:`WAVE_ENGINES`.
+
     Attributes
     ----------
     string : DrillString
@@ -112,10 +116,6 @@ class WaveModel:
     contacts : StringContacts or None
         Coulomb friction of the drag nodes with the borehole
         (:class:`torsio.model.contacts.StringContacts`; None: no contact).
-
-    The grid is a :class:`torsio.model.protocol.StructuralModel`: it has no matrices and
-    no linearization (yet), steps with its own fixed ``time_step`` and runs on
-    :data:`WAVE_ENGINES`.
     """
 
     linearizable: ClassVar[bool] = False

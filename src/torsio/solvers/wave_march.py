@@ -197,6 +197,8 @@ def march(
         Asked between chunks; when it returns true the run stops with
         :class:`RunCancelled` (a map's other points after Ctrl-C).
 
+    Notes
+    -----
     The compiled steps run in chunks of about 0.2 s of wall time
     (:func:`torsio.solvers.run_chunks.run_in_chunks`), so that Ctrl-C and SIGTERM stop a
     run within that; the state passes from chunk to chunk unchanged, and the result is
