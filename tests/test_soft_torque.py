@@ -17,7 +17,7 @@ from importlib import resources
 from torsio.analysis.transient import simulate_config
 from torsio.cli import main
 from torsio.io.config import builtin_config, parse_config_text
-from torsio.physics.top_drives import top_pipe_impedance
+from torsio.physics.top_drive_boundary import top_pipe_impedance
 
 INERTIA = 2900.0
 

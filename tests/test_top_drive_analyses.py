@@ -29,7 +29,7 @@ from torsio.errors import ConfigError
 from torsio.io.config import builtin_config
 from torsio.physics.dimensionless import dimensionless_system, top_drive_groups
 from torsio.physics.system import System
-from torsio.physics.top_drives import top_pipe_impedance
+from torsio.physics.top_drive_boundary import top_pipe_impedance
 from torsio.plugins import get_bit_law
 
 J_TD = 2900.0  # kg m^2, top drive with gearbox (NORCE Simulator4nDOF default)

@@ -18,12 +18,9 @@ __version__ = "0.1.0"
 # To export a name, add it here, to the TYPE_CHECKING imports below and to __all__.
 _EXPORTS: dict[str, tuple[str, ...]] = {
     "torsio.analysis.energy": ("EnergyBalance", "energy_balance"),
-    "torsio.analysis.transient": (
-        "SimulationOptions",
-        "TransientResults",
-        "simulate",
-        "simulate_config",
-    ),
+    "torsio.analysis.simulation_options": ("SimulationOptions",),
+    "torsio.analysis.transient": ("simulate", "simulate_config"),
+    "torsio.analysis.transient_results": ("TransientResults",),
     "torsio.errors": ("ConfigError", "PluginError", "SolverError", "TorsioError"),
     "torsio.examples": ("ritto2017_config", "ritto2017_string"),
     "torsio.hookspecs": ("hookimpl",),
@@ -66,10 +63,10 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
         "ConstantSpeedTop",
         "PITopDrive",
         "SoftTorqueTopDrive",
-        "TopDriveBoundary",
         "TorqueTopDrive",
         "ZTorqueTopDrive",
     ),
+    "torsio.physics.top_drive_boundary": ("TopDriveBoundary",),
     "torsio.plugins": ("top_drive_from_parameters",),
     "torsio.analysis.maps": ("severity_map", "dimensionless_map"),
     "torsio.analysis.map_results": ("SeverityMap", "load_map"),
@@ -89,17 +86,14 @@ if TYPE_CHECKING:  # for type checkers and editors; at run time see __getattr__
     from torsio.analysis.map_options import MapOptions
     from torsio.analysis.map_results import SeverityMap, load_map
     from torsio.analysis.maps import dimensionless_map, severity_map
+    from torsio.analysis.simulation_options import SimulationOptions
     from torsio.analysis.stability import (
         StabilityBoundary,
         critical_bit_damping,
         stability_boundary,
     )
-    from torsio.analysis.transient import (
-        SimulationOptions,
-        TransientResults,
-        simulate,
-        simulate_config,
-    )
+    from torsio.analysis.transient import simulate, simulate_config
+    from torsio.analysis.transient_results import TransientResults
     from torsio.errors import ConfigError, PluginError, SolverError, TorsioError
     from torsio.examples import ritto2017_config, ritto2017_string
     from torsio.hookspecs import hookimpl
@@ -132,11 +126,11 @@ if TYPE_CHECKING:  # for type checkers and editors; at run time see __getattr__
     from torsio.physics.dynamics import Dynamics
     from torsio.physics.laws import BitRockLaw, Parameter, TuckerWang
     from torsio.physics.system import System
+    from torsio.physics.top_drive_boundary import TopDriveBoundary
     from torsio.physics.top_drives import (
         ConstantSpeedTop,
         PITopDrive,
         SoftTorqueTopDrive,
-        TopDriveBoundary,
         TorqueTopDrive,
         ZTorqueTopDrive,
     )

@@ -66,7 +66,8 @@ import scipy.optimize
 
 from torsio.errors import ConfigError
 from torsio.model.modal import natural_frequencies
-from torsio.physics.dynamics import Dynamics, bit_slope
+from torsio.physics.dynamics import Dynamics
+from torsio.physics.law_slope import bit_slope
 from torsio.physics.system import System
 from torsio.units import RPM_TO_RAD_S
 

@@ -58,13 +58,11 @@ from torsio.analysis.limits import saturated_motor, short_window, stuck_througho
 from torsio.analysis.severity import (
     DEFAULT_SAMPLES_PER_PERIOD,
     DEFAULT_STICK_THRESHOLD,
-    SEVERE_THRESHOLD,
     first_natural_frequency,
     run_times,
     severity,
 )
 from torsio.analysis.simulation_options import (
-    METHODS,
     MIN_WINDOW_SAMPLES,
     SimulationOptions,
 )
@@ -75,19 +73,7 @@ from torsio.io.config import Config
 from torsio.physics.dynamics import Dynamics
 from torsio.physics.system import System
 
-__all__ = [
-    "DEFAULT_SAMPLES_PER_PERIOD",
-    "DEFAULT_STICK_THRESHOLD",
-    "METHODS",
-    "SEVERE_THRESHOLD",
-    "SimulationOptions",
-    "TransientResults",
-    "first_natural_frequency",
-    "simulate",
-    "simulate_config",
-    "simulate_lumped",
-    "system_from_config",
-]
+__all__ = ["simulate", "simulate_config", "simulate_lumped", "system_from_config"]
 
 
 def _initial_state(dynamics: Dynamics, initial_state: Any) -> np.ndarray:

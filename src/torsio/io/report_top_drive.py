@@ -45,7 +45,7 @@ def pipe_impedance(system: Any, top: Any) -> float | None:
         return float(given)
     if system.string is None:
         return None
-    from torsio.physics.top_drives import top_pipe_impedance
+    from torsio.physics.top_drive_boundary import top_pipe_impedance
 
     return float(top_pipe_impedance(system))
 

@@ -64,7 +64,8 @@ from torsio.physics.damping import ModelDamping, RayleighDamping
 from torsio.physics.law_slope import bit_slope
 from torsio.physics.laws import TuckerWang
 from torsio.physics.system import System
-from torsio.physics.top_drives import ConstantSpeedTop, ScaledTopDrive
+from torsio.physics.top_drive_boundary import ScaledTopDrive
+from torsio.physics.top_drives import ConstantSpeedTop
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = [

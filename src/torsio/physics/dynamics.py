@@ -46,9 +46,9 @@ import scipy.sparse
 
 from torsio.errors import ConfigError
 from torsio.physics.law_slope import bit_slope
-from torsio.physics.top_drives import TopDriveBoundary
+from torsio.physics.top_drive_boundary import TopDriveBoundary
 
-__all__ = ["Dynamics", "bit_slope", "tridiagonal_bands"]
+__all__ = ["Dynamics", "tridiagonal_bands"]
 
 
 def tridiagonal_bands(matrix: np.ndarray, key: str) -> tuple[np.ndarray, np.ndarray]:

@@ -41,7 +41,7 @@ from torsio.physics.damping import ModelDamping, RayleighDamping
 from torsio.physics.top_drives import ConstantSpeedTop
 from torsio.units import RPM_TO_RAD_S, as_rpm, si_field
 
-__all__ = ["ConstantSpeedTop", "System"]
+__all__ = ["System"]
 
 
 def __getattr__(name: str) -> Any:

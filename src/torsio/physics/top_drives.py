@@ -53,17 +53,14 @@ import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.hookspecs import hookimpl
-from torsio.physics.top_drive_boundary import ScaledTopDrive, TopDriveBoundary, top_pipe_impedance
+from torsio.physics.top_drive_boundary import TopDriveBoundary, top_pipe_impedance
 
 __all__ = [
     "ConstantSpeedTop",
     "PITopDrive",
-    "ScaledTopDrive",
     "SoftTorqueTopDrive",
-    "TopDriveBoundary",
     "TorqueTopDrive",
     "ZTorqueTopDrive",
-    "top_pipe_impedance",
 ]
 
 TYPICAL_INERTIA = 2900.0

@@ -58,19 +58,17 @@ from torsio.solvers.batch_results import (
     batch_points,
     check_steady_tolerance,
 )
+from torsio.solvers.chain_kernel import TOP_SIZE
 from torsio.solvers.compiled import HAVE_NUMBA, numba
 from torsio.solvers.law_kernels import LawKernel, law_kernel, python_law_kernel
 from torsio.solvers.reference import reference_severity, run_times
-from torsio.solvers.rodas import OUT_COLUMNS, TOP_SIZE
+from torsio.solvers.rodas import OUT_COLUMNS
 
 __all__ = [
     "DEFAULT_ATOL",
     "DEFAULT_RTOL",
     "ENGINES",
-    "HAVE_NUMBA",
     "BatchModel",
-    "BatchResults",
-    "reference_severity",
     "resolve_engine",
     "simulate_batch",
     "simulate_lumped_batch",

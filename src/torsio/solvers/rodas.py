@@ -36,7 +36,6 @@ import math
 import numpy as np
 
 from torsio.solvers.chain_kernel import (
-    TOP_SIZE,
     accelerations,
     controller_solve,
     forces,
@@ -60,7 +59,6 @@ __all__ = [
     "RODAS_A",
     "RODAS_C",
     "SETTINGS_SIZE",
-    "TOP_SIZE",
     "integrate_parallel",
     "integrate_serial",
     "run_chunk",

@@ -101,7 +101,7 @@ def law_functions(law: Any) -> tuple[Any, Any, np.ndarray, str]:
     if kernel is not None:
         return kernel.torque, kernel.slope, kernel.parameters, "numba"
 
-    from torsio.physics.dynamics import bit_slope
+    from torsio.physics.law_slope import bit_slope
 
     def torque(parameters: np.ndarray, speed: float, wob: float, radius: float) -> float:
         return float(law.torque(speed, wob, radius))
