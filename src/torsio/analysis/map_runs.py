@@ -231,26 +231,9 @@ def _default_chunk_size(points: int, workers: int, serial: bool, dofs: int) -> i
 
 
 def _rich_progress() -> tuple[Callable[[int, int], None], Callable[[], None]]:
-    from rich.console import Console
-    from rich.progress import (
-        BarColumn,
-        MofNCompleteColumn,
-        Progress,
-        TextColumn,
-        TimeElapsedColumn,
-        TimeRemainingColumn,
-    )
+    from torsio.solvers.run_chunks import progress_bar
 
-    bar = Progress(
-        TextColumn("severity map"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TextColumn("runs"),
-        TimeElapsedColumn(),
-        TimeRemainingColumn(),
-        transient=True,
-        console=Console(stderr=True),
-    )
+    bar = progress_bar("severity map", "runs")
     task = bar.add_task("map", total=None)
     bar.start()
 

@@ -185,8 +185,10 @@ def _range_bounds(text: str, option: str, kind: str) -> tuple[float, float, int]
     return start, stop, count
 
 
-_ARGUMENTS = {"grid": "--wob/--rpm", "wob": "--wob", "rpm": "--rpm", "pi1": "--pi1", "pi2": "--pi2"}
-"""Names of the grid's arguments in errors (the options name themselves: MapOptions.flag)."""
+_RUN_ARGUMENTS = ("wob", "rpm", "pi1", "pi2", "workers", "scheduler", "out")
+_ARGUMENTS = {"grid": "--wob/--rpm", **{name: f"--{name}" for name in _RUN_ARGUMENTS}}
+"""Flags of the map's arguments that are not options, for errors (options name themselves:
+MapOptions.flag)."""
 
 
 def run(args: argparse.Namespace) -> int:
@@ -198,10 +200,9 @@ def run(args: argparse.Namespace) -> int:
     except ConfigError as exc:
         from torsio.analysis.map_options import MapOptions
 
-        key = _ARGUMENTS.get(exc.key) or MapOptions.flag(exc.key)
-        if key == exc.key and exc.key in ("workers", "scheduler", "out"):
-            key = f"--{exc.key}"
-        raise ConfigError(key, exc.message) from None
+        raise ConfigError(
+            _ARGUMENTS.get(exc.key) or MapOptions.flag(exc.key), exc.message
+        ) from None
 
 
 def _run(args: argparse.Namespace) -> int:

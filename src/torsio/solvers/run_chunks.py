@@ -32,7 +32,14 @@ import time
 from collections.abc import Callable
 from typing import Any, TextIO
 
-__all__ = ["CHUNK_SECONDS", "LINE_SECONDS", "QUIET_SECONDS", "run_in_chunks", "stderr_progress"]
+__all__ = [
+    "CHUNK_SECONDS",
+    "LINE_SECONDS",
+    "QUIET_SECONDS",
+    "progress_bar",
+    "run_in_chunks",
+    "stderr_progress",
+]
 
 CHUNK_SECONDS = 0.2
 """Wall time aimed at for one chunk [s]: a signal is handled within about that."""
@@ -129,26 +136,7 @@ class _StderrProgress:
             )
 
     def _start_bar(self, output: TextIO, total: int) -> None:
-        from rich.console import Console
-        from rich.progress import (
-            BarColumn,
-            MofNCompleteColumn,
-            Progress,
-            TextColumn,
-            TimeElapsedColumn,
-            TimeRemainingColumn,
-        )
-
-        self.bar = Progress(
-            TextColumn(self.label),
-            BarColumn(),
-            MofNCompleteColumn(),
-            TextColumn("steps"),
-            TimeElapsedColumn(),
-            TimeRemainingColumn(),
-            transient=True,
-            console=Console(file=output),
-        )
+        self.bar = progress_bar(self.label, "steps", output)
         self.task = self.bar.add_task(self.label, total=total)
         self.bar.start()
 
@@ -157,6 +145,31 @@ class _StderrProgress:
         if self.bar is not None:
             self.bar.stop()
             self.bar = None
+
+
+def progress_bar(label: str, unit: str, output: TextIO | None = None) -> Any:
+    """A transient rich progress bar on ``output`` (default stderr): ``label``, the bar,
+    done of total ``unit``, elapsed and remaining time. Not started; add a task to it."""
+    from rich.console import Console
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    return Progress(
+        TextColumn(label),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TextColumn(unit),
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+        transient=True,
+        console=Console(stderr=True) if output is None else Console(file=output),
+    )
 
 
 def stderr_progress(
