@@ -54,6 +54,7 @@ from torsio.analysis.budget import (
     check_law_time_scale,
     check_output_size,
 )
+from torsio.analysis.contact_summary import contact_summary
 from torsio.analysis.limits import saturated_motor, short_window, stuck_throughout, warning_list
 from torsio.analysis.severity import (
     DEFAULT_SAMPLES_PER_PERIOD,
@@ -268,11 +269,18 @@ def simulate_lumped(
     reporter = None
     if progress is None or progress is True:
         reporter = stderr_progress("simulate", quiet=0.0 if progress else QUIET_SECONDS)
+    report = reporter if reporter is not None else (progress or None)
     try:
-        states, solver_info = integrate_run(
-            system, dynamics, y0, time_grid, window, options, where,
-            reporter if reporter is not None else (progress or None),
-        )  # fmt: skip
+        if dynamics.contacts is not None:  # set-valued friction: scipy between switches
+            from torsio.solvers.contact_events import integrate_with_contacts
+
+            states, solver_info = integrate_with_contacts(
+                dynamics, y0, time_grid, options, where, report
+            )
+        else:
+            states, solver_info = integrate_run(
+                system, dynamics, y0, time_grid, window, options, where, report
+            )
     finally:
         if reporter is not None:
             reporter.close()
@@ -323,6 +331,18 @@ def simulate_lumped(
     extremes = solver_info.pop("bit_speed_extremes", None)  # the continuous solution's
     read = np.array(extremes) if extremes is not None else window_speeds
     twists = twists_by_node[first:].T.copy()
+    well_summary = None
+    if dynamics.contacts is not None:  # from the output samples
+        moved = np.flatnonzero(np.abs(bit_speed) > dynamics.contacts.threshold_speed)
+        well_summary = contact_summary(
+            dynamics.contacts,
+            surface_range=(surface_torque[in_window].min(), surface_torque[in_window].max()),
+            surface_peak=float(surface_torque.max()),
+            first_motion=float(time_grid[moved[0]]) if moved.size else math.nan,
+            friction_work=float(solver_info.pop("friction_work")),
+            window_time=time_grid[in_window],
+            window_bit_speed=bit_speed[in_window],
+        )
     return TransientResults(
         time=time_grid,
         bit_speed=bit_speed,
@@ -343,6 +363,7 @@ def simulate_lumped(
         reference_speed=float(reference),
         severity_speed=float(omega),
         bit_speed_extremes=extremes,
+        well_summary=well_summary,
         warnings=warning_list(
             stuck_throughout(stick, threshold),
             short_window(float(window), period),

@@ -37,6 +37,7 @@ import attrs
 import numpy as np
 
 from torsio.analysis.budget import check_law_time_scale, check_output_size, check_wave_steps
+from torsio.analysis.contact_summary import contact_summary
 from torsio.analysis.limits import short_window, stuck_throughout, warning_list
 from torsio.analysis.severity import DEFAULT_DURATION_PERIODS, DEFAULT_WINDOW_PERIODS, check_window
 from torsio.analysis.simulation_options import check_window_samples
@@ -141,47 +142,22 @@ def _field_every(field_step: float, dt: float, duration: float, grid: WaveModel)
     return every
 
 
-def oscillation_period(time: np.ndarray, speed: np.ndarray) -> float | None:
-    """Mean time [s] between upward crossings of the middle of ``speed``'s range, or None
-    with fewer than three crossings (two whole cycles) or no range.
-
-    >>> t = np.linspace(0.0, 10.0, 10001)
-    >>> round(oscillation_period(t, np.sin(2 * np.pi * t / 2.5)), 6)
-    2.5
-    """
-    low, high = float(np.min(speed)), float(np.max(speed))
-    if not high > low:
-        return None
-    level = 0.5 * (low + high)
-    up = np.flatnonzero((speed[:-1] < level) & (speed[1:] >= level))
-    if up.size < 3:
-        return None
-    share = (level - speed[up]) / (speed[up + 1] - speed[up])
-    crossings = time[up] + share * (time[up + 1] - time[up])
-    return float(np.mean(np.diff(crossings)))
-
-
 def _well_summary(
     grid: WaveModel, summary: dict[str, float], time: np.ndarray, bit_speed: np.ndarray
 ) -> dict[str, Any] | None:
-    """What a run with friction along the string reports (None without contacts): the
-    surface torque's extremes over every step (window, run) and its swing in the window,
-    when the bit first moved, and the stick-slip period of the bit speed in the window
-    (:func:`oscillation_period` of the recorded samples)."""
+    """What a run with friction along the string reports (None without contacts), from the
+    extremes the kernel took at every step."""
     if grid.contacts is None:
         return None
-    first = summary["bit_first_motion"]
-    return {
-        "surface_torque_min": summary["surface_torque_min"],
-        "surface_torque_max": summary["surface_torque_max"],
-        "surface_torque_swing": summary["surface_torque_max"] - summary["surface_torque_min"],
-        "surface_torque_peak": summary["surface_torque_peak"],
-        "stick_slip_period": oscillation_period(time, bit_speed),
-        "bit_first_motion": None if math.isnan(first) else first,
-        "friction_work": summary["friction_dissipation"],
-        "threshold_speed": float(grid.contacts.threshold_speed),
-        "contacts": grid.contacts.describe(),
-    }
+    return contact_summary(
+        grid.contacts,
+        surface_range=(summary["surface_torque_min"], summary["surface_torque_max"]),
+        surface_peak=summary["surface_torque_peak"],
+        first_motion=summary["bit_first_motion"],
+        friction_work=summary["friction_dissipation"],
+        window_time=time,
+        window_bit_speed=bit_speed,
+    )
 
 
 def _transient_results(values: dict[str, Any]) -> Any:

@@ -214,7 +214,7 @@ class Config:
         from torsio.physics.system import System
 
         model = self.model(**discretization)
-        model = model if self.well is None else with_contacts(model, self.well)  # wave only
+        model = model if self.well is None else with_contacts(model, self.well, self.string)
         damping = self.model_damping(model)
         op = self.operation
         return System(

@@ -123,6 +123,14 @@ class BatchModel:
     def from_system(cls, system: System) -> BatchModel:
         """The chain of ``system`` (ConfigError if the model is not a chain)."""
         dynamics = system.dynamics()
+        if dynamics.contacts is not None:
+            raise ConfigError(
+                "well",
+                "maps of a lumped model with friction along the string are not run: the "
+                "compiled batch engine takes no contacts (set-valued friction); map it on the "
+                'wave model (discretization.strategy = "wave", --strategy wave), or run single '
+                "points with torsio simulate",
+            )
         if not dynamics.is_chain:
             raise ConfigError(
                 "model",
