@@ -9,7 +9,7 @@ import numpy as np
 from rich.table import Table
 from rich.text import Text
 
-from torsio.io.report_context import ReportContext, ReportSection
+from torsio.report.context import ReportContext, ReportSection
 
 
 # --- operating point ----------------------------------------------------------------------
