@@ -19,7 +19,9 @@ m = T - Z w travels up. One step of length dt:
    drive (inertia and linear controller, :class:`torsio.physics.top_drives.TopDriveBoundary`,
    the top node's damper added to its drag) integrated by the trapezoidal rule with the
    incoming m linear over the step; a motor torque beyond ``max_torque`` is held at the
-   limit for the step (back-calculation anti-windup as the description gives it);
+   limit for the step (back-calculation anti-windup as the description gives it). The set
+   speed Omega(t) is read from a table (time, speed), linear between its points (a ramp,
+   a recorded speed; :mod:`torsio.solvers.wave_top`);
 5. **bit**: the bit's inertia J_b with torque on bit T_bit(w_b), drag alpha J_b plus the
    bottom node's damper, and the pipe torque p - Z w_b, by BDF2 (backward Euler on the
    first step), an L-stable second-order rule: the bit's own time scale J_b / Z (about
@@ -74,6 +76,17 @@ from torsio.solvers.wave_buffers import (
     _slot,
 )
 from torsio.solvers.wave_contacts import _contact_node_speeds, _contact_speed, _contacts
+from torsio.solvers.wave_cycles import (
+    _BIT_TORQUE,
+    _COUNT,
+    _CYCLE_MAX,
+    _CYCLE_MIN,
+    _ENDED,
+    _RUN_MAX,
+    _RUN_MIN,
+    _T_LAST,
+    _crossing,
+)
 from torsio.solvers.wave_state import (
     BUFFER_START,
     C_INNER,
@@ -94,6 +107,7 @@ from torsio.solvers.wave_state import (
     rest_state,
     state_from_fields,
 )
+from torsio.solvers.wave_top import table_speed
 
 __all__ = [
     "RECORD_CHANNELS",
@@ -117,7 +131,7 @@ try:  # numba is optional: without it the same steps run as plain Python (slowly
     _LAW = types.FunctionType(_F8(_VECTOR, _F8, _F8, _F8))
     _MARCH_SIGNATURE: Any = types.void(
         types.int64[:, ::1], _MATRIX, _VECTOR, _VECTOR, _VECTOR, _VECTOR, _VECTOR, _VECTOR,
-        _VECTOR, types.float64[:, :, ::1], _MATRIX, _MATRIX, _VECTOR,
+        _VECTOR, types.float64[:, :, ::1], _MATRIX, _MATRIX, _VECTOR, _MATRIX, _MATRIX,
         _LAW, _LAW, _VECTOR, _MATRIX, _MATRIX, _VECTOR, _MATRIX,
         _MATRIX, _MATRIX, types.int64[:, ::1], _VECTOR, types.int64[:, ::1], _MATRIX,
     )  # fmt: skip
@@ -151,69 +165,11 @@ friction's work along the string [J] (26), the largest surface torque of the run
 the smallest and largest of the window [N m] (27-29), and the first step the bit is
 faster than the contacts' threshold speed (30; 0: not yet)."""
 
-# the steady-cycle tracker in the summary array
-_COUNT, _T_LAST, _RUN_MAX, _RUN_MIN, _CYCLE_MAX, _CYCLE_MIN, _CHANGE, _ENDED, _KEPT = range(16, 25)
-_BIT_TORQUE = 25
-
-
-@njit(cache=True, nogil=True, _nrt=False)
-def _crossing(  # type: ignore[no-untyped-def,unused-ignore]
-    layout, spacing, P, M, heads, impedances, speeds, torques, cross, summary,
-    w_bit, top_speed, t_cross, reference, t_end, window_length, tolerance,
-):  # fmt: skip
-    """At an upward crossing of the reference speed by the bit: whether the motion is on
-    a steady cycle (module docstring). Updates the tracker in ``summary`` and the state
-    kept in ``cross`` (2, nodes + 2: speeds and torques / Z', then the bit and top speeds).
-
-    The state of every node is read only when the bit's and the top's change alone would
-    let the run end (it bounds the change from below); otherwise the change counts as
-    infinite and no state is kept, which can only delay the end.
-    """
-    nodes = speeds.size
-    crossings = summary[_COUNT]
-    period = t_cross - summary[_T_LAST]
-    cycles_left = (t_end - t_cross) / period if crossings >= 1.0 else math.inf
-    change = math.inf
-    quick = 0.0
-    bounded = crossings >= 1.0
-    if bounded:
-        quick = max(abs(w_bit - cross[0, nodes]), abs(top_speed - cross[0, nodes + 1]))
-        bounded = cycles_left * quick / (2.0 * reference) <= tolerance
-    cross[0, nodes] = w_bit
-    cross[0, nodes + 1] = top_speed
-    if bounded or crossings < 1.0:
-        _read_nodes(layout, spacing, P, M, heads, impedances, speeds, torques)
-        if summary[_KEPT] > 0.0:
-            moved = 0.0
-            for j in range(nodes):
-                moved = max(moved, abs(speeds[j] - cross[0, j]), abs(torques[j] - cross[1, j]))
-            change = max(moved, quick) / (2.0 * reference)
-        for j in range(nodes):
-            cross[0, j] = speeds[j]
-            cross[1, j] = torques[j]
-        summary[_KEPT] = 1.0
-    else:
-        summary[_KEPT] = 0.0
-    steady = (
-        crossings >= 3.0
-        and period <= window_length
-        and cycles_left * max(change, summary[_CHANGE]) <= tolerance
-    )
-    if crossings >= 1.0:
-        summary[_CYCLE_MAX] = summary[_RUN_MAX]
-        summary[_CYCLE_MIN] = summary[_RUN_MIN]
-    summary[_CHANGE] = change
-    summary[_COUNT] = crossings + 1.0
-    summary[_T_LAST] = t_cross
-    summary[_RUN_MAX] = w_bit
-    summary[_RUN_MIN] = w_bit
-    return steady
-
 
 @njit(_MARCH_SIGNATURE, cache=True, nogil=True, _nrt=False, error_model="numpy")
 def _march(  # type: ignore[no-untyped-def,unused-ignore]
     layout, sections, end_dampers, impedances, settings, p, m, top_state, bit_state,
-    propagator, forcing, constant, coefficients,
+    propagator, forcing, constant, coefficients, speed_table, constant_per_speed,
     torque, slope, parameters, records, field, summary, cross, buffers, scratch, heads, top_work,
     contact_index, contacts,
 ):  # fmt: skip
@@ -225,14 +181,15 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     ``top_work`` (top states) are its work space, allocated by the caller. With
     ``settings[20]`` set, the drag nodes carry Coulomb contacts (``contact_index``,
     ``contacts``: :func:`torsio.solvers.wave_contacts.contact_arrays`, threshold speed
-    ``settings[19]``), solved exactly at every step (:mod:`torsio.solvers.wave_contacts`)."""
+    ``settings[19]``), solved exactly at every step (:mod:`torsio.solvers.wave_contacts`).
+    The set speed is ``speed_table``'s (:func:`torsio.solvers.wave_top.table_speed`), constant from
+    ``settings[23]`` on; ``settings[22]`` is the motor torque per unit set speed."""
     dt = settings[0]
     bit_inertia = settings[1]
     alpha = settings[2]
     wob = settings[3]
     radius = settings[4]
     held = settings[5] != 0.0
-    set_speed = settings[6]
     max_torque = settings[7]
     steps = int(settings[8])
     window_start = int(settings[9])
@@ -248,6 +205,8 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     threshold = settings[19]
     below = settings[21]  # the largest speed under the threshold: the static branch
     rubbing = settings[20] != 0.0
+    set_gain = settings[22]
+    ramp_end = settings[23]
     t_end = run_steps * dt  # the run's end, for the cycles left, and its window's length
     window_length = (run_steps - window_start + 1) * dt
     track = steady_tolerance > 0.0 and reference > 0.0
@@ -276,6 +235,9 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     taken = 0
     for step in range(steps):
         m_top_old = M[_end_slots(layout, spacing, heads, 0, False)[1]]
+        t_next = (summary[15] + step + 1.0) * dt
+        set_before = table_speed(speed_table, t_next - dt)
+        set_speed = table_speed(speed_table, t_next)
         # 1. transport
         _advance(layout, spacing, P, M, heads)
         # 2. inner dampers: the regular ones a run of one row of p and one of m
@@ -364,12 +326,14 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
             chosen = 0
             u_free = 0.0
             for mode in range(3):
+                set_mean = 0.5 * (set_before + set_speed)
                 for i in range(n_top):
-                    acc = constant[mode, i] + forcing[mode, i] * (m_top_old + m_in)
+                    acc = constant[mode, i] + set_mean * constant_per_speed[mode, i]
+                    acc += forcing[mode, i] * (m_top_old + m_in)
                     for j in range(n_top):
                         acc += propagator[mode, i, j] * top_state[j]
                     mode_x[i] = acc
-                u_free = coefficients[0] + coefficients[n_top + 1] * m_in
+                u_free = coefficients[0] + set_gain * set_speed + coefficients[n_top + 1] * m_in
                 for i in range(n_top):
                     u_free += coefficients[1 + i] * mode_x[i]
                 if mode == 0:
@@ -470,7 +434,7 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
                 for j in range(nodes):
                     field[row, j] = speeds[j]
         # 6. a steady cycle? (upward crossings of the reference speed by the bit)
-        if track:
+        if track and t_next > ramp_end:
             crossed = w_old < reference <= w_bit
             t_cross = 0.0
             if crossed:
