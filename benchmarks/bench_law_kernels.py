@@ -31,9 +31,8 @@ from pathlib import Path
 
 import numpy as np
 
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config
 from torsio.physics.laws import tucker_wang_slope, tucker_wang_torque
-from torsio.physics.system import System
 from torsio.solvers import batch, rodas
 from torsio.solvers.compiled import njit
 
@@ -97,7 +96,7 @@ def _serial_tucker_wang_constant(chain, top, p, settings, wob, omega, omega_set,
 
 
 def part_kernel(points: int, repeat: int) -> None:
-    system = System.from_config(builtin_config(), strategy="A")
+    system = builtin_config().system(strategy="A")
     model = batch.BatchModel.from_system(system)
     torque, slope, parameters = system.law.kernel()
     ww, rr = np.meshgrid(np.linspace(20e3, 250e3, points), np.linspace(30.0, 150.0, points))

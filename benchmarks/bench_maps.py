@@ -34,7 +34,8 @@ import numpy as np
 
 from torsio.analysis.maps import severity_map
 from torsio.analysis.transient import simulate
-from torsio.physics.system import System, builtin_config
+from torsio.examples import builtin_config
+from torsio.physics.system import System
 from torsio.solvers import batch
 
 DURATION = 300.0
@@ -43,7 +44,7 @@ WINDOW = 100.0
 
 def ritto(strategy: str, dp_elements: int | None = None) -> System:
     options = {} if dp_elements is None else {"dp_elements": dp_elements}
-    return System.from_config(builtin_config(), strategy=strategy, **options)
+    return builtin_config().system(strategy=strategy, **options)
 
 
 def grid(points: int) -> tuple[np.ndarray, np.ndarray]:

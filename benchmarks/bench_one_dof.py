@@ -29,8 +29,7 @@ import time
 
 import numpy as np
 
-from torsio.io.config import builtin_config
-from torsio.physics.system import System
+from torsio.examples import builtin_config
 from torsio.solvers import batch, rodas
 from torsio.solvers.compiled import njit
 from torsio.solvers.cycles import extremes_of_cubic
@@ -140,7 +139,7 @@ def one_dof_serial(m, k, c, drag, torque, slope, p, settings, wobs, omegas, outs
 
 
 def part_kernel(repeat: int) -> float:
-    system = System.from_config(builtin_config(), strategy="A")
+    system = builtin_config().system(strategy="A")
     model = batch.BatchModel.from_system(system)
     torque, slope, parameters = system.law.kernel()
     ww, rr = np.meshgrid(np.linspace(20e3, 250e3, GRID), np.linspace(30.0, 150.0, GRID))

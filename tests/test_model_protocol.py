@@ -182,7 +182,7 @@ def test_wave_transient_engine_runs_like_wave_response():
     import attrs
 
     from torsio.analysis.wave import simulate_wave, wave_response
-    from torsio.io.config import builtin_config
+    from torsio.examples import builtin_config
     from torsio.physics.damping import RayleighDamping
 
     system = builtin_config().system(strategy="wave")
@@ -196,7 +196,7 @@ def test_wave_transient_engine_runs_like_wave_response():
 
 def test_the_wave_stepping_refuses_a_model_that_does_not_name_it():
     from torsio.analysis.wave import wave_response
-    from torsio.io.config import builtin_config
+    from torsio.examples import builtin_config
 
     with pytest.raises(ConfigError, match="expected the wave model"):
         wave_response(builtin_config().system())  # strategy C: the lumped engines

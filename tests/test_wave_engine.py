@@ -9,8 +9,7 @@ import numpy as np
 import pytest
 
 from torsio.errors import ConfigError
-from torsio.examples import ritto2017_string
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config, ritto2017_string
 from torsio.model.components import Bit, DrillPipe
 from torsio.model.continuum import continuum_modes
 from torsio.model.drillstring import DrillString
@@ -188,7 +187,7 @@ def test_wave_strategy_refuses_a_drag_spacing_that_is_not_a_whole_number_of_cell
 def test_drag_spacing_is_read_from_the_configuration(tmp_path) -> None:  # type: ignore[no-untyped-def]
     from importlib import resources
 
-    from torsio.io.config import load_config
+    from torsio.config.reading import load_config
 
     text = resources.files("torsio").joinpath("data/ritto2017.toml").read_text(encoding="utf-8")
     text = text.replace("beta = 0.06", "beta = 0.0").replace("dp_elements = 5\n", "")

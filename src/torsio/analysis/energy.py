@@ -40,10 +40,9 @@ solver's own error is smaller at the default tolerances).
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
->>> from torsio.physics.system import System
+>>> from torsio.examples import builtin_config
 >>> from torsio.analysis.transient import simulate
->>> system = System.from_config(builtin_config(), strategy="A").at(wob=100e3, rpm=60)
+>>> system = builtin_config().system(strategy="A").at(wob=100e3, rpm=60)
 >>> balance = energy_balance(simulate(system))
 >>> balance.relative_residual < 1e-4
 True

@@ -39,8 +39,8 @@ usually a jump; if S_SS is not monotonic inside the cell it finds one crossing.
 
 Examples
 --------
->>> from torsio.physics.system import System, builtin_config
->>> system = System.from_config(builtin_config(), strategy="A")
+>>> from torsio.examples import builtin_config
+>>> system = builtin_config().system(strategy="A")
 >>> result = severity_map(system, wob=[50e3, 150e3], rpm=[60.0, 120.0], refine=2)
 >>> result.severity.round(2).tolist()
 [[0.0, 1.32], [0.0, 0.0]]
@@ -173,8 +173,8 @@ def dimensionless_map(
 
     Examples
     --------
-    >>> from torsio.physics.system import System, builtin_config
-    >>> system = System.from_config(builtin_config(), strategy="A")
+    >>> from torsio.examples import builtin_config
+    >>> system = builtin_config().system(strategy="A")
     >>> result = dimensionless_map(system, pi1=[5.0, 12.0], pi2=[10.0, 60.0], refine=0)
     >>> result.pi1.round(3).tolist(), result.pi2.round(3).tolist()
     ([5.0, 12.0], [10.0, 60.0])

@@ -42,9 +42,8 @@ at omega = 0 when s < -(total drag seen at the bit).
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
->>> from torsio.physics.system import System
->>> system = System.from_config(builtin_config(), strategy="A")
+>>> from torsio.examples import builtin_config
+>>> system = builtin_config().system(strategy="A")
 >>> c = system.damping_matrix[0, 0]                     # alpha I + beta k
 >>> round(float(critical_bit_damping(system).slope / c), 9)   # s_c = -c for one DOF
 -1.0

@@ -31,9 +31,8 @@ Defaults (the paper states none; see ``docs/dynamics.md``):
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
->>> from torsio.physics.system import System
->>> system = System.from_config(builtin_config(), strategy="A").at(wob=175e3, rpm=100)
+>>> from torsio.examples import builtin_config
+>>> system = builtin_config().system(strategy="A").at(wob=175e3, rpm=100)
 >>> results = simulate(system)
 >>> round(results.severity, 3), results.severe
 (1.099, True)
@@ -46,7 +45,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -70,11 +69,13 @@ from torsio.analysis.simulation_options import (
 from torsio.analysis.time_scales import check_time_scales
 from torsio.analysis.transient_results import TransientResults, window_mask
 from torsio.errors import ConfigError, SolverError
-from torsio.io.config import Config
 from torsio.physics.dynamics import Dynamics
 from torsio.physics.system import System
 
-__all__ = ["simulate", "simulate_config", "simulate_lumped", "system_from_config"]
+if TYPE_CHECKING:  # a configuration is read, never imported: torsio.config sits above
+    from torsio.config.configuration import Config
+
+__all__ = ["simulate", "simulate_config", "simulate_lumped"]
 
 
 def _initial_state(dynamics: Dynamics, initial_state: Any) -> np.ndarray:
@@ -380,50 +381,6 @@ def _law_name(law: Any) -> str:
     return describe_bit_law(law)
 
 
-def system_from_config(
-    config: Config,
-    wob: Any = None,
-    rpm: Any = None,
-    discretization: Mapping[str, Any] | None = None,
-) -> System:
-    """The System of a configuration at an operating point (overriding ``[operation]``).
-
-    ``wob`` [N] and ``rpm`` may be numbers or strings with units (``"100 kN"``,
-    ``"120 rpm"``). Without them, the file's ``[operation]`` values are used; a
-    clear error names the key if neither gives one.
-    """
-    from torsio.io.config import parse_rpm
-    from torsio.units import to_si
-
-    if wob is None:
-        wob = config.operation.wob
-        if wob is None:
-            raise ConfigError(
-                "operation.wob",
-                "no weight on bit: give one (e.g. --wob '100 kN') or set it in "
-                "the [operation] table",
-            )
-    else:
-        text = wob
-        wob = to_si(wob, "force", key="wob")
-        if wob < 0:
-            raise ConfigError("wob", f"expected a non-negative weight on bit, got {text!r}")
-    options = {k: v for k, v in (discretization or {}).items() if v is not None}
-    if rpm is None and not config.top_drive.has_set_speed:  # e.g. a torque-driven top
-        return System.from_config(config, **options).at(wob=wob)
-    if rpm is None:
-        rpm = config.operation.rpm
-        if rpm is None:
-            raise ConfigError(
-                "operation.rpm",
-                "no rotary speed: give one (e.g. --rpm 120) or set it in the [operation] table",
-            )
-    else:
-        rpm = parse_rpm(rpm, "rpm")
-    options = {k: v for k, v in (discretization or {}).items() if v is not None}
-    return System.from_config(config, **options).at(wob=wob, rpm=rpm)
-
-
 def simulate_config(
     config: Config,
     wob: Any = None,
@@ -448,7 +405,7 @@ def simulate_config(
 
     Examples
     --------
-    >>> from torsio.io.config import builtin_config
+    >>> from torsio.examples import builtin_config
     >>> results = simulate_config(builtin_config(), wob="175 kN", rpm=100,
     ...                           discretization={"strategy": "A"})
     >>> round(results.severity, 3)
@@ -457,5 +414,7 @@ def simulate_config(
     initial_state = overrides.pop("initial_state", None)
     progress = overrides.pop("progress", None)
     options = SimulationOptions.from_config(config).replace(**overrides)
-    system = system_from_config(config, wob, rpm, discretization)
+    point = config.operating_point(wob, rpm)
+    given = {k: v for k, v in (discretization or {}).items() if v is not None}
+    system = config.system(**given).at(**point)
     return simulate(system, initial_state=initial_state, progress=progress, **options.kwargs())

@@ -15,7 +15,7 @@ the bit, trapezoidal rule for a top drive; fixed step dt of the grid (no toleran
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
+>>> from torsio.examples import builtin_config
 >>> from torsio.physics.damping import RayleighDamping
 >>> import attrs
 >>> system = builtin_config().system(strategy="wave")

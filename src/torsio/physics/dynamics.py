@@ -26,9 +26,8 @@ a held top.
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
->>> from torsio.physics.system import System
->>> dynamics = Dynamics.from_system(System.from_config(builtin_config(), strategy="A"))
+>>> from torsio.examples import builtin_config
+>>> dynamics = Dynamics.from_system(builtin_config().system(strategy="A"))
 >>> dynamics.dofs, dynamics.states, dynamics.has_top_node, dynamics.jacobian_bands
 (1, 0, False, (1, 1))
 """

@@ -29,8 +29,8 @@ Engines
 
 Examples
 --------
->>> from torsio.physics.system import System, builtin_config
->>> system = System.from_config(builtin_config(), strategy="A")
+>>> from torsio.examples import builtin_config
+>>> system = builtin_config().system(strategy="A")
 >>> result = simulate_batch(system, wob=[50e3, 200e3], rpm=[120.0, 50.0])
 >>> [round(float(s), 2) for s in result.severity], result.engine
 ([0.0, 1.77], 'compiled')

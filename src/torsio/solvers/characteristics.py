@@ -76,6 +76,17 @@ from torsio.solvers.wave_buffers import (
     _slot,
 )
 from torsio.solvers.wave_contacts import _contact_node_speeds, _contact_speed, _contacts
+from torsio.solvers.wave_cycles import (
+    _BIT_TORQUE,
+    _COUNT,
+    _CYCLE_MAX,
+    _CYCLE_MIN,
+    _ENDED,
+    _RUN_MAX,
+    _RUN_MIN,
+    _T_LAST,
+    _crossing,
+)
 from torsio.solvers.wave_state import (
     BUFFER_START,
     C_INNER,
@@ -96,6 +107,7 @@ from torsio.solvers.wave_state import (
     rest_state,
     state_from_fields,
 )
+from torsio.solvers.wave_top import table_speed
 
 __all__ = [
     "RECORD_CHANNELS",
@@ -153,92 +165,6 @@ friction's work along the string [J] (26), the largest surface torque of the run
 the smallest and largest of the window [N m] (27-29), and the first step the bit is
 faster than the contacts' threshold speed (30; 0: not yet)."""
 
-# the steady-cycle tracker in the summary array
-_COUNT, _T_LAST, _RUN_MAX, _RUN_MIN, _CYCLE_MAX, _CYCLE_MIN, _CHANGE, _ENDED, _KEPT = range(16, 25)
-_BIT_TORQUE = 25
-
-
-@njit(cache=True, nogil=True, _nrt=False)
-def _crossing(  # type: ignore[no-untyped-def,unused-ignore]
-    layout, spacing, P, M, heads, impedances, speeds, torques, cross, summary,
-    w_bit, top_speed, t_cross, reference, t_end, window_length, tolerance,
-):  # fmt: skip
-    """At an upward crossing of the reference speed by the bit: whether the motion is on
-    a steady cycle (module docstring). Updates the tracker in ``summary`` and the state
-    kept in ``cross`` (2, nodes + 2: speeds and torques / Z', then the bit and top speeds).
-
-    The state of every node is read only when the bit's and the top's change alone would
-    let the run end (it bounds the change from below); otherwise the change counts as
-    infinite and no state is kept, which can only delay the end.
-    """
-    nodes = speeds.size
-    crossings = summary[_COUNT]
-    period = t_cross - summary[_T_LAST]
-    cycles_left = (t_end - t_cross) / period if crossings >= 1.0 else math.inf
-    change = math.inf
-    quick = 0.0
-    bounded = crossings >= 1.0
-    if bounded:
-        quick = max(abs(w_bit - cross[0, nodes]), abs(top_speed - cross[0, nodes + 1]))
-        bounded = cycles_left * quick / (2.0 * reference) <= tolerance
-    cross[0, nodes] = w_bit
-    cross[0, nodes + 1] = top_speed
-    if bounded or crossings < 1.0:
-        _read_nodes(layout, spacing, P, M, heads, impedances, speeds, torques)
-        if summary[_KEPT] > 0.0:
-            moved = 0.0
-            for j in range(nodes):
-                moved = max(moved, abs(speeds[j] - cross[0, j]), abs(torques[j] - cross[1, j]))
-            change = max(moved, quick) / (2.0 * reference)
-        for j in range(nodes):
-            cross[0, j] = speeds[j]
-            cross[1, j] = torques[j]
-        summary[_KEPT] = 1.0
-    else:
-        summary[_KEPT] = 0.0
-    steady = (
-        crossings >= 3.0
-        and period <= window_length
-        and cycles_left * max(change, summary[_CHANGE]) <= tolerance
-    )
-    if crossings >= 1.0:
-        summary[_CYCLE_MAX] = summary[_RUN_MAX]
-        summary[_CYCLE_MIN] = summary[_RUN_MIN]
-    summary[_CHANGE] = change
-    summary[_COUNT] = crossings + 1.0
-    summary[_T_LAST] = t_cross
-    summary[_RUN_MAX] = w_bit
-    summary[_RUN_MIN] = w_bit
-    return steady
-
-
-@njit(cache=True, nogil=True, _nrt=False, error_model="numpy", inline="always")
-def table_speed(table, time):  # type: ignore[no-untyped-def,unused-ignore]
-    """The speed of ``table`` (rows time [s], speed [rad/s]) at ``time``: linear between its
-    points, constant beyond them.
-
-    >>> import numpy as np
-    >>> ramp, step = np.array([[0.0, 2.0], [0.0, 6.0]]), np.array([[0.0], [3.0]])
-    >>> table_speed(ramp, 0.5), table_speed(step, 9.0)
-    (1.5, 3.0)
-    """
-    times = table[0]
-    last = times.size - 1
-    if time <= times[0]:
-        return table[1, 0]
-    if time >= times[last]:
-        return table[1, last]
-    low = 0
-    high = last
-    while high - low > 1:
-        middle = (low + high) // 2
-        if times[middle] <= time:
-            low = middle
-        else:
-            high = middle
-    share = (time - times[low]) / (times[high] - times[low])
-    return table[1, low] + share * (table[1, high] - table[1, low])
-
 
 @njit(_MARCH_SIGNATURE, cache=True, nogil=True, _nrt=False, error_model="numpy")
 def _march(  # type: ignore[no-untyped-def,unused-ignore]
@@ -256,7 +182,7 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     ``settings[20]`` set, the drag nodes carry Coulomb contacts (``contact_index``,
     ``contacts``: :func:`torsio.solvers.wave_contacts.contact_arrays`, threshold speed
     ``settings[19]``), solved exactly at every step (:mod:`torsio.solvers.wave_contacts`).
-    The set speed is ``speed_table``'s (:func:`table_speed`), constant from
+    The set speed is ``speed_table``'s (:func:`torsio.solvers.wave_top.table_speed`), constant from
     ``settings[23]`` on; ``settings[22]`` is the motor torque per unit set speed."""
     dt = settings[0]
     bit_inertia = settings[1]

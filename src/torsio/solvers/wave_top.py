@@ -27,6 +27,8 @@ from typing import Any
 import attrs
 import numpy as np
 
+from torsio.solvers.compiled import njit
+
 
 @attrs.frozen(eq=False)
 class TopArrays:
@@ -170,3 +172,31 @@ def top_boundary(system: Any, grid: Any) -> TopArrays:
     if boundary is None:
         return held_top(system.omega)
     return top_arrays(boundary, float(grid.impedances[0]), grid.time_step, system.omega)
+
+
+@njit(cache=True, nogil=True, _nrt=False, error_model="numpy", inline="always")
+def table_speed(table, time):  # type: ignore[no-untyped-def,unused-ignore]
+    """The speed of ``table`` (rows time [s], speed [rad/s]) at ``time``: linear between its
+    points, constant beyond them.
+
+    >>> import numpy as np
+    >>> ramp, step = np.array([[0.0, 2.0], [0.0, 6.0]]), np.array([[0.0], [3.0]])
+    >>> table_speed(ramp, 0.5), table_speed(step, 9.0)
+    (1.5, 3.0)
+    """
+    times = table[0]
+    last = times.size - 1
+    if time <= times[0]:
+        return table[1, 0]
+    if time >= times[last]:
+        return table[1, last]
+    low = 0
+    high = last
+    while high - low > 1:
+        middle = (low + high) // 2
+        if times[middle] <= time:
+            low = middle
+        else:
+            high = middle
+    share = (time - times[low]) / (times[high] - times[low])
+    return table[1, low] + share * (table[1, high] - table[1, low])
