@@ -141,16 +141,42 @@ def _field_every(field_step: float, dt: float, duration: float, grid: WaveModel)
     return every
 
 
-def _well_summary(grid: WaveModel, summary: dict[str, float]) -> dict[str, Any] | None:
+def oscillation_period(time: np.ndarray, speed: np.ndarray) -> float | None:
+    """Mean time [s] between upward crossings of the middle of ``speed``'s range, or None
+    with fewer than three crossings (two whole cycles) or no range.
+
+    >>> t = np.linspace(0.0, 10.0, 10001)
+    >>> round(oscillation_period(t, np.sin(2 * np.pi * t / 2.5)), 6)
+    2.5
+    """
+    low, high = float(np.min(speed)), float(np.max(speed))
+    if not high > low:
+        return None
+    level = 0.5 * (low + high)
+    up = np.flatnonzero((speed[:-1] < level) & (speed[1:] >= level))
+    if up.size < 3:
+        return None
+    share = (level - speed[up]) / (speed[up + 1] - speed[up])
+    crossings = time[up] + share * (time[up + 1] - time[up])
+    return float(np.mean(np.diff(crossings)))
+
+
+def _well_summary(
+    grid: WaveModel, summary: dict[str, float], time: np.ndarray, bit_speed: np.ndarray
+) -> dict[str, Any] | None:
     """What a run with friction along the string reports (None without contacts): the
-    surface torque's extremes over every step (window, run), when the bit first moved."""
+    surface torque's extremes over every step (window, run) and its swing in the window,
+    when the bit first moved, and the stick-slip period of the bit speed in the window
+    (:func:`oscillation_period` of the recorded samples)."""
     if grid.contacts is None:
         return None
     first = summary["bit_first_motion"]
     return {
         "surface_torque_min": summary["surface_torque_min"],
         "surface_torque_max": summary["surface_torque_max"],
+        "surface_torque_swing": summary["surface_torque_max"] - summary["surface_torque_min"],
         "surface_torque_peak": summary["surface_torque_peak"],
+        "stick_slip_period": oscillation_period(time, bit_speed),
         "bit_first_motion": None if math.isnan(first) else first,
         "friction_work": summary["friction_dissipation"],
         "threshold_speed": float(grid.contacts.threshold_speed),
@@ -272,7 +298,7 @@ def wave_response(
     window = t >= t[-1] - steady_window - 1e-9 * dt
     summary = run.summary
     if top.held:
-        reference = system.omega
+        reference = top.set_speed  # its final speed (a recorded top: the table's last)
     elif math.isnan(top.set_speed):
         reference = summary["top_speed_sum"] / summary["window_steps"]
     else:
@@ -335,7 +361,7 @@ def wave_response(
         "states": np.zeros((t.size, 0)),
         "reference_speed": reference,
         "severity_speed": reference,
-        "well_summary": _well_summary(grid, summary),
+        "well_summary": _well_summary(grid, summary, t[window], bit_speed[window]),
         "warnings": warning_list(  # as the lumped transient says them
             stuck_throughout(stick, threshold), short_window(float(steady_window), period)
         ),

@@ -183,6 +183,7 @@ def _well_rows(summary: Any) -> list[tuple[str, str]]:
     if summary is None:
         return []
     first = summary["bit_first_motion"]
+    period = summary["stick_slip_period"]
     return [
         (
             "surface torque in window",
@@ -190,6 +191,11 @@ def _well_rows(summary: Any) -> list[tuple[str, str]]:
             f"{summary['surface_torque_max'] / 1e3:.4g} kN m",
         ),
         ("peak surface torque", f"{summary['surface_torque_peak'] / 1e3:.4g} kN m"),
+        ("surface-torque swing in window", f"{summary['surface_torque_swing'] / 1e3:.4g} kN m"),
+        (
+            "stick-slip period in window",
+            "none" if period is None else f"{period:.4g} s",
+        ),
         (
             f"bit first faster than {summary['threshold_speed']:g} rad/s",
             "never" if first is None else f"at {first:.4g} s",

@@ -151,6 +151,14 @@ class Dynamics:
         model = system.model
         n = model.dofs
         top = system.top.boundary(system)
+        if top.varying:
+            key = "top_drive.ramp" if top.ramp > 0.0 else "top_drive.kind"
+            raise ConfigError(
+                key,
+                "a set speed that changes in time (a ramp or a recorded speed) runs on the "
+                'distributed model (discretization.strategy = "wave"); the lumped engines '
+                "take a constant set speed",
+            )
         damping = np.asarray(system.damping_matrix, dtype=float)
         top_damper = np.asarray(system.top_damping, dtype=float)
         top_spring = np.asarray(model.top_stiffness, dtype=float)

@@ -47,6 +47,11 @@ class TopDriveBoundary:
         y = [e, T_pipe] (see the module documentation).
     max_torque : float
         |u| limit [N m] (inf: none).
+    ramp : float
+        The set speed rises linearly from 0 to ``set_speed`` over ``ramp`` [s] (0: a step).
+    speed_table : ndarray or None
+        Instead, the set speed against time: rows (time [s], speed [rad/s]), linear between
+        the columns and constant beyond them (a recorded top-drive speed).
     """
 
     inertia: float
@@ -59,6 +64,8 @@ class TopDriveBoundary:
     d: np.ndarray = attrs.field(factory=lambda: np.zeros(2), eq=False)
     w: np.ndarray = attrs.field(factory=lambda: np.zeros(0), eq=False)
     max_torque: float = math.inf
+    ramp: float = 0.0
+    speed_table: np.ndarray | None = attrs.field(default=None, eq=False)
 
     @property
     def held(self) -> bool:
@@ -79,6 +86,26 @@ class TopDriveBoundary:
     def states(self) -> int:
         """Number m of controller states."""
         return int(np.asarray(self.c).size)
+
+    @property
+    def varying(self) -> bool:
+        """Whether the set speed changes in time (a ramp or a table)."""
+        return self.ramp > 0.0 or self.speed_table is not None
+
+    def set_speed_table(self) -> np.ndarray:
+        """The set speed against time, shape (2, k): times [s], speeds [rad/s].
+
+        >>> TopDriveBoundary(inertia=1.0, set_speed=6.0, ramp=3.0).set_speed_table().tolist()
+        [[0.0, 3.0], [0.0, 6.0]]
+        >>> TopDriveBoundary(inertia=1.0).set_speed_table().tolist()  # no set speed
+        [[0.0], [0.0]]
+        """
+        if self.speed_table is not None:
+            return np.asarray(self.speed_table, dtype=float)
+        speed = 0.0 if math.isnan(self.set_speed) else float(self.set_speed)
+        if self.ramp > 0.0:
+            return np.array([[0.0, float(self.ramp)], [0.0, speed]])
+        return np.array([[0.0], [speed]])
 
     def transfer(self, s: complex) -> np.ndarray:
         """H(s) = c (s I - a)^-1 b + d: motor torque per unit (e, T_pipe), shape (2,)."""

@@ -112,6 +112,7 @@ PARAMETER_DIMENSIONS: dict[str, str] = {
     "ki": "stiffness",
     "alpha": "dimensionless",
     "highpass_period": "time",
+    "ramp": "time",
 }
 """Physical dimension of each parameter of the built-in top drives (for strings with units,
 in Python as in a file: ``PITopDrive(inertia="2900 kg*m^2", ...)``)."""
@@ -182,19 +183,23 @@ class TorqueTopDrive:
         return TopDriveBoundary(inertia=self.inertia, drag=self.drag, u0=self.torque)
 
 
-def _pi_boundary(
-    inertia: float, drag: float, kp: float, ki: float, max_torque: float, set_speed: float
-) -> TopDriveBoundary:
+def _ramp_field() -> Any:
+    """Time [s] over which the set speed rises linearly from rest, >= 0 (0: a step)."""
+    return _parameter("s", positive=False, default=0.0)
+
+
+def _pi_boundary(drive: Any, kp: float, ki: float, set_speed: float) -> TopDriveBoundary:
     return TopDriveBoundary(
-        inertia=inertia,
-        drag=drag,
+        inertia=drive.inertia,
+        drag=drive.drag,
         set_speed=set_speed,
         a=np.zeros((1, 1)),
         b=np.array([[1.0, 0.0]]),
         c=np.array([ki]),
         d=np.array([kp, 0.0]),
         w=np.array([1.0 / kp if kp > 0 else 0.0]),
-        max_torque=max_torque,
+        max_torque=drive.max_torque,
+        ramp=drive.ramp,
     )
 
 
@@ -223,6 +228,8 @@ class PITopDrive:
         Viscous drag of the top drive [N m s/rad], default 0.
     max_torque : float, optional
         Motor torque limit [N m]; none by default.
+    ramp : float
+        The set speed rises linearly from 0 over ``ramp`` [s] (a start-up); default 0, a step.
     """
 
     name: ClassVar[str] = "pi"
@@ -233,12 +240,11 @@ class PITopDrive:
     ki: float = _parameter("N m/rad", positive=False)
     drag: float = _parameter("N m s/rad", positive=False, default=0.0)
     max_torque: float = _max_torque_field()
+    ramp: float = _ramp_field()
 
     def boundary(self, system: Any) -> TopDriveBoundary:
         """Node 0 with the PI integral as controller state."""
-        return _pi_boundary(
-            self.inertia, self.drag, self.kp, self.ki, self.max_torque, float(system.omega)
-        )
+        return _pi_boundary(self, self.kp, self.ki, float(system.omega))
 
     def impedance(self, omega: Any) -> Any:
         """Z(i omega) = drag + kp + i (omega J - ki / omega) [N m s/rad] (unsaturated)."""
@@ -274,7 +280,7 @@ class SoftTorqueTopDrive(_TunedSpeedLoop):
         J [kg m^2].
     kp, ki : float, optional
         Gains [N m s/rad], [N m/rad]; the defaults above when not given.
-    drag, max_torque : float
+    drag, max_torque, ramp : float
         As for ``pi``.
     """
 
@@ -283,6 +289,7 @@ class SoftTorqueTopDrive(_TunedSpeedLoop):
 
     drag: float = _parameter("N m s/rad", positive=False, default=0.0)
     max_torque: float = _max_torque_field()
+    ramp: float = _ramp_field()
 
     def gains(self, system: Any = None) -> tuple[float, float]:
         """(kp, ki) with the defaults resolved on ``system`` where not given."""
@@ -301,7 +308,7 @@ class SoftTorqueTopDrive(_TunedSpeedLoop):
     def boundary(self, system: Any) -> TopDriveBoundary:
         """Node 0 with the PI integral as controller state, tuned on ``system``."""
         kp, ki = self.gains(system)
-        return _pi_boundary(self.inertia, self.drag, kp, ki, self.max_torque, float(system.omega))
+        return _pi_boundary(self, kp, ki, float(system.omega))
 
     def impedance(self, omega: Any, system: Any = None) -> Any:
         """Z(i omega) = drag + kp + i (omega J - ki / omega) [N m s/rad] (unsaturated)."""
@@ -341,7 +348,7 @@ class ZTorqueTopDrive(_TunedSpeedLoop):
         Tuning factor in (0, 1], default 0.25 (Simulator4nDOF).
     highpass_period : float
         1 / corner frequency of the torque high-pass [s], default 20.
-    drag, max_torque : float
+    drag, max_torque, ramp : float
         As for ``pi``.
     """
 
@@ -353,6 +360,7 @@ class ZTorqueTopDrive(_TunedSpeedLoop):
     highpass_period: float = _parameter("s", default=20.0)
     drag: float = _parameter("N m s/rad", positive=False, default=0.0)
     max_torque: float = _max_torque_field()
+    ramp: float = _ramp_field()
 
     def __attrs_post_init__(self) -> None:
         if self.alpha > 1.0:
@@ -384,6 +392,7 @@ class ZTorqueTopDrive(_TunedSpeedLoop):
             d=np.array([kp, -kp * g]),
             w=np.array([1.0 / kp, 0.0]),
             max_torque=self.max_torque,
+            ramp=self.ramp,
         )
 
 

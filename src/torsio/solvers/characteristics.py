@@ -19,7 +19,9 @@ m = T - Z w travels up. One step of length dt:
    drive (inertia and linear controller, :class:`torsio.physics.top_drives.TopDriveBoundary`,
    the top node's damper added to its drag) integrated by the trapezoidal rule with the
    incoming m linear over the step; a motor torque beyond ``max_torque`` is held at the
-   limit for the step (back-calculation anti-windup as the description gives it);
+   limit for the step (back-calculation anti-windup as the description gives it). The set
+   speed Omega(t) is read from a table (time, speed), linear between its points (a ramp,
+   a recorded speed; :mod:`torsio.solvers.wave_top`);
 5. **bit**: the bit's inertia J_b with torque on bit T_bit(w_b), drag alpha J_b plus the
    bottom node's damper, and the pipe torque p - Z w_b, by BDF2 (backward Euler on the
    first step), an L-stable second-order rule: the bit's own time scale J_b / Z (about
@@ -117,7 +119,7 @@ try:  # numba is optional: without it the same steps run as plain Python (slowly
     _LAW = types.FunctionType(_F8(_VECTOR, _F8, _F8, _F8))
     _MARCH_SIGNATURE: Any = types.void(
         types.int64[:, ::1], _MATRIX, _VECTOR, _VECTOR, _VECTOR, _VECTOR, _VECTOR, _VECTOR,
-        _VECTOR, types.float64[:, :, ::1], _MATRIX, _MATRIX, _VECTOR,
+        _VECTOR, types.float64[:, :, ::1], _MATRIX, _MATRIX, _VECTOR, _MATRIX, _MATRIX,
         _LAW, _LAW, _VECTOR, _MATRIX, _MATRIX, _VECTOR, _MATRIX,
         _MATRIX, _MATRIX, types.int64[:, ::1], _VECTOR, types.int64[:, ::1], _MATRIX,
     )  # fmt: skip
@@ -210,10 +212,38 @@ def _crossing(  # type: ignore[no-untyped-def,unused-ignore]
     return steady
 
 
+@njit(cache=True, nogil=True, _nrt=False, error_model="numpy", inline="always")
+def table_speed(table, time):  # type: ignore[no-untyped-def,unused-ignore]
+    """The speed of ``table`` (rows time [s], speed [rad/s]) at ``time``: linear between its
+    points, constant beyond them.
+
+    >>> import numpy as np
+    >>> ramp, step = np.array([[0.0, 2.0], [0.0, 6.0]]), np.array([[0.0], [3.0]])
+    >>> table_speed(ramp, 0.5), table_speed(step, 9.0)
+    (1.5, 3.0)
+    """
+    times = table[0]
+    last = times.size - 1
+    if time <= times[0]:
+        return table[1, 0]
+    if time >= times[last]:
+        return table[1, last]
+    low = 0
+    high = last
+    while high - low > 1:
+        middle = (low + high) // 2
+        if times[middle] <= time:
+            low = middle
+        else:
+            high = middle
+    share = (time - times[low]) / (times[high] - times[low])
+    return table[1, low] + share * (table[1, high] - table[1, low])
+
+
 @njit(_MARCH_SIGNATURE, cache=True, nogil=True, _nrt=False, error_model="numpy")
 def _march(  # type: ignore[no-untyped-def,unused-ignore]
     layout, sections, end_dampers, impedances, settings, p, m, top_state, bit_state,
-    propagator, forcing, constant, coefficients,
+    propagator, forcing, constant, coefficients, speed_table, constant_per_speed,
     torque, slope, parameters, records, field, summary, cross, buffers, scratch, heads, top_work,
     contact_index, contacts,
 ):  # fmt: skip
@@ -225,14 +255,15 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     ``top_work`` (top states) are its work space, allocated by the caller. With
     ``settings[20]`` set, the drag nodes carry Coulomb contacts (``contact_index``,
     ``contacts``: :func:`torsio.solvers.wave_contacts.contact_arrays`, threshold speed
-    ``settings[19]``), solved exactly at every step (:mod:`torsio.solvers.wave_contacts`)."""
+    ``settings[19]``), solved exactly at every step (:mod:`torsio.solvers.wave_contacts`).
+    The set speed is ``speed_table``'s (:func:`table_speed`), constant from
+    ``settings[23]`` on; ``settings[22]`` is the motor torque per unit set speed."""
     dt = settings[0]
     bit_inertia = settings[1]
     alpha = settings[2]
     wob = settings[3]
     radius = settings[4]
     held = settings[5] != 0.0
-    set_speed = settings[6]
     max_torque = settings[7]
     steps = int(settings[8])
     window_start = int(settings[9])
@@ -248,6 +279,8 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     threshold = settings[19]
     below = settings[21]  # the largest speed under the threshold: the static branch
     rubbing = settings[20] != 0.0
+    set_gain = settings[22]
+    ramp_end = settings[23]
     t_end = run_steps * dt  # the run's end, for the cycles left, and its window's length
     window_length = (run_steps - window_start + 1) * dt
     track = steady_tolerance > 0.0 and reference > 0.0
@@ -276,6 +309,9 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     taken = 0
     for step in range(steps):
         m_top_old = M[_end_slots(layout, spacing, heads, 0, False)[1]]
+        t_next = (summary[15] + step + 1.0) * dt
+        set_before = table_speed(speed_table, t_next - dt)
+        set_speed = table_speed(speed_table, t_next)
         # 1. transport
         _advance(layout, spacing, P, M, heads)
         # 2. inner dampers: the regular ones a run of one row of p and one of m
@@ -364,12 +400,14 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
             chosen = 0
             u_free = 0.0
             for mode in range(3):
+                set_mean = 0.5 * (set_before + set_speed)
                 for i in range(n_top):
-                    acc = constant[mode, i] + forcing[mode, i] * (m_top_old + m_in)
+                    acc = constant[mode, i] + set_mean * constant_per_speed[mode, i]
+                    acc += forcing[mode, i] * (m_top_old + m_in)
                     for j in range(n_top):
                         acc += propagator[mode, i, j] * top_state[j]
                     mode_x[i] = acc
-                u_free = coefficients[0] + coefficients[n_top + 1] * m_in
+                u_free = coefficients[0] + set_gain * set_speed + coefficients[n_top + 1] * m_in
                 for i in range(n_top):
                     u_free += coefficients[1 + i] * mode_x[i]
                 if mode == 0:
@@ -470,7 +508,7 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
                 for j in range(nodes):
                     field[row, j] = speeds[j]
         # 6. a steady cycle? (upward crossings of the reference speed by the bit)
-        if track:
+        if track and t_next > ramp_end:
             crossed = w_old < reference <= w_bit
             t_cross = 0.0
             if crossed:

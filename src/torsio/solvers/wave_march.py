@@ -216,8 +216,9 @@ def march(
     if top.held and state.top.size == 0:
         state = WaveState(state.p, state.m, np.zeros(1), state.bit)
     z_top = float(grid.impedances[0])
+    set_speed0 = top.set_speed_at(0.0)  # the set speed's time starts with the run
     if top.held:  # the held top turns at its speed from t = 0 on
-        state.p[0] = state.m[0] + 2.0 * z_top * top.set_speed
+        state.p[0] = state.m[0] + 2.0 * z_top * set_speed0
     stored_initial = stored_energy(grid, state, top)
     summary = np.zeros(SUMMARY_SIZE)
     summary[0], summary[1] = math.inf, -math.inf
@@ -225,11 +226,12 @@ def march(
     contact_index, contacts = contact_arrays(grid)
     threshold = 0.0 if grid.contacts is None else float(grid.contacts.threshold_speed)
     # powers at t = 0 for the trapezoidal energies
-    speed0 = state.top[0] if not top.held else top.set_speed
+    speed0 = state.top[0] if not top.held else set_speed0
     surface0 = state.m[0] + (z_top + layout.end_dampers[0]) * speed0  # with the top node's drag
     if not top.held:
         x0 = state.top
-        u0 = top.coefficients[0] + top.coefficients[1:-1] @ x0 + top.coefficients[-1] * state.m[0]
+        u0 = top.coefficients[0] + top.set_gain * set_speed0 + top.coefficients[1:-1] @ x0
+        u0 += top.coefficients[-1] * state.m[0]
         motor0 = float(np.clip(u0, -top.max_torque, top.max_torque))
     else:
         motor0 = surface0 + layout.end_dampers[0] * speed0
@@ -252,7 +254,7 @@ def march(
             top.max_torque, steps, window_start, record_every, field_every, top.drag,
             1.0 if track_energy else 0.0, grid.drag_spacing, steady_tolerance, reference,
             cycle_gap, steps, threshold, 0.0 if grid.contacts is None else 1.0,
-            speed_below(threshold),
+            speed_below(threshold), top.set_gain, top.ramp_end,
         ]
     )  # fmt: skip
     cross = np.zeros((2, state.p.size + 2))
@@ -263,8 +265,8 @@ def march(
     arguments = (
         layout.integers, layout.floats, layout.end_dampers, layout.impedances, settings,
         state.p, state.m, state.top, state.bit, top.propagator, top.forcing, top.constant,
-        top.coefficients, torque, slope, parameters, records, field, summary, cross, *work,
-        contact_index, contacts,
+        top.coefficients, top.speed_table, top.constant_per_speed, torque, slope, parameters,
+        records, field, summary, cross, *work, contact_index, contacts,
     )  # fmt: skip
     stepping = _march if engine == "numba" else _python_march()
 

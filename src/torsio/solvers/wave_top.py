@@ -11,6 +11,12 @@ drive's impedance Z_td(i omega) (``TopDriveBoundary.impedance``). With distribut
 the top node carries its share of the string's drag as a damper c (module
 :mod:`torsio.solvers.characteristics`), which adds to the top drive's own drag
 (:func:`with_node_damper`).
+
+The set speed may change in time (a start-up ramp, a recorded top-drive speed): a table of
+(time, speed) read linearly in the kernel. A held top then turns at Omega(t); a controller's
+set point enters its state equation affinely, so the trapezoidal step takes the constant
+part ``constant + Omega_mid constant_per_speed`` with Omega_mid the mean set speed over
+the step, and its motor torque ``coefficients[0] + set_gain Omega(t)``.
 """
 
 from __future__ import annotations
@@ -26,12 +32,14 @@ import numpy as np
 class TopArrays:
     """The top boundary as arrays for the stepping kernel.
 
-    ``held``: the top turns at ``set_speed``. Otherwise the state x = [Omega_0, z] advances
-    by ``x1 = L[k] x0 + g[k] (m0 + m1) + q[k]`` (trapezoidal rule) in mode k = 0 (free),
-    1 (motor torque at +max) or 2 (at -max); the motor torque is
-    ``u_free = coefficients[0] + coefficients[1:-1] . x + coefficients[-1] m``.
-    ``drag`` is the top drive's own drag, ``node_damper`` the string's drag at the top node
-    [N m s/rad], which the arrays include besides.
+    ``held``: the top turns at the set speed. Otherwise the state x = [Omega_0, z] advances
+    by ``x1 = L[k] x0 + g[k] (m0 + m1) + q[k] + Omega_mid r[k]`` (trapezoidal rule) in mode
+    k = 0 (free), 1 (motor torque at +max) or 2 (at -max), with Omega_mid the mean set
+    speed over the step; the motor torque is ``u_free = coefficients[0] + set_gain Omega_set
+    + coefficients[1:-1] . x + coefficients[-1] m``. ``speed_table`` (2, k) is the set speed
+    [rad/s] against time [s]; ``set_speed`` its final value. ``drag`` is the top drive's own
+    drag, ``node_damper`` the string's drag at the top node [N m s/rad], which the arrays
+    include besides.
     """
 
     held: bool
@@ -43,6 +51,9 @@ class TopArrays:
     forcing: np.ndarray  # (3, n)
     constant: np.ndarray  # (3, n)
     coefficients: np.ndarray  # (n + 2,)
+    speed_table: np.ndarray  # (2, k): time [s], set speed [rad/s]
+    constant_per_speed: np.ndarray  # (3, n): r[k]
+    set_gain: float = 0.0
     impedance: float = math.nan
     boundary: Any = None
     node_damper: float = 0.0
@@ -52,12 +63,22 @@ class TopArrays:
         """Size of the top state [Omega_0, z] (0 when held)."""
         return int(self.forcing.shape[1])
 
+    @property
+    def ramp_end(self) -> float:
+        """The time [s] from which the set speed is constant."""
+        return float(self.speed_table[0, -1])
 
-def held_top(speed: float) -> TopArrays:
-    """A top held at ``speed`` [rad/s]."""
+    def set_speed_at(self, time: float) -> float:
+        """The set speed [rad/s] at ``time`` [s]: linear in the table, constant beyond it."""
+        return float(np.interp(time, self.speed_table[0], self.speed_table[1]))
+
+
+def held_top(speed: float, table: np.ndarray | None = None) -> TopArrays:
+    """A top held at ``speed`` [rad/s], or at the speeds of ``table`` (rows time, speed)."""
+    table = np.array([[0.0], [float(speed)]]) if table is None else np.asarray(table, float)
     return TopArrays(
-        True, float(speed), 0.0, 0.0, math.inf, np.zeros((3, 1, 1)), np.zeros((3, 1)),
-        np.zeros((3, 1)), np.zeros(3),
+        True, float(table[1, -1]), 0.0, 0.0, math.inf, np.zeros((3, 1, 1)), np.zeros((3, 1)),
+        np.zeros((3, 1)), np.zeros(3), np.ascontiguousarray(table), np.zeros((3, 1)),
     )  # fmt: skip
 
 
@@ -73,7 +94,8 @@ def top_arrays(
     J Omega_0' = u - drag Omega_0 - T_pipe, z' = a z + b y + w (u - u_free).
     """
     if getattr(boundary, "held", True):
-        return held_top(speed)
+        table = boundary.set_speed_table() if getattr(boundary, "varying", False) else None
+        return held_top(speed, table)
     states = int(np.size(boundary.c))  # controller states (none for a torque top drive)
     a = np.asarray(boundary.a, dtype=float).reshape(states, states)
     b = np.asarray(boundary.b, dtype=float).reshape(-1, 2)
@@ -84,45 +106,52 @@ def top_arrays(
     n = m + 1
     inertia, drag, z_pipe = float(boundary.inertia), float(boundary.drag), float(impedance)
     set_speed = float(boundary.set_speed)
-    set_term = 0.0 if math.isnan(set_speed) else set_speed
+    set_gain = 0.0 if math.isnan(set_speed) else float(d[0])  # no set speed: no set term
     # u_free = u0 + d0 set + [(-d0 + d1 Z), c] . x + d1 m
-    coefficients = np.concatenate(
-        [[boundary.u0 + d[0] * set_term, -d[0] + d[1] * z_pipe], c, [d[1]]]
-    )
+    coefficients = np.concatenate([[boundary.u0, -d[0] + d[1] * z_pipe], c, [d[1]]])
     propagator = np.zeros((3, n, n))
     forcing = np.zeros((3, n))
     constant = np.zeros((3, n))
+    per_speed = np.zeros((3, n))
     max_torque = float(boundary.max_torque)
+    has_set = 0.0 if math.isnan(set_speed) else 1.0
     for mode, limit in enumerate((None, max_torque, -max_torque)):
         A = np.zeros((n, n))
         B = np.zeros(n)
-        f = np.zeros(n)
+        f = np.zeros(n)  # the constant forcing; r: the forcing per unit set speed
+        r = np.zeros(n)
         # z' = a z + b0 (set - Omega) + b1 (m + Z Omega)   [+ w (u - u_free) when limited]
         A[1:, 1:] = a
         A[1:, 0] = -b[:, 0] + b[:, 1] * z_pipe
         B[1:] = b[:, 1]
-        f[1:] = b[:, 0] * set_term
+        r[1:] = b[:, 0] * has_set
         if limit is None:  # u = u_free
             A[0, :] = coefficients[1:-1]
             B[0] = coefficients[-1]
             f[0] = coefficients[0]
+            r[0] = set_gain
         elif math.isfinite(limit):
             f[0] = limit
             A[1:, :] -= np.outer(w, coefficients[1:-1])
             B[1:] -= w * coefficients[-1]
             f[1:] += w * (limit - coefficients[0])
+            r[1:] -= w * set_gain
         A[0, 0] -= drag + node_damper + z_pipe
         B[0] -= 1.0
         A[0, :] /= inertia
         B[0] /= inertia
         f[0] /= inertia
+        r[0] /= inertia
         left = np.eye(n) - 0.5 * time_step * A
         propagator[mode] = np.linalg.solve(left, np.eye(n) + 0.5 * time_step * A)
         forcing[mode] = np.linalg.solve(left, 0.5 * time_step * B)
         constant[mode] = np.linalg.solve(left, time_step * f)
+        per_speed[mode] = np.linalg.solve(left, time_step * r)
+    table = boundary.set_speed_table()  # zero speeds without a set speed (torque top)
     return TopArrays(
         False, set_speed, inertia, drag, max_torque, propagator, forcing, constant, coefficients,
-        z_pipe, boundary, float(node_damper),
+        np.ascontiguousarray(table, dtype=float), per_speed, set_gain, z_pipe, boundary,
+        float(node_damper),
     )  # fmt: skip
 
 
@@ -138,6 +167,6 @@ def with_node_damper(top: TopArrays, damper: float, time_step: float) -> TopArra
 def top_boundary(system: Any, grid: Any) -> TopArrays:
     """The top of ``system`` on the wave grid: held at Omega, or its top drive, as arrays."""
     boundary = system.top.boundary(system) if hasattr(system.top, "boundary") else None
-    if boundary is None or boundary.held:
+    if boundary is None:
         return held_top(system.omega)
     return top_arrays(boundary, float(grid.impedances[0]), grid.time_step, system.omega)
