@@ -126,4 +126,100 @@ GAIN_E, GAIN_PIPE, GAIN_STATES = field_starts(1, 1)
 (CYCLE_SET_TWICE_OMEGA, CYCLE_SET_OMEGA_1, CYCLE_SET_T_END, CYCLE_SET_WINDOW,
  CYCLE_SET_TOLERANCE, CYCLE_SETTINGS_SIZE) = field_starts(*(1,) * 5)  # fmt: skip
 
+# --- the wave model: a run's settings (solvers/characteristics.py) --------------------
+# time step [s], bit inertia [kg m^2], drag alpha [1/s], weight on bit [N], bit radius
+# [m], held top (1.0), final set speed [rad/s], |motor torque| limit [N m], steps of this
+# call, first step of the window, record and field every so many steps (0: never), top
+# drive's drag [N m s/rad], track the energies (1.0), drag spacing [nodes], steady-cycle
+# tolerance [S_SS units], reference speed [rad/s], least time between two ends of a cycle
+# [s], steps of the run, the contacts' threshold speed [rad/s], contacts along the string
+# (1.0), the largest speed below the threshold [rad/s], kp of [top_drive] (the motor
+# torque per unit set speed [N m s/rad]; 0 without a set speed), the time from which the
+# set speed is constant [s]
+(WAVE_DT, WAVE_BIT_INERTIA, WAVE_ALPHA, WAVE_WOB, WAVE_BIT_RADIUS, WAVE_HELD,
+ WAVE_SET_SPEED, WAVE_MAX_TORQUE, WAVE_STEPS, WAVE_WINDOW_START, WAVE_RECORD_EVERY,
+ WAVE_FIELD_EVERY, WAVE_TOP_DRAG, WAVE_TRACK_ENERGY, WAVE_DRAG_SPACING,
+ WAVE_STEADY_TOLERANCE, WAVE_REFERENCE, WAVE_CYCLE_GAP, WAVE_RUN_STEPS, WAVE_THRESHOLD,
+ WAVE_CONTACTS, WAVE_BELOW_THRESHOLD, WAVE_KP, WAVE_RAMP_END, WAVE_SIZE) = field_starts(
+    *(1,) * 24
+)  # fmt: skip
+
+# --- the wave model: a run's summary, carried from call to call ------------------------
+# bit speed min and max over the window [rad/s], the sum of the top speed over it and its
+# steps, the energies over the run [J] (work in, dissipated by the bit, the bit's drag,
+# the string's drag, the top drive's drag), the step that failed (0: none); the powers of
+# the last step (POWER_*) [W]; steps taken; the steady-cycle tracker (crossings, time of
+# the last, running bit speed max and min since it, the last cycle's extremes, the change
+# of the state, the step the run ended on a cycle (0: it did not), the state of the last
+# crossing kept); the torque on bit of the last step [N m]; the contacts' work [J]; the
+# largest surface torque of the run and the smallest and largest of the window [N m];
+# the first step the bit is faster than the contacts' threshold (0: not yet)
+(SUM_BIT_SPEED_MIN, SUM_BIT_SPEED_MAX, SUM_TOP_SPEED_SUM, SUM_WINDOW_STEPS, SUM_WORK_IN,
+ SUM_BIT_DISSIPATION, SUM_BIT_DRAG_DISSIPATION, SUM_STRING_DRAG_DISSIPATION,
+ SUM_TOP_DRAG_DISSIPATION, SUM_FAILED_STEP, SUM_POWERS, SUM_STEPS, SUM_COUNT, SUM_T_LAST,
+ SUM_RUN_MAX, SUM_RUN_MIN, SUM_CYCLE_MAX, SUM_CYCLE_MIN, SUM_CHANGE, SUM_ENDED, SUM_KEPT,
+ SUM_BIT_TORQUE, SUM_FRICTION_WORK, SUM_SURFACE_TORQUE_PEAK, SUM_SURFACE_TORQUE_MIN,
+ SUM_SURFACE_TORQUE_MAX, SUM_BIT_FIRST_MOTION, SUMMARY_SIZE) = field_starts(
+    *(1,) * 10, 5, *(1,) * 16
+)  # fmt: skip
+# within SUM_POWERS: motor, bit, bit drag, the end and junction dampers, top-drive drag
+(POWER_IN, POWER_BIT, POWER_BIT_DRAG, POWER_STRING_DRAG, POWER_TOP_DRAG,
+ POWER_COUNT) = field_starts(*(1,) * 5)  # fmt: skip
+
+SUMMARY_FIELDS = (
+    "bit_speed_min",
+    "bit_speed_max",
+    "top_speed_sum",
+    "window_steps",
+    "work_in",
+    "bit_dissipation",
+    "bit_drag_dissipation",
+    "string_drag_dissipation",
+    "top_drag_dissipation",
+    "failed_step",
+)
+"""Keys of the run summary for slots SUM_BIT_SPEED_MIN .. SUM_FAILED_STEP, in order:
+extremes and sums over the window; energies [J] over the run."""
+
+# --- the wave model: the recorded signals, the bit's and the top drive's states ---------
+# bit speed [rad/s], torque on bit, surface torque [N m], top speed [rad/s], motor torque
+(REC_BIT_SPEED, REC_BIT_TORQUE, REC_SURFACE_TORQUE, REC_TOP_SPEED, REC_MOTOR_TORQUE,
+ RECORD_COLUMNS) = field_starts(*(1,) * 5)  # fmt: skip
+# WaveState.bit: w_b [rad/s], w_b one step earlier, steps taken
+BIT_SPEED, BIT_SPEED_BEFORE, BIT_STEPS, BIT_STATE_SIZE = field_starts(1, 1, 1)
+# WaveState.top and the top drive's state x: Omega_0 [rad/s], then the controller states
+X_TOP_SPEED, X_CONTROLLER = field_starts(1)
+# TopArrays.coefficients of u_free: the constant [N m], the gains on x, then on m (last)
+COEF_U0, COEF_STATES = field_starts(1)
+
+# --- the wave model: the grid's buffers (solvers/wave_state.py, wave_buffers.py) --------
+# per section, integers: cells n, first node in the state arrays, first slot of the
+# buffer, its width W, the live span L, the regular inner dampers, the node of the other
+# inner damper (-1: none), the row and column offsets of node n and of that damper
+(CELLS, NODE_START, BUFFER_START, WIDTH, LIVE, INNER, SPECIAL, LAST_ROW, LAST_COLUMN,
+ SPECIAL_ROW, SPECIAL_COLUMN, SECTION_INTEGERS) = field_starts(*(1,) * 11)  # fmt: skip
+# per section, floats: Z, (2 Z / (2 Z + c), c) of the regular inner dampers and of the other
+(Z, RATIO_INNER, C_INNER, RATIO_SPECIAL, C_SPECIAL, SECTION_FLOATS) = field_starts(
+    *(1,) * 5
+)  # fmt: skip
+# per section, the heads: row and column of node 0's slot of p, then of m
+HEAD_P_ROW, HEAD_P_COLUMN, HEAD_M_ROW, HEAD_M_COLUMN, HEAD_SIZE = field_starts(1, 1, 1, 1)
+# rows of the buffers: p, m
+BUFFER_P, BUFFER_M, BUFFER_ROWS = field_starts(1, 1)
+# rows of the node scratch and of the state kept at a cycle's end: speed [rad/s], torque
+# / Z' [rad/s]; the kept state has two columns past the nodes: the bit's and the top's speed
+NODE_SPEED, NODE_TORQUE, NODE_ROWS = field_starts(1, 1)
+CROSS_BIT, CROSS_TOP, CROSS_EXTRA = field_starts(1, 1)
+# the set-speed table (TopArrays.speed_table): rows time [s], set speed [rad/s]
+TABLE_TIME, TABLE_SPEED, TABLE_ROWS = field_starts(1, 1)
+# the contacts' table: C_s, C_d [N m], the speed of the last step [rad/s], the node
+(CONTACT_STATIC, CONTACT_DYNAMIC, CONTACT_SPEED, CONTACT_NODE, CONTACT_ROWS) = field_starts(
+    1, 1, 1, 1
+)  # fmt: skip
+# per section, the contacts' index: its first regular inner node, its other inner drag
+# node, its bottom junction (-1: none)
+(CONTACT_REGULAR, CONTACT_OTHER, CONTACT_JUNCTION, CONTACT_INDEX_COLUMNS) = field_starts(
+    1, 1, 1
+)  # fmt: skip
+
 __all__ = ["field_starts", *(name for name in tuple(globals()) if name.isupper())]
