@@ -41,6 +41,8 @@ import math
 
 from torsio.solvers.compiled import njit
 from torsio.solvers.layouts import (
+    CROSS_RATE,
+    CROSS_TWIST,
     CYCLE_CHANGE,
     CYCLE_COUNT,
     CYCLE_MAX,
@@ -148,13 +150,12 @@ def track_cycle(
     """Follow one accepted step [t, t + h]; True when the motion is on a steady cycle.
 
     ``cycle`` (``CYCLE_*`` of :mod:`torsio.solvers.layouts`) is the tracker's state and
-    ``cross`` (2, n) the twists and twist rates of the nodes at the last crossing, both
-    zeroed before the run.
-    ``bit0``, ``bit_acc0``: the bit's twist rate and acceleration at t; (phi1, v1, acc1):
-    twists, twist rates and accelerations of the nodes at t + h (bit last); (phi0, v0,
-    acc0): the same at t, read only if the bit crosses the reference speed upwards in the
-    step. ``settings`` (``CYCLE_SET_*``): 2 Omega [rad/s], omega_1 [rad/s], t_end [s],
-    window length [s], tolerance. See the module documentation.
+    ``cross`` (``CROSS_ROWS``, n) the twists and twist rates of the nodes at the last
+    crossing, both zeroed before the run. ``bit0``, ``bit_acc0``: the bit's twist rate and
+    acceleration at t; (phi1, v1, acc1): twists, twist rates and accelerations of the nodes
+    at t + h (bit last); (phi0, v0, acc0): the same at t, read only if the bit crosses the
+    reference speed upwards in the step. ``settings`` (``CYCLE_SET_*``): 2 Omega [rad/s],
+    omega_1 [rad/s], t_end [s], window length [s], tolerance. See the module documentation.
     """
     n = v1.size
     bit1 = v1[n - 1]
@@ -182,10 +183,12 @@ def track_cycle(
         twist = hermite(phi0[i], phi1[i], h * v0[i], h * v1[i], x)
         rate = hermite(v0[i], v1[i], h * acc0[i], h * acc1[i], x)
         if count >= 1.0:
-            moved = max(omega1 * abs(twist - cross[0, i]), abs(rate - cross[1, i]))
+            moved = max(
+                omega1 * abs(twist - cross[CROSS_TWIST, i]), abs(rate - cross[CROSS_RATE, i])
+            )
             change = max(change, moved / scale)
-        cross[0, i] = twist
-        cross[1, i] = rate
+        cross[CROSS_TWIST, i] = twist
+        cross[CROSS_RATE, i] = rate
     period = t_cross - cycle[CYCLE_T_LAST]
     steady = (
         count >= 3.0

@@ -2,43 +2,33 @@
 
 The kernels (numba, no objects) exchange index-packed float arrays with the Python side.
 Each array's slots are named here, once, in order: one assignment per array unpacks
-:func:`field_starts` (the start of each field from the fields' lengths), so a name's position
-follows from the names before it and the last name is the array's size. The names are
-module-level ints, which numba compiles as constants. Encoders and kernels index with
-them only (``top[TOP_KP]``, ``settings[RUN_T_END]``); a field longer than one slot (a
-controller matrix, the steps' stages) has a named start.
+:func:`field_starts` (the start of each field from the fields' lengths), so a name's
+position follows from the names before it and the last name is the array's size. The
+names are module-level ints, which numba compiles as constants. Encoders and kernels
+index with them only (``top[TOP_KP]``, ``settings[RUN_T_END]``); a field longer than one
+slot (a controller matrix, the stages' increments) has a named start. A comment above
+each assignment says what each slot holds, with its unit.
 
 Lumped engine (:mod:`torsio.solvers.rodas`, :mod:`torsio.solvers.chain_kernel`,
-:mod:`torsio.solvers.numpy_engine`):
+:mod:`torsio.solvers.numpy_engine`; encoders in :mod:`torsio.solvers.lumped_inputs`):
+``chain`` (``CHAIN_*``), ``top`` (``TOP_*``), a run's ``settings`` (``RUN_*``), a point's
+results ``out`` (``OUT_*``), the work space ``vectors`` (``VEC_*``) and ``small``
+(``SMALL_*``, its carried scalars ``CARRY_*`` and ``WINDOW_*``), the steady-cycle
+tracker's state and settings (``CYCLE_*``, ``CYCLE_SET_*``).
 
-``chain`` (:data:`CHAIN_ROWS`, n): the chain's band matrices, drag and applied torque.
-``top`` (:data:`TOP_SIZE`): the top drive; all zero for a held top.
-    ``TOP_HAS_NODE`` 1.0 with a top-drive node; ``TOP_STATES`` m, the controller states
-    (at most :data:`MAX_STATES`); ``TOP_U0`` constant motor torque [N m];
-    ``TOP_MAX_TORQUE`` |u| limit [N m]; ``TOP_K_PIPE``, ``TOP_C_PIPE`` the model's top
-    spring [N m/rad] and damper [N m s/rad] (y's pipe torque); ``TOP_KP`` ``kp`` of
-    ``[top_drive]``, the motor torque per unit speed error [N m s/rad] (d[0] of
-    :class:`torsio.physics.top_drive_boundary.TopDriveBoundary`); ``TOP_PIPE_GAIN`` the
-    motor torque per unit pipe torque [-] (d[1]); ``TOP_A`` a (m x m in a 3 x 3 block,
-    row-major), ``TOP_B`` b (3 x 2), ``TOP_C`` c (3), ``TOP_W`` w (3, anti-windup).
-``settings`` (:data:`RUN_SIZE`): t_end, start of the steady window [s], rtol, atol,
-    first and largest step [s], accepted steps allowed, bit radius [m], steady-cycle
-    tolerance [S_SS units] (0: run to t_end), omega_1 [rad/s].
-``out[k]`` (:data:`OUT_COLUMNS`): bit speed max and min over the window [rad/s],
-    accepted and rejected steps, status, mean top speed [rad/s], the time the run ended [s].
-The work space of a run: ``vectors`` (:data:`VECTOR_ROWS`, n) and ``small``
-    (:data:`SMALL_ROWS`, :data:`SMALL_COLUMNS`), rows named ``VEC_*`` and ``SMALL_*``; a
-    row of ``small`` holds up to two vectors of m controller states, at columns 0 and
-    :data:`MAX_STATES`. Row ``SMALL_CARRY`` (``CARRY_*``) and ``SMALL_WINDOW``
-    (``WINDOW_*``) carry the run's scalars from call to call.
-The steady-cycle tracker (:func:`torsio.solvers.cycles.track_cycle`): its state
-    ``CYCLE_*`` (:data:`CYCLE_SIZE`) and its settings ``CYCLE_SET_*``
-    (:data:`CYCLE_SETTINGS_SIZE`).
+Wave model (:mod:`torsio.solvers.characteristics`; encoders in
+:mod:`torsio.solvers.wave_march`, :mod:`torsio.solvers.wave_state`,
+:mod:`torsio.solvers.wave_top`, :mod:`torsio.solvers.wave_contacts`): a run's ``settings``
+(``WAVE_*``) and ``summary`` (``SUM_*``, ``POWER_*``), the records (``REC_*``), the bit's
+and the top's states (``BIT_*``, ``X_*``), the motor torque's coefficients (``COEF_*``), the
+sections' columns (``CELLS`` .. ``SPECIAL_COLUMN``, ``Z`` .. ``C_SPECIAL``), the heads
+(``HEAD_*``), buffers and node rows (``BUFFER_*``, ``NODE_*``, ``CROSS_*``), the set-speed
+table (``TABLE_*``) and the contacts (``CONTACT_*``).
 
 Adding a slot: insert its name where it belongs in the array's assignment (and its
-length in the :func:`field_starts` call), write it in the encoder and read it in the kernel by
-name; the size follows. numba's cache is keyed on every file of :mod:`torsio.solvers`
-(:mod:`torsio.kernel_cache`), so the kernels recompile.
+length in the :func:`field_starts` call), write it in the encoder and read it in the
+kernel by name; the size follows. numba's cache is keyed on every file of
+:mod:`torsio.solvers` (:mod:`torsio.kernel_cache`), so the kernels recompile.
 """
 
 from __future__ import annotations
@@ -65,19 +55,30 @@ MAX_STATES = 3
 (CHAIN_MASS, CHAIN_MASS_UPPER, CHAIN_STIFFNESS, CHAIN_STIFFNESS_UPPER, CHAIN_DAMPING,
  CHAIN_DAMPING_UPPER, CHAIN_DRAG, CHAIN_APPLIED, CHAIN_ROWS) = field_starts(*(1,) * 8)  # fmt: skip
 
-# --- the lumped engine: the top drive --------------------------------------------------
+# --- the lumped engine: the top drive (all zero for a held top) -------------------------
+# 1.0 with a top-drive node; m, the controller states (at most MAX_STATES); the constant
+# motor torque u0 [N m]; the |u| limit [N m]; the model's top spring [N m/rad] and damper
+# [N m s/rad] (the pipe torque of y); kp of [top_drive], the motor torque per unit speed
+# error [N m s/rad] (TopDriveBoundary.kp, d[0]); the motor torque per unit pipe torque [-]
+# (TopDriveBoundary.pipe_gain, d[1]); a (m x m in a MAX_STATES square, row-major), b
+# (MAX_STATES x 2), c and w (MAX_STATES each)
 (TOP_HAS_NODE, TOP_STATES, TOP_U0, TOP_MAX_TORQUE, TOP_K_PIPE, TOP_C_PIPE, TOP_KP,
  TOP_PIPE_GAIN, TOP_A, TOP_B, TOP_C, TOP_W, TOP_SIZE) = field_starts(
     1, 1, 1, 1, 1, 1, 1, 1, MAX_STATES * MAX_STATES, 2 * MAX_STATES, MAX_STATES, MAX_STATES
 )  # fmt: skip
 
 # --- the lumped engine: a run's settings -----------------------------------------------
+# t_end, start of the steady window [s], rtol, atol, first and largest step [s], accepted
+# steps allowed, bit radius [m], steady-cycle tolerance [S_SS units] (0: run to t_end),
+# omega_1 [rad/s]
 (RUN_T_END, RUN_WINDOW_START, RUN_RTOL, RUN_ATOL, RUN_FIRST_STEP, RUN_MAX_STEP,
  RUN_MAX_STEPS, RUN_BIT_RADIUS, RUN_STEADY_TOLERANCE, RUN_OMEGA_1, RUN_SIZE) = field_starts(
     *(1,) * 10
 )  # fmt: skip
 
 # --- the lumped engine: a point's results ----------------------------------------------
+# bit speed max and min over the window [rad/s], accepted and rejected steps, status
+# (batch_results.STATUS_MESSAGES), mean top speed [rad/s], the time the run ended [s]
 (OUT_BIT_SPEED_MAX, OUT_BIT_SPEED_MIN, OUT_STEPS, OUT_REJECTED, OUT_STATUS,
  OUT_TOP_SPEED_MEAN, OUT_ENDED, OUT_COLUMNS) = field_starts(*(1,) * 7)  # fmt: skip
 
@@ -86,10 +87,12 @@ MAX_STATES = 3
 # argument and right-hand side, the mass-matrix terms, the solve, the step matrix's
 # factors, the accelerations, the factors of [I], the state at the step's start, the
 # state at the last crossing of the cycle tracker (two rows)
+# the rows of the state at the last crossing: twists [rad], twist rates [rad/s]
+CROSS_TWIST, CROSS_RATE, CROSS_ROWS = field_starts(1, 1)
 (VEC_K_PHI, VEC_K_V, VEC_PHI, VEC_V, VEC_A_PHI, VEC_A_V, VEC_F_PHI, VEC_F_V, VEC_F0_V,
  VEC_U_PHI, VEC_U_V, VEC_X, VEC_PIVOTS, VEC_LOWER, VEC_BAND, VEC_ACC, VEC_MASS_PIVOTS,
  VEC_MASS_LOWER, VEC_PHI0, VEC_V0, VEC_ACC0, VEC_CROSS, VECTOR_ROWS) = field_starts(
-    6, 6, *(1,) * 19, 2
+    6, 6, *(1,) * 19, CROSS_ROWS
 )  # fmt: skip
 
 # --- the lumped engine: the work space of a run, short rows ----------------------------
