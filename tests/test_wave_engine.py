@@ -20,6 +20,7 @@ from torsio.solvers.batch import simulate_batch
 from torsio.solvers.batch_results import DEFAULT_STEADY_TOLERANCE
 from torsio.solvers.characteristics import kernel_layout, node_offsets, state_from_fields
 from torsio.solvers.law_kernels import compile_law_function
+from torsio.solvers.layouts import C_INNER, C_SPECIAL, INNER
 from torsio.solvers.wave_bit import _solve_bit
 from torsio.solvers.wave_march import march
 from torsio.solvers.wave_top import held_top
@@ -118,7 +119,7 @@ def test_layout_lumps_every_cell_of_drag_once() -> None:
     # the dampers of a layout add up to alpha rho J L = alpha Z n dt per section
     grid = WaveStrategy(drag_spacing=8).discretize(ritto2017_string())
     layout = kernel_layout(grid, alpha=0.35)
-    inner = layout.floats[:, 2] * layout.integers[:, 5] + layout.floats[:, 4]
+    inner = layout.floats[:, C_INNER] * layout.integers[:, INNER] + layout.floats[:, C_SPECIAL]
     total = layout.end_dampers.sum() + inner.sum()
     expected = 0.35 * float(np.dot(grid.impedances, grid.cells)) * grid.time_step
     assert total == pytest.approx(expected, rel=1e-13)

@@ -39,6 +39,7 @@ from torsio.solvers.batch_results import (
 )
 from torsio.solvers.wave_march import RunCancelled, law_functions, march
 from torsio.solvers.wave_top import top_boundary
+from torsio.units import RPM_TO_RAD_S
 
 
 def _worker_count(threads: int | None, points: int) -> int:
@@ -118,7 +119,7 @@ def simulate_wave_batch(
     steps = check_wave_steps(grid, duration)
     check_window_samples(steady_window, None, dt, window_given, duration)
     window_steps = int(round(steady_window / dt))
-    out = np.full((wob_arr.size, 3), np.nan)
+    bit_max, bit_min, top_mean = (np.full(wob_arr.size, np.nan) for _ in range(3))
     status = np.zeros(wob_arr.size, dtype=np.int64)
     taken = np.zeros(wob_arr.size, dtype=np.int64)
     steady = 0.0 if torque_driven else float(steady_tolerance)
@@ -142,11 +143,9 @@ def simulate_wave_batch(
         engines.add(run.engine)
         taken[k] = int(summary["steps"])
         window = summary["window_steps"]
-        out[k] = (
-            summary["bit_speed_max"],
-            summary["bit_speed_min"],
-            summary["top_speed_sum"] / window if window else math.nan,
-        )
+        bit_max[k] = summary["bit_speed_max"]
+        bit_min[k] = summary["bit_speed_min"]
+        top_mean[k] = summary["top_speed_sum"] / window if window else math.nan
 
     start = time.perf_counter()
     workers = _worker_count(threads, wob_arr.size)
@@ -162,12 +161,12 @@ def simulate_wave_batch(
                 raise
     engine = "wave-python" if "python" in engines else "wave"
     elapsed = time.perf_counter() - start
-    reference = out[:, 2] if torque_driven else rpm_arr * (math.pi / 30.0)
+    reference = top_mean if torque_driven else rpm_arr * RPM_TO_RAD_S
     with np.errstate(invalid="ignore", divide="ignore"):
-        severity = np.where(status == 0, (out[:, 0] - out[:, 1]) / (2.0 * reference), np.nan)
+        severity = np.where(status == 0, (bit_max - bit_min) / (2.0 * reference), np.nan)
     ended = np.where((taken < steps) & (status == 0), taken * dt, float(duration))
     return BatchResults(
-        wob_arr, rpm_arr, severity, out[:, 0], out[:, 1], out[:, 2], taken,
+        wob_arr, rpm_arr, severity, bit_max, bit_min, top_mean, taken,
         np.zeros(wob_arr.size, dtype=np.int64), status, engine, float(duration),
         float(steady_window), float(rtol), float(atol), elapsed, ended, steady,
     )  # fmt: skip
