@@ -44,7 +44,7 @@ HOOKS = ("weight", "speed")
 
 
 def _vector(value: Any) -> NDArray[np.float64]:
-    vector = np.array(value, dtype=float).reshape(-1)
+    vector = np.array(() if value is None else value, dtype=float).reshape(-1)
     vector.setflags(write=False)
     return vector
 
@@ -104,7 +104,7 @@ class DrillingAssembly:
         ):
             _same_size(key, values, n)
             _check(key, values, zero)
-        if self.damping.size == 1 and np.isnan(self.damping[0]):
+        if not self.damping.size:  # none given: no dampers
             object.__setattr__(self, "damping", _vector(np.zeros(n)))
         _same_size("chain.damping", self.damping, n)
         _check("chain.damping", self.damping, True)
@@ -112,7 +112,7 @@ class DrillingAssembly:
             _same_size("chain.axial_stiffnesses", self.axial_stiffnesses, n)
             _check("chain.axial_stiffnesses", self.axial_stiffnesses, False)
         m = self.axial_dofs
-        if self.axial_damping.size == 1 and np.isnan(self.axial_damping[0]):
+        if not self.axial_damping.size:
             object.__setattr__(self, "axial_damping", _vector(np.zeros(m)))
         _same_size("chain.axial_damping", self.axial_damping, m)
         _check("chain.axial_damping", self.axial_damping, True)
