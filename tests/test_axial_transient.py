@@ -223,6 +223,18 @@ def test_a_bouncing_bit_leaves_the_bottom_and_the_forces_vanish_there():
     assert np.all(run.signal("bit_torque")[turning] == 0.0)
 
 
+def test_a_chain_under_a_hook_moving_at_constant_speed_drills_at_that_speed():
+    # the hook moves at V₀; over a long window the bit advances like the hook, up to the
+    # change of the springs' compression (10 nodes of 250 m of pipe, stick-slip from rest)
+    chain = pipe_assembly(
+        10, 2500.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 3e-5, MASS, 230.0, hook="speed"
+    )
+    run = simulate_axial(chain, BIT, WOB, 60.0, samples=0)
+    assert run.growth_rate is None
+    assert run.severity > 1.0 and run.stick_fraction > 0.02
+    assert run.rop_mean == pytest.approx(run.steady.rop, rel=0.01)
+
+
 def test_the_assembly_refuses_what_it_cannot_carry():
     with pytest.raises(ConfigError, match="chain.masses"):
         DrillingAssembly([1.0, 2.0], [1.0, 2.0], [1.0])
