@@ -8,8 +8,9 @@ S_SS, axial severity, stuck and off-bottom fractions, mean ROP and MSE, the bit'
 signals, and for the 2-DOF model the growth rate of the linearization
 (:func:`torsio.axial.stability.drilling_stability`).
 
-Default run length and window as torsio's other runs (:func:`torsio.analysis.severity.
-default_times`): 40 and 15 periods of the first torsional mode, top held.
+Default run length and window as torsio's other runs
+(:func:`torsio.analysis.severity.default_times`): 40 and 15 periods of the first torsional
+mode, top held.
 
 Examples
 --------
