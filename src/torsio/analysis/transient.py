@@ -177,7 +177,7 @@ def simulate(
     """
     from torsio.model.protocol import resolve
 
-    SimulationOptions(  # invalid options are refused whatever the model
+    options = SimulationOptions(  # validated once, whatever the model
         duration=duration,
         steady_window=steady_window,
         method=method,
@@ -187,43 +187,18 @@ def simulate(
         stick_threshold=stick_threshold,
     )
     engine = resolve(system.model.engines.transient)  # the model names what runs it
-    return engine(
-        system,
-        duration=duration,
-        steady_window=steady_window,
-        method=method,
-        rtol=rtol,
-        atol=atol,
-        output_step=output_step,
-        initial_state=initial_state,
-        stick_threshold=stick_threshold,
-        progress=progress,
-    )
+    return engine(system, options, initial_state=initial_state, progress=progress)
 
 
 def simulate_lumped(
     system: System,
-    duration: float | None = None,
-    steady_window: float | None = None,
-    method: Any = "auto",
-    rtol: float = 1e-6,
-    atol: float = 1e-9,
-    output_step: float | None = None,
+    options: SimulationOptions,
     initial_state: Any = None,
-    stick_threshold: float | None = None,
     progress: Any = None,
 ) -> TransientResults:
     """:func:`simulate` of a lumped model (its transient engine,
-    :data:`torsio.model.lumped.LUMPED_ENGINES`): the arguments of :func:`simulate`."""
-    options = SimulationOptions(
-        duration=duration,
-        steady_window=steady_window,
-        method=method,
-        rtol=rtol,
-        atol=atol,
-        output_step=output_step,
-        stick_threshold=stick_threshold,
-    )
+    :data:`torsio.model.lumped.LUMPED_ENGINES`): the System, its validated options and the
+    ``initial_state`` and ``progress`` of :func:`simulate`."""
     if not (math.isfinite(system.omega) and system.omega > 0):  # System validates this
         raise ConfigError("operation.rpm", f"expected a positive rotary speed, got {system.rpm!r}")
     run, window = run_times(system, options.duration, options.steady_window)

@@ -40,7 +40,7 @@ from torsio.analysis.budget import check_law_time_scale, check_output_size, chec
 from torsio.analysis.contact_summary import contact_summary
 from torsio.analysis.limits import short_window, stuck_throughout, warning_list
 from torsio.analysis.severity import DEFAULT_DURATION_PERIODS, DEFAULT_WINDOW_PERIODS, check_window
-from torsio.analysis.simulation_options import check_window_samples
+from torsio.analysis.simulation_options import SimulationOptions, check_window_samples
 from torsio.analysis.transient_results import TransientResults
 from torsio.errors import ConfigError
 from torsio.model.wave import WAVE_ENGINES, WaveModel, check_wave_damping, first_frequency
@@ -168,26 +168,20 @@ def _transient_results(values: dict[str, Any]) -> Any:
 
 def simulate_wave(
     system: Any,
-    duration: float | None = None,
-    steady_window: float | None = None,
-    method: Any = None,
-    rtol: float | None = None,
-    atol: float | None = None,
-    output_step: float | None = None,
+    options: SimulationOptions,
     initial_state: WaveState | None = None,
-    stick_threshold: float | None = None,
-    **ignored: Any,
+    progress: Any = None,
 ) -> TransientResults:
     """The transient engine of the distributed model (:data:`torsio.model.wave.WAVE_ENGINES`).
 
-    Takes the parameters of :func:`torsio.analysis.transient.simulate` and returns the
-    transient results of :func:`wave_response`; ``method``, ``rtol`` and ``atol`` have no
-    meaning on the fixed grid and are not used (the command line refuses them,
-    :func:`refuse_integrator_options`).
+    Takes the System, the validated options and the ``initial_state`` and ``progress`` of
+    :func:`torsio.analysis.transient.simulate`, and returns the transient results of
+    :func:`wave_response`; ``method``, ``rtol`` and ``atol`` have no meaning on the fixed
+    grid and are not used (the command line refuses them, :func:`refuse_integrator_options`).
     """
     response = wave_response(
-        system, duration, steady_window, output_step, stick_threshold,
-        initial_state=initial_state,
+        system, options.duration, options.steady_window, options.output_step,
+        options.stick_threshold, initial_state=initial_state, progress=progress,
     )  # fmt: skip
     return response.transient
 

@@ -61,10 +61,10 @@ class ModelEngines:
     Attributes
     ----------
     transient : str
-        One run in time from an initial state: a function with the parameters of
-        :func:`torsio.analysis.transient.simulate` (the System first, the options by
-        keyword; options without a meaning for it are accepted and not used), returning
-        a ``TransientResults``.
+        One run in time from an initial state: a function ``(system, options,
+        initial_state=None, progress=None)`` of a System and its validated
+        :class:`torsio.analysis.simulation_options.SimulationOptions` (options without a
+        meaning for the model are not used), returning a ``TransientResults``.
     batch : str
         Many operating points, each from rest, for maps: a function with the parameters of
         :func:`torsio.solvers.batch.simulate_batch` (the System, ``wob`` and ``rpm`` first,
