@@ -33,7 +33,8 @@ from torsio.analysis.transient import simulate
 from torsio.examples import builtin_config
 from torsio.physics.system import System
 from torsio.plugins import get_bit_law, top_drive_from_parameters
-from torsio.solvers.batch import DEFAULT_STEADY_TOLERANCE, simulate_batch
+from torsio.solvers.batch import simulate_batch
+from torsio.solvers.batch_results import DEFAULT_STEADY_TOLERANCE
 from torsio.solvers.reference import reference_severity
 
 DURATION, WINDOW = 60.0, 20.0  # s: long enough for stick-slip to form from rest

@@ -86,9 +86,9 @@ from torsio.analysis.time_scales import check_time_scales
 from torsio.errors import ConfigError, SolverError
 from torsio.physics.system import System
 from torsio.solvers.batch import (
-    DEFAULT_MAX_STEPS,
     simulate_batch,
 )
+from torsio.solvers.batch_options import DEFAULT_MAX_STEPS
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = ["dimensionless_map", "severity_map"]
@@ -211,12 +211,7 @@ def _build_map(
     check_batch_work(system, wob, duration, options.rtol, 2.0 * math.pi / omega1, DEFAULT_MAX_STEPS)
     check_time_scales(system, duration)
     serial = executor is None or executor == "serial"
-    batch: dict[str, Any] = {
-        "duration": duration,
-        "steady_window": steady_window,
-        "threads": None if serial else 1,
-        **options.batch_options(),
-    }
+    batch = options.batch_options(duration, steady_window, None if serial else 1)
     boundary = system.top.boundary(system)
     if not boundary.held and not math.isfinite(boundary.set_speed):
         raise ConfigError(
@@ -227,7 +222,7 @@ def _build_map(
             "torsio.solvers.batch.simulate_batch(system, wob) over weights on bit",
         )
     # validate options (engine, tolerances) here rather than in every worker
-    engine_name = simulate_batch(system, np.empty(0), np.empty(0), **batch).engine
+    engine_name = simulate_batch(system, np.empty(0), np.empty(0), batch).engine
     scales: dict[str, Any] = {  # what every map of this call shares, partial or not
         "wob": wob,
         "rpm": rpm,

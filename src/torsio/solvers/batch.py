@@ -51,12 +51,11 @@ import numpy as np
 from torsio.errors import ConfigError, SolverError
 from torsio.model.modal import first_natural_frequency, highest_natural_frequency
 from torsio.physics.system import System
+from torsio.solvers.batch_options import ENGINES, BatchOptions
 from torsio.solvers.batch_results import (
-    DEFAULT_STEADY_TOLERANCE,
     STATUS_SOLVER_FAILED,
     BatchResults,
     batch_points,
-    check_steady_tolerance,
 )
 from torsio.solvers.compiled import HAVE_NUMBA, numba
 from torsio.solvers.law_kernels import LawKernel, law_kernel, python_law_kernel
@@ -77,27 +76,11 @@ from torsio.solvers.reference import reference_severity, run_times
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = [
-    "DEFAULT_ATOL",
-    "DEFAULT_RTOL",
-    "ENGINES",
     "BatchModel",
     "resolve_engine",
     "simulate_batch",
     "simulate_lumped_batch",
 ]
-
-ENGINES = ("auto", "compiled", "numba", "numpy", "scipy")
-"""Names accepted by ``simulate_batch(engine=...)`` (``"numba"`` is ``"compiled"``)."""
-
-DEFAULT_RTOL = 1e-5
-"""Default relative tolerance of the batch engine (see ``docs/performance.md`` for the
-convergence study that chose it: |dS_SS| < 1e-3 against rtol = 1e-8 runs)."""
-
-DEFAULT_ATOL = 1e-6
-"""Default absolute tolerance [rad, rad/s]."""
-
-DEFAULT_MAX_STEPS = 2_000_000
-"""Accepted steps allowed per point before the point is reported as failed."""
 
 
 @attrs.frozen(eq=False)
@@ -239,15 +222,8 @@ def simulate_batch(
     system: System,
     wob: Any,
     rpm: Any = None,
-    duration: float | None = None,
-    steady_window: float | None = None,
-    rtol: float = DEFAULT_RTOL,
-    atol: float = DEFAULT_ATOL,
-    max_step: float | None = None,
-    max_steps: int = DEFAULT_MAX_STEPS,
-    engine: str = "auto",
-    threads: int | None = None,
-    steady_tolerance: float = DEFAULT_STEADY_TOLERANCE,
+    options: BatchOptions | None = None,
+    **values: Any,
 ) -> BatchResults:
     """S_SS of ``system`` at each operating point (wob[k], rpm[k]), started from rest.
 
@@ -261,27 +237,16 @@ def simulate_batch(
         Surface rotary (set) speeds [rpm], > 0; broadcast against ``wob``. None (and
         only None) for a top drive without a set speed (``torque``): its speed follows
         from the torque balance and S_SS is relative to its mean over the window.
-    duration, steady_window : float, optional
-        Run length and steady-state window [s]; defaults of
-        :func:`torsio.analysis.severity.run_times` (40 and 15 first-mode periods; the
-        window at most half of a given run, as for a single run).
-    rtol, atol : float
-        Per-point local error tolerances (relative; absolute in rad, rad/s and the
-        controller states' units).
-    max_step : float, optional
-        Largest step [s]; default a quarter of the first natural period.
-    max_steps : int
-        Accepted steps allowed per point before it is reported as failed.
-    engine : {"auto", "compiled", "numba", "numpy", "scipy"}
-        See the module documentation.
-    threads : int, optional
-        Threads of the compiled engine (default: numba's default, all cores). Calls
-        from other threads than the main one always run on one thread.
-    steady_tolerance : float
-        The compiled engine ends a run early once the motion is on a cycle whose bit-speed
-        extremes can move by no more than this (in S_SS units) over the rest of the run
-        (:mod:`torsio.solvers.cycles`); 0 runs to the end. Not used with a torque-driven
-        top drive (its mean speed needs the whole window) or by the other engines.
+    options : BatchOptions, optional
+        How the points are integrated and read (:class:`torsio.solvers.batch_options.
+        BatchOptions`: duration, steady window, tolerances, step limits, ``engine`` (see
+        the module documentation), ``threads`` (numba's default when None; calls from
+        other threads than the main one always run on one thread), ``steady_tolerance``
+        (the compiled engine ends a run early once the motion is on a cycle whose bit-speed
+        extremes can move by no more than this, :mod:`torsio.solvers.cycles`; not with a
+        torque-driven top drive, whose mean speed needs the whole window)).
+    **values
+        Fields of :class:`BatchOptions` given one by one (over ``options``).
 
     Returns
     -------
@@ -292,53 +257,27 @@ def simulate_batch(
     from torsio.model.protocol import resolve
 
     run = resolve(system.model.engines.batch)  # the model names what runs it
-    return run(
-        system,
-        wob,
-        rpm,
-        duration=duration,
-        steady_window=steady_window,
-        rtol=rtol,
-        atol=atol,
-        max_step=max_step,
-        max_steps=max_steps,
-        engine=engine,
-        threads=threads,
-        steady_tolerance=steady_tolerance,
-    )
+    given = BatchOptions(**values) if options is None else options.replace(**values)
+    return run(system, wob, rpm, given)
 
 
 def simulate_lumped_batch(
-    system: System,
-    wob: Any,
-    rpm: Any = None,
-    duration: float | None = None,
-    steady_window: float | None = None,
-    rtol: float = DEFAULT_RTOL,
-    atol: float = DEFAULT_ATOL,
-    max_step: float | None = None,
-    max_steps: int = DEFAULT_MAX_STEPS,
-    engine: str = "auto",
-    threads: int | None = None,
-    steady_tolerance: float = DEFAULT_STEADY_TOLERANCE,
+    system: System, wob: Any, rpm: Any, options: BatchOptions
 ) -> BatchResults:
     """:func:`simulate_batch` of a lumped model (its batch engine,
-    :data:`torsio.model.lumped.LUMPED_ENGINES`): the arguments of :func:`simulate_batch`."""
+    :data:`torsio.model.lumped.LUMPED_ENGINES`): the System, the points and the options."""
     wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)
-    for key, value in (("rtol", rtol), ("atol", atol)):
-        if not (math.isfinite(value) and value > 0):
-            raise ConfigError(key, f"expected a positive tolerance, got {value!r}")
-    check_steady_tolerance(steady_tolerance)
-    duration, steady_window = run_times(system, duration, steady_window)
+    rtol, atol, engine, threads = options.rtol, options.atol, options.engine, options.threads
+    duration, steady_window = run_times(system, options.duration, options.steady_window)
     name, kernel = resolve_engine(engine, system.law)
     model = BatchModel.from_system(system) if name != "scipy" else None
     omega1 = model.first_frequency if model is not None else first_natural_frequency(system.model)
-    steps = step_limits(omega1, max_step)
+    steps = step_limits(omega1, options.max_step)
     omega_set = rpm_arr * RPM_TO_RAD_S
-    steady = 0.0 if torque_driven else float(steady_tolerance)
+    steady = 0.0 if torque_driven else options.steady_tolerance
     radius = model.bit_radius if model is not None else 0.0
     settings = run_settings(
-        duration, steady_window, rtol, atol, steps, max_steps, radius, steady, omega1
+        duration, steady_window, rtol, atol, steps, options.max_steps, radius, steady, omega1
     )
     start = time.perf_counter()
     out = np.zeros((wob_arr.size, OUT_COLUMNS))

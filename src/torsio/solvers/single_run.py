@@ -131,7 +131,8 @@ def integrate_compiled(
     steady window (the kernel's running extremes; S_SS is read from the samples).
     ``progress(samples_done, samples)`` after each chunk of about ``chunk_seconds``.
     """
-    from torsio.solvers.batch import DEFAULT_MAX_STEPS, BatchModel
+    from torsio.solvers.batch import BatchModel
+    from torsio.solvers.batch_options import DEFAULT_MAX_STEPS
     from torsio.solvers.rodas import run_chunk, run_start
 
     model = BatchModel.from_system(system)

@@ -31,11 +31,10 @@ from torsio.analysis.severity import check_window, default_times
 from torsio.analysis.simulation_options import check_window_samples
 from torsio.errors import ConfigError, SolverError
 from torsio.model.wave import check_wave_damping
+from torsio.solvers.batch_options import BatchOptions
 from torsio.solvers.batch_results import (
-    DEFAULT_STEADY_TOLERANCE,
     BatchResults,
     batch_points,
-    check_steady_tolerance,
 )
 from torsio.solvers.wave_march import RunCancelled, law_functions, march
 from torsio.solvers.wave_top import top_boundary
@@ -82,27 +81,18 @@ def _check_engine(engine: Any, law: Any) -> tuple[Any, Any, np.ndarray] | None:
     return torque, slope, parameters
 
 
-def simulate_wave_batch(
-    system: Any,
-    wob: Any,
-    rpm: Any = None,
-    duration: float | None = None,
-    steady_window: float | None = None,
-    rtol: float = math.nan,
-    atol: float = math.nan,
-    threads: int | None = None,
-    steady_tolerance: float = DEFAULT_STEADY_TOLERANCE,
-    engine: str = "auto",
-    **ignored: Any,
-) -> Any:
+def simulate_wave_batch(system: Any, wob: Any, rpm: Any, options: BatchOptions) -> Any:
     """S_SS of the wave model at each (wob[k], rpm[k]); returns a ``BatchResults``.
 
-    ``threads``: points run side by side on so many threads (default: numba's thread
-    count, as the lumped engine; one thread off the main thread, e.g. in a Dask worker).
-    ``steady_tolerance``: as for the lumped engine (S_SS units; 0 runs to the end).
-    ``rtol`` and ``atol`` are kept for the record (the grid has no tolerance).
+    Of the :class:`torsio.solvers.batch_options.BatchOptions`: ``threads``: points run side
+    by side on so many threads (default: numba's thread count, as the lumped engine; one
+    thread off the main thread, e.g. in a Dask worker); ``steady_tolerance``: as for the
+    lumped engine (S_SS units; 0 runs to the end); ``rtol`` and ``atol`` are kept for the
+    record (the grid has no tolerance), the step limits have no meaning on the grid.
     """
-    check_steady_tolerance(steady_tolerance)
+    duration, steady_window = options.duration, options.steady_window
+    rtol, atol, threads, engine = options.rtol, options.atol, options.threads, options.engine
+    steady_tolerance = options.steady_tolerance
     grid = system.model
     alpha = check_wave_damping(system.damping, system.model)
     kernel = _check_engine(engine, system.law)
