@@ -8,6 +8,8 @@
 'Ritto et al. (2017)'
 >>> deviated_well_config().well.survey.depth
 2500.0
+>>> rgd_two_dof_config().axial.assembly.masses.tolist()
+[29981.3]
 """
 
 from __future__ import annotations
@@ -18,7 +20,7 @@ from torsio.config.configuration import Config
 from torsio.config.reading import parse_config_text
 from torsio.model.drillstring import DrillString
 
-__all__ = ["builtin_config", "deviated_well_config", "ritto2017_string"]
+__all__ = ["builtin_config", "deviated_well_config", "rgd_two_dof_config", "ritto2017_string"]
 
 
 def _data(name: str) -> Config:
@@ -43,3 +45,10 @@ def deviated_well_config() -> Config:
     """A 2.5 km string in an S-shaped well with a 3-D turn (``data/deviated_well.toml``):
     the built-in example of ``[well]`` and ``torsio drag``."""
     return _data("deviated_well.toml")
+
+
+def rgd_two_dof_config() -> Config:
+    """The 2-DOF model of RGD (2007) with the RGD bit (``data/rgd_2dof.toml``): the
+    parameters of :func:`torsio.axial.assembly.rgd_two_dof_example` and
+    :func:`torsio.axial.rgd.rgd_example`, 100 kN at 60 rpm; the built-in axial example."""
+    return _data("rgd_2dof.toml")

@@ -47,6 +47,9 @@ SI_UNITS: dict[str, str] = {
     "stiffness": "N*m/rad",
     "rotational_damping": "N*m*s/rad",
     "dimensionless": "",
+    "mass": "kg",
+    "axial_stiffness": "N/m",
+    "axial_damping": "N*s/m",
 }
 
 RPM_TO_RAD_S = math.pi / 30.0

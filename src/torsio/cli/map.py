@@ -244,6 +244,13 @@ def _run(args: argparse.Namespace) -> int:
     common.require_plotting(args)
 
     config = common.load(args)
+    if config.axial is not None:  # [chain] masses or law = "rgd": the axial engine
+        from torsio.cli import axial
+
+        wob_text = args.wob or axial_wob_range(config)
+        y_start, y_stop, y_count = _range_bounds(wob_text, "--wob", "wob")
+        wobs, rpms = np.linspace(y_start, y_stop, y_count), np.linspace(x_start, x_stop, x_count)
+        return axial.run_map(args, config, wobs, rpms)
     common.refuse_rpm_without_set_speed(config, args.rpm, ", there is no rotary speed to set")
     system = config.system(
         **{k: v for k, v in common.discretization_overrides(args).items() if v is not None}
@@ -292,6 +299,13 @@ def _run(args: argparse.Namespace) -> int:
             exc.args = (f"{exc}; partial results written to {partial} (marked incomplete)",)
         raise
     return common.write_and_print(args, result, outputs, _print_summary)
+
+
+def axial_wob_range(config: Any) -> str:
+    """The default --wob of an axial map: 1.1 to 2 times the weight the wear flats carry
+    (σ a l, below which the RGD bit does not cut), 5 points."""
+    friction = config.axial.bit.friction_weight
+    return f"{1.1 * friction:.6g}:{2 * friction:.6g}:5"
 
 
 def _map_options(args: argparse.Namespace, simulation: dict[str, Any]) -> Any:

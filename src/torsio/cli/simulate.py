@@ -54,6 +54,13 @@ def run(args: argparse.Namespace) -> int:
 
     outputs = common.check_outputs(args, ("csv", "plot"))
     config = common.load(args)
+    if config.axial is not None:  # [chain] masses or law = "rgd": the axial engine
+        from torsio.cli import axial
+
+        try:
+            return axial.simulate(args, config)
+        except ConfigError as exc:
+            raise ConfigError(_option_name(exc.key), exc.message) from None
     common.refuse_rpm_without_set_speed(
         config, args.rpm, "; remove --rpm, or change top_drive.torque"
     )

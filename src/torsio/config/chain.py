@@ -37,6 +37,7 @@ Navarro-Lopez and Cortes (2007) chain has 19.6; a rigid link of 1e12 N m/rad on 
 930 kg m^2 table, 8e9."""
 
 CHAIN_KEYS = {"inertias", "stiffnesses", "dampings", "drag"}
+CHAIN_KEYS |= {"masses", "axial_stiffnesses", "axial_dampings"}  # config/axial.py reads them
 
 _DIMENSIONS = {
     "inertias": "inertia",

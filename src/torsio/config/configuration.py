@@ -33,6 +33,7 @@ from torsio.well.string_contacts import with_contacts
 from torsio.well.wellbore import Wellbore
 
 if TYPE_CHECKING:
+    from torsio.config.axial import AxialConfig
     from torsio.physics.system import System
 
 __all__ = [
@@ -58,6 +59,10 @@ class BitRockConfig:
     def build(self) -> Any:
         """The bit-rock law object (looked up among the registered laws), built once: the
         validation on reading the file builds it, every System of the table reuses it."""
+        if self.law == "rgd":
+            from torsio.config.axial import RGD_REFUSAL
+
+            raise ConfigError("bit_rock.law", RGD_REFUSAL)
         if not self._built:
             from torsio.plugins import build_bit_law
 
@@ -128,6 +133,7 @@ class Config:
     chain: ChainConfig | None = None
     top_drive: TopDriveConfig = attrs.field(factory=TopDriveConfig)
     well: Wellbore | None = None  # [well] (config/well.py); None: vertical, no contact
+    axial: AxialConfig | None = None  # axial dynamics (config/axial.py); None: torsional only
 
     def model(self, **overrides: Any) -> Any:
         """Discretize the string: the configured strategy, with ``overrides`` of its options.

@@ -41,6 +41,8 @@ from typing import Any
 
 import attrs
 
+from torsio.axial.rgd import rgd_from_table
+from torsio.config.axial import AXIAL_SIMULATION_KEYS, chain_axial, string_axial
 from torsio.config.chain import parse_chain
 from torsio.config.configuration import (
     BitRockConfig,
@@ -85,6 +87,7 @@ TOP_LEVEL_KEYS = {
     "simulation",
     "top_drive",
     "well",
+    "axial",
 }
 DISCRETIZATION_KEYS = {
     "strategy",
@@ -100,7 +103,7 @@ DISCRETIZATION_KEYS = {
 DAMPING_KEYS = {"alpha", "beta", "ratios", "modes"}
 OPERATION_KEYS = {"wob", "rpm"}
 SIMULATION_KEYS = {"duration", "steady_window", "method", "rtol", "atol", "output_step"}
-SIMULATION_KEYS |= {"stick_threshold"}
+SIMULATION_KEYS |= {"stick_threshold"} | AXIAL_SIMULATION_KEYS
 
 
 def load_config(path: str | Path) -> Config:
@@ -149,6 +152,12 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
             "so no rotary speed may be set; remove operation.rpm",
         )
     well = well_table(table, config.string, source)
+    if config.axial is not None:
+        for key, given in (("top_drive", "top_drive" in table), ("well", well is not None)):
+            if given:
+                raise ConfigError(
+                    key, f"[{key}] is not in the axial engine (the top turns at constant speed)"
+                )
     return attrs.evolve(config, top_drive=top_drive, well=well)
 
 
@@ -169,7 +178,9 @@ def _string_config(table: Mapping[str, Any], name: str, source: str) -> Config:
             discretizer.element_counts(string)
         except ConfigError as exc:
             raise ConfigError(f"discretization.{exc.key}", exc.message) from None
-    _warn_if_undamped(table, source)
+    axial = string_axial(table, string)
+    if axial is None:
+        _warn_if_undamped(table, source)
     return Config(
         name=name,
         string=string,
@@ -179,6 +190,7 @@ def _string_config(table: Mapping[str, Any], name: str, source: str) -> Config:
         operation=_operation(table.get("operation", {})),
         simulation=_simulation(table.get("simulation", {})),
         source=source,
+        axial=axial,
     )
 
 
@@ -216,6 +228,7 @@ def _chain_config(table: Mapping[str, Any], name: str, source: str) -> Config:
         simulation=_simulation(table.get("simulation", {})),
         source=source,
         chain=chain,
+        axial=chain_axial(table, chain),
     )
 
 
@@ -231,6 +244,11 @@ def _bit_rock(raw: Any) -> BitRockConfig:
     speed_unit = _string(raw.get("speed_unit", "rad/s"), "bit_rock.speed_unit")
     parameters = {k: v for k, v in raw.items() if k not in ("law", "radius", "speed_unit")}
     config = BitRockConfig(law, radius, speed_unit, parameters)
+    if law == "rgd":  # the axial engine's bit (config/axial.py), no torque(speed, wob, radius)
+        if "speed_unit" in raw:
+            raise ConfigError("bit_rock.speed_unit", "the rgd law has no speed unit; remove it")
+        rgd_from_table(raw)
+        return config
     config.build()  # validates the law name and its parameters now, naming the key
     return config
 
@@ -339,4 +357,4 @@ def _simulation(raw: Any) -> SimulationConfig:
             )
     if "method" in table:
         options["method"] = _string(table["method"], "simulation.method")
-    return SimulationConfig(options)
+    return SimulationConfig(options)  # start, perturbation, step: config/axial.py

@@ -17,7 +17,7 @@ from torsio.model.components import SECTION_KINDS, Material, Section
 from torsio.units import RPM_TO_RAD_S, to_si
 
 SECTION_KEYS = {"kind", "od", "id", "length", "name", "bha", "material"}
-MATERIAL_KEYS = {"shear_modulus", "density"}
+MATERIAL_KEYS = {"shear_modulus", "density", "youngs_modulus"}  # E: config/axial.py
 
 
 # --- tables ---------------------------------------------------------------------------------

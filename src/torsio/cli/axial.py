@@ -1,0 +1,200 @@
+"""``torsio simulate`` and ``torsio map`` on a configuration with axial dynamics.
+
+The runs go to :func:`torsio.axial.transient.simulate_axial` and
+:func:`torsio.axial.maps.axial_map` (fixed step, the RGD bit); the flags of the torsional
+engines that have no meaning there are refused by name.
+"""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+from torsio.cli import common
+from torsio.errors import ConfigError
+
+SCHEME = "semi-implicit Euler, set-valued contacts at the velocity level (Moreau)"
+"""The axial engine's fixed-step scheme (:mod:`torsio.axial.kernel`)."""
+
+_SIMULATE_REFUSED = {
+    "strategy": "--strategy",
+    "dp_elements": "--dp-elements",
+    "bha_elements": "--bha-elements",
+    "method": "--method",
+    "rtol": "--rtol",
+    "atol": "--atol",
+    "output_step": "--output-step",
+    "csv": "--csv",
+    "plot": "--plot",
+}
+_MAP_REFUSED = {
+    "strategy": "--strategy",
+    "dp_elements": "--dp-elements",
+    "bha_elements": "--bha-elements",
+    "pi1": "--pi1",
+    "pi2": "--pi2",
+    "threshold": "--threshold",
+    "refine": "--refine",
+    "rtol": "--rtol",
+    "steady_tol": "--steady-tol",
+    "threads": "--threads",
+    "on_failure": "--on-failure",
+    "workers": "--workers",
+    "scheduler": "--scheduler",
+    "timeout": "--timeout",
+    "out": "--out",
+    "csv": "--csv",
+    "plot": "--plot",
+}
+
+
+def _refuse(args: argparse.Namespace, flags: dict[str, str]) -> None:
+    for name, flag in flags.items():
+        if getattr(args, name, None) is not None:
+            raise ConfigError(
+                flag,
+                "does not apply to axial dynamics: the axial engine runs the file's assembly "
+                "with a fixed step (simulation.step) and the RGD bit; remove it",
+            )
+
+
+def _times(args: argparse.Namespace, config: Any) -> dict[str, Any]:
+    options = config.simulation.options
+    duration = common.parse_time(args.duration, "--duration") or options.get("duration")
+    window = common.parse_time(args.window, "--window") or options.get("steady_window")
+    return {"duration": duration, "window": window}
+
+
+def solver_info(run: Any) -> dict[str, Any]:
+    """The ``solver`` entry of a run's JSON: the engine, its step [s] and its scheme."""
+    return {"engine": "axial", "method": "fixed-step", "scheme": SCHEME, "step": run.step}
+
+
+def simulate(args: argparse.Namespace, config: Any) -> int:
+    """``torsio simulate`` on an axial configuration; returns the exit status."""
+    from torsio.axial.transient import simulate_axial
+
+    _refuse(args, _SIMULATE_REFUSED)
+    axial = config.axial
+    point = config.operating_point(args.wob, args.rpm)
+    common.warn_small_bare_wob(args.wob)
+    run = simulate_axial(
+        axial.assembly,
+        axial.bit,
+        point["wob"],
+        point["rpm"],
+        **_times(args, config),
+        **axial.run_options(),
+        growth_rate=axial.is_two_dof,
+    )
+    data = run.to_dict()
+    data["solver"] = solver_info(run)
+    data["model"] = axial.assembly.describe()
+    if args.json:
+        common.print_json(data)
+    else:
+        _print_run(data)
+    return 0
+
+
+def _print_run(data: dict[str, Any]) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    steady = data["steady_state"]
+    model = data["model"]
+    table = Table(
+        title=f"Axial-torsional run: {model['nodes']} node(s), {model['axial_dofs']} axial "
+        f"DOF, hook {model['hook']}, RGD bit"
+    )
+    table.add_column("quantity")
+    table.add_column("value", justify="right")
+    mse = data["mse_mean"]
+    rate = data["growth_rate"]
+    rows = [
+        ("weight on bit", f"{data['wob'] / 1e3:.4g} kN"),
+        ("rotary speed", f"{data['rpm']:.4g} rpm"),
+        ("run / steady window", f"{data['duration']:.4g} s / last {data['steady_window']:.4g} s"),
+        ("start", data["start"]),
+        ("S_SS (Eq. 12)", f"{data['severity']:.4f}"),
+        ("axial severity", f"{data['axial_severity']:.4f}"),
+        ("stuck fraction", f"{data['stick_fraction']:.3f}"),
+        ("off-bottom fraction", f"{data['off_bottom_fraction']:.3f}"),
+        ("mean ROP", f"{data['rop_mean'] * 3600:.4g} m/h ({data['rop_mean']:.4g} m/s)"),
+        ("mean MSE", "none (the bit did not advance)" if mse is None else f"{mse / 1e6:.4g} MPa"),
+        ("steady depth of cut", f"{steady['depth_of_cut'] * 1e3:.4g} mm/rev"),
+        ("steady ROP", f"{steady['rop'] * 3600:.4g} m/h ({steady['rop']:.4g} m/s)"),
+        ("steady bit torque", f"{steady['bit_torque'] / 1e3:.4g} kN m"),
+        ("steady MSE", f"{steady['mse'] / 1e6:.4g} MPa"),
+        (
+            "growth rate (linear)",
+            "n/a (2-DOF model only)"
+            if rate is None
+            else f"{rate:.4g} 1/s ({'unstable' if rate > 0 else 'stable'})",
+        ),
+        ("solver", f"axial engine, fixed step {data['solver']['step'] * 1e3:.4g} ms"),
+    ]
+    for name, value in rows:
+        table.add_row(name, value)
+    Console().print(table)
+
+
+def run_map(args: argparse.Namespace, config: Any, wob: Any, rpm: Any) -> int:
+    """``torsio map`` on an axial configuration over the grids ``wob`` [N] and ``rpm``."""
+    import time
+
+    from torsio.axial.maps import axial_map
+
+    _refuse(args, _MAP_REFUSED)
+    if args.engine not in ("auto", "numba"):
+        raise ConfigError("--engine", f"{args.engine!r}: the axial engine is compiled (numba)")
+    axial = config.axial
+    start = time.perf_counter()
+    grid = axial_map(
+        axial.assembly,
+        axial.bit,
+        wob,
+        rpm,
+        **_times(args, config),
+        **axial.run_options(),
+        growth_rate=axial.is_two_dof,
+    )
+    data = grid.to_dict()
+    data["info"] = {
+        "engine": "axial",
+        "scheme": SCHEME,
+        "start": axial.start,
+        "elapsed_s": time.perf_counter() - start,
+        "model": axial.assembly.describe(),
+    }
+    if args.json:
+        common.print_json(data)
+    else:
+        _print_map(data)
+    return 0
+
+
+def _print_map(data: dict[str, Any]) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    table = Table(title=f"Axial map: {len(data['rpm'])} x {len(data['wob'])} points")
+    for name in ("rpm", "WOB [kN]", "S_SS", "stuck", "off bottom", "ROP [m/h]", "MSE [MPa]"):
+        table.add_column(name, justify="right")
+    for i, rpm in enumerate(data["rpm"]):
+        for j, wob in enumerate(data["wob"]):
+            mse = data["mse"][i][j]
+            table.add_row(
+                f"{rpm:.4g}",
+                f"{wob / 1e3:.4g}",
+                f"{data['severity'][i][j]:.3f}",
+                f"{data['stick_fraction'][i][j]:.3f}",
+                f"{data['off_bottom_fraction'][i][j]:.3f}",
+                f"{data['rop'][i][j] * 3600:.4g}",
+                "-" if mse is None else f"{mse / 1e6:.4g}",
+            )
+    console = Console()
+    console.print(table)
+    console.print(
+        f"runs of {data['duration']:.4g} s, window {data['steady_window']:.4g} s, axial engine"
+    )
