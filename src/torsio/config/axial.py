@@ -272,7 +272,8 @@ def string_axial(table: Mapping[str, Any], string: DrillString) -> AxialConfig |
             raise ConfigError(
                 "material.youngs_modulus",
                 f"missing: the rgd law needs axial dynamics, whose springs E A / L need "
-                f"Young's modulus E of {section.describe()} (e.g. youngs_modulus = '207 GPa')",
+                f"Young's modulus E of section[{i}] ({section.describe()}) "
+                "(e.g. youngs_modulus = '207 GPa')",
             )
         count = math.ceil(section.length / options["element_length"] - 1e-9)
         spacing = section.length / count

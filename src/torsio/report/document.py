@@ -15,7 +15,8 @@ dimensionless groups, the response there (S_SS, stick fraction) and its distance
 to the critical weight on bit. For the distributed model (``strategy = "wave"``) the
 discretization, modes and damping sections describe its grid, its exact continuum and
 its distributed drag (:mod:`torsio.report.wave`), and a ``wave`` section follows the
-response.
+response. A configuration with axial dynamics has the string (if any) and the ``axial``
+section (:mod:`torsio.report.axial`).
 
 Examples
 --------
@@ -53,6 +54,7 @@ from rich.console import Console
 from rich.text import Text
 
 from torsio.config.configuration import Config
+from torsio.report.axial import axial_section
 from torsio.report.context import ReportContext, ReportSection
 from torsio.report.dynamics import (
     critical_section,
@@ -75,7 +77,14 @@ from torsio.report.wave import (
 )
 from torsio.report.well import well_section
 
-__all__ = ["SECTIONS", "WAVE_SECTIONS", "render", "report_data", "report_sections"]
+__all__ = [
+    "AXIAL_SECTIONS",
+    "SECTIONS",
+    "WAVE_SECTIONS",
+    "render",
+    "report_data",
+    "report_sections",
+]
 
 
 SECTIONS: list[Callable[[ReportContext], ReportSection | None]] = [
@@ -91,6 +100,13 @@ SECTIONS: list[Callable[[ReportContext], ReportSection | None]] = [
     critical_section,
 ]
 """The sections of the report, in order; a function may return None to be left out."""
+
+
+AXIAL_SECTIONS: list[Callable[[ReportContext], ReportSection | None]] = [
+    string_section,
+    axial_section,
+]
+"""The sections of a configuration with axial dynamics (:mod:`torsio.report.axial`)."""
 
 
 WAVE_SECTIONS: dict[Any, Callable[[ReportContext], ReportSection | None]] = {
@@ -110,6 +126,9 @@ def report_sections(ctx: ReportContext) -> list[ReportSection]:
     model has no matrices: its sections describe the grid, its exact continuum and its
     distributed drag instead (:data:`WAVE_SECTIONS`).
     """
+    if ctx.sections is None and ctx.config.axial is not None:  # the axial engine's report
+        sections = (function(ctx) for function in AXIAL_SECTIONS)
+        ctx.sections = [section for section in sections if section is not None]
     if ctx.sections is None:
         functions = list(SECTIONS)
         if ctx.has_matrices:

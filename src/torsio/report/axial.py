@@ -1,0 +1,163 @@
+"""The report section of a configuration with axial dynamics (the RGD bit).
+
+The assembly's natural frequencies (torsional, top held; axial, bit free, the top free
+under the weight hook or held by k_a,0 under the speed hook), the steady drilling state at
+the operating point (depth of cut, ROP, bit torque, MSE) and, for the 2-DOF model, its
+linear stability: the growth rate and the rpm where it crosses zero
+(:func:`torsio.axial.stability.crossing_rpm` over :data:`CROSSING_RANGE`).
+
+Examples
+--------
+>>> from torsio.examples import rgd_two_dof_config
+>>> from torsio.report.context import ReportContext
+>>> section = axial_section(ReportContext(rgd_two_dof_config()))
+>>> round(section.data["steady_state"]["depth_of_cut"] * 1e3, 4)  # mm per revolution
+7.3868
+>>> [round(r, 1) for r in section.data["stability"]["crossing_rpm"]]
+[153.3]
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import scipy.linalg
+from rich.table import Table
+
+from torsio.axial.assembly import DrillingAssembly
+from torsio.model.lumped import chain_matrix
+from torsio.report.context import ReportContext, ReportSection
+
+__all__ = ["CROSSING_RANGE", "axial_frequencies", "axial_section"]
+
+CROSSING_RANGE = (20.0, 300.0)
+"""The rpm range [rev/min] searched for a change of sign of the growth rate (15 points)."""
+
+
+def axial_frequencies(assembly: DrillingAssembly) -> list[float]:
+    """The axial natural frequencies [Hz] of the assembly with the bit free, undamped:
+    the top free under the weight hook (its rigid-body zero left out) or held by k_a,0
+    under the speed hook; none for an axially rigid assembly.
+
+    >>> from torsio.axial.assembly import pipe_assembly
+    >>> chain = pipe_assembly(4, 1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5, 3.0e4, 230.0)
+    >>> [round(f, 3) for f in axial_frequencies(chain)][:2]
+    [1.305, 3.905]
+    """
+    springs = assembly.axial_stiffnesses
+    if not springs.size:
+        return []
+    stiffness = chain_matrix(springs)
+    if assembly.hook == "weight":
+        stiffness[0, 0] -= springs[0]
+    values = scipy.linalg.eigh(stiffness, np.diag(assembly.masses), eigvals_only=True)
+    if assembly.hook == "weight":
+        values = values[1:]
+    return [math.sqrt(max(v, 0.0)) / (2 * math.pi) for v in values]
+
+
+def _torsional_frequencies(assembly: DrillingAssembly) -> list[float]:
+    values = scipy.linalg.eigh(
+        chain_matrix(assembly.stiffnesses), np.diag(assembly.inertias), eigvals_only=True
+    )
+    return [math.sqrt(v) / (2 * math.pi) for v in values]
+
+
+def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
+    from torsio.axial.stability import crossing_rpm, drilling_stability
+
+    a = axial.assembly
+    args = (axial.bit, float(a.inertias[0]), float(a.stiffnesses[0]), a.bit_mass, wob)
+    damping = float(a.damping[0])
+    result = drilling_stability(*args, rpm, damping, count=1)
+    crossings = crossing_rpm(*args, CROSSING_RANGE, damping, points=15)
+    return {
+        "growth_rate": result.growth_rate,
+        "stable": result.stable,
+        "crossing_rpm": crossings,
+        "crossing_range_rpm": list(CROSSING_RANGE),
+    }
+
+
+def axial_section(ctx: ReportContext) -> ReportSection | None:
+    """The ``axial`` section: frequencies, steady drilling state, stability."""
+    from torsio.axial.steady import steady_drilling
+
+    axial = ctx.config.axial
+    if axial is None:
+        return None
+    op = ctx.config.operation
+    assembly = axial.assembly
+    data: dict[str, Any] = {
+        "model": assembly.describe(),
+        "bit": axial.bit.describe(),
+        "torsional_frequencies_hz": _torsional_frequencies(assembly)[: ctx.requested_modes],
+        "axial_frequencies_hz": axial_frequencies(assembly)[: ctx.requested_modes],
+        "wob_n": op.wob,
+        "rpm": op.rpm,
+        "steady_state": None,
+        "stability": None,
+        "note": "",
+    }
+    if op.wob is None or op.rpm is None:
+        data["note"] = "no [operation] wob and rpm: no steady state"
+    elif op.wob <= axial.bit.friction_weight:
+        data["note"] = (
+            f"the weight on bit is at most sigma a l = {axial.bit.friction_weight:.6g} N: "
+            "the bit does not cut"
+        )
+    else:
+        steady = steady_drilling(axial.bit, op.wob, op.rpm)
+        data["steady_state"] = steady.to_dict()
+        if axial.is_two_dof:
+            data["stability"] = _stability(axial, op.wob, op.rpm)
+        else:
+            data["note"] = "the linear stability is of the 2-DOF model only"
+    return ReportSection("axial", "Axial dynamics (RGD bit)", data, _body(data))
+
+
+def _hz(values: list[float]) -> str:
+    return ", ".join(f"{f:.4g}" for f in values) + " Hz" if values else "none (axially rigid)"
+
+
+def _body(data: dict[str, Any]) -> Table:
+    model = data["model"]
+    table = Table.grid(padding=(0, 2))
+    table.add_column(style="dim")
+    table.add_column()
+    rows = [
+        ("assembly", f"{model['nodes']} node(s), {model['axial_dofs']} axial DOF, hook "
+         f"{model['hook']}, total mass {sum(model['masses']) / 1e3:.4g} t"),
+        ("torsional frequencies", _hz(data["torsional_frequencies_hz"])),
+        ("axial frequencies", _hz(data["axial_frequencies_hz"])),
+    ]  # fmt: skip
+    steady = data["steady_state"]
+    if steady is not None:
+        rows += [
+            ("operating point", f"{data['wob_n'] / 1e3:.4g} kN, {data['rpm']:.4g} rpm"),
+            ("steady depth of cut", f"{steady['depth_of_cut'] * 1e3:.4g} mm/rev"),
+            ("steady ROP", f"{steady['rop'] * 3600:.4g} m/h ({steady['rop']:.4g} m/s)"),
+            ("steady bit torque", f"{steady['bit_torque'] / 1e3:.4g} kN m"),
+            ("steady MSE", f"{steady['mse'] / 1e6:.4g} MPa"),
+        ]
+    stability = data["stability"]
+    if stability is not None:
+        rate = stability["growth_rate"]
+        crossings = stability["crossing_rpm"]
+        low, high = stability["crossing_range_rpm"]
+        rows += [
+            ("growth rate", f"{rate:.4g} 1/s ({'stable' if rate < 0 else 'unstable'})"),
+            (
+                "crossing rpm",
+                ", ".join(f"{r:.4g}" for r in crossings) + " rpm"
+                if crossings
+                else f"none in {low:g}..{high:g} rpm",
+            ),
+        ]
+    if data["note"]:
+        rows.append(("note", data["note"]))
+    for label, value in rows:
+        table.add_row(label, value)
+    return table
