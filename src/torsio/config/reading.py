@@ -145,6 +145,11 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
         if "chain" in table
         else _string_config(table, name, source)
     )
+    for key in ("top_drive", "well"):
+        if config.axial is not None and key in table:
+            raise ConfigError(
+                key, f"[{key}] is not in the axial engine (the top turns at constant speed)"
+            )
     if not top_drive.has_set_speed and config.operation.rpm is not None:
         raise ConfigError(
             "operation.rpm",
@@ -152,12 +157,6 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
             "so no rotary speed may be set; remove operation.rpm",
         )
     well = well_table(table, config.string, source)
-    if config.axial is not None:
-        for key, given in (("top_drive", "top_drive" in table), ("well", well is not None)):
-            if given:
-                raise ConfigError(
-                    key, f"[{key}] is not in the axial engine (the top turns at constant speed)"
-                )
     return attrs.evolve(config, top_drive=top_drive, well=well)
 
 

@@ -1,0 +1,195 @@
+"""Axial dynamics from a configuration (torsio.config.axial): the built-in RGD 2-DOF file
+against the Python API's example, a [[section]] string's chain from E, ρ and the sections,
+every refusal by key, and the torsional engines refusing ``law = "rgd"``.
+
+Numbers checked: the file's assembly and bit equal rgd_two_dof_example() and rgd_example();
+the string's chain carries the string's whole mass and its springs are E A / Δ, G J / Δ.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import tomllib
+from importlib import resources
+
+import numpy as np
+import pytest
+
+from torsio.axial import rgd_example, rgd_two_dof_example
+from torsio.config.reading import parse_config
+from torsio.errors import ConfigError
+from torsio.examples import builtin_config, rgd_two_dof_config
+
+TEXT = resources.files("torsio").joinpath("data/rgd_2dof.toml").read_text(encoding="utf-8")
+BASE = tomllib.loads(TEXT)
+
+STRING = {
+    "material": {"shear_modulus": "79.3 GPa", "density": 7850, "youngs_modulus": "207 GPa"},
+    "section": [
+        {"kind": "drill_pipe", "od": "5 in", "id": "4.276 in", "length": "1000 m"},
+        {"kind": "drill_collar", "od": "6.75 in", "id": "2.8125 in", "length": "150 m"},
+        {"kind": "bit", "od": "8.5 in", "id": 0.0, "length": 0.3},
+    ],
+    "damping": {"beta": 0.06},
+    "bit_rock": dict(BASE["bit_rock"]),
+    "operation": {"wob": "100 kN", "rpm": 60},
+}
+
+
+def _with(data, path, value):
+    data = copy.deepcopy(data)
+    *tables, key = path.split(".")
+    target = data
+    for name in tables:
+        target = target.setdefault(name, {})
+    if value is None:
+        target.pop(key)
+    else:
+        target[key] = value
+    return data
+
+
+def test_builtin_file_is_the_api_example():
+    config = rgd_two_dof_config()
+    axial = config.axial
+    example = rgd_two_dof_example()
+    assert axial.assembly.describe() == example.describe()
+    assert np.array_equal(axial.assembly.damping, example.damping)
+    assert axial.bit == rgd_example()
+    assert axial.run_options() == {
+        "start": "rest",
+        "perturbation": 1e-3,
+        "step": None,
+        "steps_per_period": 100,
+    }
+    assert axial.is_two_dof
+    assert (config.operation.wob, config.operation.rpm) == (100e3, 60.0)
+
+
+def test_axial_keys_are_read_with_units():
+    data = _with(BASE, "chain.inertias", [200.0, 255.65])
+    data = _with(data, "chain.stiffnesses", [600.0, "700 N*m/rad"])
+    data = _with(data, "chain.dampings", None)
+    data = _with(data, "chain.masses", ["10 t", 19981.3])
+    data = _with(data, "chain.axial_stiffnesses", ["2 MN/m", 3e6])
+    data = _with(data, "chain.axial_dampings", [100.0, "200 N*s/m"])
+    data = _with(data, "axial.hook", "speed")
+    data = _with(data, "axial.steps_per_period", 50)
+    data = _with(data, "damping.beta", "0.05 s")
+    data = _with(data, "simulation.start", "steady")
+    data = _with(data, "simulation.perturbation", 0.01)
+    data = _with(data, "simulation.step", "1 ms")
+    axial = parse_config(data).axial
+    a = axial.assembly
+    assert a.masses.tolist() == [10000.0, 19981.3]
+    assert a.axial_stiffnesses.tolist() == [2e6, 3e6]
+    assert a.axial_damping.tolist() == [100.0, 200.0]
+    assert a.damping.tolist() == pytest.approx([0.05 * 600.0, 0.05 * 700.0])
+    assert a.hook == "speed" and not axial.is_two_dof
+    assert axial.run_options() == {
+        "start": "steady",
+        "perturbation": 0.01,
+        "step": 1e-3,
+        "steps_per_period": 50,
+    }
+
+
+def test_string_chain_from_youngs_modulus():
+    config = parse_config(STRING)
+    a = config.axial.assembly
+    string = config.string
+    pipe, collars, bit = string.sections
+    assert a.nodes == 10  # 1000 m of pipe in 100 m elements, the BHA rigid on the last node
+    area = math.pi * (pipe.od**2 - pipe.id**2) / 4
+    assert a.axial_stiffnesses == pytest.approx(207e9 * area / 100.0)
+    assert a.stiffnesses == pytest.approx(79.3e9 * pipe.polar_moment / 100.0)
+    bha_mass = sum(7850 * math.pi * (s.od**2 - s.id**2) / 4 * s.length for s in (collars, bit))
+    pipe_mass = 7850 * area * 1000.0
+    assert a.masses.sum() == pytest.approx(bha_mass + pipe_mass - 7850 * area * 50.0)
+    assert a.damping == pytest.approx(0.06 * a.stiffnesses)
+    assert a.axial_damping == pytest.approx(0.06 * a.axial_stiffnesses)
+    coarse = parse_config(_with(STRING, "axial.element_length", "250 m")).axial.assembly
+    assert coarse.nodes == 4
+
+
+REFUSALS = [
+    (BASE, "chain.masses", [0.0], "chain.masses[0]"),
+    (BASE, "chain.masses", [1.0, 2.0], "chain.masses"),
+    (BASE, "chain.masses", "heavy", "chain.masses"),
+    (BASE, "chain.axial_stiffnesses", [-1.0], "chain.axial_stiffnesses[0]"),
+    (BASE, "chain.axial_stiffnesses", [1e6, 1e6], "chain.axial_stiffnesses"),
+    (BASE, "chain.axial_dampings", [10.0], "chain.axial_dampings"),
+    (BASE, "chain.drag", [1.0], "chain.drag"),
+    (BASE, "chain.mass", [1.0], "chain.mass"),
+    (BASE, "axial.hook", "crane", "axial.hook"),
+    (BASE, "axial.hook", "speed", "axial.hook"),
+    (BASE, "axial.steps_per_period", 3, "axial.steps_per_period"),
+    (BASE, "axial.element_length", 100.0, "axial.element_length"),
+    (BASE, "axial.hooks", "weight", "axial.hooks"),
+    (BASE, "bit_rock", {"law": "constant", "torque_on_bit": 5e3, "radius": 0.1}, "bit_rock.law"),
+    (BASE, "bit_rock.blades", 0, "bit_rock.blades"),
+    (BASE, "bit_rock.blades", 2.5, "bit_rock.blades"),
+    (BASE, "bit_rock.contact_stress", "60 m", "bit_rock.contact_stress"),
+    (BASE, "bit_rock.wear_flat_length", -1.0, "bit_rock.wear_flat_length"),
+    (BASE, "bit_rock.radius", None, "bit_rock.radius"),
+    (BASE, "bit_rock.speed_unit", "rpm", "bit_rock.speed_unit"),
+    (BASE, "bit_rock.blade", 4, "bit_rock.blade"),
+    (BASE, "simulation.start", "moving", "simulation.start"),
+    (BASE, "simulation.perturbation", -1.0, "simulation.perturbation"),
+    (BASE, "simulation.step", 0.0, "simulation.step"),
+    (BASE, "simulation.rtol", 1e-6, "simulation.rtol"),
+    (BASE, "simulation.method", "RK45", "simulation.method"),
+    (BASE, "damping.alpha", 0.1, "damping.alpha"),
+    (BASE, "top_drive", {"kind": "torque", "inertia": 930.0, "torque": 1e4}, "top_drive"),
+    (BASE, "well", {"survey": []}, "well"),
+    (STRING, "material.youngs_modulus", None, "material.youngs_modulus"),
+    (STRING, "material.youngs_modulus", -1.0, "material.youngs_modulus"),
+    (STRING, "material.youngs_modulus", "207 m", "material.youngs_modulus"),
+    (STRING, "axial.element_length", 0.0, "axial.element_length"),
+]
+
+
+@pytest.mark.parametrize(("base", "path", "value", "key"), REFUSALS)
+def test_every_bad_value_names_its_key(base, path, value, key):
+    if base is BASE and path in ("chain.drag", "damping.alpha"):
+        base = _with(base, "chain.dampings", None)
+    with pytest.raises(ConfigError) as info:
+        parse_config(_with(base, path, value))
+    assert info.value.key == key
+
+
+def test_axial_keys_without_axial_dynamics_are_refused():
+    torsional = _with(_with(BASE, "chain.masses", None), "axial", None)
+    torsional = _with(_with(torsional, "chain.axial_stiffnesses", None), "simulation", None)
+    for path, key in (
+        ("chain.axial_stiffnesses", "chain.axial_stiffnesses"),
+        ("axial.hook", "axial"),
+        ("simulation.step", "simulation.step"),
+    ):
+        value = [] if path.startswith("chain") else ("weight" if "hook" in path else 1e-3)
+        if path == "chain.axial_stiffnesses":
+            value = [1e6]
+        with pytest.raises(ConfigError) as info:
+            parse_config(_with(torsional, path, value))
+        assert info.value.key == key
+    string = _with(
+        _with(STRING, "bit_rock", {"law": "constant", "torque_on_bit": 5e3}), "axial.hook", "weight"
+    )
+    with pytest.raises(ConfigError) as info:
+        parse_config(string)
+    assert info.value.key == "axial"
+
+
+def test_torsional_engines_refuse_rgd_by_key():
+    torsional = _with(_with(BASE, "chain.masses", None), "axial", None)
+    torsional = _with(_with(torsional, "chain.axial_stiffnesses", None), "simulation", None)
+    config = parse_config(torsional)  # reads: the law is checked, not built
+    assert config.axial is None
+    with pytest.raises(ConfigError, match="the rgd law needs axial dynamics") as info:
+        config.system()
+    assert info.value.key == "bit_rock.law"
+
+
+def test_existing_configurations_have_no_axial_dynamics():
+    assert builtin_config().axial is None
