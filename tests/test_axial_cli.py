@@ -151,6 +151,13 @@ def test_report_has_the_axial_section():
     assert "Axial dynamics" in out and "crossing rpm" in out and "153.3 rpm" in out
 
 
+def test_report_html_and_json_of_an_axial_file(capsys, tmp_path):
+    page = tmp_path / "report.html"
+    data = run_json(capsys, "report", EXAMPLE, "--html", str(page))
+    assert list(data) == ["name", "source", "chain", "axial"]
+    assert "Axial dynamics" in page.read_text(encoding="utf-8")
+
+
 def test_torsional_commands_refuse_rgd_by_key(capsys, tmp_path):
     text = open(EXAMPLE, encoding="utf-8").read()
     text = text.replace("masses = [29981.3]", "").replace("axial_stiffnesses = []", "")

@@ -92,8 +92,12 @@ def _figure_html(figure: Any, caption: str) -> str:
 
 
 def report_figures(ctx: ReportContext) -> list[tuple[Any, str]]:
-    """The report's figures (matplotlib Figures, no pyplot state) with their captions."""
+    """The report's figures (matplotlib Figures, no pyplot state) with their captions;
+    none for a configuration with axial dynamics (its section is a table)."""
     from matplotlib.figure import Figure
+
+    if ctx.config.axial is not None:
+        return []
 
     from torsio.plotting import plot_mode_shapes
 
