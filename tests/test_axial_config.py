@@ -193,3 +193,13 @@ def test_torsional_engines_refuse_rgd_by_key():
 
 def test_existing_configurations_have_no_axial_dynamics():
     assert builtin_config().axial is None
+
+
+def test_axial_frequency_of_two_masses_is_the_closed_form():
+    from torsio.axial import DrillingAssembly
+    from torsio.report.axial import axial_frequencies
+
+    # top free under the weight hook: two masses on one spring, ω² = k (1/m1 + 1/m2)
+    pair = DrillingAssembly([1.0, 1.0], [1.0, 1.0], [2.0e3, 3.0e3], axial_stiffnesses=[1e6, 4e6])
+    expected = math.sqrt(4e6 * (1 / 2.0e3 + 1 / 3.0e3)) / (2 * math.pi)
+    assert axial_frequencies(pair) == pytest.approx([expected], rel=1e-12)
