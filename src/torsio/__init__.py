@@ -67,6 +67,10 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
         "ZTorqueTopDrive",
     ),
     "torsio.physics.top_drive_boundary": ("TopDriveBoundary",),
+    "torsio.physics.recorded_top": ("RecordedTopDrive",),
+    "torsio.calibration.recording": ("Recording", "read_recording"),
+    "torsio.calibration.fit": ("fit_recordings",),
+    "torsio.calibration.fit_results": ("FitResults",),
     "torsio.plugins": ("top_drive_from_parameters",),
     "torsio.analysis.maps": ("severity_map", "dimensionless_map"),
     "torsio.analysis.map_results": ("SeverityMap", "load_map"),
@@ -79,7 +83,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     ),
 }
 _LAZY = {name: module for module, names in _EXPORTS.items() for name in names}
-_SUBPACKAGES = ("analysis", "cli", "io", "model", "physics", "solvers", "well")
+_SUBPACKAGES = ("analysis", "calibration", "cli", "io", "model", "physics", "solvers", "well")
 
 if TYPE_CHECKING:  # for type checkers and editors; at run time see __getattr__
     from torsio.analysis.energy import EnergyBalance, energy_balance
@@ -94,6 +98,9 @@ if TYPE_CHECKING:  # for type checkers and editors; at run time see __getattr__
     )
     from torsio.analysis.transient import simulate, simulate_config
     from torsio.analysis.transient_results import TransientResults
+    from torsio.calibration.fit import fit_recordings
+    from torsio.calibration.fit_results import FitResults
+    from torsio.calibration.recording import Recording, read_recording
     from torsio.errors import ConfigError, PluginError, SolverError, TorsioError
     from torsio.examples import ritto2017_config, ritto2017_string
     from torsio.hookspecs import hookimpl
@@ -125,6 +132,7 @@ if TYPE_CHECKING:  # for type checkers and editors; at run time see __getattr__
     )
     from torsio.physics.dynamics import Dynamics
     from torsio.physics.laws import BitRockLaw, Parameter, TuckerWang
+    from torsio.physics.recorded_top import RecordedTopDrive
     from torsio.physics.system import System
     from torsio.physics.top_drive_boundary import TopDriveBoundary
     from torsio.physics.top_drives import (
@@ -221,4 +229,9 @@ __all__ = [
     "StabilityBoundary",
     "stability_boundary",
     "critical_bit_damping",
+    "RecordedTopDrive",
+    "Recording",
+    "read_recording",
+    "fit_recordings",
+    "FitResults",
 ]
