@@ -161,3 +161,36 @@ def test_a_bad_recording_through_the_command_names_the_line(tmp_path, capsys):
     assert capsys.readouterr().err  # the configuration is read first: it names x.toml
     with pytest.raises(ConfigError, match=r"rig\.csv, line 3"):
         fit_recordings(deviated_well_config(), [record], ["friction_dynamic"])
+
+
+def test_a_fit_without_spread_gives_the_severe_points_of_its_own_map():
+    # reference: severity_map of the configuration itself; with sigma 0 every sample is
+    # that configuration, so the probability is 1 where it is severe and 0 elsewhere
+    from torsio.analysis.maps import severity_map
+    from torsio.calibration.fit_results import FitResults
+    from torsio.calibration.monte_carlo import severity_probability
+    from torsio.calibration.uncertainty import ParameterSpread
+
+    config = deviated_well_config()
+    spread = ParameterSpread(0.0, 0.0, 0.0, (0.3, 0.3), "jacobian", True)
+    fit = FitResults(
+        ("friction_dynamic",),
+        (0.3,),
+        (0.3,),
+        (0.3,),
+        (spread,),
+        0.0,
+        (),
+        "torque",
+        "recorded",
+        0,
+        0.0,
+        "",
+    )
+    wob, rpm = [0.0, 160e3], [40.0, 100.0]
+    result = severity_probability(config, fit, wob, rpm, samples=2, refine=0)
+    reference = severity_map(config.system(strategy="wave"), wob, rpm, refine=0)
+    expected = (reference.severity > reference.threshold).astype(float)
+    assert result.probability.tolist() == expected.tolist()
+    assert expected.min() == 0.0 and expected.max() == 1.0  # both kinds of point
+    assert [s["friction_dynamic"] for s in result.samples] == [0.3, 0.3]
