@@ -41,7 +41,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from torsio.analysis.maps import severity_map
-from torsio.physics.system import System, builtin_config
+from torsio.examples import builtin_config
+from torsio.physics.system import System
 
 DURATION = 300.0
 WINDOW = 100.0
@@ -56,7 +57,7 @@ def grid() -> tuple[np.ndarray, np.ndarray]:
 
 def ritto(strategy: str, dp_elements: int | None = None) -> System:
     options = {} if dp_elements is None else {"dp_elements": dp_elements}
-    return System.from_config(builtin_config(), strategy=strategy, **options)
+    return builtin_config().system(strategy=strategy, **options)
 
 
 # --- the baseline: what a user would write ---------------------------------------------------

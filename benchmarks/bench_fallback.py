@@ -20,7 +20,7 @@ from typing import Any
 import attrs
 import numpy as np
 
-from torsio.physics.system import System, builtin_config
+from torsio.examples import builtin_config
 from torsio.solvers.batch import simulate_batch
 
 
@@ -52,9 +52,7 @@ def main() -> None:
         models.append(("5 DOF (C)", {"strategy": "C"}))
     wob, rpm = np.meshgrid(np.linspace(25e3, 225e3, 11), np.linspace(20.0, 140.0, 11))
     for label, options in models:
-        system = attrs.evolve(
-            System.from_config(builtin_config(), **options), law=AsarrayStribeck()
-        )
+        system = attrs.evolve(builtin_config().system(**options), law=AsarrayStribeck())
         times, results = {}, {}
         for engine in ("numpy", "scipy"):
             start = time.perf_counter()

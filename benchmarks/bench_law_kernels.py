@@ -31,11 +31,12 @@ from pathlib import Path
 
 import numpy as np
 
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config
 from torsio.physics.laws import tucker_wang_slope, tucker_wang_torque
-from torsio.physics.system import System
 from torsio.solvers import batch, rodas
 from torsio.solvers.compiled import njit
+from torsio.solvers.layouts import OUT_BIT_SPEED_MAX, OUT_BIT_SPEED_MIN, OUT_COLUMNS, OUT_STEPS
+from torsio.solvers.lumped_inputs import run_settings, step_limits
 
 BUILTIN = Path(batch.__file__).resolve().parents[1] / "data" / "ritto2017.toml"
 COULOMB_STRIBECK = """
@@ -97,19 +98,16 @@ def _serial_tucker_wang_constant(chain, top, p, settings, wob, omega, omega_set,
 
 
 def part_kernel(points: int, repeat: int) -> None:
-    system = System.from_config(builtin_config(), strategy="A")
+    system = builtin_config().system(strategy="A")
     model = batch.BatchModel.from_system(system)
     torque, slope, parameters = system.law.kernel()
     ww, rr = np.meshgrid(np.linspace(20e3, 250e3, points), np.linspace(30.0, 150.0, points))
     wob = np.ascontiguousarray(ww.ravel())
     omega = np.ascontiguousarray(rr.ravel() * math.pi / 30.0)
     duration, window = batch.run_times(system, None, None)
-    period = 2.0 * math.pi / model.first_frequency
-    h0 = min(1e-3 * period, period / 4)
-    # the kernel's settings (rodas.SETTINGS_SIZE): every run to the end, no steady-cycle stop
-    settings = np.array(
-        [duration, duration - window, 1e-5, 1e-6, h0, period / 4, 2e6, 0.108, 0.0, 0.0]
-    )
+    # the kernel's settings: every run to the end, no steady-cycle stop
+    steps = step_limits(model.first_frequency)
+    settings = run_settings(duration, window, 1e-5, 1e-6, steps, 2_000_000, 0.108, 0.0, 0.0)
     outputs = {}
     runs = {
         "FunctionType (shipped)": lambda out: rodas.integrate_serial(
@@ -121,7 +119,7 @@ def part_kernel(points: int, repeat: int) -> None:
     }
     times: dict[str, list[float]] = {name: [] for name in runs}
     for name, run in runs.items():
-        outputs[name] = np.zeros((wob.size, rodas.OUT_COLUMNS))
+        outputs[name] = np.zeros((wob.size, OUT_COLUMNS))
         run(outputs[name])  # compile or load
     for _ in range(repeat):
         for name, run in runs.items():
@@ -131,10 +129,11 @@ def part_kernel(points: int, repeat: int) -> None:
     print(f"2. the kernel alone, 1 DOF, {points} x {points}, one thread (median of {repeat})")
     base = statistics.median(times["Tucker-Wang constant"])
     for name, values in times.items():
-        steps = int(outputs[name][:, 2].sum())
+        steps = int(outputs[name][:, OUT_STEPS].sum())
         seconds = statistics.median(values)
         print(f"   {name:24s} {seconds:6.2f} s  x{seconds / base:4.2f}  ({steps} steps)")
-    same = np.array_equal(*(out[:, :2] for out in outputs.values()))
+    extremes = [OUT_BIT_SPEED_MAX, OUT_BIT_SPEED_MIN]
+    same = np.array_equal(*(out[:, extremes] for out in outputs.values()))
     print(f"   identical bit-speed extremes: {same}")
     start = time.perf_counter()
     numpy_run = batch.simulate_batch(system, wob, rr.ravel(), engine="numpy")

@@ -34,8 +34,9 @@ import numpy as np
 
 from torsio.analysis.maps import severity_map
 from torsio.analysis.transient import simulate
-from torsio.physics.system import System, builtin_config
-from torsio.solvers import batch
+from torsio.examples import builtin_config
+from torsio.physics.system import System
+from torsio.solvers import batch, batch_options
 
 DURATION = 300.0
 WINDOW = 100.0
@@ -43,7 +44,7 @@ WINDOW = 100.0
 
 def ritto(strategy: str, dp_elements: int | None = None) -> System:
     options = {} if dp_elements is None else {"dp_elements": dp_elements}
-    return System.from_config(builtin_config(), strategy=strategy, **options)
+    return builtin_config().system(strategy=strategy, **options)
 
 
 def grid(points: int) -> tuple[np.ndarray, np.ndarray]:
@@ -85,7 +86,10 @@ def compare(label: str, system: System, every: int) -> dict[str, float]:
     extrapolated = base_seconds * points * points / runs
     error = float(np.max(np.abs(severity.ravel()[indices] - base_values)))
     print(f"{label}: 21 x 21 map, {system.model.dofs} DOF")
-    print(f"  batch engine ({info['executor']}, {batch.DEFAULT_RTOL:g} rtol): {seconds:8.3f} s")
+    print(
+        f"  batch engine ({info['executor']}, {batch_options.DEFAULT_RTOL:g} rtol): "
+        f"{seconds:8.3f} s"
+    )
     note = (
         ""
         if runs == points * points

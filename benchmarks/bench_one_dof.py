@@ -29,12 +29,12 @@ import time
 
 import numpy as np
 
-from torsio.io.config import builtin_config
-from torsio.physics.system import System
-from torsio.solvers import batch, rodas
+from torsio.examples import builtin_config
+from torsio.solvers import batch, layouts, rodas
 from torsio.solvers.compiled import njit
 from torsio.solvers.cycles import extremes_of_cubic
 from torsio.solvers.law_kernels import law_type
+from torsio.solvers.lumped_inputs import run_settings, step_limits
 
 GRID = 41
 
@@ -49,8 +49,10 @@ def _signature():  # type: ignore[no-untyped-def]
 @njit(_signature(), cache=True)
 def one_dof_serial(m, k, c, drag, torque, slope, p, settings, wobs, omegas, outs) -> None:  # noqa: C901
     """The 1-DOF candidate: RODAS4 with the state in scalars, every point in turn."""
-    t_end, t_window, rtol, atol, h0, hmax = settings[:6]
-    max_steps, radius = int(settings[6]), settings[7]
+    t_end, t_window = settings[layouts.RUN_T_END], settings[layouts.RUN_WINDOW_START]
+    rtol, atol = settings[layouts.RUN_RTOL], settings[layouts.RUN_ATOL]
+    h0, hmax = settings[layouts.RUN_FIRST_STEP], settings[layouts.RUN_MAX_STEP]
+    max_steps, radius = int(settings[layouts.RUN_MAX_STEPS]), settings[layouts.RUN_BIT_RADIUS]
     a_coef, c_coef = rodas.RODAS_A, rodas.RODAS_C
     for point in range(wobs.size):
         wob, omega, out = wobs[point], omegas[point], outs[point]
@@ -136,24 +138,27 @@ def one_dof_serial(m, k, c, drag, torque, slope, p, settings, wobs, omegas, outs
                 rejected += 1
                 last_rejected = True
                 h = h_new
-        out[0], out[1], out[2], out[3], out[4] = vmax + omega, vmin + omega, steps, rejected, status
+        out[layouts.OUT_BIT_SPEED_MAX] = vmax + omega
+        out[layouts.OUT_BIT_SPEED_MIN] = vmin + omega
+        out[layouts.OUT_STEPS] = steps
+        out[layouts.OUT_REJECTED] = rejected
+        out[layouts.OUT_STATUS] = status
 
 
 def part_kernel(repeat: int) -> float:
-    system = System.from_config(builtin_config(), strategy="A")
+    system = builtin_config().system(strategy="A")
     model = batch.BatchModel.from_system(system)
     torque, slope, parameters = system.law.kernel()
     ww, rr = np.meshgrid(np.linspace(20e3, 250e3, GRID), np.linspace(30.0, 150.0, GRID))
     wob = np.ascontiguousarray(ww.ravel())
     omega = np.ascontiguousarray(rr.ravel() * math.pi / 30.0)
     duration, window = batch.run_times(system, None, None)
-    period = 2.0 * math.pi / model.first_frequency
-    h0 = min(1e-3 * period, period / 4)
-    # the kernel's settings (rodas.SETTINGS_SIZE): every run to the end, no steady-cycle stop
-    settings = np.array(
-        [duration, duration - window, 1e-5, 1e-6, h0, period / 4, 2e6, 0.108, 0.0, 0.0]
-    )
-    m, k, c, drag = model.chain[0, 0], model.chain[2, 0], model.chain[4, 0], model.chain[6, 0]
+    # the kernel's settings: every run to the end, no steady-cycle stop
+    steps = step_limits(model.first_frequency)
+    settings = run_settings(duration, window, 1e-5, 1e-6, steps, 2_000_000, 0.108, 0.0, 0.0)
+    chain = model.chain[:, 0]
+    m, k = chain[layouts.CHAIN_MASS], chain[layouts.CHAIN_STIFFNESS]
+    c, drag = chain[layouts.CHAIN_DAMPING], chain[layouts.CHAIN_DRAG]
     runs = {
         "generic kernel, n = 1": lambda out: rodas.integrate_serial(
             model.chain, model.top, torque, slope, parameters, settings, wob, omega, omega, out
@@ -162,7 +167,7 @@ def part_kernel(repeat: int) -> float:
             m, k, c, drag, torque, slope, parameters, settings, wob, omega, out
         ),
     }
-    outputs = {name: np.zeros((wob.size, rodas.OUT_COLUMNS)) for name in runs}
+    outputs = {name: np.zeros((wob.size, layouts.OUT_COLUMNS)) for name in runs}
     times: dict[str, list[float]] = {name: [] for name in runs}
     for name, run in runs.items():
         run(outputs[name])  # compile or load

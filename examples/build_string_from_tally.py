@@ -38,8 +38,8 @@ from torsio import (
     StrategyC,
     modal_analysis,
 )
-from torsio.io.report import string_table
 from torsio.plotting import pyplot, save_figure
+from torsio.report.model import string_table
 
 INCH = 0.0254
 """Metres per inch."""

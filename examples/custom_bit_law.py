@@ -105,7 +105,7 @@ def main(argv: list[str] | None = None) -> None:
     print(f"custom law: {law!r}")
 
     strategy = {"strategy": "A"} if args.quick else {}
-    base = torsio.System.from_config(torsio.builtin_config(), **strategy).at(wob=150e3, rpm=60)
+    base = torsio.builtin_config().system(**strategy).at(wob=150e3, rpm=60)
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(8.0, 3.8))
     for label, system in (

@@ -27,7 +27,7 @@ from pathlib import Path
 import attrs
 import numpy as np
 
-from torsio import DrillPipe, DrillString, System, builtin_config
+from torsio import DrillPipe, DrillString, builtin_config
 from torsio.analysis.map_results import SeverityMap
 from torsio.analysis.maps import dimensionless_map, severity_map
 from torsio.plotting import pyplot, save_figure
@@ -93,7 +93,7 @@ def main(argv: list[str] | None = None) -> None:
         pi1 = np.linspace(6.0, 16.0, 11)
         pi2 = np.linspace(5.0, 125.0, 17)
         refine, overrides = 5, {}
-    base = System.from_config(config, **overrides)
+    base = config.system(**overrides)
 
     dimensional: dict[str, SeverityMap] = {}
     dimensionless: dict[str, SeverityMap] = {}

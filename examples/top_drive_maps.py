@@ -28,7 +28,7 @@ import numpy as np
 from torsio import System, builtin_config
 from torsio.analysis.map_results import SeverityMap
 from torsio.analysis.maps import severity_map
-from torsio.io.config import parse_config_text
+from torsio.config.reading import parse_config_text
 from torsio.physics.top_drives import (
     PITopDrive,
     SoftTorqueTopDrive,
@@ -83,7 +83,7 @@ def main(argv: list[str] | None = None) -> None:
         rpm = np.linspace(40.0, 140.0, 11)
         wob = np.linspace(25e3, 325e3, 13)
         refine, overrides = 5, {}
-    base = System.from_config(builtin_config(), **overrides)
+    base = builtin_config().system(**overrides)
     maps: dict[str, SeverityMap] = {}
     for name, top in top_drives(base).items():
         maps[name] = severity_map(base.with_top(top), wob=wob, rpm=rpm, refine=refine)

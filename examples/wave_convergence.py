@@ -33,8 +33,7 @@ import attrs
 import numpy as np
 
 from torsio.analysis.maps import severity_map
-from torsio.examples import ritto2017_string
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config, ritto2017_string
 from torsio.model.continuum import continuum_modes
 from torsio.physics.damping import RayleighDamping
 from torsio.plotting import pyplot, save_figure

@@ -18,7 +18,7 @@ from pathlib import Path
 import attrs
 
 from torsio.analysis.wave import wave_response
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config
 from torsio.physics.damping import RayleighDamping
 from torsio.plotting import pyplot, save_figure
 

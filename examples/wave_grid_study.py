@@ -29,7 +29,7 @@ from typing import Any
 import attrs
 import numpy as np
 
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config
 from torsio.model.wave import DEFAULT_DRAG_SPACING
 from torsio.physics.damping import RayleighDamping
 from torsio.plotting import pyplot, save_figure

@@ -33,13 +33,13 @@ def continuum_rigid(ritto: DrillString):
 @pytest.fixture(scope="session")
 def one_dof() -> System:
     """The built-in Ritto (2017) system with strategy A (1 DOF)."""
-    return System.from_config(builtin_config(), strategy="A")
+    return builtin_config().system(strategy="A")
 
 
 @pytest.fixture(scope="session")
 def ten_dof() -> System:
     """The built-in Ritto (2017) system with strategy C and 10 drill-pipe elements."""
-    return System.from_config(builtin_config(), strategy="C", dp_elements=10)
+    return builtin_config().system(strategy="C", dp_elements=10)
 
 
 @pytest.fixture

@@ -1,5 +1,6 @@
 """The layout rules of docs/architecture.md: short modules, no import cycles (deferred
-imports included), physics free of io."""
+imports included), the data flowing one way: the input side (config/) builds the objects of
+the core, the output side (report/) reads them, and neither is imported back."""
 
 from __future__ import annotations
 
@@ -10,6 +11,10 @@ import pytest
 
 PACKAGE = Path(__file__).parents[1] / "src" / "torsio"
 MAX_LINES = 500
+# docs/architecture.md, "Module size": one job per module, at most MAX_LINES lines; a module
+# whose one job needs more is named here with its limit (at most LONGEST) and the reason
+LONGEST = 800
+LONGER_JOBS: dict[str, tuple[int, str]] = {}
 
 
 def _module_name(path: Path) -> str:
@@ -63,11 +68,22 @@ GRAPH = {
 }
 
 
+def _lines(name: str) -> int:
+    return len(MODULES[name].read_text(encoding="utf-8").splitlines())
+
+
 @pytest.mark.parametrize("name", list(MODULES))
 def test_modules_are_short(name):
     # the layout rule of docs/architecture.md: one job per module, at most 500 lines
-    lines = len(MODULES[name].read_text(encoding="utf-8").splitlines())
-    assert lines <= MAX_LINES, f"{name} has {lines} lines"
+    limit = LONGER_JOBS.get(name, (MAX_LINES, ""))[0]
+    assert _lines(name) <= limit, f"{name} has {_lines(name)} lines"
+
+
+def test_longer_jobs_are_few_and_still_long():
+    # an entry says why its one job needs more, stays under LONGEST and goes when it shrinks
+    for name, (limit, reason) in LONGER_JOBS.items():
+        assert name in MODULES and reason and MAX_LINES < limit <= LONGEST, name
+        assert _lines(name) > MAX_LINES, f"{name} fits in {MAX_LINES} lines again"
 
 
 def _cycle_from(start: str) -> list[str] | None:
@@ -89,16 +105,42 @@ def test_no_import_cycles():
     assert not cycles, "import cycles: " + "; ".join(" -> ".join(c) for c in cycles[:5])
 
 
-@pytest.mark.parametrize("layer", ["torsio.model", "torsio.physics", "torsio.solvers"])
-def test_core_layers_do_not_import_the_edges(layer):
-    # the flow of data runs one way: configuration and reports read the model, never back
-    edges = ("torsio.io", "torsio.cli")  # plotting is a layer of its own, results use it
+# The input side (the configuration and the built-in examples read from it), the output
+# side (the report) and the command line sit above the core; config/ is input only.
+INPUT = ("torsio.config", "torsio.examples")
+OUTPUT = ("torsio.report",)
+CLI = ("torsio.cli",)
+CORE = ("torsio.model", "torsio.physics", "torsio.solvers", "torsio.analysis", "torsio.well")
+CORE += ("torsio.axial", "torsio.calibration")
+LAYER_RULES = {
+    **{layer: INPUT + OUTPUT + CLI for layer in CORE},
+    "torsio.config": OUTPUT + CLI,
+    "torsio.report": CLI,
+}
+
+
+def _in(name: str, packages: tuple[str, ...]) -> bool:
+    return any(name == p or name.startswith(p + ".") for p in packages)
+
+
+@pytest.mark.parametrize("layer", list(LAYER_RULES))
+def test_layers_do_not_import_the_layers_above(layer):
+    # the flow of data runs one way: configuration builds the model, reports read it, never
+    # back (plotting is a layer of its own below the results, which use it)
     offenders = {
-        name: sorted(t for t in targets if t.startswith(edges))
+        name: sorted(t for t in targets if _in(t, LAYER_RULES[layer]))
         for name, targets in GRAPH.items()
-        if name.startswith(layer)
+        if _in(name, (layer,))
     }
     assert not {k: v for k, v in offenders.items() if v}
+
+
+def test_every_module_is_under_a_layer_rule_or_above_them():
+    # a new folder gets a rule (or joins the edges: cli, the package facade, the plugins)
+    top = {name.split(".")[1] for name in GRAPH if name.count(".") >= 1}
+    ruled = {p.split(".")[1] for p in LAYER_RULES} | {"cli", "examples"}
+    edges = {"__main__", "errors", "units", "hookspecs", "plugins", "kernel_cache", "plotting"}
+    assert top <= ruled | edges, sorted(top - ruled - edges)
 
 
 def test_deferred_imports_are_edges_and_type_checking_blocks_are_not(tmp_path):
@@ -108,7 +150,7 @@ def test_deferred_imports_are_edges_and_type_checking_blocks_are_not(tmp_path):
     source.write_text(
         "from typing import TYPE_CHECKING\n"
         "if TYPE_CHECKING:\n"
-        "    from torsio.io.config import Config\n"
+        "    from torsio.config.configuration import Config\n"
         "def run():\n"
         "    from torsio.model.modal import modal_analysis\n"
         "    from .wave import is_wave_model\n",

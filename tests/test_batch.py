@@ -22,9 +22,10 @@ import scipy.linalg
 
 from torsio.analysis.transient import simulate
 from torsio.errors import ConfigError
+from torsio.examples import builtin_config
 from torsio.model.lumped import LumpedModel
 from torsio.physics.laws import ConstantTorque, TuckerWang
-from torsio.physics.system import System, builtin_config
+from torsio.physics.system import System
 from torsio.solvers import batch, batch_results, cycles, numpy_engine
 
 TIGHT = {"method": "LSODA", "rtol": 1e-8, "atol": 1e-10}
@@ -117,9 +118,9 @@ def test_one_dof_constant_torque_matches_the_damped_oscillator(one_dof: System) 
 def test_multi_dof_constant_torque_matches_the_matrix_exponential(
     strategy: str, options: dict
 ) -> None:
-    system = _constant_torque(
-        System.from_config(builtin_config(), strategy=strategy, **options), 3000.0
-    ).at(rpm=80.0)
+    system = _constant_torque(builtin_config().system(strategy=strategy, **options), 3000.0).at(
+        rpm=80.0
+    )
     exact = _exact_severity(system, 30.0, 15.0)
     for engine in ("numba", "numpy") if system.model.dofs < 20 else ("numba",):
         result = batch.simulate_batch(
@@ -150,7 +151,7 @@ def test_one_dof_points_match_single_transient_runs(one_dof: System) -> None:
 
 def test_stiff_model_needs_no_tiny_steps() -> None:
     # strategy B, 40 + 10 elements: the highest modes are overdamped by beta [K]
-    system = System.from_config(builtin_config(), strategy="B", dp_elements=40, bha_elements=10)
+    system = builtin_config().system(strategy="B", dp_elements=40, bha_elements=10)
     model = batch.BatchModel.from_system(system)
     result = batch.simulate_batch(system, [150e3, 50e3], [60.0, 120.0])
     assert result.ok.all()
@@ -158,7 +159,7 @@ def test_stiff_model_needs_no_tiny_steps() -> None:
     assert abs(result.severity[0] - expected) <= 0.01
     # steady rotation (reference: S = 0 at 50 kN, 120 rpm); the run may end once the decaying
     # oscillation is within the steady-cycle tolerance (torsio.solvers.cycles)
-    assert result.severity[1] < batch.DEFAULT_STEADY_TOLERANCE
+    assert result.severity[1] < batch_results.DEFAULT_STEADY_TOLERANCE
     # an explicit method is stable only for h |lambda_max| < ~3.3 (RK45); the fastest
     # eigenvalue of the linearization is about beta omega_max^2
     from torsio.analysis.stability import eigenvalues

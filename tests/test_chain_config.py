@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 
 from torsio.cli import main
+from torsio.config.reading import parse_config_text
 from torsio.errors import ConfigError
-from torsio.io.config import parse_config_text
-from torsio.io.report import report_data
 from torsio.model.lumped import LumpedModel
 from torsio.physics.damping import ModelDamping, RayleighDamping
+from torsio.report.document import report_data
 
 # Two inertias I = (2, 1) kg m^2 on springs k = (100, 50) N m/rad, the first tied to the
 # top: det([K] - w^2 [I]) = 2 (w^2)^2 - 250 w^2 + 5000 = 0 gives w^2 = 25 and 100 exactly.
@@ -56,13 +56,12 @@ def test_chain_without_dampers_takes_rayleigh_damping():
 
 
 def test_chain_with_a_bit_law_builds_a_system():
-    from torsio.physics.system import System
 
     config = parse_config_text(TWO_NODES + BIT_ROCK + "[operation]\nwob = '50 kN'\nrpm = 60\n")
-    system = System.from_config(config)
+    system = config.system()
     assert system.model.dofs == 2 and system.bit_radius == 0.108 and system.string is None
     with_dampers = TWO_NODES.replace("[chain]", "[chain]\ndampings = [1.0, 2.0]")
-    system = System.from_config(parse_config_text(with_dampers + BIT_ROCK))
+    system = parse_config_text(with_dampers + BIT_ROCK).system()
     assert isinstance(system.damping, ModelDamping)  # the chain's own dampers, not Rayleigh
 
 

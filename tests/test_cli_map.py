@@ -15,7 +15,7 @@ import pytest
 
 from torsio.analysis import map_results, maps
 from torsio.cli import main
-from torsio.physics.system import System, builtin_config
+from torsio.examples import builtin_config
 
 ARGS = ["--strategy", "A", "--wob", "25kN:225kN:3", "--rpm", "40:140:3"]
 
@@ -27,7 +27,7 @@ def run_json(capsys: pytest.CaptureFixture[str], *args: str) -> dict:
 
 @pytest.fixture(scope="module")
 def library_map() -> map_results.SeverityMap:
-    system = System.from_config(builtin_config(), strategy="A")
+    system = builtin_config().system(strategy="A")
     return maps.severity_map(system, [25e3, 125e3, 225e3], [40.0, 90.0, 140.0])
 
 

@@ -8,7 +8,7 @@ import pytest
 
 from torsio.analysis.transient import simulate_config
 from torsio.cli import main
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config
 
 
 def report_json(capsys, *argv: str) -> dict:
@@ -85,12 +85,11 @@ def test_report_critical_wob_is_bracketed_by_single_runs(capsys):
     # Source: the transient analyzer (LSODA), independent of the batch engine of the maps:
     # below the reported bracket the start-up from rest is not severe, above it it is.
     from torsio.analysis.severity import SEVERE_THRESHOLD
-    from torsio.physics.system import System
 
     critical = report_json(capsys)["critical"]
     low, high = critical["bracket_n"]
     assert low < critical["critical_wob_n"] < high and high - low < 0.01 * critical["wob_n"]
-    system = System.from_config(builtin_config())
+    system = builtin_config().system()
     from torsio.analysis.transient import simulate
 
     assert simulate(system.at(wob=low), method="LSODA", rtol=1e-8).severity < SEVERE_THRESHOLD

@@ -15,7 +15,7 @@ import pytest
 
 from torsio.analysis.transient import simulate_config
 from torsio.cli import main
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config
 
 FAST = ["--strategy", "A", "--duration", "60", "--window", "20"]
 

@@ -11,8 +11,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from torsio import builtin_config, load_config, parse_config
+from torsio.config.reading import parse_config_text
 from torsio.errors import ConfigError, TorsioError
-from torsio.io.config import parse_config_text
 
 BUILTIN = tomllib.loads(
     resources.files("torsio").joinpath("data/ritto2017.toml").read_text(encoding="utf-8")

@@ -16,6 +16,7 @@ import pytest
 
 from torsio.analysis.transient import simulate
 from torsio.errors import ConfigError
+from torsio.examples import builtin_config
 from torsio.model.modal import modal_analysis
 from torsio.physics.dimensionless import (
     DimensionlessLaw,
@@ -23,7 +24,6 @@ from torsio.physics.dimensionless import (
     dimensionless_groups,
     dimensionless_system,
 )
-from torsio.physics.system import System, builtin_config
 from torsio.plugins import get_bit_law
 
 RPM = 30.0 / math.pi  # rpm per rad/s
@@ -35,7 +35,7 @@ def config():
 
 
 def test_groups_of_strategy_a(config):
-    system = System.from_config(config, strategy="A").at(wob=100e3, rpm=60)
+    system = config.system(strategy="A").at(wob=100e3, rpm=60)
     groups = dimensionless_groups(system)
     assert groups.k_eq == pytest.approx(324.86, abs=0.005)  # ERRATA 1
     omega1 = math.sqrt(324.8566 / 455.6497)  # ERRATA 1: k / I of the single DOF
@@ -56,7 +56,7 @@ def test_groups_of_strategy_a(config):
 @pytest.mark.parametrize("strategy", ["A", "C"])
 def test_dimensionless_model_scales(config, strategy):
     options = {} if strategy == "C" else {"strategy": strategy}
-    system = System.from_config(config, **options).at(wob=100e3, rpm=60)
+    system = config.system(**options).at(wob=100e3, rpm=60)
     scaled = dimensionless_system(system)
     assert scaled.model.equivalent_stiffness == pytest.approx(1.0, rel=1e-12)
     first = modal_analysis(scaled.model, 1).frequencies_rad[0]
@@ -72,7 +72,7 @@ def test_dimensionless_model_scales(config, strategy):
 
 def test_tucker_wang_torque_is_equation_11(config):
     """The dimensionless bit torque is Pi_2 b0 (tanh(b1 s) + b2 s / (1 + b3 s^2))."""
-    system = System.from_config(config).at(wob=100e3, rpm=60)
+    system = config.system().at(wob=100e3, rpm=60)
     groups = dimensionless_groups(system)
     scaled = dimensionless_system(system)
     s = np.linspace(-3.0, 12.0, 31)
@@ -86,7 +86,7 @@ def test_tucker_wang_torque_is_equation_11(config):
 def test_any_law_rescaled(config):
     """Any law: T'(s) = T(omega_1 s, W, R) / k_eq, and its slope scales by omega_1/k_eq."""
     law = get_bit_law("coulomb-stribeck")()
-    system = attrs.evolve(System.from_config(config), law=law).at(wob=100e3, rpm=20)
+    system = attrs.evolve(config.system(), law=law).at(wob=100e3, rpm=20)
     groups = dimensionless_groups(system)
     assert groups.tucker_wang is None and groups.b2 is None
     scaled = dimensionless_system(system)
@@ -127,7 +127,7 @@ def _compare(system):
 @pytest.mark.parametrize(("law", "rpm"), [("tucker-wang", 60.0), ("coulomb-stribeck", 20.0)])
 def test_dimensionless_run_equals_dimensional(config, strategy, law, rpm):
     options = {} if strategy == "C" else {"strategy": strategy}
-    system = System.from_config(config, **options).at(wob=100e3, rpm=rpm)
+    system = config.system(**options).at(wob=100e3, rpm=rpm)
     if law != "tucker-wang":
         system = attrs.evolve(system, law=get_bit_law(law)())
     dimensional, dimensionless, speed_error = _compare(system)
@@ -154,7 +154,7 @@ def test_dimensionless_model_damping(chain_with_own_dampers):
 
 
 def test_system_at_groups(config):
-    system = System.from_config(config)
+    system = config.system()
     at = dimensional_system(system, pi1=5.0, pi2=20.0)
     groups = dimensionless_groups(at)
     assert (groups.pi1, groups.pi2) == (pytest.approx(5.0), pytest.approx(20.0))
@@ -166,7 +166,7 @@ def test_system_at_groups(config):
     ("pi1", "pi2", "key"), [(0.0, 1.0, "pi1"), (-2.0, 1.0, "pi1"), (1.0, -1.0, "pi2")]
 )
 def test_bad_groups(config, pi1, pi2, key):
-    system = System.from_config(config)
+    system = config.system()
     with pytest.raises(ConfigError) as info:
         dimensionless_system(system, pi1=pi1, pi2=pi2)
     assert info.value.key == key

@@ -22,7 +22,7 @@ from torsio import (
     top_drive_from_parameters,
 )
 from torsio.errors import ConfigError
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config
 from torsio.physics.dynamics import Dynamics
 from torsio.physics.system import System
 from torsio.plugins import top_drives
@@ -56,7 +56,7 @@ def finite_difference_jacobian(dynamics: Dynamics, y: np.ndarray) -> np.ndarray:
 def test_jacobian_is_the_derivative_of_the_rhs(strategy: str, top: object) -> None:
     # exact identity: the analytic Jacobian equals a central difference of rhs
     # (truncation error ~1e-12 relative at step 1e-6)
-    system = System.from_config(builtin_config(), strategy=strategy).at(wob=100e3, rpm=60)
+    system = builtin_config().system(strategy=strategy).at(wob=100e3, rpm=60)
     dynamics = system.with_top(top).dynamics()
     rng = np.random.default_rng(1)
     y = dynamics.steady_state() + 0.01 * rng.standard_normal(dynamics.size)
@@ -71,7 +71,7 @@ def test_jacobian_is_the_derivative_of_the_rhs(strategy: str, top: object) -> No
 @pytest.mark.parametrize("top", tops(), ids=lambda t: getattr(t, "name", "?"))
 def test_steady_rotation_is_a_fixed_point(top: object) -> None:
     # steady rotation at Omega_ref solves the equations exactly (rhs = 0 to round-off)
-    system = System.from_config(builtin_config(), strategy="C").at(wob=60e3, rpm=80)
+    system = builtin_config().system(strategy="C").at(wob=60e3, rpm=80)
     dynamics = system.with_top(top).dynamics()
     y = dynamics.steady_state()
     scale = np.max(np.abs(dynamics.stiffness_matrix)) * max(1.0, np.max(np.abs(y)))
@@ -79,7 +79,7 @@ def test_steady_rotation_is_a_fixed_point(top: object) -> None:
 
 
 def test_held_top_keeps_the_model_and_a_top_node_extends_it() -> None:
-    system = System.from_config(builtin_config(), strategy="C").at(wob=60e3, rpm=80)
+    system = builtin_config().system(strategy="C").at(wob=60e3, rpm=80)
     held = system.dynamics()
     assert held.dofs == system.model.dofs and held.states == 0
     assert held.reference_speed == system.omega
@@ -97,7 +97,7 @@ def test_strategy_b_chain_is_tied_to_the_top_at_its_first_node_only() -> None:
     # strategy B's drill-pipe/BHA junction leaves round-off in that row sum (3.6e-12 N m/rad
     # for the built-in string), which is not a spring to the top: a top drive with inertia
     # takes the model, and its node joins the first node by k_1 and c_1 = beta k_1
-    system = System.from_config(builtin_config(), strategy="B").at(wob=100e3, rpm=60)
+    system = builtin_config().system(strategy="B").at(wob=100e3, rpm=60)
     k = system.model.stiffness
     assert k.sum(axis=1)[1] != 0.0  # the round-off this checks against is really there
     springs = -np.diag(k, 1)  # k_2 .. k_n: the chain's springs below the first node
@@ -111,14 +111,14 @@ def test_strategy_b_chain_is_tied_to_the_top_at_its_first_node_only() -> None:
 
 
 def test_consistent_mass_with_a_top_drive_is_refused() -> None:
-    system = System.from_config(builtin_config(), strategy="consistent")
+    system = builtin_config().system(strategy="consistent")
     with pytest.raises(ConfigError, match="discretization.strategy.*lumped-mass"):
         system.with_top(PITopDrive(inertia=J_TD, kp=1e4, ki=1e3)).dynamics()
 
 
 def test_torque_top_turns_at_the_torque_balance_speed() -> None:
     # u = sum(drag) Omega + T_bit(Omega): the reference speed solves the balance
-    system = System.from_config(builtin_config(), strategy="A").at(wob=50e3)
+    system = builtin_config().system(strategy="A").at(wob=50e3)
     top = TorqueTopDrive(inertia=930.0, torque=1.5e4, drag=425.0)
     dynamics = system.with_top(top).dynamics()
     omega = dynamics.reference_speed
@@ -131,7 +131,7 @@ def test_pi_impedance_is_a_pure_damper_at_the_tuning_frequency() -> None:
     omega_s = 0.8444
     top = PITopDrive(inertia=J_TD, kp=7000.0, ki=omega_s**2 * J_TD)
     assert abs(top.impedance(omega_s) - 7000.0) <= 1e-12 * 7000.0
-    boundary = top.boundary(System.from_config(builtin_config(), strategy="A"))
+    boundary = top.boundary(builtin_config().system(strategy="A"))
     assert abs(boundary.impedance(omega_s) - 7000.0) <= 1e-12 * 7000.0
     assert top.reflection_coefficient(7000.0) == 0.0
     assert top.reflection_coefficient(3 * 7000.0) == pytest.approx(0.5, rel=1e-15)
@@ -141,7 +141,7 @@ def test_soft_torque_default_tuning() -> None:
     # ki = omega_1^2 J and kp = zeta = J_p sqrt(G rho) of the top section (SoftTorque tuning)
     from torsio.model.modal import modal_analysis
 
-    system = System.from_config(builtin_config(), strategy="C")
+    system = builtin_config().system(strategy="C")
     omega_1 = float(modal_analysis(system.model, 1).frequencies_rad[0])
     section = system.string.sections[0]
     zeta = section.polar_moment * math.sqrt(
@@ -201,7 +201,7 @@ def test_plugin_guide_top_drive_example() -> None:
     plugin_manager().register(module, name="proportional_top")
     try:
         top = top_drive_from_parameters("proportional", inertia=J_TD, kp=5e3)
-        system = System.from_config(builtin_config(), strategy="A").at(wob=20e3, rpm=60)
+        system = builtin_config().system(strategy="A").at(wob=20e3, rpm=60)
         dynamics = system.with_top(top).dynamics()
         # a pure proportional loop: a top-drive node, no controller state
         assert dynamics.states == 0 and dynamics.has_top_node

@@ -19,10 +19,10 @@ import pytest
 
 from torsio.analysis.energy import damping_split, energy_balance
 from torsio.analysis.transient import simulate
+from torsio.examples import builtin_config
 from torsio.model.modal import modal_analysis
 from torsio.physics.damping import RayleighDamping
 from torsio.physics.laws import ConstantTorque
-from torsio.physics.system import System, builtin_config
 
 BALANCE_TOLERANCE = 1e-5  # fraction of the work in, see the module docstring
 
@@ -40,7 +40,7 @@ def test_energy_balance_stick_slip(config, strategy, wob, rpm):
     options = {} if strategy == "C" else {"strategy": strategy}
     if strategy == "consistent":
         options.update(dp_elements=5, bha_elements=2)
-    results = simulate(System.from_config(config, **options).at(wob=wob, rpm=rpm))
+    results = simulate(config.system(**options).at(wob=wob, rpm=rpm))
     assert results.severity > 0.8  # a stick-slip run
     balance = energy_balance(results)
     assert balance.relative_residual < BALANCE_TOLERANCE
@@ -65,7 +65,7 @@ def test_energy_balance_model_damping(chain_with_own_dampers):
 def test_undamped_no_load_work_goes_into_stored_energy(config):
     """No damping and no bit torque: work in = change of kinetic + potential energy."""
     system = attrs.evolve(
-        System.from_config(config),
+        config.system(),
         damping=RayleighDamping(0.0, 0.0),
         law=ConstantTorque(torque_on_bit=0.0),
         rpm=60.0,
@@ -95,7 +95,7 @@ def test_steady_rotation_drag(config):
     """
     alpha, torque = 0.35, 3000.0
     system = attrs.evolve(
-        System.from_config(config),
+        config.system(),
         damping=RayleighDamping(alpha, 1.0),
         law=ConstantTorque(torque_on_bit=torque),
         rpm=60.0,

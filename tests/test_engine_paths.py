@@ -30,10 +30,11 @@ import numpy as np
 import pytest
 
 from torsio.analysis.transient import simulate
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config
 from torsio.physics.system import System
 from torsio.plugins import get_bit_law, top_drive_from_parameters
-from torsio.solvers.batch import DEFAULT_STEADY_TOLERANCE, simulate_batch
+from torsio.solvers.batch import simulate_batch
+from torsio.solvers.batch_results import DEFAULT_STEADY_TOLERANCE
 from torsio.solvers.reference import reference_severity
 
 DURATION, WINDOW = 60.0, 20.0  # s: long enough for stick-slip to form from rest
@@ -44,7 +45,7 @@ POINT = {"tucker-wang": (150e3, 60.0), "coulomb-stribeck": (100e3, 30.0)}
 
 
 def _system(dofs: int, law: str, top: str) -> System:
-    system = System.from_config(builtin_config(), **MODELS[dofs])
+    system = builtin_config().system(**MODELS[dofs])
     assert system.model.dofs == dofs
     if law != "tucker-wang":
         system = attrs.evolve(system, law=get_bit_law(law)())

@@ -22,9 +22,9 @@ from torsio.calibration.parameters import SystemFamily
 from torsio.calibration.recording import Recording
 from torsio.calibration.start import closed_form_start
 from torsio.cli import main
+from torsio.config.top_drive import TopDriveConfig
 from torsio.errors import ConfigError
 from torsio.examples import deviated_well_config
-from torsio.io.top_drive_config import TopDriveConfig
 from torsio.physics.top_drives import SoftTorqueTopDrive
 
 pytestmark = pytest.mark.filterwarnings("ignore::UserWarning")

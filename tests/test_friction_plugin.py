@@ -25,11 +25,11 @@ import numpy as np
 import pytest
 
 from torsio.analysis.transient import simulate
+from torsio.config.reading import parse_config_text
 from torsio.errors import ConfigError
+from torsio.examples import builtin_config
 from torsio.hookspecs import hookimpl
-from torsio.io.config import parse_config_text
 from torsio.physics.laws import BitRockLaw, TuckerWang
-from torsio.physics.system import System, builtin_config
 from torsio.plugins import PluginWarning, bit_laws, get_bit_law, plugin_manager
 
 PLUGIN_DIR = Path(__file__).resolve().parents[1] / "plugins" / "torsio-friction-laws"
@@ -147,7 +147,7 @@ def test_plugin_law_in_a_configuration_file():
         "[discretization]\nstrategy = 'A'\n"
     )
     config = parse_config_text(text)
-    system = System.from_config(config).at(wob=100e3, rpm=20)
+    system = config.system().at(wob=100e3, rpm=20)
     assert system.law.name == "coulomb-stribeck"
     assert system.law.stribeck_speed == pytest.approx(10.6 * math.pi / 30)
     results = simulate(system)
@@ -215,7 +215,7 @@ def test_broken_plugin_is_reported_not_fatal(monkeypatch, fresh_plugins):
     # the other laws keep working
     assert "tucker-wang" in laws and "coulomb-stribeck" in laws
     with pytest.warns(PluginWarning, match="raising_laws"):  # reported again on each look-up
-        system = System.from_config(builtin_config(), strategy="A").at(wob=100e3, rpm=60)
+        system = builtin_config().system(strategy="A").at(wob=100e3, rpm=60)
     assert simulate(system, duration=40.0, steady_window=10.0).severity >= 0.0
 
 
@@ -308,7 +308,7 @@ def test_fresh_environment_discovers_the_plugin(tmp_path):
 def test_plugin_system_runs_in_strategy_c():
     """A plugin law drives the multi-DOF model like the built-in one (stick-slip found)."""
     law = get_bit_law("coulomb-stribeck")()
-    system = attrs.evolve(System.from_config(builtin_config()), law=law).at(wob=100e3, rpm=20)
+    system = attrs.evolve(builtin_config().system(), law=law).at(wob=100e3, rpm=20)
     results = simulate(system)
     assert results.severity > 0.8
     assert results.stick_fraction > 0.1

@@ -13,9 +13,10 @@ import numpy as np
 import pytest
 
 from torsio.cli import main
+from torsio.config.reading import load_config, parse_config_text
 from torsio.errors import ConfigError, PluginError, SolverError
+from torsio.examples import builtin_config
 from torsio.hookspecs import hookimpl
-from torsio.io.config import builtin_config, load_config, parse_config_text
 from torsio.physics.laws import BitRockLaw, Parameter
 from torsio.plugins import build_bit_law, plugin_manager
 
@@ -254,9 +255,8 @@ def test_nan_torque_on_the_command_line_names_the_law(test_laws, capsys, tmp_pat
 
 def test_nan_torque_during_a_run_names_the_law(test_laws):
     from torsio.analysis.transient import simulate
-    from torsio.physics.system import System
 
-    system = System.from_config(builtin_config(), strategy="A").at(wob=100e3, rpm=60)
+    system = builtin_config().system(strategy="A").at(wob=100e3, rpm=60)
     system = type(system)(**{**_fields(system), "law": build_bit_law("test-nan-later", {})})
     with pytest.raises(SolverError, match=r"'test-nan-later'.*torsio-test-laws"):
         simulate(system, duration=60.0, steady_window=20.0)

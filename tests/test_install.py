@@ -135,7 +135,7 @@ def test_init_writes_a_template_that_runs(tmp_path: Path, capsys) -> None:
     import warnings
 
     from torsio.cli.init import template_text
-    from torsio.io.config import load_config
+    from torsio.config.reading import load_config
 
     path = tmp_path / "new.toml"
     assert main(["init", str(path)]) == 0

@@ -17,9 +17,9 @@ import attrs
 import numpy as np
 import pytest
 
+from torsio.config.reading import parse_config_text
 from torsio.errors import ConfigError
 from torsio.hookspecs import hookimpl
-from torsio.io.config import parse_config_text
 from torsio.physics.dimensionless import DimensionlessTuckerWang, dimensionless_system
 from torsio.physics.laws import ConstantTorque, TuckerWang
 from torsio.physics.system import System

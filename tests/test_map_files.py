@@ -60,10 +60,9 @@ def test_messages_name_the_cause(tmp_path):
 @pytest.fixture(scope="module")
 def small_map():
     from torsio.analysis.maps import severity_map
-    from torsio.io.config import builtin_config
-    from torsio.physics.system import System
+    from torsio.examples import builtin_config
 
-    system = System.from_config(builtin_config(), strategy="A")
+    system = builtin_config().system(strategy="A")
     return severity_map(system, wob=[50e3, 150e3], rpm=[60.0, 100.0], refine=0)
 
 

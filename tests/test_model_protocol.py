@@ -181,22 +181,24 @@ def test_engine_names_are_checked_and_resolve_names_what_is_missing():
 def test_wave_transient_engine_runs_like_wave_response():
     import attrs
 
+    from torsio.analysis.simulation_options import SimulationOptions
     from torsio.analysis.wave import simulate_wave, wave_response
-    from torsio.io.config import builtin_config
+    from torsio.examples import builtin_config
     from torsio.physics.damping import RayleighDamping
 
     system = builtin_config().system(strategy="wave")
     system = attrs.evolve(system, damping=RayleighDamping(alpha=0.35)).at(wob=150e3, rpm=60)
     options = {"duration": 3.0, "steady_window": 1.0}
-    results = simulate_wave(system, **options, method="LSODA", rtol=1e-6)  # not used
-    reference = wave_response(system, **options).transient
+    given = SimulationOptions(**options, method="LSODA", rtol=1e-6)  # the grid's: not used
+    results = simulate_wave(system, given, progress=False)
+    reference = wave_response(system, **options, progress=False).transient
     assert results.severity == reference.severity
     np.testing.assert_array_equal(results.bit_speed, reference.bit_speed)
 
 
 def test_the_wave_stepping_refuses_a_model_that_does_not_name_it():
     from torsio.analysis.wave import wave_response
-    from torsio.io.config import builtin_config
+    from torsio.examples import builtin_config
 
     with pytest.raises(ConfigError, match="expected the wave model"):
         wave_response(builtin_config().system())  # strategy C: the lumped engines

@@ -23,7 +23,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from torsio.analysis.transient import simulate_config
-from torsio.io.config import parse_config_text
+from torsio.config.reading import parse_config_text
 
 pytest.importorskip("torsio_friction_laws")
 

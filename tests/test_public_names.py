@@ -8,10 +8,12 @@ top-level name to its defining module (``torsio._EXPORTS``).
 
 from __future__ import annotations
 
+import ast
 import importlib
 import inspect
 import pkgutil
 from collections import defaultdict
+from pathlib import Path
 
 import torsio
 
@@ -51,3 +53,21 @@ def test_top_level_names_come_from_their_defining_module():
         value = getattr(torsio, name)
         if inspect.isclass(value) or inspect.isfunction(value):  # (hookimpl: a pluggy marker)
             assert value.__module__ == module, f"torsio.{name}: {module}, not {value.__module__}"
+
+
+def test_the_type_checking_imports_of_torsio_are_its_name_table():
+    # torsio/__init__.py imports its names for type checkers only; they must be _EXPORTS
+    tree = ast.parse(Path(torsio.__file__).read_text(encoding="utf-8"))
+    block = next(
+        node
+        for node in tree.body
+        if isinstance(node, ast.If) and ast.unparse(node.test) == "TYPE_CHECKING"
+    )
+    imported = {
+        (node.module, alias.name)
+        for node in ast.walk(block)
+        if isinstance(node, ast.ImportFrom)
+        for alias in node.names
+    }
+    assert imported == {(module, name) for name, module in torsio._LAZY.items()}
+    assert torsio.__all__ == list(torsio._LAZY)

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from torsio import parse_config
-from torsio.io.config import parse_config_text
+from torsio.config.reading import parse_config_text
 
 README = (Path(__file__).parents[1] / "README.md").read_text(encoding="utf-8")
 

@@ -12,9 +12,9 @@ import pytest
 
 from torsio.analysis.wave import wave_response
 from torsio.calibration.recording import Recording, read_recording
+from torsio.config.reading import load_config
 from torsio.errors import ConfigError
 from torsio.examples import deviated_well_config
-from torsio.io.config import load_config
 from torsio.physics.recorded_top import RecordedTopDrive
 
 HEADER = "time,top_rpm,surface_torque\n"

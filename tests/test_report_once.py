@@ -20,9 +20,9 @@ import scipy.linalg
 import torsio.analysis.maps
 import torsio.analysis.transient
 from torsio.cli import main
-from torsio.io.html_report import MAP_GRID, have_matplotlib
 from torsio.physics.laws import BitRockLaw
 from torsio.plugins import discretizers
+from torsio.report.html import MAP_GRID, have_matplotlib
 
 
 def _spy(monkeypatch, calls, owner, name, key):
@@ -72,8 +72,9 @@ def test_each_output_reuses_the_sections(calls, capsys):
     # terminal and JSON of one context: the sections are computed once, not per output
     from rich.console import Console
 
-    from torsio.io.config import builtin_config
-    from torsio.io.report import ReportContext, render, report_data
+    from torsio.examples import builtin_config
+    from torsio.report.context import ReportContext
+    from torsio.report.document import render, report_data
 
     ctx = ReportContext(builtin_config(), strategy="A")
     first = report_data(ctx)

@@ -24,7 +24,7 @@ def test_model_and_system_reprs(ten_dof: System, chain_with_own_dampers: System)
     assert_short(repr(ten_dof), "System('Ritto et al. (2017)'", "10 DOFs", "100 rpm")
     assert_short(repr(ten_dof.string), "4 sections", "'Drill bit 8 1/2 in'")
     assert_short(repr(chain_with_own_dampers.model), "3 DOFs", "own dampers")
-    large = System.from_config(builtin_config(), strategy="B", dp_elements=400)
+    large = builtin_config().system(strategy="B", dp_elements=400)
     assert_short(repr(large), "DOFs")
 
 

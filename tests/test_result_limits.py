@@ -22,7 +22,7 @@ from torsio.analysis.maps import severity_map
 from torsio.analysis.severity import first_natural_frequency
 from torsio.analysis.transient import simulate
 from torsio.cli import main
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config
 
 
 @pytest.fixture(scope="module")

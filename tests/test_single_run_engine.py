@@ -31,7 +31,7 @@ import pytest
 
 from torsio.analysis.transient import simulate
 from torsio.errors import ConfigError
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config
 from torsio.physics.dynamics import Dynamics
 from torsio.physics.system import System
 from torsio.plugins import top_drive_from_parameters
@@ -70,7 +70,7 @@ class UncompilableStribeck(PlainStribeck):
 
 
 def _system(dofs: int, law: str = "tucker-wang", top: str = "constant-speed") -> System:
-    system = System.from_config(builtin_config(), **MODELS[dofs])
+    system = builtin_config().system(**MODELS[dofs])
     assert system.model.dofs == dofs
     wob, rpm = 150e3, 60.0
     if law == "plain":

@@ -16,7 +16,8 @@ from importlib import resources
 
 from torsio.analysis.transient import simulate_config
 from torsio.cli import main
-from torsio.io.config import builtin_config, parse_config_text
+from torsio.config.reading import parse_config_text
+from torsio.examples import builtin_config
 from torsio.physics.top_drive_boundary import top_pipe_impedance
 
 INERTIA = 2900.0

@@ -28,15 +28,16 @@ from torsio.analysis.stability import (
     linearized_matrix,
     stability_boundary,
 )
+from torsio.examples import builtin_config
 from torsio.physics.laws import BitRockLaw, Parameter
-from torsio.physics.system import System, builtin_config
+from torsio.physics.system import System
 
 RPM = np.linspace(40.0, 140.0, 51)
 
 
 @pytest.fixture(scope="module")
 def one_dof() -> System:
-    return System.from_config(builtin_config(), strategy="A")
+    return builtin_config().system(strategy="A")
 
 
 def normalized_slope(speed: np.ndarray) -> np.ndarray:
@@ -91,7 +92,7 @@ def test_one_dof_receptance_closed_form(one_dof: System) -> None:
 def test_multi_dof_boundary_is_where_an_eigenvalue_crosses(
     strategy: str, options: dict[str, Any]
 ) -> None:
-    system = System.from_config(builtin_config(), strategy=strategy, **options)
+    system = builtin_config().system(strategy=strategy, **options)
     critical = critical_bit_damping(system)
     # eigenvalues of the first-order system, computed here without the library
     n = system.model.dofs
@@ -161,7 +162,7 @@ def test_law_not_proportional_to_wob(one_dof: System) -> None:
 
 def test_fine_model_boundary_matches_eigenvalues() -> None:
     # 150 DOFs (receptance scan, O(n) per frequency) against the eigenvalues
-    system = System.from_config(builtin_config(), strategy="C", dp_elements=150)
+    system = builtin_config().system(strategy="C", dp_elements=150)
     critical = critical_bit_damping(system)
     assert (
         growth_rate(system, critical.slope * (1 - 1e-6))

@@ -11,10 +11,11 @@ import numpy as np
 import pytest
 
 from torsio.errors import ConfigError
-from torsio.physics.system import System, builtin_config
+from torsio.examples import builtin_config
 from torsio.plugins import top_drive_from_parameters
 from torsio.solvers import cycles
-from torsio.solvers.batch import DEFAULT_STEADY_TOLERANCE, simulate_batch
+from torsio.solvers.batch import simulate_batch
+from torsio.solvers.batch_results import DEFAULT_STEADY_TOLERANCE
 
 DURATION, WINDOW = 300.0, 100.0  # s: the benchmark's runs (40 first-mode periods)
 
@@ -26,10 +27,12 @@ def _grid(points: int) -> tuple[np.ndarray, np.ndarray]:
 
 @pytest.mark.parametrize("strategy", [{"strategy": "A"}, {"strategy": "C", "dp_elements": 5}])
 def test_ending_on_the_cycle_keeps_the_severity_of_the_whole_run(strategy: dict) -> None:
-    system = System.from_config(builtin_config(), **strategy)
+    system = builtin_config().system(**strategy)
     wob, rpm = _grid(9)
-    whole = simulate_batch(system, wob, rpm, DURATION, WINDOW, steady_tolerance=0.0)
-    early = simulate_batch(system, wob, rpm, DURATION, WINDOW)
+    whole = simulate_batch(
+        system, wob, rpm, duration=DURATION, steady_window=WINDOW, steady_tolerance=0.0
+    )
+    early = simulate_batch(system, wob, rpm, duration=DURATION, steady_window=WINDOW)
     assert whole.ok.all() and early.ok.all()
     assert (whole.ended == DURATION).all()
     assert np.max(np.abs(early.severity - whole.severity)) <= DEFAULT_STEADY_TOLERANCE
@@ -51,24 +54,26 @@ def test_ending_on_the_cycle_keeps_the_severity_of_the_whole_run(strategy: dict)
     ],
 )
 def test_hard_points_keep_the_severity_of_the_whole_run(strategy: dict, wob: float, rpm: float):
-    system = System.from_config(builtin_config(), **strategy)
-    whole = simulate_batch(system, [wob], [rpm], DURATION, WINDOW, steady_tolerance=0.0)
-    early = simulate_batch(system, [wob], [rpm], DURATION, WINDOW)
+    system = builtin_config().system(**strategy)
+    whole = simulate_batch(
+        system, [wob], [rpm], duration=DURATION, steady_window=WINDOW, steady_tolerance=0.0
+    )
+    early = simulate_batch(system, [wob], [rpm], duration=DURATION, steady_window=WINDOW)
     assert abs(early.severity[0] - whole.severity[0]) <= DEFAULT_STEADY_TOLERANCE
 
 
 def test_a_torque_driven_top_runs_to_the_end() -> None:
     # its S_SS is relative to the mean top speed over the whole window
-    system = System.from_config(builtin_config(), strategy="A")
+    system = builtin_config().system(strategy="A")
     top = top_drive_from_parameters("torque", inertia=930.0, torque=10e3, drag=425.0)
-    result = simulate_batch(system.with_top(top), [60e3], None, 120.0, 40.0)
+    result = simulate_batch(system.with_top(top), [60e3], None, duration=120.0, steady_window=40.0)
     assert result.steady_tolerance == 0.0
     assert (result.ended == 120.0).all()
 
 
 @pytest.mark.parametrize("value", [-1e-3, 0.5, float("nan"), True])
 def test_steady_tolerance_is_checked(value: float) -> None:
-    system = System.from_config(builtin_config(), strategy="A")
+    system = builtin_config().system(strategy="A")
     with pytest.raises(ConfigError, match="steady_tolerance"):
         simulate_batch(system, [1e5], [60.0], steady_tolerance=value)
 

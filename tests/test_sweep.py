@@ -18,7 +18,8 @@ from torsio.analysis.map_results import SeverityMap
 from torsio.analysis.maps import severity_map
 from torsio.analysis.sweep import SweepError, SweepInterrupted, run_tasks
 from torsio.errors import ConfigError
-from torsio.physics.system import System, builtin_config
+from torsio.examples import builtin_config
+from torsio.physics.system import System
 
 WOB = np.linspace(25e3, 225e3, 6)
 RPM = np.linspace(40.0, 140.0, 4)
@@ -26,7 +27,7 @@ RPM = np.linspace(40.0, 140.0, 4)
 
 @pytest.fixture(scope="module")
 def system() -> System:
-    return System.from_config(builtin_config(), strategy="C", dp_elements=4)
+    return builtin_config().system(strategy="C", dp_elements=4)
 
 
 @pytest.fixture(scope="module")

@@ -26,7 +26,7 @@ from torsio.analysis.severity import first_natural_frequency
 from torsio.analysis.stability import bit_receptance, eigenvalues, linearized_matrix
 from torsio.analysis.transient import simulate
 from torsio.errors import ConfigError
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config
 from torsio.physics.dimensionless import dimensionless_system, top_drive_groups
 from torsio.physics.system import System
 from torsio.physics.top_drive_boundary import top_pipe_impedance
@@ -49,7 +49,7 @@ class ViscousBit:
 
 @pytest.fixture(scope="module")
 def one_dof_a() -> System:
-    return System.from_config(builtin_config(), strategy="A")
+    return builtin_config().system(strategy="A")
 
 
 def test_torque_top_with_viscous_bit_reaches_the_balance_speed(one_dof_a: System) -> None:
@@ -145,9 +145,7 @@ def test_linearization_eigenvalues_equal_those_of_the_rhs_jacobian(
     law_name: str, strategy: str, options: dict[str, int], top: str
 ) -> None:
     # reference: central-difference Jacobian of the right-hand side about steady rotation
-    system = System.from_config(builtin_config(), strategy=strategy, **options).at(
-        wob=60e3, rpm=50.0
-    )
+    system = builtin_config().system(strategy=strategy, **options).at(wob=60e3, rpm=50.0)
     if law_name == "coulomb-stribeck":
         system = System(
             model=system.model,
@@ -181,9 +179,7 @@ def test_linearization_eigenvalues_equal_those_of_the_rhs_jacobian(
 @pytest.mark.parametrize("strategy", ["A", "C"])
 def test_receptance_with_a_top_drive_is_that_of_the_linearization(strategy: str) -> None:
     # G(w) = C (i w - A)^-1 B: A the linearization at zero bit slope, B = e_vbit / I_bit
-    system = System.from_config(builtin_config(), strategy=strategy).with_top(
-        SoftTorqueTopDrive(inertia=J_TD)
-    )
+    system = builtin_config().system(strategy=strategy).with_top(SoftTorqueTopDrive(inertia=J_TD))
     a = linearized_matrix(system, bit_slope=0.0)
     dynamics = system.dynamics()
     n = dynamics.dofs
@@ -233,7 +229,7 @@ def test_linear_boundary_moves_with_the_tuning(one_dof_a: System) -> None:
 @pytest.mark.parametrize("strategy", ["B", "C"])
 def test_energy_balance_with_a_top_drive(top: Any, strategy: str) -> None:
     # conservation law: motor work = stored (top drive included) + dissipated + work at the bit
-    system = System.from_config(builtin_config(), strategy=strategy).at(wob=100e3, rpm=60)
+    system = builtin_config().system(strategy=strategy).at(wob=100e3, rpm=60)
     system = system.with_top(top)
     # the motor torque has kinks where it meets its limit: the Simpson rule of the balance
     # needs a finer grid than the default (measured residual 1.7e-5 at 0.038 s, 1.8e-6 at 0.01 s)

@@ -11,10 +11,9 @@ from importlib import resources
 import pytest
 
 from torsio.cli import main
+from torsio.config.reading import parse_config
 from torsio.errors import ConfigError
-from torsio.io.config import builtin_config, parse_config
-from torsio.io.report import report_data
-from torsio.physics.system import System
+from torsio.examples import builtin_config
 from torsio.physics.top_drives import (
     ConstantSpeedTop,
     PITopDrive,
@@ -23,6 +22,7 @@ from torsio.physics.top_drives import (
     ZTorqueTopDrive,
     top_pipe_impedance,
 )
+from torsio.report.document import report_data
 
 BUILTIN = tomllib.loads(
     resources.files("torsio").joinpath("data/ritto2017.toml").read_text(encoding="utf-8")
@@ -43,7 +43,7 @@ def with_top_drive(table: dict | None, strategy: str = "A", operation: bool = Tr
 def test_absent_table_is_constant_speed():
     config = builtin_config()
     assert config.top_drive.kind == "constant-speed"
-    assert isinstance(System.from_config(config).top, ConstantSpeedTop)
+    assert isinstance(config.system().top, ConstantSpeedTop)
 
 
 def test_each_kind_is_built_with_units():
@@ -57,9 +57,9 @@ def test_each_kind_is_built_with_units():
         data = with_top_drive({"kind": kind, **parameters})
         if kind == "torque":
             del data["operation"]["rpm"]
-        top = System.from_config(parse_config(data)).top
+        top = parse_config(data).system().top
         assert isinstance(top, cls), kind
-    pi = System.from_config(parse_config(with_top_drive({"kind": "pi", **cases["pi"][0]}))).top
+    pi = parse_config(with_top_drive({"kind": "pi", **cases["pi"][0]})).system().top
     assert (pi.kp, pi.ki) == (23e3, 14.5e3)  # converted from kN to N
 
 
@@ -119,11 +119,11 @@ def test_soft_torque_on_a_chain_needs_kp():
         "[bit_rock]\nlaw = 'tucker-wang'\nradius = 0.1\na0 = 0.2\na1 = 0.2\na2 = 0.9\na3 = 0.06\n"
         "[top_drive]\nkind = 'soft-torque'\ninertia = 2900.0\n"
     )
-    from torsio.io.config import parse_config_text
+    from torsio.config.reading import parse_config_text
 
     config = parse_config_text(text)
     with pytest.raises(ConfigError, match="kp") as info:
-        System.from_config(config).top.boundary(System.from_config(config))
+        config.system().top.boundary(config.system())
     assert info.value.key == "top_drive.kp"
 
 
@@ -132,7 +132,7 @@ def test_report_top_drive_section_for_soft_torque():
         with_top_drive({"kind": "soft-torque", "inertia": 2900.0}, operation=False)
     )
     data = report_data(config)["top_drive"]
-    system = System.from_config(config)
+    system = config.system()
     zeta = top_pipe_impedance(system)
     omega1 = data["omega1_rad_s"]
     # SoftTorque defaults (Kyllingstad and Nessjoen 2009): kp = zeta, ki = omega_1^2 J, so at
@@ -150,7 +150,7 @@ def test_report_top_drive_section_for_soft_torque():
 
 def test_report_top_drive_section_for_a_stiff_pi_and_a_held_top(capsys):
     config = builtin_config()
-    system = System.from_config(config, strategy="A")
+    system = config.system(strategy="A")
     zeta = top_pipe_impedance(system)
     table = {"kind": "pi", "inertia": 2900.0, "kp": 50.0 * zeta, "ki": 5.0 * 2900.0}
     data = report_data(parse_config(with_top_drive(table, operation=False)))["top_drive"]
@@ -165,7 +165,7 @@ def test_report_top_drive_section_for_a_stiff_pi_and_a_held_top(capsys):
 
 def test_report_of_the_navarro_lopez_cortes_chain():
     pytest.importorskip("torsio_friction_laws")
-    from torsio.io.config import load_config
+    from torsio.config.reading import load_config
 
     path = resources.files("torsio").joinpath("data/navarro_lopez_cortes_2007.toml")
     config = load_config(str(path))

@@ -13,8 +13,9 @@ from importlib import resources
 import pytest
 
 from torsio.cli import main
+from torsio.config.reading import parse_config_text
 from torsio.errors import ConfigError
-from torsio.io.config import builtin_config, parse_config_text
+from torsio.examples import builtin_config
 from torsio.physics.system import System
 
 RITTO = resources.files("torsio").joinpath("data/ritto2017.toml").read_text(encoding="utf-8")
@@ -72,7 +73,7 @@ def test_torque_driven_top_reports_the_speed_it_turned_at(tmp_path, capsys):
     status, out, err = run_cli(tmp_path, capsys, text, "--wob", "0", "--duration", "60")
     assert status == 0, err
     data = json.loads(out)
-    inertia = System.from_config(parse_config_text(text)).model.inertia[0, 0]
+    inertia = parse_config_text(text).system().model.inertia[0, 0]
     expected = 10000.0 / (2000.0 + 0.35 * inertia)  # rad/s, the torque balance
     assert data["top_speed_mean"] == pytest.approx(expected, rel=1e-5)
     assert data["rpm"] == pytest.approx(expected * 30.0 / math.pi, rel=1e-5)
@@ -151,7 +152,7 @@ def test_values_in_scale_stay_accepted():
     from torsio.analysis.time_scales import check_time_scales
     from torsio.physics.top_drives import PITopDrive, SoftTorqueTopDrive, ZTorqueTopDrive
 
-    system = System.from_config(builtin_config(), strategy="A")
+    system = builtin_config().system(strategy="A")
     for top in (
         PITopDrive(inertia=2900.0, kp=1e12, ki=14500.0),  # measured: runs in 4 s
         PITopDrive(inertia=2900.0, kp=23250.0, ki=1e8),  # sqrt(ki/J) = 220 omega_1: 13 s
@@ -160,7 +161,7 @@ def test_values_in_scale_stay_accepted():
         ZTorqueTopDrive(inertia=2900.0, zeta=80.0),  # stable: S_SS 2e-14
     ):
         check_time_scales(system.with_top(top), 297.7)
-    check_time_scales(System.from_config(parse_config_text(CHAIN)), 600.0)
+    check_time_scales(parse_config_text(CHAIN).system(), 600.0)
 
 
 # --- case 14: the Python API ------------------------------------------------------------------
@@ -188,13 +189,13 @@ def test_top_drive_constructors_take_units_like_a_file():
 def test_simulate_validates_its_options_on_the_wave_model(option, value, key):
     from torsio.analysis.transient import simulate
 
-    system = System.from_config(builtin_config(), strategy="wave")
+    system = builtin_config().system(strategy="wave")
     with pytest.raises(ConfigError, match=key.replace(".", r"\.")):
         simulate(system, **{option: value})
 
 
 def test_system_refuses_what_is_not_a_model_or_a_law():
-    system = System.from_config(builtin_config(), strategy="A")
+    system = builtin_config().system(strategy="A")
     with pytest.raises(ConfigError, match="^model: expected a structural model"):
         System(model=None, law=system.law, bit_radius=0.1)
     with pytest.raises(ConfigError, match="^law: expected a bit-rock law"):
@@ -204,7 +205,7 @@ def test_system_refuses_what_is_not_a_model_or_a_law():
 def test_severity_map_reads_units_and_names_its_arguments():
     from torsio.analysis.maps import severity_map
 
-    system = System.from_config(builtin_config(), strategy="A")
+    system = builtin_config().system(strategy="A")
     result = severity_map(
         system, wob="100 kN", rpm=["60 rpm"], refine=0, duration=60.0, engine="numpy"
     )
@@ -223,7 +224,7 @@ def test_a_saturated_motor_is_said(tmp_path, capsys, kind):
     gains = "kp = 23250.0\nki = 14500.0\n" if kind == "pi" else ""
     top = f'\n[top_drive]\nkind = "{kind}"\ninertia = 2900.0\n{gains}max_torque = 1000.0\n'
     text = ONE_DOF + top
-    system = System.from_config(parse_config_text(text))
+    system = parse_config_text(text).system()
     # the steady load at the set speed: the bit torque plus the Rayleigh drag alpha I_1 Omega
     # (4.4 kN m at 100 kN, 100 rpm) is above the motor's 1 kN m, so the top never gets there
     load = float(system.bit_torque(system.omega)) + 0.35 * system.model.inertia[0, 0] * system.omega

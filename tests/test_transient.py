@@ -30,10 +30,10 @@ from torsio.analysis.transient import (
     simulate_config,
 )
 from torsio.errors import ConfigError, SolverError
+from torsio.examples import builtin_config
 from torsio.model.modal import modal_analysis
 from torsio.physics.damping import RayleighDamping
 from torsio.physics.laws import BitRockLaw, ConstantTorque, Parameter
-from torsio.physics.system import System, builtin_config
 
 
 @pytest.fixture(scope="module")
@@ -43,7 +43,7 @@ def config():
 
 def _system(config, strategy="C", **changes):
     options = {} if strategy == "C" else {"strategy": strategy}
-    return attrs.evolve(System.from_config(config, **options), **changes)
+    return attrs.evolve(config.system(**options), **changes)
 
 
 # --- analytic solutions ------------------------------------------------------------------
@@ -156,14 +156,14 @@ def _reference_severity(wob: float, rpm: float) -> tuple[float, float]:
 def test_one_dof_severity_against_reference(config, wob, rpm):
     """S_SS of the 1-DOF model agrees with an independent tight integration to 1e-3."""
     reference, duration = _reference_severity(wob, rpm)
-    results = simulate(System.from_config(config, strategy="A").at(wob=wob, rpm=rpm))
+    results = simulate(config.system(strategy="A").at(wob=wob, rpm=rpm))
     assert results.duration == pytest.approx(duration, rel=1e-12)  # default: 40 periods
     assert results.severity == pytest.approx(reference, abs=1e-3)
 
 
 def test_default_times_and_grid(config):
     """Defaults: 40 periods of mode 1, window of 15, 200 samples per period (docs)."""
-    system = System.from_config(config).at(wob=100e3, rpm=60)
+    system = config.system().at(wob=100e3, rpm=60)
     results = simulate(system)
     period = 2 * math.pi / float(modal_analysis(system.model, 1).frequencies_rad[0])
     assert results.duration == pytest.approx(DEFAULT_DURATION_PERIODS * period)
@@ -197,7 +197,7 @@ def test_default_times_and_grid(config):
 
 def test_shorter_run_default_window(config):
     """Given only a short duration, the window defaults to at most half the run."""
-    system = System.from_config(config, strategy="A").at(wob=100e3, rpm=60)
+    system = config.system(strategy="A").at(wob=100e3, rpm=60)
     results = simulate(system, duration=60.0)
     assert results.steady_window == pytest.approx(30.0)
 
@@ -207,7 +207,7 @@ def test_other_integrators_agree(config, method):
     """Every solve_ivp method gives the same S_SS as the default, the compiled RODAS4 engine
     (1e-5: solver tolerance 1e-8 plus the output grid, whose samples under-read the
     continuous extremes RODAS4's S_SS is read from by at most 1.4e-5, docs/dynamics.md)."""
-    system = System.from_config(config, strategy="A").at(wob=100e3, rpm=60)
+    system = config.system(strategy="A").at(wob=100e3, rpm=60)
     reference = simulate(system, duration=120.0, steady_window=40.0, rtol=1e-8, atol=1e-10)
     other = simulate(
         system, duration=120.0, steady_window=40.0, method=method, rtol=1e-8, atol=1e-10
@@ -219,7 +219,7 @@ def test_other_integrators_agree(config, method):
 
 
 def test_solver_statistics_and_dict(config):
-    results = simulate(System.from_config(config, strategy="A").at(wob=100e3, rpm=60))
+    results = simulate(config.system(strategy="A").at(wob=100e3, rpm=60))
     solver = results.solver
     assert set(solver) >= {"method", "rtol", "atol", "nfev", "njev", "nlu", "status", "message"}
     assert solver["engine"] == "compiled" and solver["method"] == "RODAS4"
@@ -234,7 +234,7 @@ def test_solver_statistics_and_dict(config):
 
 def test_csv_and_plot(config, tmp_path):
     results = simulate(
-        System.from_config(config, strategy="A").at(wob=100e3, rpm=60),
+        config.system(strategy="A").at(wob=100e3, rpm=60),
         duration=30.0,
         steady_window=10.0,
     )
@@ -268,7 +268,7 @@ class _NaNAboveLaw(BitRockLaw):
 
 @pytest.mark.parametrize("method", ["LSODA", "RK45"])
 def test_solver_failure_is_an_error(config, method):
-    system = attrs.evolve(System.from_config(config, strategy="A"), law=_NaNAboveLaw(limit=1.0))
+    system = attrs.evolve(config.system(strategy="A"), law=_NaNAboveLaw(limit=1.0))
     with pytest.raises(SolverError, match=r"t = [0-9.e+-]+ s"):
         simulate(system, duration=50.0, steady_window=10.0, method=method)
 
@@ -292,7 +292,7 @@ def test_solver_failure_is_an_error(config, method):
     ],
 )
 def test_bad_options_name_the_value(config, options, key, value):
-    system = System.from_config(config, strategy="A").at(wob=100e3, rpm=60)
+    system = config.system(strategy="A").at(wob=100e3, rpm=60)
     with pytest.raises(ConfigError) as info:
         simulate(system, **options)
     assert info.value.key == key
@@ -300,7 +300,7 @@ def test_bad_options_name_the_value(config, options, key, value):
 
 
 def test_operating_point_errors(config):
-    system = System.from_config(config, strategy="A")
+    system = config.system(strategy="A")
     with pytest.raises(ConfigError, match=r"operation\.wob.*-1000"):
         system.at(wob=-1000.0)
     for rpm in (0.0, -60.0):
@@ -316,10 +316,10 @@ def test_operating_point_errors(config):
 
 def test_simulation_table_of_the_config(config):
     """[simulation] keys of the file are used; keyword overrides win."""
-    from torsio.examples import ritto2017_config
-    from torsio.io.config import parse_config_text
+    from torsio.config.reading import parse_config_text
+    from torsio.examples import builtin_config
 
-    base = ritto2017_config()
+    base = builtin_config()
     assert base.simulation.options == {}
     source = (
         "name = 'one dof'\n"
@@ -345,7 +345,7 @@ def test_simulation_table_of_the_config(config):
 
 # --- convergence with the element count ---------------------------------------------------
 def _severity_with_elements(config, elements, wob=100e3, rpm=60.0):
-    return simulate(System.from_config(config, dp_elements=elements).at(wob=wob, rpm=rpm)).severity
+    return simulate(config.system(dp_elements=elements).at(wob=wob, rpm=rpm)).severity
 
 
 def test_strategy_c_element_convergence(config):

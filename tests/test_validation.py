@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from torsio.io.validation import CHECKS, Check, page
-from torsio.io.validation_page import difference_text
+from torsio.report.validation import CHECKS, Check, page
+from torsio.report.validation_page import difference_text
 
 PAGE = Path(__file__).parents[1] / "docs" / "validation.md"
 
@@ -22,7 +22,7 @@ def test_check_passes(name):
 
 
 def test_validation_page_is_generated_from_the_checks():
-    # Regenerate with: python -m torsio.io.validation --write docs/validation.md
+    # Regenerate with: python -m torsio.report.validation --write docs/validation.md
     assert PAGE.read_text(encoding="utf-8") == page()
 
 

@@ -11,8 +11,7 @@ import pytest
 from scipy.optimize import minimize_scalar
 
 from torsio.errors import ConfigError
-from torsio.examples import ritto2017_string
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config, ritto2017_string
 from torsio.model.components import Bit, DrillCollar, DrillPipe
 from torsio.model.continuum import continuum_modes
 from torsio.model.drillstring import DrillString

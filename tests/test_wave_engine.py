@@ -9,8 +9,7 @@ import numpy as np
 import pytest
 
 from torsio.errors import ConfigError
-from torsio.examples import ritto2017_string
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config, ritto2017_string
 from torsio.model.components import Bit, DrillPipe
 from torsio.model.continuum import continuum_modes
 from torsio.model.drillstring import DrillString
@@ -21,6 +20,7 @@ from torsio.solvers.batch import simulate_batch
 from torsio.solvers.batch_results import DEFAULT_STEADY_TOLERANCE
 from torsio.solvers.characteristics import kernel_layout, node_offsets, state_from_fields
 from torsio.solvers.law_kernels import compile_law_function
+from torsio.solvers.layouts import C_INNER, C_SPECIAL, INNER
 from torsio.solvers.wave_bit import _solve_bit
 from torsio.solvers.wave_march import march
 from torsio.solvers.wave_top import held_top
@@ -119,7 +119,7 @@ def test_layout_lumps_every_cell_of_drag_once() -> None:
     # the dampers of a layout add up to alpha rho J L = alpha Z n dt per section
     grid = WaveStrategy(drag_spacing=8).discretize(ritto2017_string())
     layout = kernel_layout(grid, alpha=0.35)
-    inner = layout.floats[:, 2] * layout.integers[:, 5] + layout.floats[:, 4]
+    inner = layout.floats[:, C_INNER] * layout.integers[:, INNER] + layout.floats[:, C_SPECIAL]
     total = layout.end_dampers.sum() + inner.sum()
     expected = 0.35 * float(np.dot(grid.impedances, grid.cells)) * grid.time_step
     assert total == pytest.approx(expected, rel=1e-13)
@@ -188,7 +188,7 @@ def test_wave_strategy_refuses_a_drag_spacing_that_is_not_a_whole_number_of_cell
 def test_drag_spacing_is_read_from_the_configuration(tmp_path) -> None:  # type: ignore[no-untyped-def]
     from importlib import resources
 
-    from torsio.io.config import load_config
+    from torsio.config.reading import load_config
 
     text = resources.files("torsio").joinpath("data/ritto2017.toml").read_text(encoding="utf-8")
     text = text.replace("beta = 0.06", "beta = 0.0").replace("dp_elements = 5\n", "")

@@ -198,10 +198,3 @@ def test_off_bottom_runs_with_tucker_wang_and_reports_the_rig_keys():
     assert 0.0 < data["bit_first_motion"] < 10.0
     slow = wave_response(_system(rpm=1.0), duration=5.0, steady_window=1.0, progress=False)
     assert slow.transient.to_dict()["bit_first_motion"] is None  # never above 0.5 rad/s
-
-
-def test_lumped_strategies_with_a_well_are_refused():
-    from torsio.errors import ConfigError
-
-    with pytest.raises(ConfigError, match="well: friction along the string runs on the wave"):
-        deviated_well_config().system(strategy="C")

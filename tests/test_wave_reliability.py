@@ -29,10 +29,11 @@ from torsio.analysis.limits import short_window, stuck_throughout
 from torsio.analysis.wave import wave_response
 from torsio.cli import main
 from torsio.errors import ConfigError
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config
 from torsio.model.wave import DEFAULT_TRAVEL_TIME_TOLERANCE, WaveStrategy, first_frequency
 from torsio.physics.damping import RayleighDamping
-from torsio.solvers.batch import DEFAULT_MAX_STEPS, simulate_batch
+from torsio.solvers.batch import simulate_batch
+from torsio.solvers.batch_options import DEFAULT_MAX_STEPS
 from torsio.solvers.run_chunks import run_in_chunks, stderr_progress
 
 SRC = Path(__file__).parents[1] / "src"

@@ -15,8 +15,7 @@ import pytest
 
 from torsio.analysis.wave import wave_response
 from torsio.errors import ConfigError
-from torsio.examples import deviated_well_config
-from torsio.io.config import builtin_config
+from torsio.examples import builtin_config, deviated_well_config
 from torsio.physics.damping import RayleighDamping
 from torsio.physics.top_drive_boundary import TopDriveBoundary
 from torsio.physics.top_drives import PITopDrive, SoftTorqueTopDrive

@@ -112,7 +112,7 @@ def test_bad_cell_length_is_named():
 
 
 def test_report_well_section_gives_the_same_numbers():
-    from torsio.io.report import report_data
+    from torsio.report.document import report_data
 
     config = deviated_well_config()
     data = report_data(config, modes=1)["well"]

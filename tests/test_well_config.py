@@ -6,8 +6,8 @@ import textwrap
 
 import pytest
 
+from torsio.config.reading import load_config, parse_config_text
 from torsio.errors import ConfigError
-from torsio.io.config import load_config, parse_config_text
 
 STRING = """
 [[section]]

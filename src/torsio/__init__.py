@@ -15,16 +15,18 @@ __version__ = "0.1.0"
 # Every public name, by the module it lives in. ``import torsio`` imports none of these
 # modules: each is imported on the first use of one of its names (PEP 562), so that the
 # command line starts fast (scipy, numba and pint are loaded only by what needs them).
-# To export a name, add it here, to the TYPE_CHECKING imports below and to __all__.
+# To export a name, add it here and to the TYPE_CHECKING imports below (for type checkers;
+# tests/test_public_names.py checks that they agree); __all__ is generated from this table.
 _EXPORTS: dict[str, tuple[str, ...]] = {
     "torsio.analysis.energy": ("EnergyBalance", "energy_balance"),
     "torsio.analysis.simulation_options": ("SimulationOptions",),
     "torsio.analysis.transient": ("simulate", "simulate_config"),
     "torsio.analysis.transient_results": ("TransientResults",),
     "torsio.errors": ("ConfigError", "PluginError", "SolverError", "TorsioError"),
-    "torsio.examples": ("ritto2017_config", "ritto2017_string"),
+    "torsio.config.configuration": ("Config",),
+    "torsio.config.reading": ("load_config", "parse_config"),
+    "torsio.examples": ("builtin_config", "ritto2017_string"),
     "torsio.hookspecs": ("hookimpl",),
-    "torsio.io.config": ("Config", "builtin_config", "load_config", "parse_config"),
     "torsio.model.components": (
         "LWD",
         "MWD",
@@ -83,7 +85,17 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     ),
 }
 _LAZY = {name: module for module, names in _EXPORTS.items() for name in names}
-_SUBPACKAGES = ("analysis", "calibration", "cli", "io", "model", "physics", "solvers", "well")
+_SUBPACKAGES = (
+    "analysis",
+    "calibration",
+    "cli",
+    "config",
+    "model",
+    "physics",
+    "report",
+    "solvers",
+    "well",
+)
 
 if TYPE_CHECKING:  # for type checkers and editors; at run time see __getattr__
     from torsio.analysis.energy import EnergyBalance, energy_balance
@@ -101,10 +113,11 @@ if TYPE_CHECKING:  # for type checkers and editors; at run time see __getattr__
     from torsio.calibration.fit import fit_recordings
     from torsio.calibration.fit_results import FitResults
     from torsio.calibration.recording import Recording, read_recording
+    from torsio.config.configuration import Config
+    from torsio.config.reading import load_config, parse_config
     from torsio.errors import ConfigError, PluginError, SolverError, TorsioError
-    from torsio.examples import ritto2017_config, ritto2017_string
+    from torsio.examples import builtin_config, ritto2017_string
     from torsio.hookspecs import hookimpl
-    from torsio.io.config import Config, builtin_config, load_config, parse_config
     from torsio.model.components import (
         LWD,
         MWD,
@@ -163,75 +176,4 @@ def __dir__() -> list[str]:
     return sorted({*globals(), *_LAZY})
 
 
-__all__ = [
-    "LWD",
-    "MWD",
-    "STEEL",
-    "BHASection",
-    "Bit",
-    "BitRockLaw",
-    "Config",
-    "ConfigError",
-    "ConsistentMass",
-    "ContinuumModes",
-    "DrillCollar",
-    "DrillPipe",
-    "DrillString",
-    "HeavyWeightDrillPipe",
-    "LumpedModel",
-    "Material",
-    "MixedMass",
-    "ModalResults",
-    "Parameter",
-    "PluginError",
-    "Section",
-    "SolverError",
-    "Stabilizer",
-    "StrategyA",
-    "StrategyB",
-    "StrategyC",
-    "TorsioError",
-    "TuckerWang",
-    "builtin_config",
-    "continuum_modes",
-    "hookimpl",
-    "load_config",
-    "modal_analysis",
-    "parse_config",
-    "ritto2017_config",
-    "ritto2017_string",
-    "SimulationOptions",
-    "TransientResults",
-    "simulate",
-    "simulate_config",
-    "EnergyBalance",
-    "energy_balance",
-    "ConstantSpeedTop",
-    "Dynamics",
-    "PITopDrive",
-    "SoftTorqueTopDrive",
-    "TopDriveBoundary",
-    "TorqueTopDrive",
-    "ZTorqueTopDrive",
-    "top_drive_from_parameters",
-    "RayleighDamping",
-    "System",
-    "DimensionlessGroups",
-    "dimensional_system",
-    "dimensionless_groups",
-    "dimensionless_system",
-    "MapOptions",
-    "SeverityMap",
-    "severity_map",
-    "dimensionless_map",
-    "load_map",
-    "simulate_batch",
-    "StabilityBoundary",
-    "stability_boundary",
-    "critical_bit_damping",
-    "RecordedTopDrive",
-    "Recording",
-    "read_recording",
-    "fit_recordings",
-    "FitResults",
-]
+__all__ = list(_LAZY)  # generated from _EXPORTS, the one list of public names

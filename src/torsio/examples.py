@@ -1,5 +1,8 @@
-"""Ready-made examples that tests, doctests and users share.
+"""Ready-made examples that tests, doctests and users share: the built-in configurations
+(``src/torsio/data/*.toml``) and the drill-string of the paper's Table 1.
 
+>>> builtin_config().name
+'Ritto et al. (2017)'
 >>> string = ritto2017_string()
 >>> string.name
 'Ritto et al. (2017)'
@@ -11,13 +14,22 @@ from __future__ import annotations
 
 from importlib import resources
 
-from torsio.io.config import Config, builtin_config, parse_config_text
+from torsio.config.configuration import Config
+from torsio.config.reading import parse_config_text
 from torsio.model.drillstring import DrillString
 
+__all__ = ["builtin_config", "deviated_well_config", "ritto2017_string"]
 
-def ritto2017_config() -> Config:
-    """The built-in configuration: Table 1 of the paper (Ritto et al. 2017), G = 85.3 GPa."""
-    return builtin_config()
+
+def _data(name: str) -> Config:
+    text = resources.files("torsio").joinpath(f"data/{name}").read_text(encoding="utf-8")
+    return parse_config_text(text, source=f"built-in {name}")
+
+
+def builtin_config() -> Config:
+    """The built-in example: the Ritto et al. (2017) string of the paper's Table 1
+    (``data/ritto2017.toml``, G = 85.3 GPa), what ``torsio report`` shows without a file."""
+    return _data("ritto2017.toml")
 
 
 def ritto2017_string() -> DrillString:
@@ -30,5 +42,4 @@ def ritto2017_string() -> DrillString:
 def deviated_well_config() -> Config:
     """A 2.5 km string in an S-shaped well with a 3-D turn (``data/deviated_well.toml``):
     the built-in example of ``[well]`` and ``torsio drag``."""
-    path = resources.files("torsio").joinpath("data/deviated_well.toml")
-    return parse_config_text(path.read_text(encoding="utf-8"), source="built-in deviated_well.toml")
+    return _data("deviated_well.toml")

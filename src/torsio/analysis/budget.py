@@ -71,7 +71,7 @@ EVALUATIONS_PER_SAMPLE = 50
 
 MAX_WAVE_STEPS = 2_000_000
 """Time steps one run of the distributed model may take: the step limit of a map point
-(``torsio.solvers.batch.DEFAULT_MAX_STEPS``), for single runs and maps alike (2877 s of
+(``torsio.solvers.batch_options.DEFAULT_MAX_STEPS``), for single runs and maps alike (2877 s of
 run on the default grid of the Ritto et al. 2017 string, Delta t = 1.4386 ms)."""
 
 MAX_WAVE_WORK = 5e10

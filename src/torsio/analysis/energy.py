@@ -40,10 +40,9 @@ solver's own error is smaller at the default tolerances).
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
->>> from torsio.physics.system import System
+>>> from torsio.examples import builtin_config
 >>> from torsio.analysis.transient import simulate
->>> system = System.from_config(builtin_config(), strategy="A").at(wob=100e3, rpm=60)
+>>> system = builtin_config().system(strategy="A").at(wob=100e3, rpm=60)
 >>> balance = energy_balance(simulate(system))
 >>> balance.relative_residual < 1e-4
 True
@@ -112,6 +111,9 @@ class EnergyBalance:
         Strain energy 1/2 phi^T [K] phi.
     kinetic_top : ndarray
         Kinetic energy of the top drive alone, 1/2 J Omega_0^2 (zero for a held top).
+    dissipated_friction : ndarray
+        Dissipated by the contacts along the string: the integral of C |theta_i'| over the
+        moving contacts, C = C_s below the threshold speed and C_d above (zero without).
     """
 
     time: np.ndarray
@@ -122,6 +124,7 @@ class EnergyBalance:
     kinetic: np.ndarray
     potential: np.ndarray
     kinetic_top: np.ndarray
+    dissipated_friction: np.ndarray | None = None
 
     def __repr__(self) -> str:  # short: totals, no time series
         return (
@@ -131,8 +134,9 @@ class EnergyBalance:
 
     @property
     def dissipated(self) -> np.ndarray:
-        """Dissipated by all damping [J]."""
-        return self.dissipated_relative + self.dissipated_drag
+        """Dissipated by all damping and by the contacts along the string [J]."""
+        total = self.dissipated_relative + self.dissipated_drag
+        return total if self.dissipated_friction is None else total + self.dissipated_friction
 
     @property
     def stored(self) -> np.ndarray:
@@ -162,6 +166,9 @@ class EnergyBalance:
             "work_in": float(self.work_in[-1]),
             "dissipated_relative": float(self.dissipated_relative[-1]),
             "dissipated_drag": float(self.dissipated_drag[-1]),
+            "dissipated_friction": (
+                0.0 if self.dissipated_friction is None else float(self.dissipated_friction[-1])
+            ),
             "work_bit": float(self.work_bit[-1]),
             "kinetic_change": float(self.kinetic[-1] - self.kinetic[0]),
             "potential_change": float(self.potential[-1] - self.potential[0]),
@@ -207,6 +214,13 @@ def energy_balance(results: Any) -> EnergyBalance:
     power_bit = np.asarray(dynamics.bit_torque(speeds[-1]), dtype=float) * speeds[-1]
     kinetic = 0.5 * np.einsum("it,ij,jt->t", speeds, dynamics.mass_matrix, speeds)
     potential = 0.5 * np.einsum("it,ij,jt->t", twists, dynamics.stiffness_matrix, twists)
+    friction = None
+    if dynamics.contacts is not None:
+        contacts = dynamics.contacts
+        moving = np.abs(speeds)
+        slow = moving < contacts.threshold_speed
+        capacity = np.where(slow, contacts.static[:, None], contacts.dynamic[:, None])
+        friction = _cumulative((capacity * moving).sum(axis=0), time_grid)
     return EnergyBalance(
         time=time_grid,
         work_in=_cumulative(np.broadcast_to(power_in, time_grid.shape), time_grid),
@@ -216,4 +230,5 @@ def energy_balance(results: Any) -> EnergyBalance:
         kinetic=kinetic,
         potential=potential,
         kinetic_top=kinetic_top,
+        dissipated_friction=friction,
     )

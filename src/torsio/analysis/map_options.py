@@ -30,8 +30,8 @@ from torsio.analysis.budget import check_rtol
 from torsio.analysis.map_results import STICK_SLIP_THRESHOLD
 from torsio.analysis.severity import SEVERE_THRESHOLD
 from torsio.errors import ConfigError
-from torsio.solvers.batch import DEFAULT_ATOL, DEFAULT_RTOL, DEFAULT_STEADY_TOLERANCE
-from torsio.solvers.batch_results import check_steady_tolerance
+from torsio.solvers.batch_options import DEFAULT_ATOL, DEFAULT_RTOL
+from torsio.solvers.batch_results import DEFAULT_STEADY_TOLERANCE, check_steady_tolerance
 
 __all__ = ["DEFAULT_REFINE", "MapOptions"]
 
@@ -188,12 +188,17 @@ class MapOptions:
             return f"{flag} ({key})"
         return str(flag or key or name)
 
-    def batch_options(self) -> dict[str, Any]:
-        """The keyword options of :func:`torsio.solvers.batch.simulate_batch` for the points
-        (the run length and window resolved by the map)."""
-        return {
-            "rtol": self.rtol,
-            "atol": self.atol,
-            "engine": self.engine,
-            "steady_tolerance": self.steady_tolerance,
-        }
+    def batch_options(self, duration: float, steady_window: float, threads: int | None) -> Any:
+        """The :class:`torsio.solvers.batch_options.BatchOptions` of the points: the run
+        length and window [s] the map resolved, the threads of each batch."""
+        from torsio.solvers.batch_options import BatchOptions
+
+        return BatchOptions(
+            duration=duration,
+            steady_window=steady_window,
+            rtol=self.rtol,
+            atol=self.atol,
+            engine=self.engine,
+            threads=threads,
+            steady_tolerance=self.steady_tolerance,
+        )

@@ -20,6 +20,7 @@ from torsio.analysis.sweep import SweepError, SweepInterrupted, run_tasks_on
 from torsio.errors import ConfigError
 from torsio.physics.system import System
 from torsio.solvers.batch import simulate_batch
+from torsio.solvers.batch_options import BatchOptions
 from torsio.solvers.batch_results import STATUS_MESSAGES
 
 __all__ = ["BYTES_PER_POINT", "MapFailed", "PointRunner", "check_grid_size"]
@@ -122,11 +123,11 @@ def _bytes(value: float) -> str:
 
 
 def _chunk_task(
-    system: System, wob: np.ndarray, rpm: np.ndarray, options: dict[str, Any]
+    system: System, wob: np.ndarray, rpm: np.ndarray, options: BatchOptions
 ) -> np.ndarray:
     """Worker side: S_SS, status, steps, rejected steps, the time each run ended [s] and
     whether the bit stuck throughout the window (1.0 or 0.0), shape (k, 6)."""
-    result = simulate_batch(system, wob, rpm, **options)
+    result = simulate_batch(system, wob, rpm, options)
     stuck = result.stuck(DEFAULT_STICK_THRESHOLD)
     return np.column_stack(
         [result.severity, result.status, result.steps, result.rejected, result.ended, stuck]
@@ -142,8 +143,8 @@ class PointRunner:
         The model every point runs.
     handle : object
         An open executor (:func:`torsio.analysis.sweep.open_executor`).
-    options : dict
-        Keyword options of :func:`torsio.solvers.batch.simulate_batch`.
+    options : BatchOptions
+        The options of :func:`torsio.solvers.batch.simulate_batch` for every chunk.
     chunk_size : int
         Points per task.
     retries : int
@@ -161,7 +162,7 @@ class PointRunner:
         self,
         system: System,
         handle: Any,
-        options: dict[str, Any],
+        options: BatchOptions,
         chunk_size: int,
         retries: int,
         progress: Callable[[int, int], None] | None,

@@ -39,8 +39,8 @@ usually a jump; if S_SS is not monotonic inside the cell it finds one crossing.
 
 Examples
 --------
->>> from torsio.physics.system import System, builtin_config
->>> system = System.from_config(builtin_config(), strategy="A")
+>>> from torsio.examples import builtin_config
+>>> system = builtin_config().system(strategy="A")
 >>> result = severity_map(system, wob=[50e3, 150e3], rpm=[60.0, 120.0], refine=2)
 >>> result.severity.round(2).tolist()
 [[0.0, 1.32], [0.0, 0.0]]
@@ -86,9 +86,9 @@ from torsio.analysis.time_scales import check_time_scales
 from torsio.errors import ConfigError, SolverError
 from torsio.physics.system import System
 from torsio.solvers.batch import (
-    DEFAULT_MAX_STEPS,
     simulate_batch,
 )
+from torsio.solvers.batch_options import DEFAULT_MAX_STEPS
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = ["dimensionless_map", "severity_map"]
@@ -173,8 +173,8 @@ def dimensionless_map(
 
     Examples
     --------
-    >>> from torsio.physics.system import System, builtin_config
-    >>> system = System.from_config(builtin_config(), strategy="A")
+    >>> from torsio.examples import builtin_config
+    >>> system = builtin_config().system(strategy="A")
     >>> result = dimensionless_map(system, pi1=[5.0, 12.0], pi2=[10.0, 60.0], refine=0)
     >>> result.pi1.round(3).tolist(), result.pi2.round(3).tolist()
     ([5.0, 12.0], [10.0, 60.0])
@@ -211,12 +211,7 @@ def _build_map(
     check_batch_work(system, wob, duration, options.rtol, 2.0 * math.pi / omega1, DEFAULT_MAX_STEPS)
     check_time_scales(system, duration)
     serial = executor is None or executor == "serial"
-    batch: dict[str, Any] = {
-        "duration": duration,
-        "steady_window": steady_window,
-        "threads": None if serial else 1,
-        **options.batch_options(),
-    }
+    batch = options.batch_options(duration, steady_window, None if serial else 1)
     boundary = system.top.boundary(system)
     if not boundary.held and not math.isfinite(boundary.set_speed):
         raise ConfigError(
@@ -227,7 +222,7 @@ def _build_map(
             "torsio.solvers.batch.simulate_batch(system, wob) over weights on bit",
         )
     # validate options (engine, tolerances) here rather than in every worker
-    engine_name = simulate_batch(system, np.empty(0), np.empty(0), **batch).engine
+    engine_name = simulate_batch(system, np.empty(0), np.empty(0), batch).engine
     scales: dict[str, Any] = {  # what every map of this call shares, partial or not
         "wob": wob,
         "rpm": rpm,

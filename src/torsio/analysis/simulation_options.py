@@ -8,7 +8,7 @@ argument of the same name; defaults shared with the other analyzers live in
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import attrs
 import numpy as np
@@ -16,7 +16,9 @@ import scipy.integrate
 
 from torsio.analysis.budget import check_rtol
 from torsio.errors import ConfigError
-from torsio.io.config import Config
+
+if TYPE_CHECKING:  # read, never imported: torsio.config sits above the analyzers
+    from torsio.config.configuration import Config
 
 __all__ = [
     "COMPILED_METHODS",

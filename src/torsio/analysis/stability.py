@@ -42,9 +42,8 @@ at omega = 0 when s < -(total drag seen at the bit).
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
->>> from torsio.physics.system import System
->>> system = System.from_config(builtin_config(), strategy="A")
+>>> from torsio.examples import builtin_config
+>>> system = builtin_config().system(strategy="A")
 >>> c = system.damping_matrix[0, 0]                     # alpha I + beta k
 >>> round(float(critical_bit_damping(system).slope / c), 9)   # s_c = -c for one DOF
 -1.0
@@ -66,6 +65,7 @@ import scipy.optimize
 
 from torsio.errors import ConfigError
 from torsio.model.modal import natural_frequencies
+from torsio.model.tridiagonal import is_tridiagonal
 from torsio.physics.dynamics import Dynamics
 from torsio.physics.law_slope import bit_slope
 from torsio.physics.system import System
@@ -150,7 +150,7 @@ def _receptance(dynamics: Dynamics, omega: Any) -> np.ndarray:
         # node 0's own inertia and drag are inside Z: remove them from the chain matrices
         top_impedance = np.asarray(dynamics.top.impedance(w), dtype=complex)
         top_term = 1j * w * (top_impedance - dynamics.top.drag) + w**2 * dynamics.top.inertia
-    if _is_tridiagonal(k) and _is_tridiagonal(m) and _is_tridiagonal(c):
+    if is_tridiagonal(k) and is_tridiagonal(m) and is_tridiagonal(c):
         ww = w[:, None]
         diag = np.diag(k) - ww**2 * np.diag(m) + 1j * ww * np.diag(c)
         diag[:, 0] += top_term
@@ -166,12 +166,6 @@ def _receptance(dynamics: Dynamics, omega: Any) -> np.ndarray:
     unit = np.zeros(n, dtype=complex)
     unit[-1] = 1.0
     return np.linalg.solve(dynamic, np.broadcast_to(unit, (w.size, n))[..., None])[:, -1, 0]
-
-
-def _is_tridiagonal(matrix: np.ndarray) -> bool:
-    return bool(
-        np.count_nonzero(np.triu(matrix, 2)) == 0 and np.count_nonzero(np.tril(matrix, -2)) == 0
-    )
 
 
 @attrs.frozen

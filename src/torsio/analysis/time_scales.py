@@ -33,10 +33,9 @@ k_eq for stiffnesses, omega_1 I_eq for dampings (the groups of
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
->>> from torsio.physics.system import System
+>>> from torsio.examples import builtin_config
 >>> from torsio.physics.top_drives import PITopDrive
->>> system = System.from_config(builtin_config(), strategy="A")
+>>> system = builtin_config().system(strategy="A")
 >>> check_time_scales(system.with_top(PITopDrive(inertia=2900.0, kp=23250.0, ki=14500.0)), 300.0)
 >>> check_time_scales(system.with_top(PITopDrive(inertia=2900.0, kp=23250.0, ki=1e12)), 300.0)
 Traceback (most recent call last):

@@ -31,9 +31,8 @@ Defaults (the paper states none; see ``docs/dynamics.md``):
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
->>> from torsio.physics.system import System
->>> system = System.from_config(builtin_config(), strategy="A").at(wob=175e3, rpm=100)
+>>> from torsio.examples import builtin_config
+>>> system = builtin_config().system(strategy="A").at(wob=175e3, rpm=100)
 >>> results = simulate(system)
 >>> round(results.severity, 3), results.severe
 (1.099, True)
@@ -46,7 +45,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -54,6 +53,7 @@ from torsio.analysis.budget import (
     check_law_time_scale,
     check_output_size,
 )
+from torsio.analysis.contact_summary import contact_summary
 from torsio.analysis.limits import saturated_motor, short_window, stuck_throughout, warning_list
 from torsio.analysis.severity import (
     DEFAULT_SAMPLES_PER_PERIOD,
@@ -69,11 +69,13 @@ from torsio.analysis.simulation_options import (
 from torsio.analysis.time_scales import check_time_scales
 from torsio.analysis.transient_results import TransientResults, window_mask
 from torsio.errors import ConfigError, SolverError
-from torsio.io.config import Config
 from torsio.physics.dynamics import Dynamics
 from torsio.physics.system import System
 
-__all__ = ["simulate", "simulate_config", "simulate_lumped", "system_from_config"]
+if TYPE_CHECKING:  # a configuration is read, never imported: torsio.config sits above
+    from torsio.config.configuration import Config
+
+__all__ = ["simulate", "simulate_config", "simulate_lumped"]
 
 
 def _initial_state(dynamics: Dynamics, initial_state: Any) -> np.ndarray:
@@ -175,7 +177,7 @@ def simulate(
     """
     from torsio.model.protocol import resolve
 
-    SimulationOptions(  # invalid options are refused whatever the model
+    options = SimulationOptions(  # validated once, whatever the model
         duration=duration,
         steady_window=steady_window,
         method=method,
@@ -185,43 +187,18 @@ def simulate(
         stick_threshold=stick_threshold,
     )
     engine = resolve(system.model.engines.transient)  # the model names what runs it
-    return engine(
-        system,
-        duration=duration,
-        steady_window=steady_window,
-        method=method,
-        rtol=rtol,
-        atol=atol,
-        output_step=output_step,
-        initial_state=initial_state,
-        stick_threshold=stick_threshold,
-        progress=progress,
-    )
+    return engine(system, options, initial_state=initial_state, progress=progress)
 
 
 def simulate_lumped(
     system: System,
-    duration: float | None = None,
-    steady_window: float | None = None,
-    method: Any = "auto",
-    rtol: float = 1e-6,
-    atol: float = 1e-9,
-    output_step: float | None = None,
+    options: SimulationOptions,
     initial_state: Any = None,
-    stick_threshold: float | None = None,
     progress: Any = None,
 ) -> TransientResults:
     """:func:`simulate` of a lumped model (its transient engine,
-    :data:`torsio.model.lumped.LUMPED_ENGINES`): the arguments of :func:`simulate`."""
-    options = SimulationOptions(
-        duration=duration,
-        steady_window=steady_window,
-        method=method,
-        rtol=rtol,
-        atol=atol,
-        output_step=output_step,
-        stick_threshold=stick_threshold,
-    )
+    :data:`torsio.model.lumped.LUMPED_ENGINES`): the System, its validated options and the
+    ``initial_state`` and ``progress`` of :func:`simulate`."""
     if not (math.isfinite(system.omega) and system.omega > 0):  # System validates this
         raise ConfigError("operation.rpm", f"expected a positive rotary speed, got {system.rpm!r}")
     run, window = run_times(system, options.duration, options.steady_window)
@@ -268,11 +245,18 @@ def simulate_lumped(
     reporter = None
     if progress is None or progress is True:
         reporter = stderr_progress("simulate", quiet=0.0 if progress else QUIET_SECONDS)
+    report = reporter if reporter is not None else (progress or None)
     try:
-        states, solver_info = integrate_run(
-            system, dynamics, y0, time_grid, window, options, where,
-            reporter if reporter is not None else (progress or None),
-        )  # fmt: skip
+        if dynamics.contacts is not None:  # set-valued friction: scipy between switches
+            from torsio.solvers.contact_events import integrate_with_contacts
+
+            states, solver_info = integrate_with_contacts(
+                dynamics, y0, time_grid, options, where, report
+            )
+        else:
+            states, solver_info = integrate_run(
+                system, dynamics, y0, time_grid, window, options, where, report
+            )
     finally:
         if reporter is not None:
             reporter.close()
@@ -323,6 +307,18 @@ def simulate_lumped(
     extremes = solver_info.pop("bit_speed_extremes", None)  # the continuous solution's
     read = np.array(extremes) if extremes is not None else window_speeds
     twists = twists_by_node[first:].T.copy()
+    well_summary = None
+    if dynamics.contacts is not None:  # from the output samples
+        moved = np.flatnonzero(np.abs(bit_speed) > dynamics.contacts.threshold_speed)
+        well_summary = contact_summary(
+            dynamics.contacts,
+            surface_range=(surface_torque[in_window].min(), surface_torque[in_window].max()),
+            surface_peak=float(surface_torque.max()),
+            first_motion=float(time_grid[moved[0]]) if moved.size else math.nan,
+            friction_work=float(solver_info.pop("friction_work")),
+            window_time=time_grid[in_window],
+            window_bit_speed=bit_speed[in_window],
+        )
     return TransientResults(
         time=time_grid,
         bit_speed=bit_speed,
@@ -343,6 +339,7 @@ def simulate_lumped(
         reference_speed=float(reference),
         severity_speed=float(omega),
         bit_speed_extremes=extremes,
+        well_summary=well_summary,
         warnings=warning_list(
             stuck_throughout(stick, threshold),
             short_window(float(window), period),
@@ -357,50 +354,6 @@ def _law_name(law: Any) -> str:
     from torsio.plugins import describe_bit_law
 
     return describe_bit_law(law)
-
-
-def system_from_config(
-    config: Config,
-    wob: Any = None,
-    rpm: Any = None,
-    discretization: Mapping[str, Any] | None = None,
-) -> System:
-    """The System of a configuration at an operating point (overriding ``[operation]``).
-
-    ``wob`` [N] and ``rpm`` may be numbers or strings with units (``"100 kN"``,
-    ``"120 rpm"``). Without them, the file's ``[operation]`` values are used; a
-    clear error names the key if neither gives one.
-    """
-    from torsio.io.config import parse_rpm
-    from torsio.units import to_si
-
-    if wob is None:
-        wob = config.operation.wob
-        if wob is None:
-            raise ConfigError(
-                "operation.wob",
-                "no weight on bit: give one (e.g. --wob '100 kN') or set it in "
-                "the [operation] table",
-            )
-    else:
-        text = wob
-        wob = to_si(wob, "force", key="wob")
-        if wob < 0:
-            raise ConfigError("wob", f"expected a non-negative weight on bit, got {text!r}")
-    options = {k: v for k, v in (discretization or {}).items() if v is not None}
-    if rpm is None and not config.top_drive.has_set_speed:  # e.g. a torque-driven top
-        return System.from_config(config, **options).at(wob=wob)
-    if rpm is None:
-        rpm = config.operation.rpm
-        if rpm is None:
-            raise ConfigError(
-                "operation.rpm",
-                "no rotary speed: give one (e.g. --rpm 120) or set it in the [operation] table",
-            )
-    else:
-        rpm = parse_rpm(rpm, "rpm")
-    options = {k: v for k, v in (discretization or {}).items() if v is not None}
-    return System.from_config(config, **options).at(wob=wob, rpm=rpm)
 
 
 def simulate_config(
@@ -427,7 +380,7 @@ def simulate_config(
 
     Examples
     --------
-    >>> from torsio.io.config import builtin_config
+    >>> from torsio.examples import builtin_config
     >>> results = simulate_config(builtin_config(), wob="175 kN", rpm=100,
     ...                           discretization={"strategy": "A"})
     >>> round(results.severity, 3)
@@ -436,5 +389,7 @@ def simulate_config(
     initial_state = overrides.pop("initial_state", None)
     progress = overrides.pop("progress", None)
     options = SimulationOptions.from_config(config).replace(**overrides)
-    system = system_from_config(config, wob, rpm, discretization)
+    point = config.operating_point(wob, rpm)
+    given = {k: v for k, v in (discretization or {}).items() if v is not None}
+    system = config.system(**given).at(**point)
     return simulate(system, initial_state=initial_state, progress=progress, **options.kwargs())

@@ -15,7 +15,7 @@ the bit, trapezoidal rule for a top drive; fixed step dt of the grid (no toleran
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
+>>> from torsio.examples import builtin_config
 >>> from torsio.physics.damping import RayleighDamping
 >>> import attrs
 >>> system = builtin_config().system(strategy="wave")
@@ -37,9 +37,10 @@ import attrs
 import numpy as np
 
 from torsio.analysis.budget import check_law_time_scale, check_output_size, check_wave_steps
+from torsio.analysis.contact_summary import contact_summary
 from torsio.analysis.limits import short_window, stuck_throughout, warning_list
 from torsio.analysis.severity import DEFAULT_DURATION_PERIODS, DEFAULT_WINDOW_PERIODS, check_window
-from torsio.analysis.simulation_options import check_window_samples
+from torsio.analysis.simulation_options import SimulationOptions, check_window_samples
 from torsio.analysis.transient_results import TransientResults
 from torsio.errors import ConfigError
 from torsio.model.wave import WAVE_ENGINES, WaveModel, check_wave_damping, first_frequency
@@ -141,47 +142,22 @@ def _field_every(field_step: float, dt: float, duration: float, grid: WaveModel)
     return every
 
 
-def oscillation_period(time: np.ndarray, speed: np.ndarray) -> float | None:
-    """Mean time [s] between upward crossings of the middle of ``speed``'s range, or None
-    with fewer than three crossings (two whole cycles) or no range.
-
-    >>> t = np.linspace(0.0, 10.0, 10001)
-    >>> round(oscillation_period(t, np.sin(2 * np.pi * t / 2.5)), 6)
-    2.5
-    """
-    low, high = float(np.min(speed)), float(np.max(speed))
-    if not high > low:
-        return None
-    level = 0.5 * (low + high)
-    up = np.flatnonzero((speed[:-1] < level) & (speed[1:] >= level))
-    if up.size < 3:
-        return None
-    share = (level - speed[up]) / (speed[up + 1] - speed[up])
-    crossings = time[up] + share * (time[up + 1] - time[up])
-    return float(np.mean(np.diff(crossings)))
-
-
 def _well_summary(
     grid: WaveModel, summary: dict[str, float], time: np.ndarray, bit_speed: np.ndarray
 ) -> dict[str, Any] | None:
-    """What a run with friction along the string reports (None without contacts): the
-    surface torque's extremes over every step (window, run) and its swing in the window,
-    when the bit first moved, and the stick-slip period of the bit speed in the window
-    (:func:`oscillation_period` of the recorded samples)."""
+    """What a run with friction along the string reports (None without contacts), from the
+    extremes the kernel took at every step."""
     if grid.contacts is None:
         return None
-    first = summary["bit_first_motion"]
-    return {
-        "surface_torque_min": summary["surface_torque_min"],
-        "surface_torque_max": summary["surface_torque_max"],
-        "surface_torque_swing": summary["surface_torque_max"] - summary["surface_torque_min"],
-        "surface_torque_peak": summary["surface_torque_peak"],
-        "stick_slip_period": oscillation_period(time, bit_speed),
-        "bit_first_motion": None if math.isnan(first) else first,
-        "friction_work": summary["friction_dissipation"],
-        "threshold_speed": float(grid.contacts.threshold_speed),
-        "contacts": grid.contacts.describe(),
-    }
+    return contact_summary(
+        grid.contacts,
+        surface_range=(summary["surface_torque_min"], summary["surface_torque_max"]),
+        surface_peak=summary["surface_torque_peak"],
+        first_motion=summary["bit_first_motion"],
+        friction_work=summary["friction_dissipation"],
+        window_time=time,
+        window_bit_speed=bit_speed,
+    )
 
 
 def _transient_results(values: dict[str, Any]) -> Any:
@@ -192,26 +168,20 @@ def _transient_results(values: dict[str, Any]) -> Any:
 
 def simulate_wave(
     system: Any,
-    duration: float | None = None,
-    steady_window: float | None = None,
-    method: Any = None,
-    rtol: float | None = None,
-    atol: float | None = None,
-    output_step: float | None = None,
+    options: SimulationOptions,
     initial_state: WaveState | None = None,
-    stick_threshold: float | None = None,
-    **ignored: Any,
+    progress: Any = None,
 ) -> TransientResults:
     """The transient engine of the distributed model (:data:`torsio.model.wave.WAVE_ENGINES`).
 
-    Takes the parameters of :func:`torsio.analysis.transient.simulate` and returns the
-    transient results of :func:`wave_response`; ``method``, ``rtol`` and ``atol`` have no
-    meaning on the fixed grid and are not used (the command line refuses them,
-    :func:`refuse_integrator_options`).
+    Takes the System, the validated options and the ``initial_state`` and ``progress`` of
+    :func:`torsio.analysis.transient.simulate`, and returns the transient results of
+    :func:`wave_response`; ``method``, ``rtol`` and ``atol`` have no meaning on the fixed
+    grid and are not used (the command line refuses them, :func:`refuse_integrator_options`).
     """
     response = wave_response(
-        system, duration, steady_window, output_step, stick_threshold,
-        initial_state=initial_state,
+        system, options.duration, options.steady_window, options.output_step,
+        options.stick_threshold, initial_state=initial_state, progress=progress,
     )  # fmt: skip
     return response.transient
 

@@ -3,29 +3,70 @@
 The bit law with its depth of cut per revolution (:mod:`torsio.axial.rgd`), the steady
 drilling state in closed form (:mod:`torsio.axial.steady`), the linearization of the 2-DOF
 model about it with the state-dependent delay (:mod:`torsio.axial.linearization`), the
-roots of a linear delay system (:mod:`torsio.axial.delay_roots`) and the stability of steady
-drilling over rpm (:mod:`torsio.axial.stability`). The equations are in docs/axial.md.
+roots of a linear delay system (:mod:`torsio.axial.delay_roots`), the stability of steady
+drilling over rpm (:mod:`torsio.axial.stability`), lumped assemblies that move axially and
+torsionally (:mod:`torsio.axial.assembly`), their transients on a compiled fixed-step engine
+with the bit's own history (:mod:`torsio.axial.transient`) and maps over (weight, rpm)
+(:mod:`torsio.axial.maps`). The equations are in docs/axial.md.
 """
 
 from __future__ import annotations
 
+from typing import Any
+
+from torsio.axial.assembly import (
+    DrillingAssembly,
+    pipe_assembly,
+    rgd_two_dof_example,
+    two_dof_assembly,
+)
 from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
 from torsio.axial.linearization import axial_linearization, drilling_linearization
 from torsio.axial.rgd import RGDBit, rgd_example, rgd_from_table
 from torsio.axial.stability import DrillingStability, crossing_rpm, drilling_stability
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 
+# The transient and the maps load numba: their names are imported on first use (PEP 562),
+# so that reading an RGD bit from a configuration stays cheap.
+_LAZY = {
+    "AxialMap": "torsio.axial.maps",
+    "axial_map": "torsio.axial.maps",
+    "AxialTransient": "torsio.axial.transient",
+    "simulate_axial": "torsio.axial.transient",
+    "BitRotation": "torsio.axial.run_setup",
+}
+
 __all__ = [
+    "AxialMap",
+    "AxialTransient",
+    "BitRotation",
+    "DrillingAssembly",
     "DrillingStability",
     "LinearDelaySystem",
     "RGDBit",
     "SteadyDrilling",
     "axial_linearization",
+    "axial_map",
     "crossing_rpm",
     "drilling_linearization",
     "drilling_stability",
+    "pipe_assembly",
     "rgd_example",
     "rgd_from_table",
+    "rgd_two_dof_example",
     "rightmost_roots",
+    "simulate_axial",
     "steady_drilling",
+    "two_dof_assembly",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'torsio.axial' has no attribute {name!r}")
+    import importlib
+
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value

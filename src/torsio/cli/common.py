@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 from torsio.errors import ConfigError
 
 if TYPE_CHECKING:
-    from torsio.io.config import Config
+    from torsio.config.configuration import Config
 
 
 def add_command(
@@ -272,7 +272,8 @@ def warn_small_bare_wob(text: str | None, option: str = "--wob") -> None:
 
 def load(args: argparse.Namespace) -> Config:
     """The configuration named on the command line, or the built-in one."""
-    from torsio.io.config import builtin_config, load_config
+    from torsio.config.reading import load_config
+    from torsio.examples import builtin_config
 
     return builtin_config() if args.config is None else load_config(args.config)
 

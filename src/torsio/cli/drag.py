@@ -45,9 +45,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def _load(args: argparse.Namespace) -> Any:
+    from torsio.config.reading import load_config
     from torsio.errors import ConfigError
     from torsio.examples import deviated_well_config
-    from torsio.io.config import load_config
 
     config = deviated_well_config() if args.config is None else load_config(args.config)
     if config.well is None:

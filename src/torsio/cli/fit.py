@@ -63,8 +63,8 @@ def run(args: argparse.Namespace) -> int:
     """Run ``torsio fit`` with parsed arguments; return the exit status."""
     from torsio.calibration.fit import fit_recordings
     from torsio.calibration.recording import read_recording
+    from torsio.config.reading import load_config
     from torsio.errors import ConfigError
-    from torsio.io.config import load_config
     from torsio.units import to_si
 
     outputs = common.check_outputs(args, ["plot"])

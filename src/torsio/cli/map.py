@@ -148,8 +148,8 @@ def _split_range(text: str, option: str) -> tuple[str, str, int]:
 
 def _range_bounds(text: str, option: str, kind: str) -> tuple[float, float, int]:
     """(start, stop, count) of a START:STOP:N range, in SI (N), rpm or dimensionless."""
+    from torsio.config.tables import parse_rpm
     from torsio.errors import ConfigError
-    from torsio.io.config import parse_rpm
     from torsio.units import to_si
 
     start_text, stop_text, count = _split_range(text, option)
@@ -212,7 +212,6 @@ def _run(args: argparse.Namespace) -> int:
     from torsio.analysis.map_runs import MapFailed, check_grid_size
     from torsio.analysis.maps import dimensionless_map, severity_map
     from torsio.errors import ConfigError
-    from torsio.physics.system import System
 
     if args.wob is not None and args.pi2 is not None:
         raise ConfigError("--pi2", "give either --wob or --pi2, not both")
@@ -246,8 +245,8 @@ def _run(args: argparse.Namespace) -> int:
 
     config = common.load(args)
     common.refuse_rpm_without_set_speed(config, args.rpm, ", there is no rotary speed to set")
-    system = System.from_config(
-        config, **{k: v for k, v in common.discretization_overrides(args).items() if v is not None}
+    system = config.system(
+        **{k: v for k, v in common.discretization_overrides(args).items() if v is not None}
     )
     simulation = dict(config.simulation.options)
     options = _map_options(args, simulation)

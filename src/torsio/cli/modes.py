@@ -35,8 +35,8 @@ def run(args: argparse.Namespace) -> int:
     from rich.markup import escape
 
     from torsio.errors import ConfigError
-    from torsio.io.report import modes_table
     from torsio.model.modal import modal_analysis
+    from torsio.report.model import modes_table
 
     config = common.load(args)
     model = config.model(**common.discretization_overrides(args))
@@ -85,7 +85,7 @@ def _print_chain_modes(results: Any, as_json: bool) -> int:
     from rich.console import Console
     from rich.table import Table
 
-    from torsio.io.report_model import NO_CONTINUUM
+    from torsio.report.model import NO_CONTINUUM
 
     if as_json:
         data = results.to_dict()

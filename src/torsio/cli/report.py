@@ -34,7 +34,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     """Print the report (rich, or JSON with ``--json``)."""
     from torsio.errors import ConfigError
-    from torsio.io.report import ReportContext, render, report_data
+    from torsio.report.context import ReportContext
+    from torsio.report.document import render, report_data
 
     if args.modes < 1:
         raise ConfigError("--modes", f"expected a whole number of modes >= 1, got {args.modes}")
@@ -45,7 +46,7 @@ def run(args: argparse.Namespace) -> int:
     if args.html:
         from pathlib import Path
 
-        from torsio.io.html_report import NO_FIGURES_NOTE, have_matplotlib, html_report
+        from torsio.report.html import NO_FIGURES_NOTE, have_matplotlib, html_report
 
         path = Path(args.html)
         try:

@@ -112,6 +112,9 @@ class LumpedModel:
         (``c_1`` on the first node), used with ``damping``.
     details : dict
         What the discretizer chose (elements per section, ...), for reports.
+    contacts : StringContacts or None
+        Coulomb contacts of the nodes with the borehole (one capacity per node,
+        :class:`torsio.model.contacts.StringContacts`; None: no contact); lumped mass only.
     """
 
     linearizable: ClassVar[bool] = True
@@ -132,6 +135,7 @@ class LumpedModel:
         default=None, converter=attrs.converters.optional(_as_vector)
     )
     details: dict[str, Any] = attrs.field(factory=dict, eq=False)
+    contacts: Any = attrs.field(default=None, eq=False)
     _memo: dict[str, Any] = attrs.field(factory=dict, init=False, eq=False, repr=False)
     """What analyses derived from the (never modified) matrices, e.g. omega_1, kept so that
     each is computed once per model (:func:`torsio.model.modal.first_natural_frequency`)."""
@@ -172,6 +176,28 @@ class LumpedModel:
                 raise ConfigError("damping", f"expected a symmetric {n}x{n} matrix")
             if self.top_damping is None or self.top_damping.shape != (n,):
                 raise ConfigError("top_damping", f"expected {n} values with a damping matrix")
+
+    def with_contacts(self, contacts: Any) -> LumpedModel:
+        """The same chain with Coulomb contacts at its nodes (a
+        :class:`torsio.model.contacts.StringContacts` with one capacity per node; None: none).
+
+        Raises
+        ------
+        ConfigError
+            On ``discretization.strategy`` for consistent mass (a contact holds one node's
+            speed, which a mass matrix that couples nodes does not allow).
+        """
+        if contacts is not None and not self.has_lumped_mass:
+            raise ConfigError(
+                "discretization.strategy",
+                f"friction along the string needs a lumped-mass model (A, B, C or wave); "
+                f"{self.strategy!r} has consistent mass",
+            )
+        if contacts is not None and contacts.static.shape != (self.dofs,):
+            raise ConfigError(
+                "well", f"expected a capacity per node ({self.dofs}), got {contacts.static.size}"
+            )
+        return attrs.evolve(self, contacts=contacts)
 
     # --- constructors ---------------------------------------------------------------------
     @classmethod
@@ -303,6 +329,7 @@ class LumpedModel:
             "total_inertia_kg_m2": self.total_inertia,
             "equivalent_stiffness_N_m_rad": self.equivalent_stiffness,
             "elements": dict(self.details.get("elements", {})),
+            **({} if self.contacts is None else {"contacts": self.contacts.describe()}),
         }
 
     @property

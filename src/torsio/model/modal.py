@@ -28,6 +28,7 @@ from torsio.errors import ConfigError
 from torsio.model.continuum import ContinuumModes, continuum_modes
 from torsio.model.drillstring import DrillString
 from torsio.model.shapes import normalize_shape
+from torsio.model.tridiagonal import is_tridiagonal
 
 if TYPE_CHECKING:  # the lumped model calls back into this module for its omega_1
     from torsio.model.lumped import LumpedModel
@@ -243,10 +244,6 @@ def _remember(model: Any, frequencies: np.ndarray) -> None:
         memo["frequencies"] = frequencies
 
 
-def _is_tridiagonal(matrix: np.ndarray) -> bool:
-    return bool(np.count_nonzero(np.triu(matrix, 2)) == 0)
-
-
 def modal_analysis(
     model: LumpedModel, count: int | None = None, string: DrillString | None = None
 ) -> ModalResults:
@@ -279,7 +276,7 @@ def _eigen(
     D^-1/2 [K] D^-1/2 (O(n^2), no dense BLAS); any other model as the dense pencil.
     """
     shapes = np.empty((model.dofs, 0))
-    if model.has_lumped_mass and _is_tridiagonal(model.stiffness):
+    if model.has_lumped_mass and is_tridiagonal(model.stiffness):
         scale = 1.0 / np.sqrt(np.diag(model.inertia))
         diagonal = np.diag(model.stiffness) * scale**2
         off_diagonal = np.diag(model.stiffness, 1) * scale[:-1] * scale[1:]

@@ -61,14 +61,14 @@ class ModelEngines:
     Attributes
     ----------
     transient : str
-        One run in time from an initial state: a function with the parameters of
-        :func:`torsio.analysis.transient.simulate` (the System first, the options by
-        keyword; options without a meaning for it are accepted and not used), returning
-        a ``TransientResults``.
+        One run in time from an initial state: a function ``(system, options,
+        initial_state=None, progress=None)`` of a System and its validated
+        :class:`torsio.analysis.simulation_options.SimulationOptions` (options without a
+        meaning for the model are not used), returning a ``TransientResults``.
     batch : str
-        Many operating points, each from rest, for maps: a function with the parameters of
-        :func:`torsio.solvers.batch.simulate_batch` (the System, ``wob`` and ``rpm`` first,
-        the options by keyword; likewise), returning a ``BatchResults``.
+        Many operating points, each from rest, for maps: a function ``(system, wob, rpm,
+        options)`` of a System, the points and their
+        :class:`torsio.solvers.batch_options.BatchOptions`, returning a ``BatchResults``.
 
     Examples
     --------

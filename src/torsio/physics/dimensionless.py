@@ -36,9 +36,8 @@ tau. Its first natural frequency and its k_eq are 1.
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
->>> from torsio.physics.system import System
->>> system = System.from_config(builtin_config(), strategy="A").at(wob=100e3, rpm=60)
+>>> from torsio.examples import builtin_config
+>>> system = builtin_config().system(strategy="A").at(wob=100e3, rpm=60)
 >>> groups = dimensionless_groups(system)
 >>> round(groups.k_eq, 2), round(groups.omega1, 4), round(groups.pi1, 4), round(groups.pi2, 2)
 (324.86, 0.8444, 7.4413, 33.25)

@@ -26,9 +26,8 @@ a held top.
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
->>> from torsio.physics.system import System
->>> dynamics = Dynamics.from_system(System.from_config(builtin_config(), strategy="A"))
+>>> from torsio.examples import builtin_config
+>>> dynamics = Dynamics.from_system(builtin_config().system(strategy="A"))
 >>> dynamics.dofs, dynamics.states, dynamics.has_top_node, dynamics.jacobian_bands
 (1, 0, False, (1, 1))
 """
@@ -45,36 +44,11 @@ import scipy.optimize
 import scipy.sparse
 
 from torsio.errors import ConfigError
+from torsio.model.tridiagonal import is_tridiagonal, tridiagonal_bands, tridiagonal_matvec
 from torsio.physics.law_slope import bit_slope
 from torsio.physics.top_drive_boundary import TopDriveBoundary
 
-__all__ = ["Dynamics", "tridiagonal_bands"]
-
-
-def tridiagonal_bands(matrix: np.ndarray, key: str) -> tuple[np.ndarray, np.ndarray]:
-    """(diagonal, upper) of a symmetric tridiagonal matrix; upper[-1] = 0.
-
-    A clear error naming ``key`` if the matrix couples nodes that are not neighbours.
-    """
-    matrix = np.asarray(matrix, dtype=float)
-    if not _is_tridiagonal(matrix):
-        raise ConfigError(
-            key, "expected a chain (tridiagonal matrix); this model couples non-neighbour nodes"
-        )
-    upper = np.zeros(matrix.shape[0])
-    upper[:-1] = np.diag(matrix, 1)
-    return np.diag(matrix).copy(), upper
-
-
-def _is_tridiagonal(matrix: np.ndarray) -> bool:
-    return not (np.count_nonzero(np.triu(matrix, 2)) or np.count_nonzero(np.tril(matrix, -2)))
-
-
-def _tri_matvec(diag: np.ndarray, upper: np.ndarray, x: np.ndarray) -> np.ndarray:
-    out = diag * x
-    out[:-1] += upper[:-1] * x[1:]
-    out[1:] += upper[:-1] * x[:-1]
-    return out
+__all__ = ["Dynamics"]
 
 
 def _extend(matrix: np.ndarray, top: float, link: float) -> np.ndarray:
@@ -118,6 +92,12 @@ class Dynamics:
         Bit-rock law with ``torque(speed, wob, radius)``.
     wob, radius : float
         Weight on bit [N] and bit radius [m].
+    contacts : StringContacts or None
+        Coulomb contacts of the nodes with the borehole, one capacity per node (0 at a
+        top-drive node). :meth:`rhs` leaves them out: their friction is set-valued, and the
+        integrator that runs them (:mod:`torsio.solvers.contact_events`) adds it by the
+        state of each contact; steady rotation (:meth:`steady_state`) takes their sliding
+        torque, and the linearization none (a sliding contact's torque has no slope).
     """
 
     mass_matrix: np.ndarray
@@ -132,6 +112,7 @@ class Dynamics:
     law: Any
     wob: float
     radius: float
+    contacts: Any = attrs.field(default=None, repr=False)
     _bands: Any = attrs.field(init=False, default=None, repr=False)
     _inverse_mass: Any = attrs.field(init=False, default=None, repr=False)
 
@@ -140,7 +121,7 @@ class Dynamics:
         if not np.count_nonzero(m - np.diag(np.diag(m))):
             object.__setattr__(self, "_inverse_mass", 1.0 / np.diag(m))
         matrices = (self.mass_matrix, self.stiffness_matrix, self.relative_damping_matrix)
-        if all(_is_tridiagonal(m) for m in matrices):
+        if all(is_tridiagonal(m) for m in matrices):
             bands = tuple(tridiagonal_bands(m, "model") for m in matrices)
             object.__setattr__(self, "_bands", bands)
 
@@ -167,6 +148,7 @@ class Dynamics:
         stiffness = np.asarray(model.stiffness, dtype=float)
         relative = damping - np.diag(drag)
         common = (top, system.law, float(system.wob), float(system.bit_radius))
+        contacts = getattr(model, "contacts", None)
         if top.held:
             return cls(
                 mass,
@@ -178,6 +160,7 @@ class Dynamics:
                 top_damper,
                 float(top.set_speed),
                 *common,
+                contacts,
             )
         if not model.has_lumped_mass:
             raise ConfigError(
@@ -197,11 +180,19 @@ class Dynamics:
         drag = np.concatenate([[float(top.drag)], drag])
         speed = float(top.set_speed)
         if not math.isfinite(speed):
+            sliding = 0.0 if contacts is None else contacts.dynamic_total  # friction at speed
             speed = _balance_speed(
-                float(top.u0), float(drag.sum()), system.law, system.wob, system.bit_radius
-            )
+                float(top.u0) - sliding, float(drag.sum()), system.law, system.wob,
+                system.bit_radius,
+            )  # fmt: skip
         zeros = np.zeros(n + 1)
-        return cls(mass, stiffness, relative, drag, zeros, zeros, zeros, speed, *common)
+        if contacts is not None:  # none at the top drive's node
+            contacts = attrs.evolve(
+                contacts,
+                static=np.concatenate([[0.0], contacts.static]),
+                dynamic=np.concatenate([[0.0], contacts.dynamic]),
+            )
+        return cls(mass, stiffness, relative, drag, zeros, zeros, zeros, speed, *common, contacts)
 
     # --- chain bands ----------------------------------------------------------------------
     @property
@@ -351,7 +342,9 @@ class Dynamics:
         z, phi, v = y[:m], y[m::2], y[m + 1 :: 2]
         if self._bands is not None:
             (_, _), (k_diag, k_upper), (c_diag, c_upper) = self._bands
-            elastic = _tri_matvec(k_diag, k_upper, phi) + _tri_matvec(c_diag, c_upper, v)
+            elastic = tridiagonal_matvec(k_diag, k_upper, phi) + tridiagonal_matvec(
+                c_diag, c_upper, v
+            )
         else:
             elastic = self.stiffness_matrix @ phi + self.relative_damping_matrix @ v
         force = self.applied - elastic - self.drag * (self.reference_speed + v)
@@ -450,6 +443,8 @@ class Dynamics:
         omega = self.reference_speed
         load = self.applied - self.drag * omega
         load[-1] -= float(self.bit_torque(omega))
+        if self.contacts is not None:  # every contact slides at omega > 0
+            load -= np.sign(omega) * self.contacts.dynamic
         y = np.zeros(self.size)
         stiffness = self.stiffness_matrix
         if not self.has_top_node:

@@ -11,9 +11,8 @@ Omega_ref t and v = phi'. With lumped (diagonal) inertia the Jacobian is banded
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
->>> from torsio.physics.system import System
->>> eq = TwistEquations(System.from_config(builtin_config()))
+>>> from torsio.examples import builtin_config
+>>> eq = TwistEquations(builtin_config().system())
 >>> y0 = eq.rest_state()          # start-up from rest: phi = 0, theta' = 0
 >>> float(y0[-1]) == -eq.omega    # v_N = theta_N' - Omega
 True

@@ -17,13 +17,13 @@ which is how the transient analyzer integrates them. A top drive with inertia
 (:mod:`torsio.physics.top_drives`) adds a node and controller states; the one
 description of the dynamics of either is :mod:`torsio.physics.dynamics`.
 
-The physics does not import the configuration layer: :meth:`System.from_config`
-asks the configuration object for its system (``config.system(...)``).
+The physics does not import the configuration layer: a configuration builds its
+System (:meth:`torsio.config.configuration.Config.system`).
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
->>> system = System.from_config(builtin_config())
+>>> from torsio.examples import builtin_config
+>>> system = builtin_config().system()
 >>> system.model.dofs, round(system.omega, 4), system.wob
 (5, 10.472, 100000.0)
 """
@@ -42,16 +42,6 @@ from torsio.physics.top_drives import ConstantSpeedTop
 from torsio.units import RPM_TO_RAD_S, as_rpm, si_field
 
 __all__ = ["System"]
-
-
-def __getattr__(name: str) -> Any:
-    # ``from torsio.physics.system import builtin_config`` of earlier versions;
-    # use ``torsio.io.config.builtin_config`` (or ``torsio.builtin_config``).
-    if name == "builtin_config":
-        import importlib
-
-        return importlib.import_module("torsio.io.config").builtin_config
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def _check_top(instance: Any, attribute: Any, value: Any) -> None:
@@ -137,23 +127,6 @@ class System:
         _check_operating_value("operation.wob", self.wob, positive=False)
         _check_operating_value("operation.rpm", self.rpm, positive=True)
         _check_operating_value("bit_rock.radius", self.bit_radius, positive=True)
-
-    @classmethod
-    def from_config(cls, config: Any, **discretization: Any) -> System:
-        """The System a configuration describes; ``discretization`` overrides its options.
-
-        ``config`` is any object with ``system(**discretization)`` (e.g.
-        :class:`torsio.io.config.Config`).
-        """
-        build = getattr(config, "system", None)
-        if not callable(build):
-            raise ConfigError(
-                "config", f"expected a configuration with a system() method, got {config!r}"
-            )
-        system = build(**discretization)
-        if not isinstance(system, cls):
-            raise ConfigError("config", f"config.system() returned {system!r}, not a System")
-        return system
 
     def with_top(self, top: Any) -> System:
         """The same system with another top drive."""

@@ -73,6 +73,16 @@ class TopDriveBoundary:
         return self.inertia == 0.0
 
     @property
+    def kp(self) -> float:
+        """Motor torque per unit speed error [N m s/rad]: d[0], the ``kp`` of a speed loop."""
+        return float(self.d[0])
+
+    @property
+    def pipe_gain(self) -> float:
+        """Motor torque per unit pipe torque [-]: d[1] (the feedback of Z-Torque)."""
+        return float(self.d[1])
+
+    @property
     def states(self) -> int:
         """Number m of controller states."""
         return int(np.asarray(self.c).size)

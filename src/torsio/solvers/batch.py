@@ -29,8 +29,8 @@ Engines
 
 Examples
 --------
->>> from torsio.physics.system import System, builtin_config
->>> system = System.from_config(builtin_config(), strategy="A")
+>>> from torsio.examples import builtin_config
+>>> system = builtin_config().system(strategy="A")
 >>> result = simulate_batch(system, wob=[50e3, 200e3], rpm=[120.0, 50.0])
 >>> [round(float(s), 2) for s in result.severity], result.engine
 ([0.0, 1.77], 'compiled')
@@ -51,41 +51,36 @@ import numpy as np
 from torsio.errors import ConfigError, SolverError
 from torsio.model.modal import first_natural_frequency, highest_natural_frequency
 from torsio.physics.system import System
+from torsio.solvers.batch_options import ENGINES, BatchOptions
 from torsio.solvers.batch_results import (
-    DEFAULT_STEADY_TOLERANCE,
     STATUS_SOLVER_FAILED,
     BatchResults,
     batch_points,
-    check_steady_tolerance,
 )
-from torsio.solvers.chain_kernel import TOP_SIZE
 from torsio.solvers.compiled import HAVE_NUMBA, numba
 from torsio.solvers.law_kernels import LawKernel, law_kernel, python_law_kernel
+from torsio.solvers.layouts import (
+    CHAIN_MASS_UPPER,
+    OUT_BIT_SPEED_MAX,
+    OUT_BIT_SPEED_MIN,
+    OUT_COLUMNS,
+    OUT_ENDED,
+    OUT_REJECTED,
+    OUT_STATUS,
+    OUT_STEPS,
+    OUT_TOP_SPEED_MEAN,
+    TOP_HAS_NODE,
+)
+from torsio.solvers.lumped_inputs import pack_chain, pack_top, run_settings, step_limits
 from torsio.solvers.reference import reference_severity, run_times
-from torsio.solvers.rodas import OUT_COLUMNS
+from torsio.units import RPM_TO_RAD_S
 
 __all__ = [
-    "DEFAULT_ATOL",
-    "DEFAULT_RTOL",
-    "ENGINES",
     "BatchModel",
     "resolve_engine",
     "simulate_batch",
     "simulate_lumped_batch",
 ]
-
-ENGINES = ("auto", "compiled", "numba", "numpy", "scipy")
-"""Names accepted by ``simulate_batch(engine=...)`` (``"numba"`` is ``"compiled"``)."""
-
-DEFAULT_RTOL = 1e-5
-"""Default relative tolerance of the batch engine (see ``docs/performance.md`` for the
-convergence study that chose it: |dS_SS| < 1e-3 against rtol = 1e-8 runs)."""
-
-DEFAULT_ATOL = 1e-6
-"""Default absolute tolerance [rad, rad/s]."""
-
-DEFAULT_MAX_STEPS = 2_000_000
-"""Accepted steps allowed per point before the point is reported as failed."""
 
 
 @attrs.frozen(eq=False)
@@ -97,11 +92,10 @@ class BatchModel:
 
     Attributes
     ----------
-    chain : ndarray, shape (8, n)
-        Rows: [I] diagonal and upper [kg m^2], [K] diagonal and upper [N m/rad],
-        [C] = [C_rel] + diag(drag) diagonal and upper [N m s/rad], drag [N m s/rad]
-        and applied torque [N m] per node (upper[i] couples nodes i and i+1).
-    top : ndarray, shape (:data:`torsio.solvers.rodas.TOP_SIZE`,)
+    chain : ndarray, shape (``CHAIN_ROWS``, n)
+        [I], [K], [C] = [C_rel] + diag(drag) as bands, drag and applied torque per node
+        (:mod:`torsio.solvers.layouts`).
+    top : ndarray, shape (``TOP_SIZE``,)
         The top drive packed for the kernel (all zero: held top) at the System's own
         operating point (:meth:`top_at` gives it at another rotary speed).
     system : System
@@ -123,27 +117,24 @@ class BatchModel:
     def from_system(cls, system: System) -> BatchModel:
         """The chain of ``system`` (ConfigError if the model is not a chain)."""
         dynamics = system.dynamics()
+        if dynamics.contacts is not None:
+            raise ConfigError(
+                "well",
+                "maps of a lumped model with friction along the string are not run: the "
+                "compiled batch engine takes no contacts (set-valued friction); map it on the "
+                'wave model (discretization.strategy = "wave", --strategy wave), or run single '
+                "points with torsio simulate",
+            )
         if not dynamics.is_chain:
             raise ConfigError(
                 "model",
                 "the batch engine needs tridiagonal (chain) matrices [I], [K], "
                 "[C]; use engine='scipy' for other models",
             )
-        chain = np.vstack(
-            [
-                dynamics.mass_diag,
-                dynamics.mass_upper,
-                dynamics.stiffness_diag,
-                dynamics.stiffness_upper,
-                dynamics.damping_diag + dynamics.drag,
-                dynamics.damping_upper,
-                dynamics.drag,
-                dynamics.applied,
-            ]
-        )
+        chain = pack_chain(dynamics)
         return cls(
-            np.ascontiguousarray(chain, dtype=float),
-            _top_vector(dynamics.top, chain),
+            chain,
+            pack_top(dynamics.top, chain),
             system,
             dynamics.has_top_node and not math.isfinite(dynamics.set_speed),
             first_natural_frequency(system.model),  # once per model, kept with it
@@ -172,13 +163,13 @@ class BatchModel:
     @property
     def lumped_mass(self) -> bool:
         """Whether [I] is diagonal."""
-        return not np.any(self.chain[1])
+        return not np.any(self.chain[CHAIN_MASS_UPPER])
 
     def top_at(self, rpm: float) -> np.ndarray:
         """The packed top drive at set speed ``rpm`` (a controller may depend on it)."""
-        if not self.top[0] or rpm == self.system.rpm:
+        if not self.top[TOP_HAS_NODE] or rpm == self.system.rpm:
             return self.top
-        return _top_vector(self.system.top.boundary(self.system.at(rpm=rpm)), self.chain)
+        return pack_top(self.system.top.boundary(self.system.at(rpm=rpm)), self.chain)
 
     def reference_speeds(self, wob: np.ndarray, omega: np.ndarray) -> np.ndarray:
         """Omega_ref [rad/s] of each point: the set speed, or the torque balance if none."""
@@ -186,31 +177,6 @@ class BatchModel:
             return omega.copy()
         speeds = {w: self.system.at(wob=w).dynamics().reference_speed for w in set(wob.tolist())}
         return np.array([speeds[w] for w in wob.tolist()])
-
-
-def _top_vector(boundary: Any, chain: np.ndarray) -> np.ndarray:
-    """The top drive packed for the kernel (:func:`torsio.solvers.rodas` layout)."""
-    top = np.zeros(TOP_SIZE)
-    if boundary.held:
-        return top
-    if boundary.states > 3:
-        raise ConfigError(
-            "top_drive",
-            f"the batch engine takes top-drive controllers with at most 3 states, "
-            f"got {boundary.states}; use engine='scipy'",
-        )
-    m = boundary.states
-    k1, c1 = -chain[3, 0], -chain[5, 0]  # the model's top spring and damper
-    top[:8] = (1.0, m, boundary.u0, boundary.max_torque, k1, c1, *np.asarray(boundary.d))
-    a = np.zeros((3, 3))
-    b = np.zeros((3, 2))
-    a[:m, :m] = boundary.a
-    b[:m] = boundary.b
-    top[8:17] = a.ravel()
-    top[17:23] = b.ravel()
-    top[23 : 23 + m] = boundary.c
-    top[26 : 26 + m] = boundary.w
-    return top
 
 
 def resolve_engine(engine: str, law: Any) -> tuple[str, LawKernel | None]:
@@ -256,15 +222,8 @@ def simulate_batch(
     system: System,
     wob: Any,
     rpm: Any = None,
-    duration: float | None = None,
-    steady_window: float | None = None,
-    rtol: float = DEFAULT_RTOL,
-    atol: float = DEFAULT_ATOL,
-    max_step: float | None = None,
-    max_steps: int = DEFAULT_MAX_STEPS,
-    engine: str = "auto",
-    threads: int | None = None,
-    steady_tolerance: float = DEFAULT_STEADY_TOLERANCE,
+    options: BatchOptions | None = None,
+    **values: Any,
 ) -> BatchResults:
     """S_SS of ``system`` at each operating point (wob[k], rpm[k]), started from rest.
 
@@ -278,27 +237,16 @@ def simulate_batch(
         Surface rotary (set) speeds [rpm], > 0; broadcast against ``wob``. None (and
         only None) for a top drive without a set speed (``torque``): its speed follows
         from the torque balance and S_SS is relative to its mean over the window.
-    duration, steady_window : float, optional
-        Run length and steady-state window [s]; defaults of
-        :func:`torsio.analysis.severity.run_times` (40 and 15 first-mode periods; the
-        window at most half of a given run, as for a single run).
-    rtol, atol : float
-        Per-point local error tolerances (relative; absolute in rad, rad/s and the
-        controller states' units).
-    max_step : float, optional
-        Largest step [s]; default a quarter of the first natural period.
-    max_steps : int
-        Accepted steps allowed per point before it is reported as failed.
-    engine : {"auto", "compiled", "numba", "numpy", "scipy"}
-        See the module documentation.
-    threads : int, optional
-        Threads of the compiled engine (default: numba's default, all cores). Calls
-        from other threads than the main one always run on one thread.
-    steady_tolerance : float
-        The compiled engine ends a run early once the motion is on a cycle whose bit-speed
-        extremes can move by no more than this (in S_SS units) over the rest of the run
-        (:mod:`torsio.solvers.cycles`); 0 runs to the end. Not used with a torque-driven
-        top drive (its mean speed needs the whole window) or by the other engines.
+    options : BatchOptions, optional
+        How the points are integrated and read (:class:`torsio.solvers.batch_options.
+        BatchOptions`: duration, steady window, tolerances, step limits, ``engine`` (see
+        the module documentation), ``threads`` (numba's default when None; calls from
+        other threads than the main one always run on one thread), ``steady_tolerance``
+        (the compiled engine ends a run early once the motion is on a cycle whose bit-speed
+        extremes can move by no more than this, :mod:`torsio.solvers.cycles`; not with a
+        torque-driven top drive, whose mean speed needs the whole window)).
+    **values
+        Fields of :class:`BatchOptions` given one by one (over ``options``).
 
     Returns
     -------
@@ -309,75 +257,31 @@ def simulate_batch(
     from torsio.model.protocol import resolve
 
     run = resolve(system.model.engines.batch)  # the model names what runs it
-    return run(
-        system,
-        wob,
-        rpm,
-        duration=duration,
-        steady_window=steady_window,
-        rtol=rtol,
-        atol=atol,
-        max_step=max_step,
-        max_steps=max_steps,
-        engine=engine,
-        threads=threads,
-        steady_tolerance=steady_tolerance,
-    )
+    given = BatchOptions(**values) if options is None else options.replace(**values)
+    return run(system, wob, rpm, given)
 
 
 def simulate_lumped_batch(
-    system: System,
-    wob: Any,
-    rpm: Any = None,
-    duration: float | None = None,
-    steady_window: float | None = None,
-    rtol: float = DEFAULT_RTOL,
-    atol: float = DEFAULT_ATOL,
-    max_step: float | None = None,
-    max_steps: int = DEFAULT_MAX_STEPS,
-    engine: str = "auto",
-    threads: int | None = None,
-    steady_tolerance: float = DEFAULT_STEADY_TOLERANCE,
+    system: System, wob: Any, rpm: Any, options: BatchOptions
 ) -> BatchResults:
     """:func:`simulate_batch` of a lumped model (its batch engine,
-    :data:`torsio.model.lumped.LUMPED_ENGINES`): the arguments of :func:`simulate_batch`."""
+    :data:`torsio.model.lumped.LUMPED_ENGINES`): the System, the points and the options."""
     wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)
-    for key, value in (("rtol", rtol), ("atol", atol)):
-        if not (math.isfinite(value) and value > 0):
-            raise ConfigError(key, f"expected a positive tolerance, got {value!r}")
-    check_steady_tolerance(steady_tolerance)
-    duration, steady_window = run_times(system, duration, steady_window)
+    rtol, atol, engine, threads = options.rtol, options.atol, options.engine, options.threads
+    duration, steady_window = run_times(system, options.duration, options.steady_window)
     name, kernel = resolve_engine(engine, system.law)
     model = BatchModel.from_system(system) if name != "scipy" else None
-    if model is not None:
-        omega1 = model.first_frequency
-    else:
-        omega1 = first_natural_frequency(system.model)
-    period = 2.0 * math.pi / omega1
-    if max_step is None:
-        max_step = period / 4.0
-    if not (math.isfinite(max_step) and max_step > 0):
-        raise ConfigError("max_step", f"expected a positive step in s, got {max_step!r}")
-    omega_set = rpm_arr * (math.pi / 30.0)
-    h0 = min(1e-3 * period, max_step)
-    steady = 0.0 if torque_driven else float(steady_tolerance)
-    settings = np.array(
-        [
-            duration,
-            duration - steady_window,
-            rtol,
-            atol,
-            h0,
-            max_step,
-            max_steps,
-            0.0,
-            steady,
-            omega1,
-        ]
+    omega1 = model.first_frequency if model is not None else first_natural_frequency(system.model)
+    steps = step_limits(omega1, options.max_step)
+    omega_set = rpm_arr * RPM_TO_RAD_S
+    steady = 0.0 if torque_driven else options.steady_tolerance
+    radius = model.bit_radius if model is not None else 0.0
+    settings = run_settings(
+        duration, steady_window, rtol, atol, steps, options.max_steps, radius, steady, omega1
     )
     start = time.perf_counter()
     out = np.zeros((wob_arr.size, OUT_COLUMNS))
-    out[:, 6] = duration  # the time each run ended (the compiled kernel may end earlier)
+    out[:, OUT_ENDED] = duration  # the time each run ended (the compiled kernel may end earlier)
     if name == "scipy":
         for k in range(wob_arr.size):
             at = {} if torque_driven else {"rpm": float(rpm_arr[k])}
@@ -385,20 +289,22 @@ def simulate_lumped_batch(
             try:
                 _, info = reference_severity(point, duration, steady_window, rtol=rtol, atol=atol)
             except SolverError:  # one point's failure, reported by its status like the others'
-                out[k, :6] = (math.nan, math.nan, 0, 0, STATUS_SOLVER_FAILED, math.nan)
+                out[k, [OUT_BIT_SPEED_MAX, OUT_BIT_SPEED_MIN, OUT_TOP_SPEED_MEAN]] = math.nan
+                out[k, OUT_STATUS] = STATUS_SOLVER_FAILED
                 continue
-            extremes = (info["bit_speed_max"], info["bit_speed_min"])
-            out[k, :6] = (*extremes, info["steps"], 0, 0, info["top_speed_mean"])
+            out[k, OUT_BIT_SPEED_MAX] = info["bit_speed_max"]
+            out[k, OUT_BIT_SPEED_MIN] = info["bit_speed_min"]
+            out[k, OUT_STEPS] = info["steps"]
+            out[k, OUT_TOP_SPEED_MEAN] = info["top_speed_mean"]
     elif wob_arr.size:
         assert model is not None
-        settings[7] = model.bit_radius
         omega_ref = model.reference_speeds(wob_arr, omega_set)
         for top, rows in _groups(model, rpm_arr):
             point_settings = (settings, wob_arr[rows], omega_ref[rows], omega_set[rows])
             if name == "numpy":
                 from torsio.solvers.numpy_engine import integrate_numpy
 
-                out[rows, :6] = integrate_numpy(model.chain, top, model.law, *point_settings)[:, :6]
+                out[rows] = integrate_numpy(model.chain, top, model.law, *point_settings)
             else:
                 assert kernel is not None
                 law = (kernel.torque, kernel.slope, kernel.parameters)
@@ -406,19 +312,21 @@ def simulate_lumped_batch(
                 _run_compiled((model.chain, top, *law, *point_settings, part), threads)
                 out[rows] = part
     elapsed = time.perf_counter() - start
-    status = out[:, 4].astype(np.int64)
-    reference = out[:, 5] if torque_driven else omega_set
+    status = out[:, OUT_STATUS].astype(np.int64)
+    top_speed = out[:, OUT_TOP_SPEED_MEAN]
+    reference = top_speed if torque_driven else omega_set
+    bit_max, bit_min = out[:, OUT_BIT_SPEED_MAX], out[:, OUT_BIT_SPEED_MIN]
     with np.errstate(invalid="ignore", divide="ignore"):
-        severity = np.where(status == 0, (out[:, 0] - out[:, 1]) / (2.0 * reference), np.nan)
+        severity = np.where(status == 0, (bit_max - bit_min) / (2.0 * reference), np.nan)
     return BatchResults(
         wob_arr,
         rpm_arr,
         severity,
-        out[:, 0],
-        out[:, 1],
-        out[:, 5],
-        out[:, 2].astype(np.int64),
-        out[:, 3].astype(np.int64),
+        bit_max,
+        bit_min,
+        top_speed,
+        out[:, OUT_STEPS].astype(np.int64),
+        out[:, OUT_REJECTED].astype(np.int64),
         status,
         name,
         duration,
@@ -426,7 +334,7 @@ def simulate_lumped_batch(
         float(rtol),
         float(atol),
         elapsed,
-        out[:, 6].copy(),
+        out[:, OUT_ENDED].copy(),
         steady,
     )
 
@@ -434,7 +342,7 @@ def simulate_lumped_batch(
 def _groups(model: BatchModel, rpm: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
     """(packed top drive, indices of its points): one group unless the controller
     depends on the set speed beyond Omega_set itself."""
-    if not model.top[0] or np.isnan(rpm).all():
+    if not model.top[TOP_HAS_NODE] or np.isnan(rpm).all():
         return [(model.top, np.arange(rpm.size))]
     tops = {r: model.top_at(r) for r in set(rpm.tolist())}
     groups: list[tuple[np.ndarray, list[int]]] = []
@@ -456,7 +364,7 @@ def _run_compiled(arguments: tuple[Any, ...], threads: int | None) -> None:
     assert numba is not None
     # numba's thread pool must not be entered from several threads at once (a thread pool
     # executor, a Dask worker with several threads): only the main thread uses it
-    count = arguments[6].size
+    count = arguments[-1].shape[0]  # out: a row per point
     if threads == 1 or count == 1 or threading.current_thread() is not threading.main_thread():
         integrate_serial(*arguments)
         return

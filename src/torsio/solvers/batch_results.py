@@ -9,6 +9,7 @@ import attrs
 import numpy as np
 
 from torsio.errors import ConfigError
+from torsio.units import RPM_TO_RAD_S
 
 DEFAULT_STEADY_TOLERANCE = 1e-3
 """Default steady-cycle tolerance of the compiled engines, in S_SS units: a run ends once
@@ -144,7 +145,7 @@ class BatchResults:
         """Whether the bit stuck throughout each point's steady window: |bit speed| below
         ``stick_threshold`` times Omega (the set speed, or the mean top-drive speed of a
         torque-driven top) at every step there; False where the point failed."""
-        reference = np.where(np.isnan(self.rpm), self.top_speed_mean, self.rpm * math.pi / 30.0)
+        reference = np.where(np.isnan(self.rpm), self.top_speed_mean, self.rpm * RPM_TO_RAD_S)
         with np.errstate(invalid="ignore"):
             fastest = np.maximum(np.abs(self.bit_speed_max), np.abs(self.bit_speed_min))
             return self.ok & (fastest < stick_threshold * reference)

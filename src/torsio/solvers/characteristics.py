@@ -64,6 +64,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from torsio.solvers import layouts as slot
 from torsio.solvers.compiled import njit
 from torsio.solvers.wave_bit import _solve_bit
 from torsio.solvers.wave_buffers import (
@@ -76,20 +77,10 @@ from torsio.solvers.wave_buffers import (
     _slot,
 )
 from torsio.solvers.wave_contacts import _contact_node_speeds, _contact_speed, _contacts
+from torsio.solvers.wave_cycles import _crossing
 from torsio.solvers.wave_state import (
-    BUFFER_START,
-    C_INNER,
-    C_SPECIAL,
-    INNER,
-    RATIO_INNER,
-    RATIO_SPECIAL,
-    SPECIAL,
-    SPECIAL_COLUMN,
-    SPECIAL_ROW,
-    WIDTH,
     KernelLayout,
     WaveState,
-    Z,
     kernel_layout,
     node_impedances,
     node_offsets,
@@ -99,8 +90,6 @@ from torsio.solvers.wave_state import (
 
 __all__ = [
     "RECORD_CHANNELS",
-    "SUMMARY_FIELDS",
-    "SUMMARY_SIZE",
     "KernelLayout",
     "WaveState",
     "kernel_layout",
@@ -110,7 +99,7 @@ __all__ = [
     "state_from_fields",
 ]
 
-try:  # numba is optional: without it the same steps run as plain Python (slowly)
+try:  # a dependency; without an importable numba the steps run as plain Python (slowly)
     from numba import types
 
     _F8 = types.float64
@@ -130,87 +119,6 @@ except ImportError:  # pragma: no cover - exercised only without numba
 RECORD_CHANNELS = ("bit_speed", "bit_torque", "surface_torque", "top_speed", "motor_torque")
 """Columns of the recorded time series: rad/s, N m, N m, rad/s, N m."""
 
-SUMMARY_FIELDS = (
-    "bit_speed_min",
-    "bit_speed_max",
-    "top_speed_sum",
-    "window_steps",
-    "work_in",
-    "bit_dissipation",
-    "bit_drag_dissipation",
-    "string_drag_dissipation",
-    "top_drag_dissipation",
-    "failed_step",
-)
-"""Entries of the run summary: extremes and sums over the window; energies [J] over the run."""
-
-SUMMARY_SIZE = 31
-"""Length of the kernel's summary array: :data:`SUMMARY_FIELDS`, the powers of the last
-step (10-14), the steps taken before (15), the steady-cycle tracker (16-22, 24), the
-step the run ended on a steady cycle (23, 0: it did not) and the torque on bit of the
-last step (25), so that a run continued by another call takes the same steps; then the
-friction's work along the string [J] (26), the largest surface torque of the run and
-the smallest and largest of the window [N m] (27-29), and the first step the bit is
-faster than the contacts' threshold speed (30; 0: not yet)."""
-
-# the steady-cycle tracker in the summary array
-_COUNT, _T_LAST, _RUN_MAX, _RUN_MIN, _CYCLE_MAX, _CYCLE_MIN, _CHANGE, _ENDED, _KEPT = range(16, 25)
-_BIT_TORQUE = 25
-
-
-@njit(cache=True, nogil=True, _nrt=False)
-def _crossing(  # type: ignore[no-untyped-def,unused-ignore]
-    layout, spacing, P, M, heads, impedances, speeds, torques, cross, summary,
-    w_bit, top_speed, t_cross, reference, t_end, window_length, tolerance,
-):  # fmt: skip
-    """At an upward crossing of the reference speed by the bit: whether the motion is on
-    a steady cycle (module docstring). Updates the tracker in ``summary`` and the state
-    kept in ``cross`` (2, nodes + 2: speeds and torques / Z', then the bit and top speeds).
-
-    The state of every node is read only when the bit's and the top's change alone would
-    let the run end (it bounds the change from below); otherwise the change counts as
-    infinite and no state is kept, which can only delay the end.
-    """
-    nodes = speeds.size
-    crossings = summary[_COUNT]
-    period = t_cross - summary[_T_LAST]
-    cycles_left = (t_end - t_cross) / period if crossings >= 1.0 else math.inf
-    change = math.inf
-    quick = 0.0
-    bounded = crossings >= 1.0
-    if bounded:
-        quick = max(abs(w_bit - cross[0, nodes]), abs(top_speed - cross[0, nodes + 1]))
-        bounded = cycles_left * quick / (2.0 * reference) <= tolerance
-    cross[0, nodes] = w_bit
-    cross[0, nodes + 1] = top_speed
-    if bounded or crossings < 1.0:
-        _read_nodes(layout, spacing, P, M, heads, impedances, speeds, torques)
-        if summary[_KEPT] > 0.0:
-            moved = 0.0
-            for j in range(nodes):
-                moved = max(moved, abs(speeds[j] - cross[0, j]), abs(torques[j] - cross[1, j]))
-            change = max(moved, quick) / (2.0 * reference)
-        for j in range(nodes):
-            cross[0, j] = speeds[j]
-            cross[1, j] = torques[j]
-        summary[_KEPT] = 1.0
-    else:
-        summary[_KEPT] = 0.0
-    steady = (
-        crossings >= 3.0
-        and period <= window_length
-        and cycles_left * max(change, summary[_CHANGE]) <= tolerance
-    )
-    if crossings >= 1.0:
-        summary[_CYCLE_MAX] = summary[_RUN_MAX]
-        summary[_CYCLE_MIN] = summary[_RUN_MIN]
-    summary[_CHANGE] = change
-    summary[_COUNT] = crossings + 1.0
-    summary[_T_LAST] = t_cross
-    summary[_RUN_MAX] = w_bit
-    summary[_RUN_MIN] = w_bit
-    return steady
-
 
 @njit(cache=True, nogil=True, _nrt=False, error_model="numpy", inline="always")
 def table_speed(table, time):  # type: ignore[no-untyped-def,unused-ignore]
@@ -222,12 +130,13 @@ def table_speed(table, time):  # type: ignore[no-untyped-def,unused-ignore]
     >>> table_speed(ramp, 0.5), table_speed(step, 9.0)
     (1.5, 3.0)
     """
-    times = table[0]
+    times = table[slot.TABLE_TIME]
+    speeds = table[slot.TABLE_SPEED]
     last = times.size - 1
     if time <= times[0]:
-        return table[1, 0]
+        return speeds[0]
     if time >= times[last]:
-        return table[1, last]
+        return speeds[last]
     low = 0
     high = last
     while high - low > 1:
@@ -237,7 +146,7 @@ def table_speed(table, time):  # type: ignore[no-untyped-def,unused-ignore]
         else:
             high = middle
     share = (time - times[low]) / (times[high] - times[low])
-    return table[1, low] + share * (table[1, high] - table[1, low])
+    return speeds[low] + share * (speeds[high] - speeds[low])
 
 
 @njit(_MARCH_SIGNATURE, cache=True, nogil=True, _nrt=False, error_model="numpy")
@@ -247,69 +156,76 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     torque, slope, parameters, records, field, summary, cross, buffers, scratch, heads, top_work,
     contact_index, contacts,
 ):  # fmt: skip
-    """Advance ``settings[8]`` steps of a run of ``settings[18]`` steps (the ``summary``
+    """Advance ``WAVE_STEPS`` steps of a run of ``WAVE_RUN_STEPS`` steps (the ``summary``
     counts those taken before: a run may take its steps in several calls, with the same
-    result); see the module docstring. Works in place on the
-    node-ordered state (p, m, top_state, bit_state) and the ``summary``; ``buffers``
-    (2, KernelLayout.buffer_size), ``scratch`` (2, nodes), ``heads`` (sections, 4) and
+    result); see the module docstring. ``settings`` and ``summary`` as
+    :mod:`torsio.solvers.layouts` lays them out. Works in place on the node-ordered state
+    (p, m, top_state, bit_state) and the ``summary``; ``buffers`` (2,
+    KernelLayout.buffer_size), ``scratch`` (2, nodes), ``heads`` (sections, 4) and
     ``top_work`` (top states) are its work space, allocated by the caller. With
-    ``settings[20]`` set, the drag nodes carry Coulomb contacts (``contact_index``,
+    ``WAVE_CONTACTS`` set, the drag nodes carry Coulomb contacts (``contact_index``,
     ``contacts``: :func:`torsio.solvers.wave_contacts.contact_arrays`, threshold speed
-    ``settings[19]``), solved exactly at every step (:mod:`torsio.solvers.wave_contacts`).
+    ``WAVE_THRESHOLD``), solved exactly at every step (:mod:`torsio.solvers.wave_contacts`).
     The set speed is ``speed_table``'s (:func:`table_speed`), constant from
-    ``settings[23]`` on; ``settings[22]`` is the motor torque per unit set speed."""
-    dt = settings[0]
-    bit_inertia = settings[1]
-    alpha = settings[2]
-    wob = settings[3]
-    radius = settings[4]
-    held = settings[5] != 0.0
-    max_torque = settings[7]
-    steps = int(settings[8])
-    window_start = int(settings[9])
-    record_every = int(settings[10])
-    field_every = int(settings[11])
-    top_drag = settings[12]
-    track_energy = settings[13] != 0.0
-    spacing = int(settings[14])
-    steady_tolerance = settings[15]
-    reference = settings[16]
-    cycle_gap = settings[17]
-    run_steps = int(settings[18])
-    threshold = settings[19]
-    below = settings[21]  # the largest speed under the threshold: the static branch
-    rubbing = settings[20] != 0.0
-    set_gain = settings[22]
-    ramp_end = settings[23]
+    ``WAVE_RAMP_END`` on; ``WAVE_KP`` (kp) is the motor torque per unit set speed."""
+    dt = settings[slot.WAVE_DT]
+    bit_inertia = settings[slot.WAVE_BIT_INERTIA]
+    alpha = settings[slot.WAVE_ALPHA]
+    wob = settings[slot.WAVE_WOB]
+    radius = settings[slot.WAVE_BIT_RADIUS]
+    held = settings[slot.WAVE_HELD] != 0.0
+    max_torque = settings[slot.WAVE_MAX_TORQUE]
+    steps = int(settings[slot.WAVE_STEPS])
+    window_start = int(settings[slot.WAVE_WINDOW_START])
+    record_every = int(settings[slot.WAVE_RECORD_EVERY])
+    field_every = int(settings[slot.WAVE_FIELD_EVERY])
+    top_drag = settings[slot.WAVE_TOP_DRAG]
+    track_energy = settings[slot.WAVE_TRACK_ENERGY] != 0.0
+    spacing = int(settings[slot.WAVE_DRAG_SPACING])
+    steady_tolerance = settings[slot.WAVE_STEADY_TOLERANCE]
+    reference = settings[slot.WAVE_REFERENCE]
+    cycle_gap = settings[slot.WAVE_CYCLE_GAP]
+    run_steps = int(settings[slot.WAVE_RUN_STEPS])
+    threshold = settings[slot.WAVE_THRESHOLD]
+    below = settings[
+        slot.WAVE_BELOW_THRESHOLD
+    ]  # the largest speed under the threshold: the static branch
+    rubbing = settings[slot.WAVE_CONTACTS] != 0.0
+    kp = settings[slot.WAVE_KP]  # the motor torque per unit set speed
+    ramp_end = settings[slot.WAVE_RAMP_END]
     t_end = run_steps * dt  # the run's end, for the cycles left, and its window's length
     window_length = (run_steps - window_start + 1) * dt
     track = steady_tolerance > 0.0 and reference > 0.0
     count = layout.shape[0]
     last = count - 1
     nodes = p.size
-    P = buffers[0]
-    M = buffers[1]
+    P = buffers[slot.BUFFER_P]
+    M = buffers[slot.BUFFER_M]
     # heads: (row, column) of node 0's slot of p and of m in each section
     heads[:, :] = 0
     _copy_nodes(layout, spacing, P, M, heads, p, m, True)
     c_top = end_dampers[0]
     c_bit = end_dampers[count]
-    z_top = sections[0, Z]
-    z_bit = sections[last, Z]
+    z_top = sections[0, slot.Z]
+    z_bit = sections[last, slot.Z]
     n_top = top_state.size
-    previous = summary[10:15]  # powers at the previous step (trapezoidal energies)
+    previous = summary[
+        slot.SUM_POWERS : slot.SUM_POWERS + slot.POWER_COUNT
+    ]  # powers at the previous step (trapezoidal energies)
     mode_x = top_work
-    speeds = scratch[0]
-    torques = scratch[1]
-    w_now = bit_state[0]
-    if summary[15] > 0.0:  # a run continued: the torque the last step solved for
-        t_now = summary[_BIT_TORQUE]
+    static, dynamic = contacts[slot.CONTACT_STATIC], contacts[slot.CONTACT_DYNAMIC]
+    contact_speed = contacts[slot.CONTACT_SPEED]
+    speeds = scratch[slot.NODE_SPEED]
+    torques = scratch[slot.NODE_TORQUE]
+    w_now = bit_state[slot.BIT_SPEED]
+    if summary[slot.SUM_STEPS] > 0.0:  # a run continued: the torque the last step solved for
+        t_now = summary[slot.SUM_BIT_TORQUE]
     else:
         t_now = torque(parameters, w_now, wob, radius)
     taken = 0
     for step in range(steps):
         m_top_old = M[_end_slots(layout, spacing, heads, 0, False)[1]]
-        t_next = (summary[15] + step + 1.0) * dt
+        t_next = (summary[slot.SUM_STEPS] + step + 1.0) * dt
         set_before = table_speed(speed_table, t_next - dt)
         set_speed = table_speed(speed_table, t_next)
         # 1. transport
@@ -318,53 +234,71 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
         inner_power = 0.0
         friction_power = 0.0
         for s in range(count):
-            start = layout[s, BUFFER_START]
-            width = layout[s, WIDTH]
-            regular = layout[s, INNER]
+            start = layout[s, slot.BUFFER_START]
+            width = layout[s, slot.WIDTH]
+            regular = layout[s, slot.INNER]
             if regular > 0:
-                ip = start + heads[s, 0] * width + heads[s, 1] + 1
-                im = start + heads[s, 2] * width + heads[s, 3] + 1
+                ip = start + heads[s, slot.HEAD_P_ROW] * width + heads[s, slot.HEAD_P_COLUMN] + 1
+                im = start + heads[s, slot.HEAD_M_ROW] * width + heads[s, slot.HEAD_M_COLUMN] + 1
                 if rubbing:
-                    a = contact_index[s, 0]
+                    a = contact_index[s, slot.CONTACT_REGULAR]
                     b = a + regular
-                    z = sections[s, Z]
-                    c = sections[s, C_INNER]
+                    z = sections[s, slot.Z]
+                    c = sections[s, slot.C_INNER]
                     squares, rub = _contacts(
                         P[ip : ip + regular], M[im : im + regular], 2.0 * z, 1.0 / (2.0 * z + c),
-                        contacts[0, a:b], contacts[1, a:b], contacts[2, a:b], below,
+                        static[a:b], dynamic[a:b], contact_speed[a:b], below,
                     )  # fmt: skip
                     inner_power += c * squares
                     friction_power += rub
                 elif track_energy:
                     total = _dampers_with_power(
-                        P[ip : ip + regular], M[im : im + regular], sections[s, RATIO_INNER]
+                        P[ip : ip + regular], M[im : im + regular], sections[s, slot.RATIO_INNER]
                     )
-                    z = sections[s, Z]
-                    c = sections[s, C_INNER]
+                    z = sections[s, slot.Z]
+                    c = sections[s, slot.C_INNER]
                     inner_power += c * total / ((2.0 * z + c) * (2.0 * z + c))
                 else:
-                    _dampers(P[ip : ip + regular], M[im : im + regular], sections[s, RATIO_INNER])
-            if layout[s, SPECIAL] >= 0:
-                rows_on = layout[s, SPECIAL_ROW]
-                columns_on = layout[s, SPECIAL_COLUMN]
-                ip = _slot(start, width, spacing, heads[s, 0], heads[s, 1], rows_on, columns_on)
-                im = _slot(start, width, spacing, heads[s, 2], heads[s, 3], rows_on, columns_on)
+                    _dampers(
+                        P[ip : ip + regular], M[im : im + regular], sections[s, slot.RATIO_INNER]
+                    )
+            if layout[s, slot.SPECIAL] >= 0:
+                rows_on = layout[s, slot.SPECIAL_ROW]
+                columns_on = layout[s, slot.SPECIAL_COLUMN]
+                ip = _slot(
+                    start,
+                    width,
+                    spacing,
+                    heads[s, slot.HEAD_P_ROW],
+                    heads[s, slot.HEAD_P_COLUMN],
+                    rows_on,
+                    columns_on,
+                )
+                im = _slot(
+                    start,
+                    width,
+                    spacing,
+                    heads[s, slot.HEAD_M_ROW],
+                    heads[s, slot.HEAD_M_COLUMN],
+                    rows_on,
+                    columns_on,
+                )
                 arriving_p = P[ip]
                 difference = arriving_p - M[im]
-                z = sections[s, Z]
-                c = sections[s, C_SPECIAL]
+                z = sections[s, slot.Z]
+                c = sections[s, slot.C_SPECIAL]
                 if rubbing:
-                    j = contact_index[s, 1]
+                    j = contact_index[s, slot.CONTACT_OTHER]
                     v = _contact_speed(
-                        difference, 1.0 / (2.0 * z + c), contacts[0, j], contacts[1, j],
-                        contacts[2, j], below,
+                        difference, 1.0 / (2.0 * z + c), static[j], dynamic[j],
+                        contact_speed[j], below,
                     )  # fmt: skip
-                    contacts[2, j] = v
+                    contact_speed[j] = v
                     friction_power += (difference - (2.0 * z + c) * v) * v
                     jump = 2.0 * z * v
                     inner_power += c * v * v
                 else:
-                    jump = sections[s, RATIO_SPECIAL] * difference
+                    jump = sections[s, slot.RATIO_SPECIAL] * difference
                     inner_power += c * difference * difference / ((2.0 * z + c) * (2.0 * z + c))
                 P[ip] = M[im] + jump
                 M[im] = arriving_p - jump
@@ -373,17 +307,17 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
         for s in range(last):
             ia, ja = _end_slots(layout, spacing, heads, s, True)
             ib, jb = _end_slots(layout, spacing, heads, s + 1, False)
-            z1 = sections[s, Z]
-            z2 = sections[s + 1, Z]
+            z1 = sections[s, slot.Z]
+            z2 = sections[s + 1, slot.Z]
             c = end_dampers[s + 1]
             difference = P[ia] - M[jb]
             if rubbing:
-                j = contact_index[s, 2]
+                j = contact_index[s, slot.CONTACT_JUNCTION]
                 speed = _contact_speed(
-                    difference, 1.0 / (z1 + z2 + c), contacts[0, j], contacts[1, j],
-                    contacts[2, j], below,
+                    difference, 1.0 / (z1 + z2 + c), static[j], dynamic[j],
+                    contact_speed[j], below,
                 )  # fmt: skip
-                contacts[2, j] = speed
+                contact_speed[j] = speed
                 friction_power += (difference - (z1 + z2 + c) * speed) * speed
             else:
                 speed = difference / (z1 + z2 + c)
@@ -407,9 +341,13 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
                     for j in range(n_top):
                         acc += propagator[mode, i, j] * top_state[j]
                     mode_x[i] = acc
-                u_free = coefficients[0] + set_gain * set_speed + coefficients[n_top + 1] * m_in
+                u_free = (
+                    coefficients[slot.COEF_U0]
+                    + kp * set_speed
+                    + coefficients[slot.COEF_STATES + n_top] * m_in
+                )
                 for i in range(n_top):
-                    u_free += coefficients[1 + i] * mode_x[i]
+                    u_free += coefficients[slot.COEF_STATES + i] * mode_x[i]
                 if mode == 0:
                     if u_free > max_torque:
                         continue
@@ -430,15 +368,15 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
                 motor = -max_torque
             for i in range(n_top):
                 top_state[i] = mode_x[i]
-            top_speed = top_state[0]
+            top_speed = top_state[slot.X_TOP_SPEED]
         P[i_top] = m_in + 2.0 * z_top * top_speed
         surface_torque = m_in + (z_top + c_top) * top_speed  # the top node's drag: the string's
         end_power += c_top * top_speed * top_speed
         # 5. bit
         i_bit, j_bit = _end_slots(layout, spacing, heads, last, True)
         p_in = P[i_bit]
-        w_old = bit_state[1]
-        if bit_state[2] < 1.0:
+        w_old = bit_state[slot.BIT_SPEED_BEFORE]
+        if bit_state[slot.BIT_STEPS] < 1.0:
             k = bit_inertia / dt + z_bit + alpha * bit_inertia + c_bit
             rhs = bit_inertia * w_now / dt + p_in
             guess = w_now
@@ -450,12 +388,12 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
             k, rhs, w_now, t_now, guess, torque, slope, parameters, wob, radius
         )
         if not math.isfinite(w_bit):
-            summary[9] = summary[15] + step + 1.0
+            summary[slot.SUM_FAILED_STEP] = summary[slot.SUM_STEPS] + step + 1.0
             break
         taken = step + 1
-        bit_state[1] = w_now
-        bit_state[0] = w_bit
-        bit_state[2] += 1.0
+        bit_state[slot.BIT_SPEED_BEFORE] = w_now
+        bit_state[slot.BIT_SPEED] = w_bit
+        bit_state[slot.BIT_STEPS] += 1.0
         w_old = w_now
         w_now = w_bit
         t_now = bit_torque
@@ -466,39 +404,51 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
         power_bit = bit_torque * w_bit
         power_bit_drag = alpha * bit_inertia * w_bit * w_bit
         power_top_drag = top_drag * top_speed * top_speed
-        summary[4] += 0.5 * dt * (previous[0] + power_in)
-        summary[5] += 0.5 * dt * (previous[1] + power_bit)
-        summary[6] += 0.5 * dt * (previous[2] + power_bit_drag)
-        summary[7] += 0.5 * dt * (previous[3] + end_power) + dt * inner_power
-        summary[8] += 0.5 * dt * (previous[4] + power_top_drag)
-        summary[26] += dt * friction_power
-        previous[0] = power_in
-        previous[1] = power_bit
-        previous[2] = power_bit_drag
-        previous[3] = end_power
-        previous[4] = power_top_drag
+        summary[slot.SUM_WORK_IN] += 0.5 * dt * (previous[slot.POWER_IN] + power_in)
+        summary[slot.SUM_BIT_DISSIPATION] += 0.5 * dt * (previous[slot.POWER_BIT] + power_bit)
+        summary[slot.SUM_BIT_DRAG_DISSIPATION] += (
+            0.5 * dt * (previous[slot.POWER_BIT_DRAG] + power_bit_drag)
+        )
+        summary[slot.SUM_STRING_DRAG_DISSIPATION] += (
+            0.5 * dt * (previous[slot.POWER_STRING_DRAG] + end_power) + dt * inner_power
+        )
+        summary[slot.SUM_TOP_DRAG_DISSIPATION] += (
+            0.5 * dt * (previous[slot.POWER_TOP_DRAG] + power_top_drag)
+        )
+        summary[slot.SUM_FRICTION_WORK] += dt * friction_power
+        previous[slot.POWER_IN] = power_in
+        previous[slot.POWER_BIT] = power_bit
+        previous[slot.POWER_BIT_DRAG] = power_bit_drag
+        previous[slot.POWER_STRING_DRAG] = end_power
+        previous[slot.POWER_TOP_DRAG] = power_top_drag
         # window extremes and records
-        absolute = int(summary[15]) + step + 1
-        summary[27] = max(summary[27], surface_torque)
-        if summary[30] == 0.0 and abs(w_bit) > threshold:
-            summary[30] = absolute
+        absolute = int(summary[slot.SUM_STEPS]) + step + 1
+        summary[slot.SUM_SURFACE_TORQUE_PEAK] = max(
+            summary[slot.SUM_SURFACE_TORQUE_PEAK], surface_torque
+        )
+        if summary[slot.SUM_BIT_FIRST_MOTION] == 0.0 and abs(w_bit) > threshold:
+            summary[slot.SUM_BIT_FIRST_MOTION] = absolute
         if absolute >= window_start:
-            summary[28] = min(summary[28], surface_torque)
-            summary[29] = max(summary[29], surface_torque)
-            if w_bit < summary[0]:
-                summary[0] = w_bit
-            if w_bit > summary[1]:
-                summary[1] = w_bit
-            summary[2] += top_speed
-            summary[3] += 1.0
+            summary[slot.SUM_SURFACE_TORQUE_MIN] = min(
+                summary[slot.SUM_SURFACE_TORQUE_MIN], surface_torque
+            )
+            summary[slot.SUM_SURFACE_TORQUE_MAX] = max(
+                summary[slot.SUM_SURFACE_TORQUE_MAX], surface_torque
+            )
+            if w_bit < summary[slot.SUM_BIT_SPEED_MIN]:
+                summary[slot.SUM_BIT_SPEED_MIN] = w_bit
+            if w_bit > summary[slot.SUM_BIT_SPEED_MAX]:
+                summary[slot.SUM_BIT_SPEED_MAX] = w_bit
+            summary[slot.SUM_TOP_SPEED_SUM] += top_speed
+            summary[slot.SUM_WINDOW_STEPS] += 1.0
         if record_every > 0 and absolute % record_every == 0:
             row = absolute // record_every
             if row < records.shape[0]:
-                records[row, 0] = w_bit
-                records[row, 1] = bit_torque
-                records[row, 2] = surface_torque
-                records[row, 3] = top_speed
-                records[row, 4] = motor
+                records[row, slot.REC_BIT_SPEED] = w_bit
+                records[row, slot.REC_BIT_TORQUE] = bit_torque
+                records[row, slot.REC_SURFACE_TORQUE] = surface_torque
+                records[row, slot.REC_TOP_SPEED] = top_speed
+                records[row, slot.REC_MOTOR_TORQUE] = motor
         if field_every > 0 and absolute % field_every == 0:
             row = absolute // field_every
             if row < field.shape[0]:
@@ -513,11 +463,13 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
             t_cross = 0.0
             if crossed:
                 t_cross = (absolute - 1.0 + (reference - w_old) / (w_bit - w_old)) * dt
-                crossed = summary[_COUNT] < 1.0 or t_cross - summary[_T_LAST] >= cycle_gap
+                crossed = (
+                    summary[slot.SUM_COUNT] < 1.0 or t_cross - summary[slot.SUM_T_LAST] >= cycle_gap
+                )
             if not crossed:
-                if summary[_COUNT] > 0.0:
-                    summary[_RUN_MAX] = max(summary[_RUN_MAX], w_bit)
-                    summary[_RUN_MIN] = min(summary[_RUN_MIN], w_bit)
+                if summary[slot.SUM_COUNT] > 0.0:
+                    summary[slot.SUM_RUN_MAX] = max(summary[slot.SUM_RUN_MAX], w_bit)
+                    summary[slot.SUM_RUN_MIN] = min(summary[slot.SUM_RUN_MIN], w_bit)
                 continue
             steady = _crossing(
                 layout, spacing, P, M, heads, impedances, speeds, torques, cross, summary,
@@ -525,10 +477,14 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
                 steady_tolerance,
             )  # fmt: skip
             if steady:  # its extremes are those of the rest of the window
-                summary[0] = min(summary[0], summary[_CYCLE_MIN])
-                summary[1] = max(summary[1], summary[_CYCLE_MAX])
-                summary[_ENDED] = absolute
+                summary[slot.SUM_BIT_SPEED_MIN] = min(
+                    summary[slot.SUM_BIT_SPEED_MIN], summary[slot.SUM_CYCLE_MIN]
+                )
+                summary[slot.SUM_BIT_SPEED_MAX] = max(
+                    summary[slot.SUM_BIT_SPEED_MAX], summary[slot.SUM_CYCLE_MAX]
+                )
+                summary[slot.SUM_ENDED] = absolute
                 break
-    summary[15] += taken
-    summary[_BIT_TORQUE] = t_now
+    summary[slot.SUM_STEPS] += taken
+    summary[slot.SUM_BIT_TORQUE] = t_now
     _copy_nodes(layout, spacing, P, M, heads, p, m, False)

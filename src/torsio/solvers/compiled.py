@@ -1,7 +1,9 @@
-"""numba, when it is installed: ``njit``, ``prange`` and the batch kernel's signature.
+"""numba for the kernels: ``njit``, ``prange`` and the kernels' explicit signatures.
 
-Without numba, ``njit`` returns the functions unchanged (they run as plain Python,
-slowly) and :data:`HAVE_NUMBA` is False: the batch engine then uses numpy.
+numba is a dependency of torsio (``pyproject.toml``). Should it fail to import (a Python
+version or platform it has no build for yet, a broken installation), ``njit`` returns
+the functions unchanged (they run as plain Python, slowly) and :data:`HAVE_NUMBA` is
+False: the batch engine then uses numpy.
 """
 
 from __future__ import annotations
@@ -11,7 +13,7 @@ from typing import Any
 numba: Any
 njit: Any
 prange: Any
-try:  # numba is optional: without it the numpy engine is used
+try:  # a dependency; without an importable numba the numpy engine is used
     import numba
     from numba import njit, prange
 
@@ -35,9 +37,11 @@ __all__ = ["HAVE_NUMBA", "kernel_signature", "njit", "numba", "prange", "run_sig
 def kernel_signature() -> Any:
     """Explicit signature of the batch kernels (None without numba).
 
-    (chain[8, n], top, torque function, slope function, law parameters, settings,
-    wob[k], Omega_ref[k], Omega_set[k], out[k, 7]) -> None. The two law functions are
-    first-class function types, so one compiled kernel serves every law.
+    (chain, top, torque function, slope function, law parameters, settings, wob[k],
+    Omega_ref[k], Omega_set[k], out[k]) -> None, the packed arrays as
+    :mod:`torsio.solvers.layouts` lays them out (chain (``CHAIN_ROWS``, n), top
+    (``TOP_SIZE``), settings (``RUN_SIZE``), out (points, ``OUT_COLUMNS``)). The two law
+    functions are first-class function types, so one compiled kernel serves every law.
     """
     if not HAVE_NUMBA:
         return None

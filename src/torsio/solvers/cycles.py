@@ -40,26 +40,30 @@ from __future__ import annotations
 import math
 
 from torsio.solvers.compiled import njit
+from torsio.solvers.layouts import (
+    CROSS_RATE,
+    CROSS_TWIST,
+    CYCLE_CHANGE,
+    CYCLE_COUNT,
+    CYCLE_MAX,
+    CYCLE_MIN,
+    CYCLE_RUN_MAX,
+    CYCLE_RUN_MIN,
+    CYCLE_SET_OMEGA_1,
+    CYCLE_SET_T_END,
+    CYCLE_SET_TOLERANCE,
+    CYCLE_SET_TWICE_OMEGA,
+    CYCLE_SET_WINDOW,
+    CYCLE_T_LAST,
+)
 
 __all__ = [
-    "CYCLE_MAX",
-    "CYCLE_MIN",
-    "CYCLE_SIZE",
     "extremes_of_cubic",
     "hermite",
     "integral_of_cubic",
     "track_cycle",
     "upward_root",
 ]
-
-CYCLE_SIZE = 8
-"""Length of the tracker's state array (:func:`track_cycle`); zeroed before a run."""
-
-# the tracker's state: crossings seen, time of the last one, running bit-speed max and
-# min since it, extremes of the last complete cycle, the change d of the state
-_COUNT, _T_LAST, _RUN_MAX, _RUN_MIN, _MAX, _MIN, _CHANGE = 0, 1, 2, 3, 4, 5, 6
-CYCLE_MAX, CYCLE_MIN = _MAX, _MIN
-"""Where the bit's twist-rate extremes of the last complete cycle are in the state array."""
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
@@ -145,57 +149,59 @@ def track_cycle(
 ) -> bool:
     """Follow one accepted step [t, t + h]; True when the motion is on a steady cycle.
 
-    ``cycle`` (:data:`CYCLE_SIZE`) is the tracker's state and ``cross`` (2, n) the twists
-    and twist rates of the nodes at the last crossing, both zeroed before the run.
-    ``bit0``, ``bit_acc0``: the bit's twist rate and acceleration at t; (phi1, v1, acc1):
-    twists, twist rates and accelerations of the nodes at t + h (bit last); (phi0, v0,
-    acc0): the same at t, read only if the bit crosses the reference speed upwards in the
-    step. ``settings``: (2 Omega [rad/s], omega_1 [rad/s], t_end [s], window length [s],
-    tolerance). See the module documentation.
+    ``cycle`` (``CYCLE_*`` of :mod:`torsio.solvers.layouts`) is the tracker's state and
+    ``cross`` (``CROSS_ROWS``, n) the twists and twist rates of the nodes at the last
+    crossing, both zeroed before the run. ``bit0``, ``bit_acc0``: the bit's twist rate and
+    acceleration at t; (phi1, v1, acc1): twists, twist rates and accelerations of the nodes
+    at t + h (bit last); (phi0, v0, acc0): the same at t, read only if the bit crosses the
+    reference speed upwards in the step. ``settings`` (``CYCLE_SET_*``): 2 Omega [rad/s],
+    omega_1 [rad/s], t_end [s], window length [s], tolerance. See the module documentation.
     """
     n = v1.size
     bit1 = v1[n - 1]
     d0 = h * bit_acc0
     d1 = h * acc1[n - 1]
     if not bit0 < 0.0 <= bit1:
-        if cycle[_COUNT] > 0.0:
-            cycle[_RUN_MAX], cycle[_RUN_MIN] = extremes_of_cubic(
-                bit0, bit1, d0, d1, 0.0, 1.0, cycle[_RUN_MAX], cycle[_RUN_MIN]
+        if cycle[CYCLE_COUNT] > 0.0:
+            cycle[CYCLE_RUN_MAX], cycle[CYCLE_RUN_MIN] = extremes_of_cubic(
+                bit0, bit1, d0, d1, 0.0, 1.0, cycle[CYCLE_RUN_MAX], cycle[CYCLE_RUN_MIN]
             )
         return False
-    scale, omega1, t_end, window, tolerance = (
-        settings[0],
-        settings[1],
-        settings[2],
-        settings[3],
-        settings[4],
-    )
+    scale = settings[CYCLE_SET_TWICE_OMEGA]
+    omega1 = settings[CYCLE_SET_OMEGA_1]
+    t_end = settings[CYCLE_SET_T_END]
+    window = settings[CYCLE_SET_WINDOW]
+    tolerance = settings[CYCLE_SET_TOLERANCE]
     x = upward_root(bit0, bit1, d0, d1)
     t_cross = t + x * h
-    count = cycle[_COUNT]
-    top, bottom = extremes_of_cubic(bit0, bit1, d0, d1, 0.0, x, cycle[_RUN_MAX], cycle[_RUN_MIN])
+    count = cycle[CYCLE_COUNT]
+    top, bottom = extremes_of_cubic(
+        bit0, bit1, d0, d1, 0.0, x, cycle[CYCLE_RUN_MAX], cycle[CYCLE_RUN_MIN]
+    )
     change = 0.0 if count >= 1.0 else math.inf
     for i in range(n):  # the state at this crossing against the last one's
         twist = hermite(phi0[i], phi1[i], h * v0[i], h * v1[i], x)
         rate = hermite(v0[i], v1[i], h * acc0[i], h * acc1[i], x)
         if count >= 1.0:
-            moved = max(omega1 * abs(twist - cross[0, i]), abs(rate - cross[1, i]))
+            moved = max(
+                omega1 * abs(twist - cross[CROSS_TWIST, i]), abs(rate - cross[CROSS_RATE, i])
+            )
             change = max(change, moved / scale)
-        cross[0, i] = twist
-        cross[1, i] = rate
-    period = t_cross - cycle[_T_LAST]
+        cross[CROSS_TWIST, i] = twist
+        cross[CROSS_RATE, i] = rate
+    period = t_cross - cycle[CYCLE_T_LAST]
     steady = (
         count >= 3.0
         and period <= window
-        and (t_end - t_cross) / period * max(change, cycle[_CHANGE]) <= tolerance
+        and (t_end - t_cross) / period * max(change, cycle[CYCLE_CHANGE]) <= tolerance
     )
     if count >= 1.0:
-        cycle[_MAX] = top
-        cycle[_MIN] = bottom
-    cycle[_CHANGE] = change
-    cycle[_COUNT] = count + 1.0
-    cycle[_T_LAST] = t_cross
-    cycle[_RUN_MAX], cycle[_RUN_MIN] = extremes_of_cubic(
+        cycle[CYCLE_MAX] = top
+        cycle[CYCLE_MIN] = bottom
+    cycle[CYCLE_CHANGE] = change
+    cycle[CYCLE_COUNT] = count + 1.0
+    cycle[CYCLE_T_LAST] = t_cross
+    cycle[CYCLE_RUN_MAX], cycle[CYCLE_RUN_MIN] = extremes_of_cubic(
         bit0, bit1, d0, d1, x, 1.0, -math.inf, math.inf
     )
     return steady

@@ -14,7 +14,8 @@ from typing import Any
 import numpy as np
 
 from torsio.physics.law_slope import bit_slope
-from torsio.solvers.rodas import GAMMA, OUT_COLUMNS, RODAS_A, RODAS_C
+from torsio.solvers import layouts as slot
+from torsio.solvers.rodas import GAMMA, RODAS_A, RODAS_C
 
 __all__ = ["extremes_numpy", "integrate_numpy"]
 
@@ -31,16 +32,22 @@ class _Chain:
     """The chain and top drive of :mod:`torsio.solvers.rodas`, vectorized over points."""
 
     def __init__(self, chain: np.ndarray, top: np.ndarray, law: Any, radius: float) -> None:
-        self.md, self.mu, self.kd, self.ku, self.cd, self.cu, self.drag, self.applied = chain
+        self.md, self.mu = chain[slot.CHAIN_MASS], chain[slot.CHAIN_MASS_UPPER]
+        self.kd, self.ku = chain[slot.CHAIN_STIFFNESS], chain[slot.CHAIN_STIFFNESS_UPPER]
+        self.cd, self.cu = chain[slot.CHAIN_DAMPING], chain[slot.CHAIN_DAMPING_UPPER]
+        self.drag, self.applied = chain[slot.CHAIN_DRAG], chain[slot.CHAIN_APPLIED]
         self.n = chain.shape[1]
-        self.has_top = bool(top[0])
-        self.m = m = int(top[1])
-        self.u0, self.max_torque, self.k1, self.c1 = top[2], top[3], top[4], top[5]
-        self.d = top[6:8]
-        self.a = top[8:17].reshape(3, 3)[:m, :m]
-        self.b = top[17:23].reshape(3, 2)[:m]
-        self.c = top[23 : 23 + m]
-        self.w = top[26 : 26 + m]
+        self.has_top = bool(top[slot.TOP_HAS_NODE])
+        self.m = m = int(top[slot.TOP_STATES])
+        self.u0, self.max_torque = top[slot.TOP_U0], top[slot.TOP_MAX_TORQUE]
+        self.k1, self.c1 = top[slot.TOP_K_PIPE], top[slot.TOP_C_PIPE]
+        self.kp, self.pipe_gain = top[slot.TOP_KP], top[slot.TOP_PIPE_GAIN]
+        self.d = np.array([self.kp, self.pipe_gain])  # the gains on y = [e, T_pipe]
+        states = slot.MAX_STATES
+        self.a = top[slot.TOP_A : slot.TOP_B].reshape(states, states)[:m, :m]
+        self.b = top[slot.TOP_B : slot.TOP_C].reshape(states, 2)[:m]
+        self.c = top[slot.TOP_C : slot.TOP_C + m]
+        self.w = top[slot.TOP_W : slot.TOP_W + m]
         self.law = law
         self.radius = radius
         self.mpiv = np.empty(self.n)  # factors of [I], for the accelerations
@@ -54,7 +61,7 @@ class _Chain:
         """Speed error, pipe torque, u and u_free per point."""
         error = np.where(np.isnan(om_set), 0.0, om_set - (om + v[:, 0]))
         pipe = self.k1 * (phi[:, 0] - phi[:, 1]) + self.c1 * (v[:, 0] - v[:, 1])
-        free = self.u0 + self.d[0] * error + self.d[1] * pipe + z @ self.c
+        free = self.u0 + self.kp * error + self.pipe_gain * pipe + z @ self.c
         return error, pipe, np.clip(free, -self.max_torque, self.max_torque), free
 
     def forces(self, om, om_set, wob, phi, v, z) -> tuple[np.ndarray, np.ndarray]:
@@ -108,12 +115,16 @@ def integrate_numpy(
     omega: np.ndarray,
     omega_set: np.ndarray,
 ) -> np.ndarray:
-    """Every point at once; returns the :data:`torsio.solvers.rodas.OUT_COLUMNS` per point."""
-    t_end, t_window, rtol, atol, h0, hmax, max_steps, radius = settings[:8]
-    sys_ = _Chain(chain, top, law, float(radius))
+    """Every point at once, each to the end; returns ``out`` (:mod:`torsio.solvers.layouts`)."""
+    t_end, t_window = settings[slot.RUN_T_END], settings[slot.RUN_WINDOW_START]
+    rtol, atol = settings[slot.RUN_RTOL], settings[slot.RUN_ATOL]
+    h0, hmax = settings[slot.RUN_FIRST_STEP], settings[slot.RUN_MAX_STEP]
+    max_steps = settings[slot.RUN_MAX_STEPS]
+    sys_ = _Chain(chain, top, law, float(settings[slot.RUN_BIT_RADIUS]))
     n, m = sys_.n, sys_.m
     count = wob.size
-    out = np.zeros((count, OUT_COLUMNS))
+    out = np.zeros((count, slot.OUT_COLUMNS))
+    out[:, slot.OUT_ENDED] = t_end
     state: dict[str, np.ndarray] = {
         "idx": np.arange(count),
         "wob": wob.copy(),
@@ -143,13 +154,13 @@ def integrate_numpy(
     def retire(keep: np.ndarray) -> None:
         done = ~keep
         rows = s["idx"][done]
-        out[rows, 0] = s["vmax"][done] + s["om"][done]
-        out[rows, 1] = s["vmin"][done] + s["om"][done]
-        out[rows, 2] = s["steps"][done]
-        out[rows, 3] = s["rejected"][done]
-        out[rows, 4] = s["status"][done]
+        out[rows, slot.OUT_BIT_SPEED_MAX] = s["vmax"][done] + s["om"][done]
+        out[rows, slot.OUT_BIT_SPEED_MIN] = s["vmin"][done] + s["om"][done]
+        out[rows, slot.OUT_STEPS] = s["steps"][done]
+        out[rows, slot.OUT_REJECTED] = s["rejected"][done]
+        out[rows, slot.OUT_STATUS] = s["status"][done]
         mean = s["top_integral"][done] / window if sys_.has_top else 0.0
-        out[rows, 5] = s["om"][done] + mean
+        out[rows, slot.OUT_TOP_SPEED_MEAN] = s["om"][done] + mean
 
     while s["idx"].size:
         s["status"][(s["steps"] >= max_steps) & (s["status"] == 0)] = 1

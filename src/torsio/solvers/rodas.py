@@ -35,6 +35,7 @@ import math
 
 import numpy as np
 
+from torsio.solvers import layouts as slot
 from torsio.solvers.chain_kernel import (
     accelerations,
     controller_solve,
@@ -43,22 +44,12 @@ from torsio.solvers.chain_kernel import (
     saturated,
 )
 from torsio.solvers.compiled import kernel_signature, njit, prange, run_signatures
-from torsio.solvers.cycles import (
-    CYCLE_MAX,
-    CYCLE_MIN,
-    CYCLE_SIZE,
-    extremes_of_cubic,
-    hermite,
-    integral_of_cubic,
-    track_cycle,
-)
+from torsio.solvers.cycles import extremes_of_cubic, hermite, integral_of_cubic, track_cycle
 
 __all__ = [
     "GAMMA",
-    "OUT_COLUMNS",
     "RODAS_A",
     "RODAS_C",
-    "SETTINGS_SIZE",
     "integrate_parallel",
     "integrate_serial",
     "run_chunk",
@@ -87,60 +78,43 @@ RODAS_C[5, :5] = (
 )
 # y_new = (argument of stage 6) + k6 and the embedded error estimate is k6 itself.
 
-OUT_COLUMNS = 7
-"""Per point: bit speed max, min [rad/s], accepted, rejected steps, status, mean top speed
-[rad/s], time the run ended [s] (t_end, or earlier on a steady cycle)."""
-
-SETTINGS_SIZE = 10
-"""The kernel's settings: t_end, start of the window [s], rtol, atol, first and largest
-step [s], steps allowed, bit radius [m], steady-cycle tolerance (0: run to t_end; see
-:mod:`torsio.solvers.cycles`), omega_1 [rad/s]."""
-
-
-VECTOR_ROWS = 33
-"""Rows of the per-point work space of length n (:func:`_advance`)."""
-SMALL_ROWS = 21
-"""Rows of the per-point work space of length 8 (controller states, their solve, the
-steady-cycle tracker, the carried scalars of a run)."""
-CARRY = 19
-"""Rows ``CARRY`` (t, h, the last accepted h and its error, last step rejected, steps,
-rejected steps, status) and ``CARRY + 1`` (bit-speed max and min [twist rate], the top
-speed's integral over the window, next output sample, ended on a steady cycle) of the
-small work space."""
-
 
 @njit(cache=True, error_model="numpy", _nrt=False)
 def _start(chain, top, torque, p, settings, wob, omega, omega_set, vectors, small) -> None:
     """Prepare a run from the state (phi, v, z) already in the work space, at t = 0.
 
-    ``vectors`` (:data:`VECTOR_ROWS`, n) and ``small`` (:data:`SMALL_ROWS`, 8): work space,
-    zero but for the state; the run's scalars are carried in ``small`` (:data:`CARRY`).
+    ``vectors`` and ``small``: the work space (:mod:`torsio.solvers.layouts`), zero but for
+    the state; the run's scalars are carried in rows ``SMALL_CARRY`` and ``SMALL_WINDOW``.
     """
     n = chain.shape[1]
-    mass_factors(chain, vectors[26], vectors[27])
-    radius = settings[7]
-    z, f0z = small[6, 0:3], small[7, 3:6]
-    forces(chain, top, torque, p, wob, radius, omega, omega_set, vectors[12], vectors[13], z,
-           vectors[18], f0z)  # fmt: skip
-    accelerations(chain, vectors[26], vectors[27], vectors[18], vectors[25])
-    cycle_settings = small[17, 0:5]
-    cycle_settings[0] = 2.0 * abs(omega)
-    cycle_settings[1] = settings[9]
-    cycle_settings[2] = settings[0]
-    cycle_settings[3] = settings[0] - settings[1]
-    cycle_settings[4] = settings[8]
-    carry, more = small[CARRY], small[CARRY + 1]
-    h = min(settings[4], settings[5], settings[0])
-    for j in range(8):  # t, h, h accepted, its error, last rejected, steps, rejected, status
+    mpiv, mlow = vectors[slot.VEC_MASS_PIVOTS], vectors[slot.VEC_MASS_LOWER]
+    f0v = vectors[slot.VEC_F0_V]
+    mass_factors(chain, mpiv, mlow)
+    radius = settings[slot.RUN_BIT_RADIUS]
+    z = small[slot.SMALL_Z, : slot.SECOND_BLOCK]
+    f0z = small[slot.SMALL_F_Z, slot.SECOND_BLOCK : slot.BLOCKS_END]
+    forces(chain, top, torque, p, wob, radius, omega, omega_set, vectors[slot.VEC_PHI],
+           vectors[slot.VEC_V], z, f0v, f0z)  # fmt: skip
+    accelerations(chain, mpiv, mlow, f0v, vectors[slot.VEC_ACC])
+    t_end = settings[slot.RUN_T_END]
+    cycle_settings = small[slot.SMALL_CYCLE_SETTINGS, : slot.CYCLE_SETTINGS_SIZE]
+    cycle_settings[slot.CYCLE_SET_TWICE_OMEGA] = 2.0 * abs(omega)
+    cycle_settings[slot.CYCLE_SET_OMEGA_1] = settings[slot.RUN_OMEGA_1]
+    cycle_settings[slot.CYCLE_SET_T_END] = t_end
+    cycle_settings[slot.CYCLE_SET_WINDOW] = t_end - settings[slot.RUN_WINDOW_START]
+    cycle_settings[slot.CYCLE_SET_TOLERANCE] = settings[slot.RUN_STEADY_TOLERANCE]
+    carry, window = small[slot.SMALL_CARRY], small[slot.SMALL_WINDOW]
+    h = min(settings[slot.RUN_FIRST_STEP], settings[slot.RUN_MAX_STEP], t_end)
+    for j in range(slot.CARRY_SIZE):
         carry[j] = 0.0
-    carry[1] = h
-    carry[2] = h
-    carry[3] = 1.0
-    more[0] = -np.inf  # the bit's extremes, the top's integral, next sample, done
-    more[1] = np.inf
-    more[2] = 0.0
-    more[3] = 0.0
-    more[4] = 0.0 if n > 0 else 1.0
+    carry[slot.CARRY_H] = h
+    carry[slot.CARRY_H_ACCEPTED] = h
+    carry[slot.CARRY_ERR_ACCEPTED] = 1.0
+    window[slot.WINDOW_BIT_MAX] = -np.inf
+    window[slot.WINDOW_BIT_MIN] = np.inf
+    window[slot.WINDOW_TOP_INTEGRAL] = 0.0
+    window[slot.WINDOW_NEXT_SAMPLE] = 0.0
+    window[slot.WINDOW_DONE] = 0.0 if n > 0 else 1.0
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
@@ -156,62 +130,56 @@ def _advance(
     of the step that covers it; empty arrays for none. Chunked calls take the same steps
     as one call: the state, the step and the controller's memory are carried in ``small``.
     """
-    t_end, t_window, rtol, atol, hmax = (
-        settings[0],
-        settings[1],
-        settings[2],
-        settings[3],
-        settings[5],
-    )
-    max_steps = int(settings[6])
-    radius = settings[7]
+    t_end = settings[slot.RUN_T_END]
+    t_window = settings[slot.RUN_WINDOW_START]
+    rtol = settings[slot.RUN_RTOL]
+    atol = settings[slot.RUN_ATOL]
+    hmax = settings[slot.RUN_MAX_STEP]
+    max_steps = int(settings[slot.RUN_MAX_STEPS])
+    radius = settings[slot.RUN_BIT_RADIUS]
     n = chain.shape[1]
-    md, mu, kd, ku, cd, cu = chain[0], chain[1], chain[2], chain[3], chain[4], chain[5]
-    has_top = top[0] != 0.0
-    m = int(top[1])
-    k1, c1 = top[4], top[5]
+    md, mu = chain[slot.CHAIN_MASS], chain[slot.CHAIN_MASS_UPPER]
+    kd, ku = chain[slot.CHAIN_STIFFNESS], chain[slot.CHAIN_STIFFNESS_UPPER]
+    cd, cu = chain[slot.CHAIN_DAMPING], chain[slot.CHAIN_DAMPING_UPPER]
+    has_top = top[slot.TOP_HAS_NODE] != 0.0
+    m = int(top[slot.TOP_STATES])
+    k1, c1 = top[slot.TOP_K_PIPE], top[slot.TOP_C_PIPE]
     size = 2 * n + m
-    kphi = vectors[0:6]
-    kv = vectors[6:12]
-    phi, v, aphi, av, fphi, fv, f0v = (
-        vectors[12],
-        vectors[13],
-        vectors[14],
-        vectors[15],
-        vectors[16],
-        vectors[17],
-        vectors[18],
-    )
-    uphi, uv, x, ipiv, low, band, acc, mpiv, mlow = (
-        vectors[19],
-        vectors[20],
-        vectors[21],
-        vectors[22],
-        vectors[23],
-        vectors[24],
-        vectors[25],
-        vectors[26],
-        vectors[27],
-    )
-    phi0, v0, acc0, cross = vectors[28], vectors[29], vectors[30], vectors[31:33]
-    track = settings[8] > 0.0
+    kphi = vectors[slot.VEC_K_PHI : slot.VEC_K_V]
+    kv = vectors[slot.VEC_K_V : slot.VEC_PHI]
+    phi, v = vectors[slot.VEC_PHI], vectors[slot.VEC_V]
+    aphi, av = vectors[slot.VEC_A_PHI], vectors[slot.VEC_A_V]
+    fphi, fv, f0v = vectors[slot.VEC_F_PHI], vectors[slot.VEC_F_V], vectors[slot.VEC_F0_V]
+    uphi, uv, x = vectors[slot.VEC_U_PHI], vectors[slot.VEC_U_V], vectors[slot.VEC_X]
+    ipiv, low, band = vectors[slot.VEC_PIVOTS], vectors[slot.VEC_LOWER], vectors[slot.VEC_BAND]
+    acc, mpiv = vectors[slot.VEC_ACC], vectors[slot.VEC_MASS_PIVOTS]
+    mlow = vectors[slot.VEC_MASS_LOWER]
+    phi0, v0, acc0 = vectors[slot.VEC_PHI0], vectors[slot.VEC_V0], vectors[slot.VEC_ACC0]
+    cross = vectors[slot.VEC_CROSS : slot.VECTOR_ROWS]
+    track = settings[slot.RUN_STEADY_TOLERANCE] > 0.0
     dense = grid.size > 0
-    cycle = small[16, 0:CYCLE_SIZE]
-    cycle_settings = small[17, 0:5]
-    kz = small[0:6, 0:3]
-    z, az, fz, f0z, uz = small[6, 0:3], small[6, 3:6], small[7, 0:3], small[7, 3:6], small[8, 0:3]
-    q = small[9:12, 0:3]
-    zy = small[9:12, 3:5]
-    gains = small[12, 0:5]
-    solve_work = small[13:16]
-    z0, fz0 = small[18, 0:3], small[18, 3:6]
-    carry, more = small[CARRY], small[CARRY + 1]
-    t, h, h_accepted, err_accepted = carry[0], carry[1], carry[2], carry[3]
-    last_rejected = carry[4] != 0.0
-    steps, rejected, status = int(carry[5]), int(carry[6]), int(carry[7])
-    vmax, vmin, top_integral = more[0], more[1], more[2]
-    next_sample = int(more[3])
-    done = more[4] != 0.0
+    cycle = small[slot.SMALL_CYCLE, : slot.CYCLE_SIZE]
+    cycle_settings = small[slot.SMALL_CYCLE_SETTINGS, : slot.CYCLE_SETTINGS_SIZE]
+    first, second, end = slot.FIRST_BLOCK, slot.SECOND_BLOCK, slot.BLOCKS_END
+    kz = small[slot.SMALL_K_Z : slot.SMALL_Z, first:second]
+    z, az = small[slot.SMALL_Z, first:second], small[slot.SMALL_Z, second:end]
+    fz, f0z = small[slot.SMALL_F_Z, first:second], small[slot.SMALL_F_Z, second:end]
+    uz = small[slot.SMALL_U_Z, first:second]
+    q = small[slot.SMALL_Q : slot.SMALL_GAINS, first:second]
+    zy = small[slot.SMALL_Q : slot.SMALL_GAINS, second : second + 2]
+    gains = small[slot.SMALL_GAINS, : slot.GAIN_STATES + slot.MAX_STATES]
+    solve_work = small[slot.SMALL_SOLVE : slot.SMALL_CYCLE]
+    z0, fz0 = small[slot.SMALL_START, first:second], small[slot.SMALL_START, second:end]
+    carry, window = small[slot.SMALL_CARRY], small[slot.SMALL_WINDOW]
+    t, h = carry[slot.CARRY_T], carry[slot.CARRY_H]
+    h_accepted, err_accepted = carry[slot.CARRY_H_ACCEPTED], carry[slot.CARRY_ERR_ACCEPTED]
+    last_rejected = carry[slot.CARRY_LAST_REJECTED] != 0.0
+    steps, rejected = int(carry[slot.CARRY_STEPS]), int(carry[slot.CARRY_REJECTED])
+    status = int(carry[slot.CARRY_STATUS])
+    vmax, vmin = window[slot.WINDOW_BIT_MAX], window[slot.WINDOW_BIT_MIN]
+    top_integral = window[slot.WINDOW_TOP_INTEGRAL]
+    next_sample = int(window[slot.WINDOW_NEXT_SAMPLE])
+    done = window[slot.WINDOW_DONE] != 0.0
     tiny = 1e-12 * max(1.0, t_end)
     bit_acc0 = acc[n - 1]
     top_acc0 = acc[0]
@@ -237,8 +205,8 @@ def _advance(
         if has_top:  # eliminate the controller increments into rows 0 and 1
             limited = saturated(top, omega, omega_set, phi, v, z)
             controller_solve(top, g, limited, q, zy, gains, solve_work)
-            extra01 = gains[1] * (g * k1 + c1)
-            diag0 = gains[0] - extra01
+            extra01 = gains[slot.GAIN_PIPE] * (g * k1 + c1)
+            diag0 = gains[slot.GAIN_E] - extra01
         # factor [I]/g + [C] + g [K] + s e_N e_N^T (+ the top drive's row-0 terms)
         singular = False
         for i in range(n):
@@ -306,9 +274,9 @@ def _advance(
                 x[i] -= g * ku[i] * fphi[i + 1]
                 x[i + 1] -= g * ku[i] * fphi[i]
             if has_top:
-                x[0] += gains[1] * k1 * g * (fphi[0] - fphi[1])
+                x[0] += gains[slot.GAIN_PIPE] * k1 * g * (fphi[0] - fphi[1])
                 for k in range(m):
-                    x[0] += gains[2 + k] * fz[k]
+                    x[0] += gains[slot.GAIN_STATES + k] * fz[k]
             for i in range(1, n):
                 x[i] -= low[i] * x[i - 1]
             x[n - 1] *= ipiv[n - 1]
@@ -392,8 +360,8 @@ def _advance(
             if track and track_cycle(
                 cycle, t, h, bit0, bit_acc0, phi0, v0, acc0, phi, v, acc, cross, cycle_settings
             ):  # on a steady cycle: its extremes are those of the rest of the window
-                vmax = max(vmax, cycle[CYCLE_MAX])
-                vmin = min(vmin, cycle[CYCLE_MIN])
+                vmax = max(vmax, cycle[slot.CYCLE_MAX])
+                vmin = min(vmin, cycle[slot.CYCLE_MIN])
                 t = t_new
                 steps += 1
                 done = True
@@ -410,19 +378,19 @@ def _advance(
             rejected += 1
             last_rejected = True
             h = h_new
-    carry[0] = t
-    carry[1] = h
-    carry[2] = h_accepted
-    carry[3] = err_accepted
-    carry[4] = 1.0 if last_rejected else 0.0
-    carry[5] = steps
-    carry[6] = rejected
-    carry[7] = status
-    more[0] = vmax
-    more[1] = vmin
-    more[2] = top_integral
-    more[3] = next_sample
-    more[4] = 1.0 if done else 0.0
+    carry[slot.CARRY_T] = t
+    carry[slot.CARRY_H] = h
+    carry[slot.CARRY_H_ACCEPTED] = h_accepted
+    carry[slot.CARRY_ERR_ACCEPTED] = err_accepted
+    carry[slot.CARRY_LAST_REJECTED] = 1.0 if last_rejected else 0.0
+    carry[slot.CARRY_STEPS] = steps
+    carry[slot.CARRY_REJECTED] = rejected
+    carry[slot.CARRY_STATUS] = status
+    window[slot.WINDOW_BIT_MAX] = vmax
+    window[slot.WINDOW_BIT_MIN] = vmin
+    window[slot.WINDOW_TOP_INTEGRAL] = top_integral
+    window[slot.WINDOW_NEXT_SAMPLE] = next_sample
+    window[slot.WINDOW_DONE] = 1.0 if done else 0.0
 
 
 @njit(cache=True, error_model="numpy", _nrt=False, inline="always")
@@ -437,29 +405,30 @@ def _sample(row, phi, v, z, n, m) -> None:
 
 @njit(cache=True, error_model="numpy", _nrt=False)
 def _finish(settings, omega, has_top, small, out) -> None:
-    """The :data:`OUT_COLUMNS` of a run from its carried scalars."""
-    carry, more = small[CARRY], small[CARRY + 1]
-    t_end, t_window = settings[0], settings[1]
-    out[0] = more[0] + omega
-    out[1] = more[1] + omega
-    out[2] = carry[5]
-    out[3] = carry[6]
-    out[4] = carry[7]
-    out[5] = omega + (more[2] / (t_end - t_window) if has_top else 0.0)
-    out[6] = carry[0]
+    """A run's results (``out``, :mod:`torsio.solvers.layouts`) from its carried scalars."""
+    carry, window = small[slot.SMALL_CARRY], small[slot.SMALL_WINDOW]
+    t_end, t_window = settings[slot.RUN_T_END], settings[slot.RUN_WINDOW_START]
+    out[slot.OUT_BIT_SPEED_MAX] = window[slot.WINDOW_BIT_MAX] + omega
+    out[slot.OUT_BIT_SPEED_MIN] = window[slot.WINDOW_BIT_MIN] + omega
+    out[slot.OUT_STEPS] = carry[slot.CARRY_STEPS]
+    out[slot.OUT_REJECTED] = carry[slot.CARRY_REJECTED]
+    out[slot.OUT_STATUS] = carry[slot.CARRY_STATUS]
+    mean = window[slot.WINDOW_TOP_INTEGRAL] / (t_end - t_window) if has_top else 0.0
+    out[slot.OUT_TOP_SPEED_MEAN] = omega + mean
+    out[slot.OUT_ENDED] = carry[slot.CARRY_T]
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
 def _point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k) -> None:
     """Point k from rest, with its own zeroed work space (allocated outside the step loop)."""
-    vectors = np.zeros((VECTOR_ROWS, chain.shape[1]))
-    small = np.zeros((SMALL_ROWS, 8))
+    vectors = np.zeros((slot.VECTOR_ROWS, chain.shape[1]))
+    small = np.zeros((slot.SMALL_ROWS, slot.SMALL_COLUMNS))
     for i in range(chain.shape[1]):
-        vectors[13, i] = -omega[k]  # start-up from rest: theta' = 0, controller states 0
+        vectors[slot.VEC_V, i] = -omega[k]  # start-up from rest: theta' = 0, controller states 0
     _start(chain, top, torque, p, settings, wob[k], omega[k], omega_set[k], vectors, small)
     _advance(chain, top, torque, slope, p, settings, wob[k], omega[k], omega_set[k], vectors,
              small, np.zeros(0), np.zeros((0, 1)), 0)  # fmt: skip
-    _finish(settings, omega[k], top[0] != 0.0, small, out[k])
+    _finish(settings, omega[k], top[slot.TOP_HAS_NODE] != 0.0, small, out[k])
 
 
 @njit(kernel_signature(), cache=True, nogil=True, error_model="numpy")

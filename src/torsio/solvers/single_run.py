@@ -14,7 +14,6 @@ reports its progress (in output samples); the chunking does not change a step.
 
 from __future__ import annotations
 
-import math
 import time
 from collections.abc import Callable
 from typing import Any
@@ -28,6 +27,25 @@ from torsio.physics.dynamics import Dynamics
 from torsio.physics.system import System
 from torsio.solvers.batch_results import STATUS_MESSAGES
 from torsio.solvers.law_kernels import LawKernel, law_kernel, python_law_kernel
+from torsio.solvers.layouts import (
+    CARRY_REJECTED,
+    CARRY_STATUS,
+    CARRY_STEPS,
+    CARRY_T,
+    MAX_STATES,
+    SMALL_CARRY,
+    SMALL_COLUMNS,
+    SMALL_ROWS,
+    SMALL_WINDOW,
+    SMALL_Z,
+    VEC_PHI,
+    VEC_V,
+    VECTOR_ROWS,
+    WINDOW_BIT_MAX,
+    WINDOW_BIT_MIN,
+    WINDOW_NEXT_SAMPLE,
+)
+from torsio.solvers.lumped_inputs import run_settings, step_limits
 from torsio.solvers.run_chunks import CHUNK_SECONDS, run_in_chunks
 
 __all__ = [
@@ -74,8 +92,8 @@ def compiled_engine(system: System, dynamics: Dynamics) -> tuple[LawKernel | Non
     """(the law's kernel, "") if the compiled engine runs ``system``, else (None, why not).
 
     It runs a chain (tridiagonal [I], [K], [C]) with a top drive of at most 3 controller
-    states and a law with a compiled kernel: the law's ``kernel()``, or one compiled from
-    its Python ``torque`` (:func:`torsio.solvers.law_kernels.python_law_kernel`).
+    states (``MAX_STATES``) and a law with a compiled kernel: the law's ``kernel()``, or one
+    compiled from its Python ``torque`` (:func:`torsio.solvers.law_kernels.python_law_kernel`).
     """
     from torsio.solvers.compiled import HAVE_NUMBA
 
@@ -83,8 +101,8 @@ def compiled_engine(system: System, dynamics: Dynamics) -> tuple[LawKernel | Non
         return None, "numba is not installed"
     if not dynamics.is_chain:
         return None, "the model's matrices are not tridiagonal (a chain)"
-    if dynamics.states > 3:
-        return None, f"the top drive has {dynamics.states} controller states (at most 3)"
+    if dynamics.states > MAX_STATES:
+        return None, f"the top drive has {dynamics.states} controller states (at most {MAX_STATES})"
     try:
         kernel = law_kernel(system.law)
         if kernel is None:
@@ -114,25 +132,24 @@ def integrate_compiled(
     ``progress(samples_done, samples)`` after each chunk of about ``chunk_seconds``.
     """
     from torsio.solvers.batch import BatchModel
-    from torsio.solvers.rodas import CARRY, SMALL_ROWS, VECTOR_ROWS, run_chunk, run_start
+    from torsio.solvers.batch_options import DEFAULT_MAX_STEPS
+    from torsio.solvers.rodas import run_chunk, run_start
 
     model = BatchModel.from_system(system)
     top = model.top  # packed at the system's own operating point
     run = float(time_grid[-1])
-    period = 2.0 * math.pi / model.first_frequency
-    hmax = period / 4.0
     samples = time_grid.size
-    max_steps = 2_000_000 + STEPS_PER_SAMPLE * samples
-    settings = np.array(
-        [run, run - window, rtol, atol, min(1e-3 * period, hmax), hmax, max_steps,
-         model.bit_radius, 0.0, model.first_frequency],
-    )  # fmt: skip
+    max_steps = DEFAULT_MAX_STEPS + STEPS_PER_SAMPLE * samples
+    steps = step_limits(model.first_frequency)
+    settings = run_settings(
+        run, window, rtol, atol, steps, max_steps, model.bit_radius, 0.0, model.first_frequency
+    )
     m, n = dynamics.states, model.dofs
     vectors = np.zeros((VECTOR_ROWS, n))
-    small = np.zeros((SMALL_ROWS, 8))
-    vectors[12] = y0[m::2]
-    vectors[13] = y0[m + 1 :: 2]
-    small[6, :m] = y0[:m]
+    small = np.zeros((SMALL_ROWS, SMALL_COLUMNS))
+    vectors[VEC_PHI] = y0[m::2]
+    vectors[VEC_V] = y0[m + 1 :: 2]
+    small[SMALL_Z, :m] = y0[:m]
     out = np.zeros((samples, y0.size))
     grid = np.ascontiguousarray(time_grid, dtype=float)
     omega = float(dynamics.reference_speed)
@@ -144,7 +161,7 @@ def integrate_compiled(
               vectors, small)  # fmt: skip
 
     def written() -> int:
-        return int(small[CARRY + 1, 3])
+        return int(small[SMALL_WINDOW, WINDOW_NEXT_SAMPLE])
 
     def advance(count: int) -> bool:
         """The next ``count`` samples (or more, if a step covers them); True: it ended."""
@@ -155,15 +172,18 @@ def integrate_compiled(
 
     report = None if progress is None else (lambda done, total: progress(written(), total))
     run_in_chunks(samples, advance, report, first=max(1, samples // 1000), seconds=chunk_seconds)
-    carry, more = small[CARRY], small[CARRY + 1]
+    carry, window_scalars = small[SMALL_CARRY], small[SMALL_WINDOW]
     return CompiledRun(
         out,
-        float(carry[0]),
-        int(carry[7]),
-        int(carry[5]),
-        int(carry[6]),
+        float(carry[CARRY_T]),
+        int(carry[CARRY_STATUS]),
+        int(carry[CARRY_STEPS]),
+        int(carry[CARRY_REJECTED]),
         time.perf_counter() - start,
-        (float(more[0]) + omega, float(more[1]) + omega),
+        (
+            float(window_scalars[WINDOW_BIT_MAX]) + omega,
+            float(window_scalars[WINDOW_BIT_MIN]) + omega,
+        ),
     )
 
 

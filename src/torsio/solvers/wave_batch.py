@@ -31,14 +31,14 @@ from torsio.analysis.severity import check_window, default_times
 from torsio.analysis.simulation_options import check_window_samples
 from torsio.errors import ConfigError, SolverError
 from torsio.model.wave import check_wave_damping
+from torsio.solvers.batch_options import BatchOptions
 from torsio.solvers.batch_results import (
-    DEFAULT_STEADY_TOLERANCE,
     BatchResults,
     batch_points,
-    check_steady_tolerance,
 )
 from torsio.solvers.wave_march import RunCancelled, law_functions, march
 from torsio.solvers.wave_top import top_boundary
+from torsio.units import RPM_TO_RAD_S
 
 
 def _worker_count(threads: int | None, points: int) -> int:
@@ -81,27 +81,18 @@ def _check_engine(engine: Any, law: Any) -> tuple[Any, Any, np.ndarray] | None:
     return torque, slope, parameters
 
 
-def simulate_wave_batch(
-    system: Any,
-    wob: Any,
-    rpm: Any = None,
-    duration: float | None = None,
-    steady_window: float | None = None,
-    rtol: float = math.nan,
-    atol: float = math.nan,
-    threads: int | None = None,
-    steady_tolerance: float = DEFAULT_STEADY_TOLERANCE,
-    engine: str = "auto",
-    **ignored: Any,
-) -> Any:
+def simulate_wave_batch(system: Any, wob: Any, rpm: Any, options: BatchOptions) -> Any:
     """S_SS of the wave model at each (wob[k], rpm[k]); returns a ``BatchResults``.
 
-    ``threads``: points run side by side on so many threads (default: numba's thread
-    count, as the lumped engine; one thread off the main thread, e.g. in a Dask worker).
-    ``steady_tolerance``: as for the lumped engine (S_SS units; 0 runs to the end).
-    ``rtol`` and ``atol`` are kept for the record (the grid has no tolerance).
+    Of the :class:`torsio.solvers.batch_options.BatchOptions`: ``threads``: points run side
+    by side on so many threads (default: numba's thread count, as the lumped engine; one
+    thread off the main thread, e.g. in a Dask worker); ``steady_tolerance``: as for the
+    lumped engine (S_SS units; 0 runs to the end); ``rtol`` and ``atol`` are kept for the
+    record (the grid has no tolerance), the step limits have no meaning on the grid.
     """
-    check_steady_tolerance(steady_tolerance)
+    duration, steady_window = options.duration, options.steady_window
+    rtol, atol, threads, engine = options.rtol, options.atol, options.threads, options.engine
+    steady_tolerance = options.steady_tolerance
     grid = system.model
     alpha = check_wave_damping(system.damping, system.model)
     kernel = _check_engine(engine, system.law)
@@ -118,7 +109,7 @@ def simulate_wave_batch(
     steps = check_wave_steps(grid, duration)
     check_window_samples(steady_window, None, dt, window_given, duration)
     window_steps = int(round(steady_window / dt))
-    out = np.full((wob_arr.size, 3), np.nan)
+    bit_max, bit_min, top_mean = (np.full(wob_arr.size, np.nan) for _ in range(3))
     status = np.zeros(wob_arr.size, dtype=np.int64)
     taken = np.zeros(wob_arr.size, dtype=np.int64)
     steady = 0.0 if torque_driven else float(steady_tolerance)
@@ -142,11 +133,9 @@ def simulate_wave_batch(
         engines.add(run.engine)
         taken[k] = int(summary["steps"])
         window = summary["window_steps"]
-        out[k] = (
-            summary["bit_speed_max"],
-            summary["bit_speed_min"],
-            summary["top_speed_sum"] / window if window else math.nan,
-        )
+        bit_max[k] = summary["bit_speed_max"]
+        bit_min[k] = summary["bit_speed_min"]
+        top_mean[k] = summary["top_speed_sum"] / window if window else math.nan
 
     start = time.perf_counter()
     workers = _worker_count(threads, wob_arr.size)
@@ -162,12 +151,12 @@ def simulate_wave_batch(
                 raise
     engine = "wave-python" if "python" in engines else "wave"
     elapsed = time.perf_counter() - start
-    reference = out[:, 2] if torque_driven else rpm_arr * (math.pi / 30.0)
+    reference = top_mean if torque_driven else rpm_arr * RPM_TO_RAD_S
     with np.errstate(invalid="ignore", divide="ignore"):
-        severity = np.where(status == 0, (out[:, 0] - out[:, 1]) / (2.0 * reference), np.nan)
+        severity = np.where(status == 0, (bit_max - bit_min) / (2.0 * reference), np.nan)
     ended = np.where((taken < steps) & (status == 0), taken * dt, float(duration))
     return BatchResults(
-        wob_arr, rpm_arr, severity, out[:, 0], out[:, 1], out[:, 2], taken,
+        wob_arr, rpm_arr, severity, bit_max, bit_min, top_mean, taken,
         np.zeros(wob_arr.size, dtype=np.int64), status, engine, float(duration),
         float(steady_window), float(rtol), float(atol), elapsed, ended, steady,
     )  # fmt: skip

@@ -27,7 +27,7 @@ from typing import Any
 
 from torsio.solvers.compiled import njit
 
-try:  # numba is optional: without it the solve runs as plain Python
+try:  # a dependency; without an importable numba the solve runs as plain Python
     from numba import types
 
     _F8 = types.float64

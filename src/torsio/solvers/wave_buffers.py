@@ -14,9 +14,13 @@ Python without numba.
 from __future__ import annotations
 
 from torsio.solvers.compiled import njit
-from torsio.solvers.wave_state import (
+from torsio.solvers.layouts import (
     BUFFER_START,
     CELLS,
+    HEAD_M_COLUMN,
+    HEAD_M_ROW,
+    HEAD_P_COLUMN,
+    HEAD_P_ROW,
     LAST_COLUMN,
     LAST_ROW,
     LIVE,
@@ -80,22 +84,22 @@ def _advance(layout, spacing, P, M, heads):  # type: ignore[no-untyped-def,unuse
         start = layout[s, BUFFER_START]
         width = layout[s, WIDTH]
         live = layout[s, LIVE]
-        if heads[s, 0] > 0:
-            heads[s, 0] -= 1
+        if heads[s, HEAD_P_ROW] > 0:
+            heads[s, HEAD_P_ROW] -= 1
         else:
-            heads[s, 0] = spacing - 1
-            if heads[s, 1] == 0:  # the span at the left end: over to the right half
+            heads[s, HEAD_P_ROW] = spacing - 1
+            if heads[s, HEAD_P_COLUMN] == 0:  # the span at the left end: over to the right half
                 _move_span(P, start, width, spacing, 0, live, live)
-                heads[s, 1] = live
-            heads[s, 1] -= 1
-        if heads[s, 2] < spacing - 1:
-            heads[s, 2] += 1
+                heads[s, HEAD_P_COLUMN] = live
+            heads[s, HEAD_P_COLUMN] -= 1
+        if heads[s, HEAD_M_ROW] < spacing - 1:
+            heads[s, HEAD_M_ROW] += 1
         else:
-            heads[s, 2] = 0
-            if heads[s, 3] == live:  # the span at the right end: over to the left half
+            heads[s, HEAD_M_ROW] = 0
+            if heads[s, HEAD_M_COLUMN] == live:  # the span at the right end: over to the left half
                 _move_span(M, start, width, spacing, live, live, 0)
-                heads[s, 3] = 0
-            heads[s, 3] += 1
+                heads[s, HEAD_M_COLUMN] = 0
+            heads[s, HEAD_M_COLUMN] += 1
 
 
 @njit(cache=True, nogil=True, _nrt=False)
@@ -105,7 +109,12 @@ def _copy_nodes(layout, spacing, P, M, heads, p, m, to_buffers):  # type: ignore
         start = layout[s, BUFFER_START]
         width = layout[s, WIDTH]
         first = layout[s, NODE_START]
-        p_row, p_column, m_row, m_column = heads[s, 0], heads[s, 1], heads[s, 2], heads[s, 3]
+        p_row, p_column, m_row, m_column = (
+            heads[s, HEAD_P_ROW],
+            heads[s, HEAD_P_COLUMN],
+            heads[s, HEAD_M_ROW],
+            heads[s, HEAD_M_COLUMN],
+        )
         for j in range(first, first + layout[s, CELLS] + 1):
             ip = start + p_row * width + p_column
             im = start + m_row * width + m_column
@@ -143,6 +152,22 @@ def _end_slots(layout, spacing, heads, s, last_node):  # type: ignore[no-untyped
     rows_on = layout[s, LAST_ROW] if last_node else 0
     columns_on = layout[s, LAST_COLUMN] if last_node else 0
     return (
-        _slot(start, width, spacing, heads[s, 0], heads[s, 1], rows_on, columns_on),
-        _slot(start, width, spacing, heads[s, 2], heads[s, 3], rows_on, columns_on),
+        _slot(
+            start,
+            width,
+            spacing,
+            heads[s, HEAD_P_ROW],
+            heads[s, HEAD_P_COLUMN],
+            rows_on,
+            columns_on,
+        ),
+        _slot(
+            start,
+            width,
+            spacing,
+            heads[s, HEAD_M_ROW],
+            heads[s, HEAD_M_COLUMN],
+            rows_on,
+            columns_on,
+        ),
     )

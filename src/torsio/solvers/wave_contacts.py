@@ -45,6 +45,17 @@ import numpy as np
 
 from torsio.model.wave import drag_lumping
 from torsio.solvers.compiled import njit
+from torsio.solvers.layouts import (
+    CONTACT_DYNAMIC,
+    CONTACT_INDEX_COLUMNS,
+    CONTACT_JUNCTION,
+    CONTACT_NODE,
+    CONTACT_OTHER,
+    CONTACT_REGULAR,
+    CONTACT_ROWS,
+    CONTACT_SPEED,
+    CONTACT_STATIC,
+)
 
 __all__ = ["contact_arrays", "speed_below"]
 
@@ -92,7 +103,7 @@ def _contact_node_speeds(contacts, speeds):  # type: ignore[no-untyped-def,unuse
     """Put the contact nodes' speeds into ``speeds`` (state layout): at a contact the
     stored pair leaves it, (p - m) / (2 Z - c) = v - F / (2 Z - c), not its speed."""
     for j in range(contacts.shape[1]):
-        speeds[int(contacts[3, j])] = contacts[2, j]
+        speeds[int(contacts[CONTACT_NODE, j])] = contacts[CONTACT_SPEED, j]
 
 
 def speed_below(threshold: float) -> float:
@@ -103,18 +114,19 @@ def speed_below(threshold: float) -> float:
 def contact_arrays(grid: Any) -> tuple[np.ndarray, np.ndarray]:
     """(index, table) of ``grid.contacts`` for the kernel.
 
-    ``table`` (4, contacts): C_s, C_d [N m], the speed of the last step [rad/s] (zero: at
-    rest) and the node in the state layout (as a float; its stored pair is the one leaving
-    the contact, so its speed is read from here, :func:`_contact_node_speeds`). Per
+    ``table`` (``CONTACT_ROWS``, contacts): C_s, C_d [N m], the speed of the last step
+    [rad/s] (zero: at rest) and the node in the state layout (as a float; its stored pair
+    is the one leaving the contact, so its speed is read from here,
+    :func:`_contact_node_speeds`). Per
     section s, ``index[s]`` = (first of its regular inner nodes k, 2k, ... in ``table``,
     its other inner drag node, its bottom junction; -1: none). Without contacts: one
     empty column, and the kernel takes the damper-only path.
     """
     sections = len(grid.cells)
-    index = np.full((sections, 3), -1, dtype=np.int64)
+    index = np.full((sections, CONTACT_INDEX_COLUMNS), -1, dtype=np.int64)
     contacts = grid.contacts
     if contacts is None:
-        return index, np.zeros((4, 1))
+        return index, np.zeros((CONTACT_ROWS, 1))
     offsets = np.concatenate([[0], np.cumsum(np.array(grid.cells) + 1)]).astype(int)
     columns: list[int] = []
     k = grid.drag_spacing
@@ -122,16 +134,16 @@ def contact_arrays(grid: Any) -> tuple[np.ndarray, np.ndarray]:
         nodes, shares = drag_lumping(int(n), k)
         inner = nodes[1:-1]
         regular = int(np.sum(shares[1:-1] == k))
-        index[s, 0] = len(columns)
+        index[s, CONTACT_REGULAR] = len(columns)
         columns.extend(int(offsets[s] + j) for j in inner[:regular])
         if regular < inner.size:
-            index[s, 1] = len(columns)
+            index[s, CONTACT_OTHER] = len(columns)
             columns.append(int(offsets[s] + inner[regular]))
         if s < sections - 1:
-            index[s, 2] = len(columns)
+            index[s, CONTACT_JUNCTION] = len(columns)
             columns.append(int(offsets[s + 1] - 1))
-    table = np.zeros((4, max(len(columns), 1)))
-    table[0, : len(columns)] = contacts.static[columns]
-    table[1, : len(columns)] = contacts.dynamic[columns]
-    table[3, : len(columns)] = columns
+    table = np.zeros((CONTACT_ROWS, max(len(columns), 1)))
+    table[CONTACT_STATIC, : len(columns)] = contacts.static[columns]
+    table[CONTACT_DYNAMIC, : len(columns)] = contacts.dynamic[columns]
+    table[CONTACT_NODE, : len(columns)] = columns
     return index, table

@@ -17,9 +17,8 @@ import numpy as np
 
 from torsio.errors import SolverError
 from torsio.model.wave import WaveModel
+from torsio.solvers import layouts as slot
 from torsio.solvers.characteristics import (
-    SUMMARY_FIELDS,
-    SUMMARY_SIZE,
     KernelLayout,
     WaveState,
     _march,
@@ -44,18 +43,19 @@ class WaveRun:
     ----------
     time : ndarray
         Record times [s] (multiples of the record step, from 0).
-    records : ndarray, shape (len(time), 5)
+    records : ndarray, shape (len(time), ``RECORD_COLUMNS``)
         :data:`RECORD_CHANNELS` at those times.
     field_time : ndarray
         Times of the speed snapshots [s].
     field : ndarray, shape (len(field_time), nodes)
         Angular speed at every node [rad/s] (state layout, :func:`node_offsets`).
     summary : dict
-        :data:`SUMMARY_FIELDS` (energies in J over the run), plus ``stored_initial`` and
-        ``stored_final`` [J] (:func:`stored_energy`; the initial state with a held top
-        already turning), ``steps`` (taken), ``ended_on_steady_cycle``, and
-        ``friction_dissipation`` [J] (the contacts' work), ``surface_torque_peak`` (the
-        run's largest), ``surface_torque_min``, ``surface_torque_max`` (the window's) [N m]
+        ``SUMMARY_FIELDS`` of :mod:`torsio.solvers.layouts` (energies in J over the run),
+        plus ``stored_initial`` and ``stored_final`` [J] (:func:`stored_energy`; the
+        initial state with a held top already turning), ``steps`` (taken),
+        ``ended_on_steady_cycle``, and ``friction_dissipation`` [J] (the contacts' work),
+        ``surface_torque_peak`` (the run's largest), ``surface_torque_min``,
+        ``surface_torque_max`` (the window's) [N m]
         over every step, ``bit_first_motion`` [s] (first time the bit is faster than the
         contacts' threshold speed; NaN: never, or no contacts).
     state : WaveState
@@ -126,9 +126,9 @@ def string_energy(grid: WaveModel, state: WaveState) -> float:
 
 def stored_energy(grid: WaveModel, state: WaveState, top: TopArrays) -> float:
     """Energy of the string, the bit and the top drive [J] (kinetic and strain)."""
-    energy = string_energy(grid, state) + 0.5 * grid.bit_inertia * state.bit[0] ** 2
+    energy = string_energy(grid, state) + 0.5 * grid.bit_inertia * state.bit[slot.BIT_SPEED] ** 2
     if not top.held:
-        energy += 0.5 * top.inertia * state.top[0] ** 2
+        energy += 0.5 * top.inertia * state.top[slot.X_TOP_SPEED] ** 2
     return energy
 
 
@@ -138,7 +138,8 @@ def _end_damper_power(
     """Power [W] of the dampers at the top node, the junctions and the bit in ``state``."""
     offsets = node_offsets(grid)
     z = layout.impedances
-    power = layout.end_dampers[0] * top_speed**2 + layout.end_dampers[-1] * state.bit[0] ** 2
+    bit_speed = state.bit[slot.BIT_SPEED]
+    power = layout.end_dampers[0] * top_speed**2 + layout.end_dampers[-1] * bit_speed**2
     for s in range(1, len(grid.cells)):
         node = offsets[s]  # the lower section's first node: speed continuous there
         speed = (state.p[node] - state.m[node]) / (2.0 * z[node])
@@ -220,48 +221,74 @@ def march(
     if top.held:  # the held top turns at its speed from t = 0 on
         state.p[0] = state.m[0] + 2.0 * z_top * set_speed0
     stored_initial = stored_energy(grid, state, top)
-    summary = np.zeros(SUMMARY_SIZE)
-    summary[0], summary[1] = math.inf, -math.inf
-    summary[27], summary[28], summary[29] = -math.inf, math.inf, -math.inf
+    summary = np.zeros(slot.SUMMARY_SIZE)
+    summary[slot.SUM_BIT_SPEED_MIN], summary[slot.SUM_BIT_SPEED_MAX] = math.inf, -math.inf
+    summary[slot.SUM_SURFACE_TORQUE_PEAK] = -math.inf
+    summary[slot.SUM_SURFACE_TORQUE_MIN] = math.inf
+    summary[slot.SUM_SURFACE_TORQUE_MAX] = -math.inf
     contact_index, contacts = contact_arrays(grid)
     threshold = 0.0 if grid.contacts is None else float(grid.contacts.threshold_speed)
     # powers at t = 0 for the trapezoidal energies
-    speed0 = state.top[0] if not top.held else set_speed0
+    speed0 = state.top[slot.X_TOP_SPEED] if not top.held else set_speed0
     surface0 = state.m[0] + (z_top + layout.end_dampers[0]) * speed0  # with the top node's drag
     if not top.held:
         x0 = state.top
-        u0 = top.coefficients[0] + top.set_gain * set_speed0 + top.coefficients[1:-1] @ x0
-        u0 += top.coefficients[-1] * state.m[0]
+        gains = top.coefficients[slot.COEF_STATES : slot.COEF_STATES + top.states]
+        u0 = top.coefficients[slot.COEF_U0] + top.kp * set_speed0 + gains @ x0
+        u0 += top.coefficients[slot.COEF_STATES + top.states] * state.m[0]
         motor0 = float(np.clip(u0, -top.max_torque, top.max_torque))
     else:
         motor0 = surface0 + layout.end_dampers[0] * speed0
-    w_bit = state.bit[0]
-    summary[10] = motor0 * speed0
-    summary[11] = float(law.torque(w_bit, wob, radius)) * w_bit
-    summary[12] = alpha * grid.bit_inertia * w_bit * w_bit
-    summary[13] = _end_damper_power(grid, layout, state, speed0)
-    summary[14] = top.drag * speed0 * speed0
-    records = np.full((steps // record_every + 1 if record_every else 0, 5), np.nan)
+    w_bit = state.bit[slot.BIT_SPEED]
+    powers = summary[slot.SUM_POWERS : slot.SUM_POWERS + slot.POWER_COUNT]
+    powers[slot.POWER_IN] = motor0 * speed0
+    powers[slot.POWER_BIT] = float(law.torque(w_bit, wob, radius)) * w_bit
+    powers[slot.POWER_BIT_DRAG] = alpha * grid.bit_inertia * w_bit * w_bit
+    powers[slot.POWER_STRING_DRAG] = _end_damper_power(grid, layout, state, speed0)
+    powers[slot.POWER_TOP_DRAG] = top.drag * speed0 * speed0
+    rows = steps // record_every + 1 if record_every else 0
+    records = np.full((rows, slot.RECORD_COLUMNS), np.nan)
     field = np.full((steps // field_every + 1 if field_every else 0, state.p.size), np.nan)
     if record_every:
-        records[0] = [w_bit, float(law.torque(w_bit, wob, radius)), surface0, speed0, motor0]
+        records[0, slot.REC_BIT_SPEED] = w_bit
+        records[0, slot.REC_BIT_TORQUE] = float(law.torque(w_bit, wob, radius))
+        records[0, slot.REC_SURFACE_TORQUE] = surface0
+        records[0, slot.REC_TOP_SPEED] = speed0
+        records[0, slot.REC_MOTOR_TORQUE] = motor0
     if field_every:
         field[0] = (state.p - state.m) / (2.0 * layout.impedances)
     reference = top.set_speed if top.held or math.isfinite(top.set_speed) else 0.0
-    settings = np.array(
-        [
-            dt, grid.bit_inertia, alpha, wob, radius, 1.0 if top.held else 0.0, top.set_speed,
-            top.max_torque, steps, window_start, record_every, field_every, top.drag,
-            1.0 if track_energy else 0.0, grid.drag_spacing, steady_tolerance, reference,
-            cycle_gap, steps, threshold, 0.0 if grid.contacts is None else 1.0,
-            speed_below(threshold), top.set_gain, top.ramp_end,
-        ]
-    )  # fmt: skip
-    cross = np.zeros((2, state.p.size + 2))
+    settings = np.zeros(slot.WAVE_SIZE)
+    settings[slot.WAVE_DT] = dt
+    settings[slot.WAVE_BIT_INERTIA] = grid.bit_inertia
+    settings[slot.WAVE_ALPHA] = alpha
+    settings[slot.WAVE_WOB] = wob
+    settings[slot.WAVE_BIT_RADIUS] = radius
+    settings[slot.WAVE_HELD] = 1.0 if top.held else 0.0
+    settings[slot.WAVE_SET_SPEED] = top.set_speed
+    settings[slot.WAVE_MAX_TORQUE] = top.max_torque
+    settings[slot.WAVE_STEPS] = settings[slot.WAVE_RUN_STEPS] = steps
+    settings[slot.WAVE_WINDOW_START] = window_start
+    settings[slot.WAVE_RECORD_EVERY] = record_every
+    settings[slot.WAVE_FIELD_EVERY] = field_every
+    settings[slot.WAVE_TOP_DRAG] = top.drag
+    settings[slot.WAVE_TRACK_ENERGY] = 1.0 if track_energy else 0.0
+    settings[slot.WAVE_DRAG_SPACING] = grid.drag_spacing
+    settings[slot.WAVE_STEADY_TOLERANCE] = steady_tolerance
+    settings[slot.WAVE_REFERENCE] = reference
+    settings[slot.WAVE_CYCLE_GAP] = cycle_gap
+    settings[slot.WAVE_THRESHOLD] = threshold
+    settings[slot.WAVE_CONTACTS] = 0.0 if grid.contacts is None else 1.0
+    settings[slot.WAVE_BELOW_THRESHOLD] = speed_below(threshold)
+    settings[slot.WAVE_KP] = top.kp
+    settings[slot.WAVE_RAMP_END] = top.ramp_end
+    cross = np.zeros((slot.NODE_ROWS, state.p.size + slot.CROSS_EXTRA))
     work = (  # the kernel's work space: buffers, node scratch, heads, top states
-        np.zeros((2, layout.buffer_size)), np.zeros((2, state.p.size)),
-        np.zeros((len(grid.cells), 4), dtype=np.int64), np.zeros(state.top.size),
-    )  # fmt: skip
+        np.zeros((slot.BUFFER_ROWS, layout.buffer_size)),
+        np.zeros((slot.NODE_ROWS, state.p.size)),
+        np.zeros((len(grid.cells), slot.HEAD_SIZE), dtype=np.int64),
+        np.zeros(state.top.size),
+    )
     arguments = (
         layout.integers, layout.floats, layout.end_dampers, layout.impedances, settings,
         state.p, state.m, state.top, state.bit, top.propagator, top.forcing, top.constant,
@@ -273,26 +300,31 @@ def march(
     def advance(count: int) -> bool:
         if should_stop is not None and should_stop():
             raise RunCancelled
-        settings[8] = count  # the steps of this call (settings[18]: of the run)
+        settings[slot.WAVE_STEPS] = count  # the steps of this call (WAVE_RUN_STEPS: of the run)
         stepping(*arguments)
-        return bool(summary[9] or summary[23] > 0)  # a failed step, or a steady cycle
+        # a failed step, or a steady cycle
+        return bool(summary[slot.SUM_FAILED_STEP] or summary[slot.SUM_ENDED] > 0)
 
     run_in_chunks(steps, advance, progress)
-    if summary[9]:
+    failed = summary[slot.SUM_FAILED_STEP]
+    if failed:
         raise SolverError(
-            f"the bit equation has no solution at step {int(summary[9])} "
-            f"(t = {summary[9] * dt:.6g} s): the torque on bit is not finite there"
+            f"the bit equation has no solution at step {int(failed)} "
+            f"(t = {failed * dt:.6g} s): the torque on bit is not finite there"
         )
-    energies = dict(zip(SUMMARY_FIELDS, summary[:10].tolist(), strict=True))
+    fields = summary[slot.SUM_BIT_SPEED_MIN : slot.SUM_FAILED_STEP + 1]
+    energies = dict(zip(slot.SUMMARY_FIELDS, fields.tolist(), strict=True))
     energies["stored_initial"] = stored_initial
     energies["stored_final"] = stored_energy(grid, state, top)
-    energies["steps"] = float(summary[15])
-    energies["ended_on_steady_cycle"] = float(summary[23] > 0)
-    energies["friction_dissipation"] = float(summary[26])
-    names = ("surface_torque_peak", "surface_torque_min", "surface_torque_max")
-    energies.update(zip(names, summary[27:30].tolist(), strict=True))
-    moved = summary[30] > 0 and grid.contacts is not None
-    energies["bit_first_motion"] = float(summary[30] * dt) if moved else math.nan
+    energies["steps"] = float(summary[slot.SUM_STEPS])
+    energies["ended_on_steady_cycle"] = float(summary[slot.SUM_ENDED] > 0)
+    energies["friction_dissipation"] = float(summary[slot.SUM_FRICTION_WORK])
+    energies["surface_torque_peak"] = float(summary[slot.SUM_SURFACE_TORQUE_PEAK])
+    energies["surface_torque_min"] = float(summary[slot.SUM_SURFACE_TORQUE_MIN])
+    energies["surface_torque_max"] = float(summary[slot.SUM_SURFACE_TORQUE_MAX])
+    first_motion = summary[slot.SUM_BIT_FIRST_MOTION]
+    moved = first_motion > 0 and grid.contacts is not None
+    energies["bit_first_motion"] = float(first_motion * dt) if moved else math.nan
     return WaveRun(
         time=np.arange(records.shape[0]) * dt * record_every,
         records=records,

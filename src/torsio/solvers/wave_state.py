@@ -13,10 +13,11 @@ Examples
 >>> from torsio.examples import ritto2017_string
 >>> grid = WaveStrategy(drag_spacing=4).discretize(ritto2017_string())
 >>> layout = kernel_layout(grid, alpha=0.35)
->>> layout.integers[:, 5].tolist()  # regular inner dampers per section (nodes 4, 8, ...)
+>>> from torsio.solvers.layouts import C_INNER, C_SPECIAL, INNER
+>>> layout.integers[:, INNER].tolist()  # regular inner dampers per section (nodes 4, 8, ...)
 [247, 8, 14]
->>> round(float(layout.end_dampers.sum() + layout.floats[:, 2] @ layout.integers[:, 5]
-...             + layout.floats[:, 4].sum()) / (0.35 * float(grid.impedances @ grid.cells)
+>>> round(float(layout.end_dampers.sum() + layout.floats[:, C_INNER] @ layout.integers[:, INNER]
+...             + layout.floats[:, C_SPECIAL].sum()) / (0.35 * float(grid.impedances @ grid.cells)
 ...             * grid.time_step), 12)  # every cell's drag, once
 1.0
 """
@@ -27,12 +28,31 @@ import attrs
 import numpy as np
 
 from torsio.model.wave import WaveModel, drag_lumping
+from torsio.solvers.layouts import (
+    BIT_SPEED,
+    BIT_SPEED_BEFORE,
+    BIT_STATE_SIZE,
+    BUFFER_START,
+    C_INNER,
+    C_SPECIAL,
+    CELLS,
+    INNER,
+    LAST_COLUMN,
+    LAST_ROW,
+    LIVE,
+    NODE_START,
+    RATIO_INNER,
+    RATIO_SPECIAL,
+    SECTION_FLOATS,
+    SECTION_INTEGERS,
+    SPECIAL,
+    SPECIAL_COLUMN,
+    SPECIAL_ROW,
+    WIDTH,
+    X_TOP_SPEED,
+    Z,
+)
 from torsio.solvers.wave_top import TopArrays
-
-# columns of the integer and float layout of a section (kernel_layout)
-(CELLS, NODE_START, BUFFER_START, WIDTH, LIVE, INNER, SPECIAL, LAST_ROW, LAST_COLUMN,
- SPECIAL_ROW, SPECIAL_COLUMN) = range(11)  # fmt: skip
-Z, RATIO_INNER, C_INNER, RATIO_SPECIAL, C_SPECIAL = range(5)
 
 
 @attrs.frozen(eq=False)
@@ -62,7 +82,8 @@ def node_offsets(grid: WaveModel) -> np.ndarray:
 def rest_state(grid: WaveModel, top: TopArrays) -> WaveState:
     """Everything at rest: zero speed and torque along the string, top and bit still."""
     size = int(node_offsets(grid)[-1])
-    return WaveState(np.zeros(size), np.zeros(size), np.zeros(max(top.states, 1)), np.zeros(3))
+    top_state = np.zeros(max(top.states, 1))
+    return WaveState(np.zeros(size), np.zeros(size), top_state, np.zeros(BIT_STATE_SIZE))
 
 
 @attrs.frozen(eq=False)
@@ -97,8 +118,8 @@ def kernel_layout(grid: WaveModel, alpha: float) -> KernelLayout:
     k = grid.drag_spacing
     dt = grid.time_step
     sections = len(grid.cells)
-    integers = np.zeros((sections, 11), dtype=np.int64)
-    floats = np.zeros((sections, 5))
+    integers = np.zeros((sections, SECTION_INTEGERS), dtype=np.int64)
+    floats = np.zeros((sections, SECTION_FLOATS))
     end_dampers = np.zeros(sections + 1)
     offsets = node_offsets(grid)
     impedances = np.repeat(np.asarray(grid.impedances, dtype=float), np.array(grid.cells) + 1)
@@ -113,15 +134,19 @@ def kernel_layout(grid: WaveModel, alpha: float) -> KernelLayout:
         regular = int(np.sum(shares[1:-1] == k))  # nodes k, 2k, ...: the first ones
         special = int(inner[regular]) if regular < inner.size else -1
         live = (k - 1 + n) // k + 1
-        integers[s] = (
-            n, offsets[s], buffer, 2 * live, live, regular, special, n % k, n // k,
-            max(special, 0) % k, max(special, 0) // k,
-        )  # fmt: skip
+        row = integers[s]
+        row[CELLS], row[NODE_START], row[BUFFER_START] = n, offsets[s], buffer
+        row[WIDTH], row[LIVE], row[INNER], row[SPECIAL] = 2 * live, live, regular, special
+        row[LAST_ROW], row[LAST_COLUMN] = n % k, n // k
+        row[SPECIAL_ROW], row[SPECIAL_COLUMN] = max(special, 0) % k, max(special, 0) // k
         c_regular = alpha * float(z) * k * dt
-        floats[s, :3] = (z, 2.0 * z / (2.0 * z + c_regular), c_regular)
+        floats[s, Z] = z
+        floats[s, RATIO_INNER] = 2.0 * z / (2.0 * z + c_regular)
+        floats[s, C_INNER] = c_regular
         if special >= 0:
             c_special = float(dampers[1 + regular])
-            floats[s, 3:] = (2.0 * z / (2.0 * z + c_special), c_special)
+            floats[s, RATIO_SPECIAL] = 2.0 * z / (2.0 * z + c_special)
+            floats[s, C_SPECIAL] = c_special
         impedances[offsets[s] + inner] -= 0.5 * dampers[1:-1]
         buffer += 2 * live * k
     return KernelLayout(integers, floats, end_dampers, impedances, buffer)
@@ -140,9 +165,9 @@ def state_from_fields(
     z = node_impedances(grid, alpha)
     state.p[:] = torque + z * speed
     state.m[:] = torque - z * speed
-    state.bit[:2] = speed[-1]
+    state.bit[BIT_SPEED] = state.bit[BIT_SPEED_BEFORE] = speed[-1]
     if not top.held:
-        state.top[0] = speed[0]
+        state.top[X_TOP_SPEED] = speed[0]
     return state
 
 

@@ -16,7 +16,7 @@ The set speed may change in time (a start-up ramp, a recorded top-drive speed): 
 (time, speed) read linearly in the kernel. A held top then turns at Omega(t); a controller's
 set point enters its state equation affinely, so the trapezoidal step takes the constant
 part ``constant + Omega_mid constant_per_speed`` with Omega_mid the mean set speed over
-the step, and its motor torque ``coefficients[0] + set_gain Omega(t)``.
+the step, and its motor torque ``u0 + kp Omega(t)``.
 """
 
 from __future__ import annotations
@@ -27,6 +27,8 @@ from typing import Any
 import attrs
 import numpy as np
 
+from torsio.solvers.layouts import COEF_STATES, COEF_U0, TABLE_SPEED, TABLE_TIME
+
 
 @attrs.frozen(eq=False)
 class TopArrays:
@@ -35,8 +37,9 @@ class TopArrays:
     ``held``: the top turns at the set speed. Otherwise the state x = [Omega_0, z] advances
     by ``x1 = L[k] x0 + g[k] (m0 + m1) + q[k] + Omega_mid r[k]`` (trapezoidal rule) in mode
     k = 0 (free), 1 (motor torque at +max) or 2 (at -max), with Omega_mid the mean set
-    speed over the step; the motor torque is ``u_free = coefficients[0] + set_gain Omega_set
-    + coefficients[1:-1] . x + coefficients[-1] m``. ``speed_table`` (2, k) is the set speed
+    speed over the step; the motor torque is ``u_free = u0 + kp Omega_set + g . x + g_m m``
+    with ``coefficients`` = [u0, g, g_m] (``COEF_*`` of :mod:`torsio.solvers.layouts`).
+    ``speed_table`` (2, k) is the set speed
     [rad/s] against time [s]; ``set_speed`` its final value. ``drag`` is the top drive's own
     drag, ``node_damper`` the string's drag at the top node [N m s/rad], which the arrays
     include besides.
@@ -53,7 +56,7 @@ class TopArrays:
     coefficients: np.ndarray  # (n + 2,)
     speed_table: np.ndarray  # (2, k): time [s], set speed [rad/s]
     constant_per_speed: np.ndarray  # (3, n): r[k]
-    set_gain: float = 0.0
+    kp: float = 0.0  # the motor torque per unit set speed [N m s/rad] (0: no set speed)
     impedance: float = math.nan
     boundary: Any = None
     node_damper: float = 0.0
@@ -66,19 +69,20 @@ class TopArrays:
     @property
     def ramp_end(self) -> float:
         """The time [s] from which the set speed is constant."""
-        return float(self.speed_table[0, -1])
+        return float(self.speed_table[TABLE_TIME, -1])
 
     def set_speed_at(self, time: float) -> float:
         """The set speed [rad/s] at ``time`` [s]: linear in the table, constant beyond it."""
-        return float(np.interp(time, self.speed_table[0], self.speed_table[1]))
+        return float(np.interp(time, self.speed_table[TABLE_TIME], self.speed_table[TABLE_SPEED]))
 
 
 def held_top(speed: float, table: np.ndarray | None = None) -> TopArrays:
     """A top held at ``speed`` [rad/s], or at the speeds of ``table`` (rows time, speed)."""
     table = np.array([[0.0], [float(speed)]]) if table is None else np.asarray(table, float)
     return TopArrays(
-        True, float(table[1, -1]), 0.0, 0.0, math.inf, np.zeros((3, 1, 1)), np.zeros((3, 1)),
-        np.zeros((3, 1)), np.zeros(3), np.ascontiguousarray(table), np.zeros((3, 1)),
+        True, float(table[TABLE_SPEED, -1]), 0.0, 0.0, math.inf, np.zeros((3, 1, 1)),
+        np.zeros((3, 1)), np.zeros((3, 1)), np.zeros(3), np.ascontiguousarray(table),
+        np.zeros((3, 1)),
     )  # fmt: skip
 
 
@@ -106,9 +110,14 @@ def top_arrays(
     n = m + 1
     inertia, drag, z_pipe = float(boundary.inertia), float(boundary.drag), float(impedance)
     set_speed = float(boundary.set_speed)
-    set_gain = 0.0 if math.isnan(set_speed) else float(d[0])  # no set speed: no set term
+    kp = 0.0 if math.isnan(set_speed) else float(d[0])  # no set speed: no set term
     # u_free = u0 + d0 set + [(-d0 + d1 Z), c] . x + d1 m
-    coefficients = np.concatenate([[boundary.u0, -d[0] + d[1] * z_pipe], c, [d[1]]])
+    coefficients = np.zeros(COEF_STATES + n + 1)
+    coefficients[COEF_U0] = boundary.u0
+    coefficients[COEF_STATES] = -d[0] + d[1] * z_pipe  # on Omega_0, then on z
+    coefficients[COEF_STATES + 1 : COEF_STATES + n] = c
+    coefficients[COEF_STATES + n] = d[1]  # on the incoming m
+    gains, m_gain, u0 = coefficients[COEF_STATES : COEF_STATES + n], d[1], boundary.u0
     propagator = np.zeros((3, n, n))
     forcing = np.zeros((3, n))
     constant = np.zeros((3, n))
@@ -126,16 +135,16 @@ def top_arrays(
         B[1:] = b[:, 1]
         r[1:] = b[:, 0] * has_set
         if limit is None:  # u = u_free
-            A[0, :] = coefficients[1:-1]
-            B[0] = coefficients[-1]
-            f[0] = coefficients[0]
-            r[0] = set_gain
+            A[0, :] = gains
+            B[0] = m_gain
+            f[0] = u0
+            r[0] = kp
         elif math.isfinite(limit):
             f[0] = limit
-            A[1:, :] -= np.outer(w, coefficients[1:-1])
-            B[1:] -= w * coefficients[-1]
-            f[1:] += w * (limit - coefficients[0])
-            r[1:] -= w * set_gain
+            A[1:, :] -= np.outer(w, gains)
+            B[1:] -= w * m_gain
+            f[1:] += w * (limit - u0)
+            r[1:] -= w * kp
         A[0, 0] -= drag + node_damper + z_pipe
         B[0] -= 1.0
         A[0, :] /= inertia
@@ -150,7 +159,7 @@ def top_arrays(
     table = boundary.set_speed_table()  # zero speeds without a set speed (torque top)
     return TopArrays(
         False, set_speed, inertia, drag, max_torque, propagator, forcing, constant, coefficients,
-        np.ascontiguousarray(table, dtype=float), per_speed, set_gain, z_pipe, boundary,
+        np.ascontiguousarray(table, dtype=float), per_speed, kp, z_pipe, boundary,
         float(node_damper),
     )  # fmt: skip
 

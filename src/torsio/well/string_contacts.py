@@ -39,7 +39,7 @@ from torsio.model.wave import drag_lumping
 from torsio.well.break_off import break_off
 from torsio.well.wellbore import Wellbore
 
-__all__ = ["CONTACT_CELL_LENGTH", "string_contacts", "with_contacts"]
+__all__ = ["CONTACT_CELL_LENGTH", "node_contacts", "string_contacts", "with_contacts"]
 
 CONTACT_CELL_LENGTH = 10.0
 """Cell of the torque-and-drag integrals the capacities are taken from [m]."""
@@ -109,23 +109,53 @@ def string_contacts(grid: Any, well: Wellbore) -> StringContacts:
     )
 
 
-def with_contacts(model: Any, well: Wellbore) -> Any:
-    """``model`` with the friction of its string in ``well``: a model that can carry
-    contacts (``model.with_contacts``: the wave grid) gets them.
+def node_contacts(model: Any, well: Wellbore, string: Any) -> StringContacts:
+    """Static and sliding capacities [N m] of every node of a lumped chain in ``well``.
 
-    Raises
-    ------
-    ConfigError
-        On ``well`` for a model that cannot (the lumped models): friction along the string
-        runs on the wave model only for now.
+    Node i (at ``model.node_depths[i]`` below the top of ``string``) stands for the string
+    from half-way to the node above (the top, for the first) to half-way to the node below
+    (the bottom of the string, for the last: the bit node carries the bit section and what
+    a rigid BHA lumps there), so the capacities add up to the break-off and sliding torques
+    exactly.
+
+    >>> from torsio.examples import deviated_well_config
+    >>> config = deviated_well_config()
+    >>> model = config.system(strategy="B", dp_elements=20, bha_elements=4).model
+    >>> contacts = node_contacts(model, config.well, config.string)
+    >>> contacts.static.size, round(contacts.static_total), round(contacts.dynamic_total)
+    (24, 12174, 10148)
     """
-    attach = getattr(model, "with_contacts", None)
-    if attach is None:
+    profile = break_off(well, string, cell_length=CONTACT_CELL_LENGTH)
+    md = profile.md
+    depths = float(md[0]) + np.asarray(model.node_depths, dtype=float)
+    edges = np.concatenate([[md[0]], 0.5 * (depths[:-1] + depths[1:]), [md[-1]]])
+    capacities = []
+    for torque in (profile.static_torque, profile.sliding_torque_profile):
+        levels = np.interp(edges, md, torque)  # the friction of everything below each edge
+        capacities.append(levels[:-1] - levels[1:])
+    return StringContacts(
+        static=capacities[0],
+        dynamic=np.minimum(capacities[1], capacities[0]),  # equal to round-off where mu_s = mu_d
+        threshold_speed=well.threshold_speed,
+        details={
+            "normal_force": well.normal_force,
+            "break_off_torque_N_m": profile.torque,
+            "break_off_twist_rad": profile.twist,
+            "sliding_torque_N_m": profile.sliding_torque,
+        },
+    )
+
+
+def with_contacts(model: Any, well: Wellbore, string: Any) -> Any:
+    """``model`` with the friction of ``string`` in ``well``: a contact at every node of a
+    chain with matrices (the lumped models, :func:`node_contacts`), at every drag node of a
+    characteristic grid (:func:`string_contacts`)."""
+    if string is None:
         raise ConfigError(
             "well",
-            f"friction along the string runs on the wave model only "
-            f'(discretization.strategy = "wave"), got strategy {model.strategy!r}; set '
-            f'discretization.strategy = "wave" (or --strategy wave; the wave model takes '
-            f"[damping] beta = 0), or remove [well]",
+            "friction along the string needs the string's sections ([[section]]: diameters "
+            "and lengths); a [chain] has none",
         )
-    return attach(string_contacts(model, well))
+    if model.has_matrices:
+        return model.with_contacts(node_contacts(model, well, string))
+    return model.with_contacts(string_contacts(model, well))

@@ -9,7 +9,7 @@ and twist at which the string lying in the hole breaks free from rest
 Examples
 --------
 >>> from torsio.examples import deviated_well_config
->>> from torsio.io.report_context import ReportContext
+>>> from torsio.report.context import ReportContext
 >>> section = well_section(ReportContext(deviated_well_config()))
 >>> round(section.data["break_off_torque"] / 1e3, 2), round(section.data["break_off_twist"], 2)
 (12.17, 19.26)
@@ -23,7 +23,7 @@ import numpy as np
 from rich.table import Table
 from rich.text import Text
 
-from torsio.io.report_context import ReportContext, ReportSection
+from torsio.report.context import ReportContext, ReportSection
 
 __all__ = ["well_section"]
 

@@ -9,20 +9,13 @@ from rich.console import Group, RenderableType
 from rich.table import Table
 from rich.text import Text
 
+from torsio.config.configuration import Config
 from torsio.errors import ConfigError
-from torsio.io.config import Config
-from torsio.io.report_context import (
-    ReportContext,
-    ReportSection,
-    _ByWidth,
-    _mm,
-    _number,
-    _table,
-)
 from torsio.model.continuum import ContinuumModes, continuum_modes
 from torsio.model.drillstring import DrillString
 from torsio.model.modal import ModalComparison
 from torsio.physics.damping import RayleighDamping
+from torsio.report.context import ReportContext, ReportSection, _ByWidth, _mm, _number, _table
 
 
 # --- the drill-string ---------------------------------------------------------------------

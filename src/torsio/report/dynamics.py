@@ -9,7 +9,8 @@ import numpy as np
 from rich.table import Table
 from rich.text import Text
 
-from torsio.io.report_context import ReportContext, ReportSection
+from torsio.errors import ConfigError
+from torsio.report.context import ReportContext, ReportSection
 
 
 # --- operating point ----------------------------------------------------------------------
@@ -158,7 +159,15 @@ def critical_section(ctx: ReportContext) -> ReportSection | None:
 
     low, high, points, refine = CRITICAL_SEARCH
     grid = np.linspace(low * op.wob, high * op.wob, points)
-    row = severity_map(ctx.system, wob=grid, rpm=[op.rpm], refine=refine)
+    try:
+        row = severity_map(ctx.system, wob=grid, rpm=[op.rpm], refine=refine)
+    except ConfigError as exc:  # a model whose batch engine cannot run it (contacts)
+        if exc.key != "well":
+            raise
+        title = "Distance to the critical weight on bit"
+        return ReportSection(
+            "critical", title, {"not_run": exc.message}, Text(f"not run: {exc.message}")
+        )
     critical = float(row.critical_wob[0])
     status = row.critical_status[0]
     linear = float(row.stability_wob[0])

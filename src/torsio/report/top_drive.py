@@ -19,7 +19,7 @@ import numpy as np
 from rich.table import Table
 from rich.text import Text
 
-from torsio.io.report_context import ReportContext, ReportSection
+from torsio.report.context import ReportContext, ReportSection
 
 
 def _complex(value: complex | None) -> dict[str, float] | None:

@@ -1,7 +1,7 @@
 """Validated numbers: each quantity, its source, the source's value and torsio's.
 
 The same checks run in the test suite (``tests/test_validation.py``) and generate
-``docs/validation.md`` (``python -m torsio.io.validation --write docs/validation.md``),
+``docs/validation.md`` (``python -m torsio.report.validation --write docs/validation.md``),
 and a test compares that page with a fresh generation, so it cannot drift.
 
 Examples
@@ -23,12 +23,12 @@ from typing import Any
 import attrs
 
 from torsio.examples import ritto2017_string
-from torsio.io import validation_page
 from torsio.model.continuum import continuum_modes
 from torsio.model.discretize import StrategyA, StrategyB, StrategyC
 from torsio.model.drillstring import DrillString
 from torsio.model.lumped import LumpedModel
 from torsio.model.modal import modal_analysis
+from torsio.report import validation_page
 
 
 @attrs.frozen
@@ -258,10 +258,9 @@ def strategy_c_order() -> Check:
 
 # --- dynamics: analytic results and conservation laws ------------------------------------
 def _ritto_system(strategy: str = "C", **options: Any) -> Any:
-    from torsio.io.config import builtin_config
-    from torsio.physics.system import System
+    from torsio.examples import builtin_config
 
-    return System.from_config(builtin_config(), strategy=strategy, **options)
+    return builtin_config().system(strategy=strategy, **options)
 
 
 @check
@@ -441,8 +440,8 @@ def page() -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """``python -m torsio.io.validation [--write FILE]``."""
-    parser = argparse.ArgumentParser(prog="python -m torsio.io.validation")
+    """``python -m torsio.report.validation [--write FILE]``."""
+    parser = argparse.ArgumentParser(prog="python -m torsio.report.validation")
     parser.add_argument("--write", type=Path, help="write the page to this file")
     args = parser.parse_args(argv)
     text = page()
@@ -457,4 +456,4 @@ if __name__ == "__main__":  # pragma: no cover
     raise SystemExit(main())
 
 
-__all__ = ["CHECKS", "Check", "check", "main", "page"]  # the table: torsio.io.validation_page
+__all__ = ["CHECKS", "Check", "check", "main", "page"]  # the table: torsio.report.validation_page

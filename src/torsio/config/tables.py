@@ -1,18 +1,20 @@
 """Checks shared by the tables of the configuration file, and the drill-string tables.
 
-``[[section]]`` and ``[material]`` are read here; :mod:`torsio.io.config` reads the rest
-and assembles the :class:`~torsio.io.config.Config`. Every error names its key.
+Keys of a table, strings, numbers with units, rotary speeds; ``[[section]]`` and
+``[material]`` are read here; :mod:`torsio.config.reading` reads the rest and assembles
+the :class:`~torsio.config.configuration.Config`. Every error names its key.
 """
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Mapping
 from typing import Any
 
 from torsio.errors import ConfigError
 from torsio.model.components import SECTION_KINDS, Material, Section
-from torsio.units import to_si
+from torsio.units import RPM_TO_RAD_S, to_si
 
 SECTION_KEYS = {"kind", "od", "id", "length", "name", "bha", "material"}
 MATERIAL_KEYS = {"shear_modulus", "density"}
@@ -104,3 +106,19 @@ def _positive_number(value: Any, key: str, dimension: str, allow_zero: bool = Tr
             key, f"expected a {'non-negative' if allow_zero else 'positive'} value, got {value!r}"
         )
     return number
+
+
+def parse_rpm(value: Any, key: str) -> float:
+    """A rotary speed in rpm: a bare number (or numeric string) is rpm; a string may carry
+    any angular-speed unit (``"10 rad/s"``)."""
+    rpm: float
+    if isinstance(value, str):
+        try:
+            rpm = float(value)
+        except ValueError:
+            rpm = to_si(value, "angular_speed", key=key) / RPM_TO_RAD_S
+    else:
+        rpm = to_si(value, "dimensionless", key=key)
+    if not (math.isfinite(rpm) and rpm > 0):
+        raise ConfigError(key, f"expected a positive rotary speed in rpm, got {value!r}")
+    return rpm

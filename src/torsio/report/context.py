@@ -1,6 +1,6 @@
 """The context every report section reads, the section type and the table helpers.
 
-See :mod:`torsio.io.report` for how sections make up the report.
+See :mod:`torsio.report.document` for how sections make up the report.
 """
 
 from __future__ import annotations
@@ -15,8 +15,8 @@ from rich.console import Console, ConsoleOptions, Group, RenderableType, RenderR
 from rich.table import Table
 from rich.text import Text
 
+from torsio.config.configuration import Config
 from torsio.errors import ConfigError
-from torsio.io.config import Config
 from torsio.model.lumped import LumpedModel
 from torsio.model.modal import ModalComparison, ModalResults, modal_analysis
 from torsio.physics.damping import ModelDamping, RayleighDamping
@@ -70,21 +70,20 @@ class ReportContext:
         self.dynamics_note = ""
         """Why the dynamic sections are missing ('' when they are not)."""
         self.sections: list[ReportSection] | None = None
-        """The report's sections once computed (:func:`torsio.io.report.report_sections`)."""
+        """The report's sections once computed (:func:`torsio.report.document.report_sections`)."""
 
     @functools.cached_property
     def system(self) -> System | None:
         """The System of the configuration (model, damping, bit-rock law, operating point).
 
         None when the configuration has no ``[bit_rock]`` table (modal analyses only), or
-        has a ``[well]`` whose friction the model cannot carry (a lumped strategy: friction
-        along the string runs on the wave model only for now); :attr:`dynamics_note` then
-        says why.
+        has a ``[well]`` whose friction the model cannot carry (consistent mass, a
+        ``[chain]`` without sections); :attr:`dynamics_note` then says why.
         """
         if self.config.bit_rock is None:
             return None
         try:
-            return System.from_config(self.config, **self.overrides)
+            return self.config.system(**self.overrides)
         except ConfigError as exc:
             if exc.key != "well":
                 raise
@@ -105,7 +104,7 @@ class ReportContext:
 
     @functools.cached_property
     def damping(self) -> RayleighDamping | ModelDamping:
-        """The damping of the model, as :meth:`System.from_config` sets it."""
+        """The damping of the model, as :meth:`Config.system` sets it."""
         if self.system is not None:
             return self.system.damping
         damping: RayleighDamping | ModelDamping = self.config.model_damping(self.model)

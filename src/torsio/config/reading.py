@@ -1,16 +1,30 @@
-"""The configuration file (TOML): reading, validation, and conversion to torsio objects.
+"""Reading a configuration: TOML text, a file or a dict into a validated :class:`Config`.
 
 Bare numbers are SI; strings with units are accepted (``"5.5 in"``, ``"100 kN"``).
 Unknown keys are errors. Every error names the key, e.g. ``section[2].od``.
-See ``docs/configuration.md`` for every key, its unit and its default.
+See ``docs/configuration.md`` for every key, its unit and its default. The tables with
+modules of their own: ``[[section]]`` and ``[material]`` (:mod:`torsio.config.tables`),
+``[chain]``, ``[top_drive]`` and ``[well]``; the small ones are read here.
 
 Examples
 --------
->>> config = builtin_config()
->>> config.name
-'Ritto et al. (2017)'
->>> config.discretization.strategy, config.operation.rpm
-('C', 100.0)
+>>> config = parse_config_text('''
+... name = "one collar"
+... [[section]]
+... kind = "drill_collar"
+... od = "8 in"
+... id = "3 in"
+... length = 100.0
+... [[section]]
+... kind = "bit"
+... od = "8.5 in"
+... id = 0.0
+... length = 0.3
+... [damping]
+... alpha = 0.1
+... ''')
+>>> config.name, len(config.string.sections), config.damping.alpha
+('one collar', 2, 0.1)
 >>> parse_config({"section": []}, source="<dict>")
 Traceback (most recent call last):
 ...
@@ -19,33 +33,45 @@ torsio.errors.ConfigError: section: a drill-string needs at least one section an
 
 from __future__ import annotations
 
-import math
 import tomllib
 import warnings
 from collections.abc import Mapping
-from importlib import resources
 from pathlib import Path
 from typing import Any
 
 import attrs
 
-from torsio.errors import ConfigError
-from torsio.io.chain_config import ChainConfig, parse_chain
-from torsio.io.config_tables import (
+from torsio.config.chain import parse_chain
+from torsio.config.configuration import (
+    BitRockConfig,
+    Config,
+    DampingConfig,
+    DiscretizationConfig,
+    OperationConfig,
+    SimulationConfig,
+)
+from torsio.config.tables import (
     _material,
     _option_error,
     _positive_number,
     _section,
     _string,
     _table,
+    parse_rpm,
 )
-from torsio.io.top_drive_config import TopDriveConfig, parse_top_drive
-from torsio.io.well_config import well_table
+from torsio.config.top_drive import parse_top_drive
+from torsio.config.well import well_table
+from torsio.errors import ConfigError
 from torsio.model.components import STEEL
 from torsio.model.drillstring import DrillString
-from torsio.units import RPM_TO_RAD_S, to_si
-from torsio.well.string_contacts import with_contacts
-from torsio.well.wellbore import Wellbore
+from torsio.units import to_si
+
+__all__ = [
+    "UndampedWarning",
+    "load_config",
+    "parse_config",
+    "parse_config_text",
+]
 
 TOP_LEVEL_KEYS = {
     "name",
@@ -77,168 +103,6 @@ SIMULATION_KEYS = {"duration", "steady_window", "method", "rtol", "atol", "outpu
 SIMULATION_KEYS |= {"stick_threshold"}
 
 
-@attrs.frozen
-class BitRockConfig:
-    """The ``[bit_rock]`` table: law name, bit radius [m] (None: bit od/2), parameters."""
-
-    law: str = "tucker-wang"
-    radius: float | None = None
-    speed_unit: str = "rad/s"
-    parameters: Mapping[str, float] = attrs.field(factory=dict)
-    _built: list[Any] = attrs.field(factory=list, init=False, eq=False, repr=False)
-
-    def build(self) -> Any:
-        """The bit-rock law object (looked up among the registered laws), built once: the
-        validation on reading the file builds it, every System of the table reuses it."""
-        if not self._built:
-            from torsio.plugins import build_bit_law
-
-            self._built.append(build_bit_law(self.law, self.parameters, speed_unit=self.speed_unit))
-        return self._built[0]
-
-
-@attrs.frozen
-class DampingConfig:
-    """The ``[damping]`` table: Rayleigh alpha [1/s] and beta [s], or modal damping ratios."""
-
-    alpha: float | None = None
-    beta: float | None = None
-    ratios: tuple[float, float] | None = None
-    modes: tuple[int, int] = (1, 2)
-
-
-@attrs.frozen
-class DiscretizationConfig:
-    """The ``[discretization]`` table: strategy name and its element options."""
-
-    strategy: str = "C"
-    options: Mapping[str, Any] = attrs.field(factory=dict)
-
-    def build(self) -> Any:
-        """The discretizer object (looked up among the registered discretizers)."""
-        from torsio.plugins import get_discretizer
-
-        return get_discretizer(self.strategy)(**self.options)
-
-
-@attrs.frozen
-class OperationConfig:
-    """The ``[operation]`` table: weight on bit [N] and surface rotary speed [rpm]."""
-
-    wob: float | None = None
-    rpm: float | None = None
-
-    @property
-    def omega(self) -> float | None:
-        """Surface rotary speed [rad/s]."""
-        return None if self.rpm is None else self.rpm * RPM_TO_RAD_S
-
-
-@attrs.frozen
-class SimulationConfig:
-    """The ``[simulation]`` table: options of :mod:`torsio.analysis.transient`."""
-
-    options: Mapping[str, Any] = attrs.field(factory=dict)
-
-
-@attrs.frozen
-class Config:
-    """A whole configuration file, validated.
-
-    Exactly one of ``string`` (``[[section]]``) and ``chain`` (``[chain]``, a lumped
-    model given directly) is set.
-    """
-
-    name: str
-    string: DrillString | None
-    bit_rock: BitRockConfig | None
-    damping: DampingConfig
-    discretization: DiscretizationConfig
-    operation: OperationConfig
-    simulation: SimulationConfig
-    source: str = ""
-    chain: ChainConfig | None = None
-    top_drive: TopDriveConfig = attrs.field(factory=TopDriveConfig)
-    well: Wellbore | None = None  # [well] (io/well_config.py); None: vertical, no contact
-
-    def model(self, **overrides: Any) -> Any:
-        """Discretize the string: the configured strategy, with ``overrides`` of its options.
-
-        ``strategy=...`` in ``overrides`` changes the strategy; options of the file
-        are kept only if the strategy is unchanged.
-        """
-        if self.chain is not None:
-            given = sorted(k for k, v in overrides.items() if v is not None)
-            if given:
-                raise ConfigError(
-                    given[0], "the model is a [chain] given directly; it is not discretized"
-                )
-            return self.chain.model()
-        assert self.string is not None
-        strategy = overrides.pop("strategy", None) or self.discretization.strategy
-        options = (
-            dict(self.discretization.options) if strategy == self.discretization.strategy else {}
-        )
-        options.update({k: v for k, v in overrides.items() if v is not None})
-        return DiscretizationConfig(strategy, options).build().discretize(self.string)
-
-    @property
-    def bit_radius(self) -> float:
-        """R_bit [m]: ``bit_rock.radius``, else half the bit's outer diameter."""
-        if self.bit_rock is None or self.bit_rock.radius is None:
-            if self.string is None:
-                raise ConfigError(
-                    "bit_rock.radius", "required with [chain]: a chain has no bit section"
-                )
-            return self.string.bit.radius
-        return self.bit_rock.radius
-
-    def model_damping(self, model: Any) -> Any:
-        """The damping of ``model``: the chain's own dampers, else ``[damping]`` (Rayleigh)."""
-        from torsio.physics.damping import ModelDamping, RayleighDamping
-
-        if self.chain is not None and self.chain.carries_damping:
-            return ModelDamping()
-        d = self.damping
-        if d.ratios is not None:
-            return RayleighDamping.from_modal_ratios(model, d.ratios, d.modes)
-        return RayleighDamping(d.alpha or 0.0, d.beta or 0.0)
-
-    def system(self, **discretization: Any) -> Any:
-        """The :class:`torsio.physics.system.System` this configuration describes.
-
-        ``discretization`` overrides the ``[discretization]`` options; the operating
-        point is ``[operation]`` (0 N and 60 rpm where absent); the top drive is
-        ``[top_drive]`` (held at constant speed where absent).
-        """
-        from torsio.physics.system import System
-
-        model = self.model(**discretization)
-        model = model if self.well is None else with_contacts(model, self.well)  # wave only
-        damping = self.model_damping(model)
-        op = self.operation
-        return System(
-            model=model,
-            law=self.bit_law(),
-            bit_radius=self.bit_radius,
-            damping=damping,
-            wob=op.wob if op.wob is not None else 0.0,
-            rpm=op.rpm if op.rpm is not None else 60.0,
-            top=self.top_drive.build(),
-            string=self.string,
-        )
-
-    def bit_law(self) -> Any:
-        """The configured bit-rock law; a clear error if the file has no ``[bit_rock]`` table."""
-        if self.bit_rock is None:
-            raise ConfigError(
-                "bit_rock",
-                "the configuration has no [bit_rock] table; dynamic "
-                "analyses need a bit-rock law (see `torsio laws`)",
-            )
-        return self.bit_rock.build()
-
-
 def load_config(path: str | Path) -> Config:
     """Read and validate a TOML configuration file."""
     path = Path(path)
@@ -266,12 +130,6 @@ def parse_config_text(text: str, source: str = "<string>") -> Config:
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError("", f"{source} is not valid TOML: {exc}") from None
     return parse_config(data, source=source)
-
-
-def builtin_config() -> Config:
-    """The built-in example: the Ritto et al. (2017) string of the paper's Table 1."""
-    text = resources.files("torsio").joinpath("data/ritto2017.toml").read_text(encoding="utf-8")
-    return parse_config_text(text, source="built-in ritto2017.toml")
 
 
 def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
@@ -464,22 +322,6 @@ def _operation(raw: Any) -> OperationConfig:
     if "rpm" in table:
         rpm = parse_rpm(table["rpm"], "operation.rpm")
     return OperationConfig(wob, rpm)
-
-
-def parse_rpm(value: Any, key: str) -> float:
-    """A rotary speed in rpm: a bare number (or numeric string) is rpm; a string may carry
-    any angular-speed unit (``"10 rad/s"``)."""
-    rpm: float
-    if isinstance(value, str):
-        try:
-            rpm = float(value)
-        except ValueError:
-            rpm = to_si(value, "angular_speed", key=key) / RPM_TO_RAD_S
-    else:
-        rpm = to_si(value, "dimensionless", key=key)
-    if not (math.isfinite(rpm) and rpm > 0):
-        raise ConfigError(key, f"expected a positive rotary speed in rpm, got {value!r}")
-    return rpm
 
 
 def _simulation(raw: Any) -> SimulationConfig:

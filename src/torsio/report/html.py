@@ -11,7 +11,7 @@ and a note saying how to get them.
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
+>>> from torsio.examples import builtin_config
 >>> page = html_report(builtin_config(), strategy="A")
 >>> page.startswith("<!DOCTYPE html>") and page.count("data:image/png;base64,") == 3
 True
@@ -30,8 +30,9 @@ from typing import Any
 from rich.console import Console
 from rich.text import Text
 
-from torsio.io.config import Config
-from torsio.io.report import ReportContext, report_sections
+from torsio.config.configuration import Config
+from torsio.report.context import ReportContext
+from torsio.report.document import report_sections
 
 PAGE = """<!DOCTYPE html>
 <html lang="en">
@@ -194,7 +195,7 @@ def configuration_text(config: Config) -> str | None:
 def html_report(config: Config | ReportContext, **options: Any) -> str:
     """The report of ``config`` as a standalone HTML page.
 
-    ``options`` as for :func:`torsio.io.report.report_data` (``strategy``,
+    ``options`` as for :func:`torsio.report.document.report_data` (``strategy``,
     ``dp_elements``, ``bha_elements``, ``modes``); a :class:`ReportContext` may be
     passed instead, to reuse what it has computed. Without matplotlib the page has
     no figures and says so (:data:`NO_FIGURES_NOTE`).

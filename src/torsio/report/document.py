@@ -8,18 +8,18 @@ built from the same numbers. To add a section, write one such function and
 append it to :data:`SECTIONS`; :func:`report_data` and :func:`render` pick it up.
 
 Sections now: the drill-string, the well (with a ``[well]``: survey, torque and drag,
-break-off; :mod:`torsio.io.report_well`), its discretization, the first modes against
+break-off; :mod:`torsio.report.well`), its discretization, the first modes against
 the exact continuum, the Rayleigh damping ratios of those modes, the operating
 point, the top drive (gains, impedance at omega_1, reflection coefficient), the
 dimensionless groups, the response there (S_SS, stick fraction) and its distance
 to the critical weight on bit. For the distributed model (``strategy = "wave"``) the
 discretization, modes and damping sections describe its grid, its exact continuum and
-its distributed drag (:mod:`torsio.io.report_wave`), and a ``wave`` section follows the
+its distributed drag (:mod:`torsio.report.wave`), and a ``wave`` section follows the
 response.
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
+>>> from torsio.examples import builtin_config
 >>> data = report_data(builtin_config(), modes=3)
 >>> list(data)
 ['name', 'source', 'string', 'discretization', 'modes', 'damping', 'operation',
@@ -52,54 +52,30 @@ from typing import Any
 from rich.console import Console
 from rich.text import Text
 
-from torsio.io.config import Config
-from torsio.io.report_context import DEFAULT_MODES, WIDE, ReportContext, ReportSection
-from torsio.io.report_dynamics import (
-    CRITICAL_SEARCH,
+from torsio.config.configuration import Config
+from torsio.report.context import ReportContext, ReportSection
+from torsio.report.dynamics import (
     critical_section,
     dimensionless_section,
     operation_section,
     response_section,
 )
-from torsio.io.report_model import (
+from torsio.report.model import (
     damping_section,
     discretization_section,
     modes_section,
-    modes_table,
     string_section,
-    string_table,
 )
-from torsio.io.report_top_drive import top_drive_section
-from torsio.io.report_wave import (
+from torsio.report.top_drive import top_drive_section
+from torsio.report.wave import (
     wave_damping_section,
     wave_discretization_section,
     wave_modes_section,
     wave_section,
 )
-from torsio.io.report_well import well_section
+from torsio.report.well import well_section
 
-__all__ = [
-    "CRITICAL_SEARCH",
-    "DEFAULT_MODES",
-    "SECTIONS",
-    "WIDE",
-    "ReportContext",
-    "ReportSection",
-    "critical_section",
-    "damping_section",
-    "dimensionless_section",
-    "discretization_section",
-    "modes_section",
-    "modes_table",
-    "operation_section",
-    "render",
-    "report_data",
-    "report_sections",
-    "response_section",
-    "string_section",
-    "string_table",
-    "top_drive_section",
-]
+__all__ = ["SECTIONS", "WAVE_SECTIONS", "render", "report_data", "report_sections"]
 
 
 SECTIONS: list[Callable[[ReportContext], ReportSection | None]] = [

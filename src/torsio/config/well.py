@@ -23,8 +23,8 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from torsio.config.tables import _positive_number, _string, _table
 from torsio.errors import ConfigError
-from torsio.io.config_tables import _positive_number, _string, _table
 from torsio.units import to_si
 from torsio.well.survey import Survey
 from torsio.well.survey_csv import read_survey_csv

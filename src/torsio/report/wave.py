@@ -9,8 +9,8 @@ a ``wave`` section adds the grid's facts and the S_SS it gives at the operating 
 
 Examples
 --------
->>> from torsio.io.config import builtin_config
->>> from torsio.io.report_context import ReportContext
+>>> from torsio.examples import builtin_config
+>>> from torsio.report.context import ReportContext
 >>> ctx = ReportContext(builtin_config(), strategy="wave", modes=3)
 >>> data = wave_discretization_section(ctx).data
 >>> data["strategy"], [part["cells"] for part in data["parts"]], round(data["time_step_s"], 7)
@@ -28,9 +28,9 @@ from rich.console import Group
 from rich.table import Table
 from rich.text import Text
 
-from torsio.io.report_context import ReportContext, ReportSection, _number, _table
 from torsio.model.continuum import continuum_modes
 from torsio.model.wave import WaveModel, interface_factors
+from torsio.report.context import ReportContext, ReportSection, _number, _table
 
 __all__ = [
     "wave_damping_section",

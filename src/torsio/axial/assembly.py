@@ -1,0 +1,249 @@
+"""Lumped drilling assemblies that move axially and torsionally: nodes on a chain.
+
+Each node i has a torsional inertia I_i and an axial mass m_i. Torsionally, spring k_i and
+damper c_i join node i − 1 to node i, node −1 being the top drive turning at Ω₀; the last
+node carries the bit. Axially, spring k_a,i and damper c_a,i join node i − 1 to node i,
+node −1 being the hook:
+
+- ``hook = "weight"``: the hook weight W₀ acts on node 0 (the string above it carries W₀
+  whatever its stiffness, so k_a,0 is not used). Without axial springs the nodes move
+  axially as one rigid body of mass Σ m_i (RGD 2007's form: the axial stiffness of the
+  string neglected).
+- ``hook = "speed"``: the hook moves down at a constant speed, the steady rate of
+  penetration V₀ of the run's (W₀, Ω₀), through k_a,0 and c_a,0; it needs axial springs.
+
+The 2-DOF model of Richard, Germay and Detournay (2007) is one node, no axial spring:
+:func:`two_dof_assembly`. :func:`pipe_assembly` splits a uniform pipe into nodes with
+springs E A / L and G J / L (L the node spacing) and the BHA on the last node.
+
+Examples
+--------
+>>> assembly = rgd_two_dof_example()
+>>> assembly.nodes, assembly.axial_dofs, assembly.hook
+(1, 1, 'weight')
+>>> chain = pipe_assembly(4, 1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5, 3.0e4, 230.0)
+>>> round(float(chain.axial_stiffnesses[1]) / 1e6, 3)  # E A / (L / n), MN/m
+2.72
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import attrs
+import numpy as np
+from numpy.typing import NDArray
+
+from torsio.errors import ConfigError
+
+__all__ = ["DrillingAssembly", "pipe_assembly", "rgd_two_dof_example", "two_dof_assembly"]
+
+HOOKS = ("weight", "speed")
+"""The boundaries at the hook: a constant weight on the top node, or a constant speed."""
+
+
+def _vector(value: Any) -> NDArray[np.float64]:
+    vector = np.array(() if value is None else value, dtype=float).reshape(-1)
+    vector.setflags(write=False)
+    return vector
+
+
+def _check(key: str, values: NDArray[np.float64], allow_zero: bool) -> None:
+    bad = ~np.isfinite(values) | ((values < 0) if allow_zero else (values <= 0))
+    if bad.any():
+        i = int(np.argmax(bad))
+        expected = "non-negative" if allow_zero else "positive"
+        raise ConfigError(f"{key}[{i}]", f"expected a {expected} finite value, got {values[i]!r}")
+
+
+def _same_size(key: str, values: NDArray[np.float64], size: int) -> None:
+    if values.size != size:
+        raise ConfigError(key, f"has {values.size} values; expected {size}, one per node")
+
+
+@attrs.frozen(eq=False)
+class DrillingAssembly:
+    """A lumped chain of nodes that turn and move axially, the bit on the last one.
+
+    Parameters
+    ----------
+    inertias : array (n,)
+        Torsional inertias I_i [kg m²].
+    stiffnesses : array (n,)
+        Torsional springs k_i [N m/rad]; k_0 joins the top drive to node 0.
+    masses : array (n,)
+        Axial masses m_i [kg].
+    axial_stiffnesses : array (n,) or empty
+        Axial springs k_a,i [N/m]; k_a,0 joins the hook to node 0. Empty: the nodes move
+        axially as one body (weight hook only).
+    damping : array (n,)
+        Torsional dampers c_i [N m s/rad] in parallel with the springs (default none).
+    axial_damping : array (n,)
+        Axial dampers c_a,i [N s/m] in parallel with the axial springs (default none).
+    hook : str
+        ``"weight"`` or ``"speed"`` (see the module docstring).
+    """
+
+    inertias: NDArray[np.float64] = attrs.field(converter=_vector)
+    stiffnesses: NDArray[np.float64] = attrs.field(converter=_vector)
+    masses: NDArray[np.float64] = attrs.field(converter=_vector)
+    axial_stiffnesses: NDArray[np.float64] = attrs.field(converter=_vector, factory=tuple)
+    damping: NDArray[np.float64] = attrs.field(converter=_vector, default=None)
+    axial_damping: NDArray[np.float64] = attrs.field(converter=_vector, default=None)
+    hook: str = "weight"
+
+    def __attrs_post_init__(self) -> None:
+        n = self.inertias.size
+        if n == 0:
+            raise ConfigError("chain.inertias", "is empty; expected one inertia per node")
+        _check("chain.inertias", self.inertias, False)
+        for key, values, zero in (
+            ("chain.stiffnesses", self.stiffnesses, False),
+            ("chain.masses", self.masses, False),
+        ):
+            _same_size(key, values, n)
+            _check(key, values, zero)
+        if not self.damping.size:  # none given: no dampers
+            object.__setattr__(self, "damping", _vector(np.zeros(n)))
+        _same_size("chain.damping", self.damping, n)
+        _check("chain.damping", self.damping, True)
+        if self.axial_stiffnesses.size:
+            _same_size("chain.axial_stiffnesses", self.axial_stiffnesses, n)
+            _check("chain.axial_stiffnesses", self.axial_stiffnesses, False)
+        m = self.axial_dofs
+        if not self.axial_damping.size:
+            object.__setattr__(self, "axial_damping", _vector(np.zeros(m)))
+        _same_size("chain.axial_damping", self.axial_damping, m)
+        _check("chain.axial_damping", self.axial_damping, True)
+        if self.hook not in HOOKS:
+            raise ConfigError("axial.hook", f"{self.hook!r} is not one of {', '.join(HOOKS)}")
+        if self.hook == "speed" and not self.axial_stiffnesses.size:
+            raise ConfigError(
+                "axial.hook",
+                "'speed' needs chain.axial_stiffnesses (the spring k_a,0 joins the hook to "
+                "node 0); with none the string is rigid and only 'weight' applies",
+            )
+
+    @property
+    def nodes(self) -> int:
+        """The number of torsional nodes n (the last one carries the bit)."""
+        return int(self.inertias.size)
+
+    @property
+    def axial_dofs(self) -> int:
+        """Axial degrees of freedom: n with axial springs, 1 (the rigid body) without."""
+        return int(self.masses.size) if self.axial_stiffnesses.size else 1
+
+    @property
+    def bit_mass(self) -> float:
+        """The axial mass [kg] of the degree of freedom that carries the bit."""
+        return float(self.masses[-1] if self.axial_stiffnesses.size else self.masses.sum())
+
+    def axial_rows(self) -> NDArray[np.float64]:
+        """The kernel's axial rows 1/m, k_a, c_a (:mod:`torsio.axial.kernel`)."""
+        if self.axial_stiffnesses.size:
+            return np.ascontiguousarray(
+                [1.0 / self.masses, self.axial_stiffnesses, self.axial_damping], dtype=float
+            )
+        return np.array([[1.0 / self.masses.sum()], [0.0], [0.0]])
+
+    def torsional_rows(self) -> NDArray[np.float64]:
+        """The kernel's torsional rows 1/I, k, c (:mod:`torsio.axial.kernel`)."""
+        return np.ascontiguousarray([1.0 / self.inertias, self.stiffnesses, self.damping])
+
+    def fastest_frequency(self) -> float:
+        """An upper bound [rad/s] of the chain's node frequencies, √((k_i + k_i+1)/I_i) and
+        √((k_a,i + k_a,i+1)/m_i): what the explicit step must resolve."""
+        frequencies = [_node_frequencies(self.stiffnesses, self.inertias)]
+        if self.axial_stiffnesses.size:
+            frequencies.append(_node_frequencies(self.axial_stiffnesses, self.masses))
+        return float(max(f.max() for f in frequencies))
+
+    def steady_offsets(self, torque: float, weight: float) -> tuple[NDArray, NDArray]:
+        """Node angles [rad] relative to the top and positions [m] relative to the bit in
+        steady drilling: each torsional spring carries the bit torque, each axial spring
+        the weight. Angles −Σ_j≤i T/k_j; positions Σ_j>i W/k_a,j (0 at the bit)."""
+        angles = -np.cumsum(torque / self.stiffnesses)
+        if not self.axial_stiffnesses.size:
+            return angles, np.zeros(1)
+        springs = weight / self.axial_stiffnesses
+        positions = np.concatenate([np.cumsum(springs[:0:-1])[::-1], [0.0]])
+        return angles, positions
+
+    def describe(self) -> dict[str, Any]:
+        """Plain data for reports and JSON."""
+        return {
+            "nodes": self.nodes,
+            "axial_dofs": self.axial_dofs,
+            "hook": self.hook,
+            "inertias": self.inertias.tolist(),
+            "stiffnesses": self.stiffnesses.tolist(),
+            "masses": self.masses.tolist(),
+            "axial_stiffnesses": self.axial_stiffnesses.tolist(),
+        }
+
+
+def _node_frequencies(springs: NDArray, inertias: NDArray) -> NDArray:
+    total = springs.copy()
+    total[:-1] += springs[1:]
+    return np.sqrt(total / inertias)
+
+
+def two_dof_assembly(
+    inertia: float, stiffness: float, mass: float, damping: float = 0.0
+) -> DrillingAssembly:
+    """The 2-DOF model of RGD (2007): the BHA (I [kg m²], M [kg]) under the hook weight,
+    a torsional spring k [N m/rad] and damper c [N m s/rad] to the top drive."""
+    return DrillingAssembly([inertia], [stiffness], [mass], damping=[damping])
+
+
+def rgd_two_dof_example() -> DrillingAssembly:
+    """The 2-DOF example of docs/axial.md: I = 455.65 kg m², k = 324.857 N m/rad (strategy A
+    of the built-in Ritto 2017 string), M = 29981.3 kg (DESIGN.md's ``[chain] masses``),
+    c = β k = 19.49 N m s/rad (the built-in β = 0.06 s)."""
+    return two_dof_assembly(455.65, 324.857, 29981.3, damping=19.49)
+
+
+def pipe_assembly(
+    nodes: int,
+    length: float,
+    youngs_modulus: float,
+    shear_modulus: float,
+    density: float,
+    area: float,
+    polar_moment: float,
+    bha_mass: float,
+    bha_inertia: float,
+    *,
+    hook: str = "weight",
+) -> DrillingAssembly:
+    """A uniform pipe of ``length`` [m] in ``nodes`` lumps above a rigid BHA on the last one.
+
+    Springs E A / Δ [N/m] and G J / Δ [N m/rad] with Δ = length / nodes; each node carries
+    ρ A Δ [kg] and ρ J Δ [kg m²] (half of it at the top node, whose other half is at the
+    hook), the last one the BHA's ``bha_mass`` [kg] and ``bha_inertia`` [kg m²] as well.
+    Units: E, G [Pa], ρ [kg/m³], A [m²], J [m⁴].
+    """
+    if not (isinstance(nodes, int) and nodes >= 1):
+        raise ConfigError("nodes", f"{nodes!r} must be a whole number >= 1")
+    for key, value in (
+        ("length", length),
+        ("youngs_modulus", youngs_modulus),
+        ("shear_modulus", shear_modulus),
+        ("density", density),
+        ("area", area),
+        ("polar_moment", polar_moment),
+    ):
+        if not (math.isfinite(value) and value > 0):
+            raise ConfigError(key, f"{value!r} must be > 0")
+    spacing = length / nodes
+    share = np.ones(nodes)
+    share[0] = 0.5
+    return DrillingAssembly(
+        inertias=share * density * polar_moment * spacing + np.eye(nodes)[-1] * bha_inertia,
+        stiffnesses=np.full(nodes, shear_modulus * polar_moment / spacing),
+        masses=share * density * area * spacing + np.eye(nodes)[-1] * bha_mass,
+        axial_stiffnesses=np.full(nodes, youngs_modulus * area / spacing),
+        hook=hook,
+    )

@@ -1,0 +1,211 @@
+"""The compiled step loop of an axial-torsional run with the RGD bit.
+
+Fixed step h, semi-implicit (symplectic) Euler with the bit's set-valued contacts solved
+at the velocity level over each step (Moreau's time stepping):
+
+1. The depth of cut from the run's own history (:mod:`torsio.axial.history`):
+   d = n (U_b − U(t − t_n)) with Φ(t − t_n) = Φ_b − 2π/n, U(t − t_n) the rock surface the
+   last blade left there (the bit's position while it cut). Off bottom (d ≤ 0) every bit
+   force is zero and the surface is kept.
+2. Axial: V_i ← V_i + h F_i / m_i with the spring and damper forces of the current
+   positions and velocities. At the bit, the free velocity V* = V_b + h (F_b − W_c)/m_b and
+   the wear-flat weight W_f ∈ [0, σ a l] that makes the new velocity V_b consistent with
+   it: W_f = σ a l if V* − h σ a l / m_b > 0 (drilling down), W_f = 0 if V* < 0 (moving
+   up), else V_b = 0 and W_f = m_b V*/h (axially at rest, the contact set-valued).
+3. Torsional: ω_i ← ω_i + h T_i / I_i; at the bit Ω* = Ω_b + h (T_b − T_c − T_f)/I_b with
+   T_f = μ γ a W_f / 2, and Ω_b = max(Ω*, 0): the bit does not turn backwards and sticks
+   while the string's torque is at most T_c + T_f (the bit torque is then the reaction
+   T_b + I_b Ω_b/h). With a prescribed rotation Φ_b, Ω_b are set instead.
+4. Positions from the new velocities: U ← U + h V, θ ← θ + h ω; the top angle Ω₀ t, the
+   hook position U_h0 + V_h t. The new bit state is appended to the history.
+
+``settings``: [h, steps, Ω₀ (top speed, rad/s), W₀ (hook weight, N), hook (0 weight,
+1 speed), V_h (m/s), U_h0 (m), first step of the window, sample every, prescribed (0/1),
+amplitude A, frequency f (rad/s), t at step 0]. The bit law ``bit``: [ζ ε a, ε a²/2,
+σ a l, μ γ a / 2, 2π/n, n]. ``torsional``: rows 1/I, k, c (spring and damper i join node
+i − 1, the top for i = 0, to node i). ``axial``: rows 1/m, k, c likewise (node 0's spring
+joins the hook; with the weight hook it carries W₀ and is not used). ``stats`` on return:
+see :data:`STATS`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from torsio.axial.history import append, delayed_state, keep_surface
+from torsio.solvers.compiled import njit
+
+__all__ = ["SAMPLE_COLUMNS", "STATS", "march"]
+
+STATS = (
+    "bit_speed_max",
+    "bit_speed_min",
+    "axial_speed_max",
+    "axial_speed_min",
+    "stuck_steps",
+    "off_bottom_steps",
+    "window_steps",
+    "position_start",
+    "position_end",
+    "work",
+    "torque_integral",
+    "weight_integral",
+    "failed",
+    "steps_done",
+    "depth_of_cut_max",
+)
+"""The entries of ``stats`` after :func:`march`, in order (window quantities; work [J],
+integrals of the bit torque [N m s] and weight [N s]; ``failed`` 1 when the history was
+too short for the delay; the largest depth of cut [m per rev])."""
+
+SAMPLE_COLUMNS = (
+    "time",
+    "bit_angle",
+    "bit_speed",
+    "bit_position",
+    "bit_velocity",
+    "depth_of_cut",
+    "bit_weight",
+    "bit_torque",
+    "delay",
+    "top_torque",
+)
+"""The columns of ``samples``: s, rad, rad/s, m (down), m/s, m per rev, N, N m, s, N m."""
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def march(
+    bit, torsional, axial, settings, theta, omega, u, v, history, cursor, stats, samples
+) -> None:  # pragma: no cover - compiled
+    """Advance the run ``settings[1]`` steps from the state (θ, ω, U, V) in place."""
+    h, steps, top_speed, weight = settings[0], int(settings[1]), settings[2], settings[3]
+    speed_hook, hook_speed, hook_start = settings[4] != 0.0, settings[5], settings[6]
+    window_start, sample_every = int(settings[7]), int(settings[8])
+    prescribed, amplitude, frequency, t_start = (
+        settings[9] != 0.0,
+        settings[10],
+        settings[11],
+        settings[12],
+    )
+    wc_per_d, tc_per_d, wf_max, tf_per_wf, angle_per_blade, blades = (
+        bit[0],
+        bit[1],
+        bit[2],
+        bit[3],
+        bit[4],
+        bit[5],
+    )
+    nt, na = theta.size, u.size
+    bt, ba = nt - 1, na - 1
+    delayed = np.zeros(2)
+    stats[0], stats[1], stats[2], stats[3] = -np.inf, np.inf, -np.inf, np.inf
+    for q in range(4, 15):
+        stats[q] = 0.0
+    row = 0
+    for step in range(steps):
+        t = t_start + step * h
+        sampled = sample_every > 0 and step % sample_every == 0 and row < samples.shape[0]
+        if sampled:
+            samples[row, 0] = t
+            samples[row, 1] = theta[bt]
+            samples[row, 2] = omega[bt]
+            samples[row, 3] = u[ba]
+            samples[row, 4] = v[ba]
+        if step == window_start:
+            stats[7] = u[ba]
+        # 1. depth of cut
+        if not delayed_state(history, cursor, theta[bt] - angle_per_blade, delayed):
+            stats[12] = 1.0
+            stats[13] = step
+            return
+        depth = blades * (u[ba] - delayed[1])
+        on_bottom = depth > 0.0
+        keep_surface(history, cursor, max(u[ba], delayed[1]), h)
+        wc = wc_per_d * depth if on_bottom else 0.0
+        tc = tc_per_d * depth if on_bottom else 0.0
+        # 2. axial
+        hook_position = hook_start + hook_speed * (t - t_start)
+        for i in range(na - 1, -1, -1):
+            if i == 0:
+                if speed_hook:
+                    force = axial[1, 0] * (hook_position - u[0]) + axial[2, 0] * (hook_speed - v[0])
+                else:
+                    force = weight
+            else:
+                force = axial[1, i] * (u[i - 1] - u[i]) + axial[2, i] * (v[i - 1] - v[i])
+            if i + 1 < na:
+                force -= axial[1, i + 1] * (u[i] - u[i + 1]) + axial[2, i + 1] * (v[i] - v[i + 1])
+            if i == ba:
+                free = v[i] + h * (force - wc) * axial[0, i]
+                wf = 0.0
+                if on_bottom:
+                    if free - h * wf_max * axial[0, i] > 0.0:
+                        wf = wf_max
+                        free -= h * wf_max * axial[0, i]
+                    elif free >= 0.0:
+                        wf = free / (h * axial[0, i])
+                        free = 0.0
+                v[i] = free
+            else:
+                v[i] += h * force * axial[0, i]
+        # 3. torsional
+        tf = tf_per_wf * wf
+        top_angle = top_speed * t
+        top_torque = torsional[1, 0] * (top_angle - theta[0]) + torsional[2, 0] * (
+            top_speed - omega[0]
+        )
+        bit_torque = tc + tf
+        if prescribed:
+            tt = t + h
+            omega[bt] = top_speed * (1.0 + amplitude * math.sin(frequency * tt))
+            theta[bt] = top_speed * (tt + amplitude * (1.0 - math.cos(frequency * tt)) / frequency)
+        else:
+            for i in range(nt - 1, -1, -1):
+                if i == 0:
+                    torque = top_torque
+                else:
+                    torque = torsional[1, i] * (theta[i - 1] - theta[i])
+                    torque += torsional[2, i] * (omega[i - 1] - omega[i])
+                if i + 1 < nt:
+                    torque -= torsional[1, i + 1] * (theta[i] - theta[i + 1])
+                    torque -= torsional[2, i + 1] * (omega[i] - omega[i + 1])
+                if i == bt:
+                    free = omega[i] + h * (torque - tc - tf) * torsional[0, i]
+                    if free <= 0.0:
+                        bit_torque = torque + omega[i] / (h * torsional[0, i])
+                        free = 0.0
+                    omega[i] = free
+                else:
+                    omega[i] += h * torque * torsional[0, i]
+            for i in range(nt):
+                theta[i] += h * omega[i]
+        # 4. positions and history
+        for i in range(na):
+            u[i] += h * v[i]
+        append(history, cursor, t + h, theta[bt], omega[bt], u[ba], v[ba])
+        bit_weight = wc + wf
+        if step >= window_start:
+            stats[0] = max(stats[0], omega[bt])
+            stats[1] = min(stats[1], omega[bt])
+            stats[2] = max(stats[2], v[ba])
+            stats[3] = min(stats[3], v[ba])
+            if omega[bt] == 0.0:
+                stats[4] += 1.0
+            if not on_bottom:
+                stats[5] += 1.0
+            stats[6] += 1.0
+            stats[14] = max(stats[14], depth)
+            stats[9] += h * (bit_weight * v[ba] + bit_torque * omega[bt])
+            stats[10] += h * bit_torque
+            stats[11] += h * bit_weight
+        if sampled:
+            samples[row, 5] = depth
+            samples[row, 6] = bit_weight
+            samples[row, 7] = bit_torque
+            samples[row, 8] = t - delayed[0]
+            samples[row, 9] = top_torque
+            row += 1
+    stats[8] = u[ba]
+    stats[13] = steps

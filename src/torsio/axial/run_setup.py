@@ -1,0 +1,269 @@
+"""What one run of :mod:`torsio.axial.kernel` needs: the step, the initial state, the
+history before t = 0, and the summary of the window it returns.
+
+**Step rule.** h_max = 2π / (ω_fast × ``steps_per_period``), ω_fast the largest of the
+bit's axial contact frequency √(2 n ζ ε a / m_b) (where the axial roots cross the
+imaginary axis, docs/axial.md) and the chain's node frequencies; a given ``step`` caps it
+further. h = t_n0 / ⌈t_n0 / h_max⌉: a whole number of steps per steady delay
+t_n0 = 2π/(n Ω₀).
+
+**Starts.** ``"steady"``: the steady drilling state (each spring carrying T₀ and W₀, every
+node at Ω₀ and V₀, the history the steady motion), the bit speed raised by
+``perturbation`` (relative; with a prescribed rotation the bit's axial velocity is raised
+instead). ``"rest"``: every node at rest, the torsional springs untwisted, the axial
+springs carrying W₀, the hole's bottom flat (U before t = 0 at U(0)), the top turning at
+Ω₀ from t = 0.
+
+Examples
+--------
+>>> from torsio.axial.assembly import rgd_two_dof_example
+>>> from torsio.axial.rgd import rgd_example
+>>> setup = run_setup(rgd_two_dof_example(), rgd_example(), 100e3, 60.0, 10.0, 5.0)
+>>> round(setup.step * 1e3, 6), setup.steps  # ms; 0.25 s / 129 steps
+(1.937984, 5160)
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import attrs
+import numpy as np
+from numpy.typing import NDArray
+
+from torsio.axial.assembly import DrillingAssembly
+from torsio.axial.kernel import STATS
+from torsio.axial.rgd import RGDBit
+from torsio.axial.steady import SteadyDrilling, steady_drilling
+from torsio.errors import ConfigError
+
+__all__ = [
+    "DEFAULT_STEPS_PER_PERIOD",
+    "BitRotation",
+    "RunSetup",
+    "WindowSummary",
+    "run_setup",
+    "summarize",
+]
+
+DEFAULT_STEPS_PER_PERIOD = 100
+"""Steps per period of the fastest frequency the run resolves (docs/axial.md, convergence)."""
+
+STARTS = ("rest", "steady")
+
+
+@attrs.frozen
+class BitRotation:
+    """A prescribed bit rotation Ω(t) = Ω₀ (1 + A sin(f t)), Φ(t) = Ω₀ (t + A (1 − cos f t)/f).
+
+    The torsional chain is then not integrated: the axial motion runs under the bit turning
+    as given (A = 0: the axial model of Richard et al. 2004). ``amplitude`` A in [0, 1),
+    ``frequency`` f [rad/s] > 0.
+    """
+
+    amplitude: float = attrs.field(default=0.0, converter=float)
+    frequency: float = attrs.field(default=1.0, converter=float)
+
+    def __attrs_post_init__(self) -> None:
+        if not 0.0 <= self.amplitude < 1.0:
+            raise ConfigError("bit_rotation.amplitude", f"{self.amplitude!r} must be in [0, 1)")
+        if not (math.isfinite(self.frequency) and self.frequency > 0):
+            raise ConfigError("bit_rotation.frequency", f"{self.frequency!r} must be > 0 rad/s")
+
+    def angle(self, speed: float, t: NDArray | float) -> Any:
+        """Φ(t) [rad] for the mean speed Ω₀ [rad/s]."""
+        a, f = self.amplitude, self.frequency
+        return speed * (t + a * (1.0 - np.cos(f * t)) / f)
+
+    def speed(self, speed: float, t: NDArray | float) -> Any:
+        """Ω(t) [rad/s] for the mean speed Ω₀ [rad/s]."""
+        return speed * (1.0 + self.amplitude * np.sin(self.frequency * t))
+
+
+@attrs.frozen(eq=False)
+class RunSetup:
+    """The kernel's arrays for one run (:func:`torsio.axial.kernel.march`)."""
+
+    steady: SteadyDrilling
+    step: float
+    steps: int
+    window_steps: int
+    bit: NDArray[np.float64]
+    torsional: NDArray[np.float64]
+    axial: NDArray[np.float64]
+    settings: NDArray[np.float64]
+    theta: NDArray[np.float64]
+    omega: NDArray[np.float64]
+    u: NDArray[np.float64]
+    v: NDArray[np.float64]
+    history: NDArray[np.float64]
+    cursor: NDArray[np.float64]
+
+
+def _step(
+    assembly: DrillingAssembly, bit: RGDBit, delay: float, steps_per_period: int, step: float | None
+) -> float:
+    contact = math.sqrt(2 * bit.blades * bit.cutting_weight_per_depth / assembly.bit_mass)
+    fastest = max(contact, assembly.fastest_frequency())
+    h_max = 2 * math.pi / (fastest * steps_per_period)
+    if step is not None:
+        if not (math.isfinite(step) and step > 0):
+            raise ConfigError("step", f"{step!r} must be a positive time step in s")
+        h_max = min(h_max, step)
+    return delay / math.ceil(delay / h_max - 1e-9)
+
+
+def run_setup(
+    assembly: DrillingAssembly,
+    bit: RGDBit,
+    wob: float,
+    rpm: float,
+    duration: float,
+    window: float,
+    *,
+    start: str = "rest",
+    perturbation: float = 1e-3,
+    step: float | None = None,
+    steps_per_period: int = DEFAULT_STEPS_PER_PERIOD,
+    bit_rotation: BitRotation | None = None,
+) -> RunSetup:
+    """The step, the initial state and the history of a run (see the module docstring).
+
+    ``wob`` [N], ``rpm`` [rev/min], ``duration`` and ``window`` [s] (the window at the end).
+    """
+    steady = steady_drilling(bit, wob, rpm)
+    if start not in STARTS:
+        raise ConfigError("simulation.start", f"{start!r} is not one of {', '.join(STARTS)}")
+    if not (0 < window <= duration and math.isfinite(duration)):
+        raise ConfigError(
+            "simulation.steady_window",
+            f"expected 0 < window <= duration, got {window!r} and {duration!r}",
+        )
+    h = _step(assembly, bit, steady.delay, steps_per_period, step)
+    steps = int(math.ceil(duration / h - 1e-9))
+    window_steps = min(steps, int(round(window / h)))
+    omega0, v0 = steady.bit_speed, steady.rop
+    angles, positions = assembly.steady_offsets(steady.bit_torque, wob)
+    on_steady = start == "steady"
+    if bit_rotation is not None:
+        theta, omega = np.zeros(1), np.array([omega0])
+    elif on_steady:
+        theta, omega = angles.copy(), np.full(assembly.nodes, omega0)
+        omega[-1] *= 1.0 + perturbation
+    else:
+        theta, omega = np.zeros(assembly.nodes), np.zeros(assembly.nodes)
+    u = positions.copy()
+    v = np.full(u.size, v0 if on_steady else 0.0)
+    if bit_rotation is not None and on_steady:
+        v[-1] *= 1.0 + perturbation
+    hook_start = (u[0] + wob / assembly.axial_stiffnesses[0]) if assembly.hook == "speed" else 0.0
+    # the history before t = 0: the steady motion (or a flat bottom) over one delay and more
+    past = int(math.ceil(1.5 * steady.delay / h)) + 4
+    times = h * np.arange(-past, 1)
+    if bit_rotation is not None:
+        angle = bit_rotation.angle(omega0, times)
+        speed = bit_rotation.speed(omega0, times)
+    else:
+        angle, speed = theta[-1] + omega0 * times, np.full(times.size, omega0)
+    velocity = v0 if on_steady else 0.0
+    capacity = steps + past + 2
+    history = np.zeros((5, capacity))
+    history[0, : past + 1] = times
+    history[1, : past + 1] = angle
+    history[2, : past + 1] = speed
+    history[3, : past + 1] = u[-1] + velocity * times
+    history[4, : past + 1] = velocity
+    history[2, past], history[4, past] = omega[-1], v[-1]
+    rotation = bit_rotation or BitRotation()
+    settings = np.array(
+        [
+            h,
+            steps,
+            omega0,
+            wob,
+            1.0 if assembly.hook == "speed" else 0.0,
+            v0 if assembly.hook == "speed" else 0.0,
+            hook_start,
+            steps - window_steps,
+            0,
+            1.0 if bit_rotation is not None else 0.0,
+            rotation.amplitude,
+            rotation.frequency,
+            0.0,
+        ]
+    )
+    b = bit
+    law = np.array(
+        [
+            b.cutting_weight_per_depth,
+            b.cutting_torque_per_depth,
+            b.friction_weight,
+            b.contact_friction * b.bit_geometry * b.radius / 2,
+            2 * math.pi / b.blades,
+            float(b.blades),
+        ]
+    )
+    return RunSetup(
+        steady,
+        h,
+        steps,
+        window_steps,
+        law,
+        assembly.torsional_rows(),
+        assembly.axial_rows(),
+        settings,
+        theta,
+        omega,
+        u,
+        v,
+        history,
+        np.array([0.0, past + 1.0]),
+    )
+
+
+@attrs.frozen
+class WindowSummary:
+    """What a run gives over its window (docs/axial.md, "Outputs").
+
+    severity: S_SS = (max Ω_b − min Ω_b)/(2 Ω₀); axial_severity: (max V_b − min V_b)/(2 V₀);
+    stick_fraction, off_bottom_fraction: of the window's steps; rop_mean [m/s]: the bit's
+    advance over the window's length; mse_mean [Pa]: the work on the bit ∫(W V + T Ω) dt
+    over the volume drilled π a² ΔU (inf when the bit did not advance); torque_mean [N m],
+    weight_mean [N]; depth_of_cut_max [m per rev], the largest depth of cut (a check: the
+    law holds only while d stays within the cutters' height).
+    """
+
+    severity: float
+    axial_severity: float
+    stick_fraction: float
+    off_bottom_fraction: float
+    rop_mean: float
+    mse_mean: float
+    torque_mean: float
+    weight_mean: float
+    bit_speed_min: float
+    bit_speed_max: float
+    depth_of_cut_max: float
+
+
+def summarize(stats: NDArray, setup: RunSetup, bit: RGDBit) -> WindowSummary:
+    """The window summary of the kernel's ``stats`` (:data:`torsio.axial.kernel.STATS`)."""
+    s = dict(zip(STATS, stats, strict=True))
+    count = s["window_steps"]
+    length = count * setup.step
+    advance = s["position_end"] - s["position_start"]
+    steady = setup.steady
+    return WindowSummary(
+        severity=float((s["bit_speed_max"] - s["bit_speed_min"]) / (2 * steady.bit_speed)),
+        axial_severity=float((s["axial_speed_max"] - s["axial_speed_min"]) / (2 * steady.rop)),
+        stick_fraction=float(s["stuck_steps"] / count),
+        off_bottom_fraction=float(s["off_bottom_steps"] / count),
+        rop_mean=float(advance / length),
+        mse_mean=float(s["work"] / (bit.hole_area * advance)) if advance > 0 else math.inf,
+        torque_mean=float(s["torque_integral"] / length),
+        weight_mean=float(s["weight_integral"] / length),
+        bit_speed_min=float(s["bit_speed_min"]),
+        bit_speed_max=float(s["bit_speed_max"]),
+        depth_of_cut_max=float(s["depth_of_cut_max"]),
+    )

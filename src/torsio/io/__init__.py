@@ -1,2 +1,0 @@
-"""Edges of the library: configuration files, reports (terminal, HTML), plots and the
-validation table."""

@@ -1,0 +1,329 @@
+"""Runs of a lumped chain with Coulomb contacts along the string: scipy between switches.
+
+Each contact of :attr:`torsio.physics.dynamics.Dynamics.contacts` is in one state: stuck
+(its node's absolute speed held at 0, the friction the torque that holds it, at most the
+static capacity C_s), slipping slowly (0 < |w| < w_th: F = C_s sign w) or sliding
+(|w| >= w_th: F = C_d sign w): the law of Aarsnes & Shor (2018) as the wave model solves
+it (:mod:`torsio.solvers.wave_contacts`). Between switches the equations are smooth and
+``solve_ivp`` integrates them; every switch is an event it locates (a speed reaching 0
+or w_th, a stuck node's holding torque reaching C_s), where the run restarts in the new
+states. A node that sticks gets a speed of exactly 0 and the equation w' = 0: nothing
+creeps or leaks past it. Lumped mass only (a contact's friction acts on its node alone).
+
+The compiled engine does not take contacts: a run with them says so in
+``solver["fallback"]``. The friction's work is exact: while a contact slides its torque
+is constant, so its work over a piece of the run is C |theta(t1) - theta(t0)|; stuck, it
+does none.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+import scipy.integrate
+import scipy.sparse
+
+from torsio.analysis.budget import BudgetExceeded, EvaluationBudget
+from torsio.analysis.simulation_options import SimulationOptions
+from torsio.errors import ConfigError, SolverError
+from torsio.physics.dynamics import Dynamics
+
+__all__ = ["CONTACT_FALLBACK", "contact_method", "integrate_with_contacts"]
+
+STUCK, SLOW, FAST = 0, 1, 2
+MAX_SWITCHES_PER_SAMPLE = 50
+"""Contact switches allowed per output sample before a run is reported as chattering."""
+
+CONTACT_FALLBACK = (
+    "it takes no contacts along the string (set-valued friction); scipy integrates "
+    "between the contacts' switches"
+)
+
+
+class _Contacts:
+    """The contacts' states over one run and the equations they give (mutable)."""
+
+    def __init__(self, dynamics: Dynamics) -> None:
+        contacts = dynamics.contacts
+        self.dynamics = dynamics
+        self.nodes = np.flatnonzero(np.asarray(contacts.static) > 0.0)
+        self.static = np.asarray(contacts.static, dtype=float)[self.nodes]
+        self.dynamic = np.asarray(contacts.dynamic, dtype=float)[self.nodes]
+        self.threshold = float(contacts.threshold_speed)
+        self.mass = np.diag(dynamics.mass_matrix)[self.nodes]
+        self.rows = dynamics.states + 1 + 2 * self.nodes  # v of each contact node in y
+        self.reference = float(dynamics.reference_speed)
+        self.state = np.full(self.nodes.size, STUCK)
+        self.sign = np.zeros(self.nodes.size)
+        self._cache: tuple[float, np.ndarray, np.ndarray] | None = None
+        self.offsets = np.zeros((2, self.nodes.size))
+        self.switches = 0
+
+    # --- the equations -------------------------------------------------------------------
+    def free_rhs(self, t: float, y: np.ndarray) -> np.ndarray:
+        """dy/dt without friction (cached for the events of one step)."""
+        cache = self._cache
+        if cache is not None and cache[0] == t and np.array_equal(cache[1], y):
+            return cache[2]
+        dy = self.dynamics.rhs(t, y)
+        self._cache = (t, y.copy(), dy)
+        return dy
+
+    def holding(self, t: float, y: np.ndarray) -> np.ndarray:
+        """The torque on each contact node from everything but its friction [N m]."""
+        return self.free_rhs(t, y)[self.rows] * self.mass
+
+    def friction(self) -> np.ndarray:
+        """Friction torque of each moving contact [N m] (0 where stuck)."""
+        capacity = np.where(self.state == SLOW, self.static, self.dynamic)
+        return np.where(self.state == STUCK, 0.0, self.sign * capacity)
+
+    def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
+        dy = self.free_rhs(t, y).copy()
+        dy[self.rows] -= self.friction() / self.mass
+        dy[self.rows[self.state == STUCK]] = 0.0
+        return dy
+
+    def jacobian(self, t: float, y: np.ndarray) -> Any:
+        """d(dy/dt)/dy in the present states: a stuck node's row is zero (sparse)."""
+        keep = np.ones(self.dynamics.size)
+        keep[self.rows[self.state == STUCK]] = 0.0
+        return (scipy.sparse.diags(keep) @ self.dynamics.jacobian(t, y)).tocsc()
+
+    def speeds(self, y: np.ndarray) -> np.ndarray:
+        """Absolute speed of each contact node [rad/s]."""
+        return self.reference + y[self.rows]
+
+    # --- the switches --------------------------------------------------------------------
+    def moving(self, j: int, direction: float) -> None:
+        """Contact j starts to move in ``direction`` (+1 or -1) from rest."""
+        self.state[j] = SLOW if self.threshold > 0.0 else FAST
+        self.sign[j] = direction
+
+    def at_rest(self, j: int, t: float, y: np.ndarray) -> None:
+        """Contact j has reached speed 0: it sticks if its static capacity holds it, else it
+        turns the other way; a stuck node's speed is set to exactly 0 in ``y``."""
+        torque = float(self.holding(t, y)[j])
+        if abs(torque) < self.static[j]:
+            self.state[j] = STUCK
+            self.sign[j] = 0.0
+            y[self.rows[j]] = -self.reference
+        else:
+            self.moving(j, float(np.sign(torque)))
+
+    def start(self, y: np.ndarray) -> None:
+        """States at the initial state: at rest stuck (until :meth:`prepare` finds it pushed
+        beyond C_s), moving on the branch of its speed."""
+        speed = self.speeds(y)
+        for j in range(self.nodes.size):
+            if speed[j] == 0.0:
+                self.state[j], self.sign[j] = STUCK, 0.0
+            else:
+                self.sign[j] = np.sign(speed[j])
+                self.state[j] = FAST if abs(speed[j]) >= self.threshold else SLOW
+        self.prepare(0.0, y)
+
+    def tolerances(self) -> np.ndarray:
+        """How near 0 a margin counts as 0 (:meth:`margins`): 1e-9 of its scale."""
+        speed = 1e-9 * (1.0 + abs(self.reference) + self.threshold)
+        first = np.where(self.state == STUCK, 1e-9 * self.static, speed)
+        return np.stack([first, np.full(self.nodes.size, speed)])
+
+    def apply(self, row: int, j: int, t: float, y: np.ndarray) -> None:
+        """The switch of contact j whose margin ``row`` (:meth:`margins`) falls through 0."""
+        self.switches += 1
+        if self.state[j] == STUCK:
+            self.moving(j, float(np.sign(self.holding(t, y)[j])))
+        elif row == 0:
+            self.at_rest(j, t, y)
+        else:
+            self.state[j] = FAST if self.state[j] == SLOW else SLOW
+        self._cache = None
+
+    def prepare(self, t: float, y: np.ndarray) -> None:
+        """Before a piece of the run from ``(t, y)``: switch every contact whose margin is
+        below 0, or at 0 and falling (found along the motion over a short time), until none
+        is; then offset the margins at 0 to their tolerance, so that the event function
+        starts positive (a switch is then found where a margin falls through minus its
+        tolerance: 1e-9 of its scale)."""
+        for _ in range(4 * self.nodes.size + 4):
+            margins = self.margins(t, y)
+            tolerance = self.tolerances()
+            lapse = 1e-9 * (1.0 + abs(t))
+            ahead = self.margins(t + lapse, y + lapse * self.rhs(t, y))
+            falling = (margins < -tolerance) | ((margins <= tolerance) & (ahead < margins))
+            if not falling.any():
+                break
+            row, j = np.unravel_index(int(np.argmin(np.where(falling, margins, np.inf))),
+                                      margins.shape)  # fmt: skip
+            self.apply(int(row), int(j), t, y)
+        else:
+            raise SolverError(
+                f"the contacts along the string do not settle at t = {t:.6g} s: they switch "
+                "back and forth at one instant"
+            )
+        self.offsets = np.where(margins <= tolerance, tolerance - margins, 0.0)
+
+    def margins(self, t: float, y: np.ndarray) -> np.ndarray:
+        """Per contact, two margins that fall through 0 at a switch: (a) a moving contact's
+        speed reaching 0, a stuck one's holding torque reaching C_s [N m]; (b) a moving
+        contact's speed crossing the threshold (1 where it cannot)."""
+        moving = self.sign * self.speeds(y)
+        stuck = self.state == STUCK
+        first = moving.copy()
+        if stuck.any():
+            first[stuck] = self.static[stuck] - np.abs(self.holding(t, y)[stuck])
+        second = np.ones_like(moving)
+        slow = self.state == SLOW
+        second[slow] = self.threshold - moving[slow]
+        if self.threshold > 0.0:
+            fast = self.state == FAST
+            second[fast] = moving[fast] - self.threshold
+        return np.stack([first, second])
+
+    def event(self) -> Callable[[float, np.ndarray], float]:
+        """One event function for every contact: the least margin (:meth:`margins`, offset
+        by :meth:`prepare`), which falls through 0 when any contact switches."""
+
+        def least(t: float, y: np.ndarray) -> float:
+            if not self.nodes.size:
+                return 1.0
+            return float(np.min(self.margins(t, y) + self.offsets))
+
+        least.terminal = True  # type: ignore[attr-defined]
+        least.direction = -1.0  # type: ignore[attr-defined]
+        return least
+
+    def work(self, t0: float, y0: np.ndarray, t1: float, y1: np.ndarray) -> float:
+        """The friction's work [J] over a piece of the run in the present states (exact)."""
+        angle0 = y0[self.rows - 1] + self.reference * t0
+        angle1 = y1[self.rows - 1] + self.reference * t1
+        return float(np.sum(self.friction() * (angle1 - angle0)))
+
+
+def contact_method(method: Any) -> tuple[str, str | None]:
+    """(the scipy method, the fallback note) that runs contacts for ``simulation.method``.
+
+    >>> contact_method("auto")[0], contact_method("Radau")
+    ('LSODA', ('Radau', None))
+    """
+    if method == "RODAS4":
+        raise ConfigError(
+            "simulation.method",
+            "RODAS4 runs on the compiled engine, which takes no contacts along the string; "
+            "expected auto, LSODA, Radau or BDF for a run with a [well]",
+        )
+    if method == "auto":
+        return "LSODA", CONTACT_FALLBACK
+    if not isinstance(method, str):
+        raise ConfigError(
+            "simulation.method", f"a run with contacts takes a scipy method name, got {method!r}"
+        )
+    return method, None
+
+
+def _jacobian_arguments(contacts: _Contacts, method: str) -> dict[str, Any]:
+    """The Jacobian as each scipy method takes it (LSODA: packed bands where it has them)."""
+    if method in ("RK45", "RK23", "DOP853"):
+        return {}
+    if method != "LSODA":
+        return {"jac": contacts.jacobian}
+    bands = contacts.dynamics.jacobian_bands
+    if bands is None:
+        return {"jac": lambda t, y: contacts.jacobian(t, y).toarray()}
+    lower, upper = bands
+    size = contacts.dynamics.size
+
+    def packed(t: float, y: np.ndarray) -> np.ndarray:
+        coo = contacts.jacobian(t, y).tocoo()
+        out = np.zeros((lower + upper + 1, size))
+        out[upper + coo.row - coo.col, coo.col] = coo.data
+        return out
+
+    return {"jac": packed, "lband": lower, "uband": upper}
+
+
+def integrate_with_contacts(
+    dynamics: Dynamics,
+    y0: np.ndarray,
+    time_grid: np.ndarray,
+    options: SimulationOptions,
+    where: str,
+    progress: Callable[[int, int], None] | None,
+) -> tuple[np.ndarray, dict[str, Any]]:
+    """The states (size, samples) on the grid of a run with contacts, and the solver's record
+    (``contact_switches``, ``friction_work`` [J] and ``fallback`` besides the usual keys)."""
+    if not dynamics.lumped_mass:
+        raise ConfigError(
+            "discretization.strategy", "friction along the string needs a lumped-mass chain"
+        )
+    method, fallback = contact_method(options.method)
+    contacts = _Contacts(dynamics)
+    run = float(time_grid[-1])
+    budget = EvaluationBudget.for_samples(time_grid.size - 1)
+    rhs = budget.wrap(contacts.rhs)
+    jac = _jacobian_arguments(contacts, method)
+    events = [contacts.event()]
+    states = np.empty((dynamics.size, time_grid.size))
+    y = np.array(y0, dtype=float)
+    contacts.start(y)
+    states[:, 0] = y
+    filled, t, work = 1, float(time_grid[0]), 0.0
+    counts = {"nfev": 0, "njev": 0, "nlu": 0}
+    limit = MAX_SWITCHES_PER_SAMPLE * time_grid.size
+    start = time.perf_counter()
+    while True:
+        with np.errstate(all="ignore"):
+            try:
+                piece = scipy.integrate.solve_ivp(
+                    rhs, (t, run), y, method=method, t_eval=time_grid[filled:],
+                    events=events, rtol=options.rtol, atol=options.atol, **jac,
+                )  # fmt: skip
+            except BudgetExceeded:
+                raise budget.error(method, run, where) from None
+        for key in counts:
+            counts[key] += int(getattr(piece, key))
+        if piece.status < 0:
+            raise SolverError(
+                f"the {method} integrator failed at t = {t:.6g} s of {run:.6g} s between "
+                f"contact switches: {piece.message} (operating point {where})"
+            )
+        samples = np.asarray(piece.y, dtype=float).reshape(dynamics.size, -1)
+        taken = samples.shape[1]
+        states[:, filled : filled + taken] = samples
+        filled += taken
+        if progress is not None:
+            progress(filled, time_grid.size)
+        if piece.status == 0:
+            work += contacts.work(t, y, run, samples[:, -1] if taken else y)
+            break
+        t_event = float(piece.t_events[0][0])
+        y_event = np.array(piece.y_events[0][0], dtype=float)
+        work += contacts.work(t, y, t_event, y_event)
+        contacts.prepare(t_event, y_event)
+        t, y = t_event, y_event
+        if contacts.switches > limit:
+            raise SolverError(
+                f"more than {limit} contact switches by t = {t:.6g} s of {run:.6g} s "
+                f"(operating point {where}): the contacts chatter; try a larger "
+                "threshold_speed or another discretization"
+            )
+    if filled != time_grid.size:
+        raise SolverError(f"the {method} run with contacts ended at t = {t:.6g} s of {run:.6g} s")
+    info = {
+        "engine": "scipy",
+        "method": method,
+        "rtol": options.rtol,
+        "atol": options.atol,
+        **counts,
+        "status": 0,
+        "message": "integrated between the contacts' switches",
+        "contact_switches": contacts.switches,
+        "friction_work": work,
+        "fallback": fallback,
+        "wall_time_s": time.perf_counter() - start,
+    }
+    return states, info
