@@ -19,8 +19,8 @@ import numpy as np
 from torsio.analysis.wave import wave_response
 from torsio.calibration.fit import fit_recordings
 from torsio.calibration.recording import Recording
-from torsio.examples import deviated_well_config
 from torsio.config.top_drive import TopDriveConfig
+from torsio.examples import deviated_well_config
 from torsio.physics.top_drives import SoftTorqueTopDrive
 
 TRUTH = {"friction_static": 0.35, "friction_dynamic": 0.3, "threshold_speed": 0.5, "alpha": 0.35}
