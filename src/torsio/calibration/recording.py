@@ -54,6 +54,7 @@ from typing import Any
 import attrs
 import numpy as np
 
+from torsio.csv_rows import csv_rows
 from torsio.errors import ConfigError
 
 __all__ = ["Recording", "read_recording"]
@@ -264,23 +265,7 @@ def read_recording(path: str | Path) -> Recording:
     """
     path = Path(path)
     name = path.name
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except OSError as exc:
-        raise ConfigError(
-            "recording", f"cannot read recording {str(path)!r}: {exc.strerror or exc}"
-        ) from None
-    except UnicodeDecodeError:
-        raise ConfigError("recording", f"recording {str(path)!r} is not UTF-8 text") from None
-    rows = [
-        (number, row)
-        for number, row in enumerate(csv.reader(text.splitlines()), start=1)
-        if row and any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#")
-    ]
-    if not rows:
-        raise ConfigError(
-            "recording", f"{name}: the file is empty; expected a header time,top_rpm,surface_torque"
-        )
+    rows = csv_rows(path, "recording", "recording", "time,top_rpm,surface_torque")
     header_line, header = rows[0]
     columns = _columns(header, name, header_line)
     values: dict[str, list[float]] = {key: [] for key in columns}
