@@ -69,6 +69,10 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
         "ZTorqueTopDrive",
     ),
     "torsio.physics.top_drive_boundary": ("TopDriveBoundary",),
+    "torsio.physics.recorded_top": ("RecordedTopDrive",),
+    "torsio.calibration.recording": ("Recording", "read_recording"),
+    "torsio.calibration.fit": ("fit_recordings",),
+    "torsio.calibration.fit_results": ("FitResults",),
     "torsio.plugins": ("top_drive_from_parameters",),
     "torsio.analysis.maps": ("severity_map", "dimensionless_map"),
     "torsio.analysis.map_results": ("SeverityMap", "load_map"),
@@ -81,7 +85,17 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     ),
 }
 _LAZY = {name: module for module, names in _EXPORTS.items() for name in names}
-_SUBPACKAGES = ("analysis", "cli", "config", "model", "physics", "report", "solvers", "well")
+_SUBPACKAGES = (
+    "analysis",
+    "calibration",
+    "cli",
+    "config",
+    "model",
+    "physics",
+    "report",
+    "solvers",
+    "well",
+)
 
 if TYPE_CHECKING:  # for type checkers and editors; at run time see __getattr__
     from torsio.analysis.energy import EnergyBalance, energy_balance
@@ -96,6 +110,9 @@ if TYPE_CHECKING:  # for type checkers and editors; at run time see __getattr__
     )
     from torsio.analysis.transient import simulate, simulate_config
     from torsio.analysis.transient_results import TransientResults
+    from torsio.calibration.fit import fit_recordings
+    from torsio.calibration.fit_results import FitResults
+    from torsio.calibration.recording import Recording, read_recording
     from torsio.config.configuration import Config
     from torsio.config.reading import load_config, parse_config
     from torsio.errors import ConfigError, PluginError, SolverError, TorsioError
@@ -128,6 +145,7 @@ if TYPE_CHECKING:  # for type checkers and editors; at run time see __getattr__
     )
     from torsio.physics.dynamics import Dynamics
     from torsio.physics.laws import BitRockLaw, Parameter, TuckerWang
+    from torsio.physics.recorded_top import RecordedTopDrive
     from torsio.physics.system import System
     from torsio.physics.top_drive_boundary import TopDriveBoundary
     from torsio.physics.top_drives import (

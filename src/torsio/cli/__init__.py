@@ -17,7 +17,7 @@ from typing import Any
 
 from torsio.errors import TorsioError
 
-COMMANDS = ("report", "modes", "simulate", "map", "drag", "laws", "init")
+COMMANDS = ("report", "modes", "simulate", "map", "drag", "fit", "laws", "init")
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -61,7 +61,7 @@ from torsio.config.tables import (
     _table,
     parse_rpm,
 )
-from torsio.config.top_drive import TopDriveConfig, parse_top_drive
+from torsio.config.top_drive import parse_top_drive
 from torsio.config.well import well_table
 from torsio.errors import ConfigError
 from torsio.model.components import STEEL
@@ -139,7 +139,7 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
     """Validate a configuration already read into a dict (as from ``tomllib``)."""
     table = _table(data, "", TOP_LEVEL_KEYS)
     name = _string(table.get("name", ""), "name")
-    top_drive = parse_top_drive(table["top_drive"]) if "top_drive" in table else TopDriveConfig()
+    top_drive = parse_top_drive(table.get("top_drive", {}), source)
     config = (
         _chain_config(table, name, source)
         if "chain" in table

@@ -20,6 +20,7 @@ torsio.errors.ConfigError: top_drive.gain: top drive 'pi' has no parameter 'gain
 from __future__ import annotations
 
 from collections.abc import Mapping
+from pathlib import Path
 from typing import Any
 
 import attrs
@@ -48,7 +49,7 @@ class TopDriveConfig:
     """The ``[top_drive]`` table: the kind and its parameters in SI units."""
 
     kind: str = DEFAULT_KIND
-    parameters: Mapping[str, float] = attrs.field(factory=dict)
+    parameters: Mapping[str, Any] = attrs.field(factory=dict)
 
     @property
     def has_set_speed(self) -> bool:
@@ -62,25 +63,37 @@ class TopDriveConfig:
         return top_drive_from_parameters(self.kind, **self.parameters)
 
 
-def _dimensions(kind: str) -> tuple[Mapping[str, str], set[str] | None]:
-    """Dimension of each known parameter name, and the kind's parameter names (if known)."""
+def _dimensions(kind: str) -> tuple[Mapping[str, str], set[str] | None, tuple[str, ...]]:
+    """Dimension of each known parameter name, the kind's parameter names (if known) and
+    the names of its file parameters (a class attribute ``path_parameters``)."""
     from torsio.plugins import get_top_drive
 
     cls = get_top_drive(kind)
     declared = getattr(cls, "parameter_dimensions", None)
     names = set(attrs.fields_dict(cls)) if attrs.has(cls) else None
-    return {**PARAMETER_DIMENSIONS, **(declared or {})}, names
+    paths = tuple(getattr(cls, "path_parameters", ()))
+    return {**PARAMETER_DIMENSIONS, **(declared or {})}, names, paths
 
 
-def parse_top_drive(raw: Any) -> TopDriveConfig:
-    """Validate a ``[top_drive]`` table and build its top drive once (errors name the key)."""
+def _file(value: Any, key: str, source: str) -> str:
+    """A file parameter: a relative path is read from the configuration file's folder."""
+    if not isinstance(value, str):
+        raise ConfigError(f"top_drive.{key}", f"expected a file name, got {value!r}")
+    path = Path(value)
+    folder = Path(source).parent if source and Path(source).is_file() else None
+    return str(folder / path) if folder is not None and not path.is_absolute() else value
+
+
+def parse_top_drive(raw: Any, source: str = "") -> TopDriveConfig:
+    """Validate a ``[top_drive]`` table and build its top drive once (errors name the key);
+    ``source`` is the configuration file (relative file parameters are read from its folder)."""
     if not isinstance(raw, Mapping):
         raise ConfigError("top_drive", f"expected a table, got {raw!r}")
     kind = raw.get("kind", DEFAULT_KIND)
     if not isinstance(kind, str):
         raise ConfigError("top_drive.kind", f"expected a top-drive name, got {kind!r}")
-    dimensions, names = _dimensions(kind)  # an unknown kind: an error on top_drive.kind
-    parameters: dict[str, float] = {}
+    dimensions, names, paths = _dimensions(kind)  # an unknown kind: an error on top_drive.kind
+    parameters: dict[str, Any] = {}
     for key, value in raw.items():
         if key == "kind":
             continue
@@ -90,6 +103,9 @@ def parse_top_drive(raw: Any) -> TopDriveConfig:
                 f"top drive {kind!r} has no parameter {key!r}; its parameters are "
                 f"{', '.join(sorted(names)) or 'none'}",
             )
+        if key in paths:
+            parameters[key] = _file(value, key, source)
+            continue
         dimension = dimensions.get(key)
         if dimension is None or dimension not in SI_UNITS:
             if isinstance(value, str):

@@ -53,6 +53,7 @@ import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.hookspecs import hookimpl
+from torsio.physics.recorded_top import RecordedTopDrive
 from torsio.physics.top_drive_boundary import TopDriveBoundary, top_pipe_impedance
 
 __all__ = [
@@ -402,6 +403,7 @@ BUILTIN_TOP_DRIVES: tuple[type[Any], ...] = (
     PITopDrive,
     SoftTorqueTopDrive,
     ZTorqueTopDrive,
+    RecordedTopDrive,
 )
 
 

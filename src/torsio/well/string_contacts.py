@@ -100,12 +100,7 @@ def string_contacts(grid: Any, well: Wellbore) -> StringContacts:
         static=static,
         dynamic=dynamic,
         threshold_speed=well.threshold_speed,
-        details={
-            "normal_force": well.normal_force,
-            "break_off_torque_N_m": profile.torque,
-            "break_off_twist_rad": profile.twist,
-            "sliding_torque_N_m": profile.sliding_torque,
-        },
+        details=_details(well, profile),
     )
 
 
@@ -137,13 +132,18 @@ def node_contacts(model: Any, well: Wellbore, string: Any) -> StringContacts:
         static=capacities[0],
         dynamic=np.minimum(capacities[1], capacities[0]),  # equal to round-off where mu_s = mu_d
         threshold_speed=well.threshold_speed,
-        details={
-            "normal_force": well.normal_force,
-            "break_off_torque_N_m": profile.torque,
-            "break_off_twist_rad": profile.twist,
-            "sliding_torque_N_m": profile.sliding_torque,
-        },
+        details=_details(well, profile),
     )
+
+
+def _details(well: Wellbore, profile: Any) -> dict[str, Any]:
+    """Where the capacities came from, for reports: the normal force and the totals."""
+    return {
+        "normal_force": well.normal_force,
+        "break_off_torque_N_m": profile.torque,
+        "break_off_twist_rad": profile.twist,
+        "sliding_torque_N_m": profile.sliding_torque,
+    }
 
 
 def with_contacts(model: Any, well: Wellbore, string: Any) -> Any:

@@ -23,10 +23,10 @@ torsio.errors.ConfigError: well.survey: bad.csv, line 3: column inclination: 'ze
 
 from __future__ import annotations
 
-import csv
 import math
 from pathlib import Path
 
+from torsio.csv_rows import csv_rows
 from torsio.errors import ConfigError
 from torsio.well.survey import Survey
 
@@ -56,21 +56,7 @@ def read_survey_csv(path: str | Path, key: str = "survey") -> Survey:
     """
     path = Path(path)
     name = path.name
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except OSError as exc:
-        raise ConfigError(key, f"cannot read survey file {str(path)!r}: {exc.strerror}") from None
-    except UnicodeDecodeError:
-        raise ConfigError(key, f"survey file {str(path)!r} is not UTF-8 text") from None
-    rows = [
-        (number, row)
-        for number, row in enumerate(csv.reader(text.splitlines()), start=1)
-        if row and any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#")
-    ]
-    if not rows:
-        raise ConfigError(
-            key, f"{name}: the file is empty; expected a header md,inclination,azimuth"
-        )
+    rows = csv_rows(path, key, "survey file", "md,inclination,azimuth")
     header_line, header = rows[0]
     names = [cell.strip().lower() for cell in header]
     missing = [column for column in SURVEY_COLUMNS if column not in names]

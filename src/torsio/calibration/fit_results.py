@@ -1,0 +1,192 @@
+"""The results of a fit to recordings: values, uncertainties, residual, record and model.
+
+Examples
+--------
+>>> import numpy as np
+>>> from torsio.calibration.uncertainty import ParameterSpread
+>>> spread = ParameterSpread(0.002, 0.002, 0.002, (0.296, 0.304), "jacobian", True)
+>>> record = RecordingFit("rig.csv", np.array([0.0, 1.0]), np.array([1.0, 2.0]),
+...                       np.array([1.0, 2.0]), 0.0)
+>>> results = FitResults(("friction_dynamic",), (0.3,), (0.31,), (0.25,), (spread,), 0.0,
+...                      (record,), "torque", "recorded", 12, 1.5, "converged")
+>>> results.to_dict()["parameters"], results.to_dict()["uncertainty"]
+({'friction_dynamic': 0.3}, {'friction_dynamic': 0.002})
+>>> results.parameters["friction_dynamic"]
+0.3
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import attrs
+import numpy as np
+
+from torsio.calibration.uncertainty import ParameterSpread
+
+__all__ = ["FitResults", "RecordingFit"]
+
+
+@attrs.frozen(eq=False)
+class RecordingFit:
+    """One recording against the fitted model.
+
+    Attributes
+    ----------
+    name : str
+        The recording's name (its file).
+    time, surface_torque, model_torque : ndarray
+        Sample times [s], the recorded and the model's surface torque there [N m].
+    residual : float
+        RMS of model minus record [N m].
+    """
+
+    name: str
+    time: np.ndarray
+    surface_torque: np.ndarray
+    model_torque: np.ndarray
+    residual: float
+
+
+@attrs.frozen(eq=False)
+class FitResults:
+    """A fit of configuration parameters to recordings (``fit_recordings``).
+
+    Attributes
+    ----------
+    names : tuple of str
+        The fitted configuration keys.
+    values, start, configured : tuple of float
+        Fitted values, the closed-form starting values, the configuration's values.
+    uncertainty : tuple of ParameterSpread
+        Per parameter: sigma, the two-sigma interval, how it was found, identifiability.
+    residual : float
+        RMS of model minus record over every sample of every recording [N m].
+    recordings : tuple of RecordingFit
+    objective, top : str
+        What was compared (``torque``, ``features``) and what drove the top.
+    runs : int
+        Model runs the fit took; ``seconds`` its wall-clock time [s].
+    message : str
+        The optimizer's word on its convergence.
+    """
+
+    names: tuple[str, ...]
+    values: tuple[float, ...]
+    start: tuple[float, ...]
+    configured: tuple[float, ...]
+    uncertainty: tuple[ParameterSpread, ...]
+    residual: float
+    recordings: tuple[RecordingFit, ...]
+    objective: str
+    top: str
+    runs: int
+    seconds: float
+    message: str
+
+    def __repr__(self) -> str:
+        fitted = ", ".join(
+            f"{n} {v:.4g} +- {s.sigma:.2g}"
+            for n, v, s in zip(self.names, self.values, self.uncertainty, strict=True)
+        )
+        return f"FitResults({fitted}; residual {self.residual:.4g} N m)"
+
+    @property
+    def parameters(self) -> dict[str, float]:
+        """Fitted value by name."""
+        return dict(zip(self.names, self.values, strict=True))
+
+    @property
+    def weak(self) -> tuple[str, ...]:
+        """The parameters the data do not pin down (weakly identifiable)."""
+        return tuple(
+            n for n, s in zip(self.names, self.uncertainty, strict=True) if not s.identifiable
+        )
+
+    def notes(self) -> list[str]:
+        """Plain sentences: where the fit started, what the data do not pin down."""
+        started = ", ".join(f"{n} {v:.4g}" for n, v in zip(self.names, self.start, strict=True))
+        notes = [
+            f"started from the closed forms (break-over and sliding torque of the record): "
+            f"{started}"
+        ]
+        for name, spread in zip(self.names, self.uncertainty, strict=True):
+            low, high = spread.interval
+            if not spread.identifiable:
+                notes.append(
+                    f"{name} is weakly identifiable from these recordings: the data allow "
+                    f"{low:.4g} to {high:.4g} (two sigma)"
+                )
+            elif spread.method == "profile":
+                notes.append(f"{name}: the misfit is not smooth there; its sigma is the profile's")
+        return notes
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data for JSON: ``parameters``, ``uncertainty`` (one sigma), ``residual``
+        (RMS surface torque, N m), ``recordings``, and ``start``, ``interval``,
+        ``identifiable``, ``uncertainty_method``, ``objective``, ``top``, ``notes``."""
+        spreads = dict(zip(self.names, self.uncertainty, strict=True))
+        return {
+            "parameters": self.parameters,
+            "uncertainty": {n: s.sigma for n, s in spreads.items()},
+            "residual": self.residual,
+            "recordings": [
+                {
+                    "name": r.name,
+                    "samples": int(r.time.size),
+                    "duration": float(r.time[-1] - r.time[0]),
+                    "residual": r.residual,
+                }
+                for r in self.recordings
+            ],
+            "start": dict(zip(self.names, self.start, strict=True)),
+            "configured": dict(zip(self.names, self.configured, strict=True)),
+            "interval": {n: list(s.interval) for n, s in spreads.items()},
+            "identifiable": {n: s.identifiable for n, s in spreads.items()},
+            "uncertainty_method": {n: s.method for n, s in spreads.items()},
+            "objective": self.objective,
+            "top": self.top,
+            "runs": self.runs,
+            "seconds": self.seconds,
+            "notes": self.notes(),
+        }
+
+    def rows(self) -> list[tuple[str, str, str, str, str]]:
+        """Table rows: name, fitted, one sigma, two-sigma interval, start."""
+        return [
+            (
+                n,
+                f"{v:.5g}",
+                f"{s.sigma:.2g}",
+                f"{s.interval[0]:.4g} .. {s.interval[1]:.4g}",
+                f"{st:.4g}",
+            )
+            for n, v, s, st in zip(
+                self.names, self.values, self.uncertainty, self.start, strict=True
+            )
+        ]
+
+    def plot(self, path: str | Path | None = None, ax: Any = None) -> Any:
+        """Record against model: surface torque [kN m] against time, one panel per
+        recording (or all on ``ax``); ``path`` writes the figure (format by suffix).
+        Returns the figure. Needs matplotlib (``pip install 'torsio[plot]'``)."""
+        from torsio.plotting.figures import pyplot, save_figure
+
+        if ax is None:
+            count = len(self.recordings)
+            figure, grid = pyplot().subplots(count, 1, figsize=(8, 3 * count), squeeze=False)
+            axes = list(grid[:, 0])
+        else:
+            figure, axes = ax.figure, [ax] * len(self.recordings)
+        for axis, record in zip(axes, self.recordings, strict=True):
+            axis.plot(record.time, record.surface_torque / 1e3, lw=0.8, label=record.name)
+            axis.plot(record.time, record.model_torque / 1e3, lw=1.0, ls="--", label="model")
+            axis.set_xlabel("time [s]")
+            axis.set_ylabel("surface torque [kN m]")
+            axis.legend(loc="lower right")
+        fitted = ", ".join(f"{n} = {v:.4g}" for n, v in self.parameters.items())
+        axes[0].set_title(f"fit ({self.objective}): {fitted}")
+        if path is not None:
+            save_figure(figure, path)
+        return figure

@@ -1,0 +1,143 @@
+"""The probability of severe stick-slip over a map, from a fit's uncertainty (Monte Carlo).
+
+Each sample draws the fitted parameters from independent normal distributions (the fitted
+values, one sigma each: :class:`~torsio.calibration.fit_results.FitResults`), kept within
+their two-sigma intervals and at least each parameter's lower bound; the configuration
+with those values runs a severity map (:func:`torsio.analysis.maps.severity_map`, on any
+of its executors), and the probability of severe stick-slip at a point is the fraction
+of samples whose S_SS there exceeds the map's ``threshold``. The correlation between
+the parameters is not carried (the fit states one sigma each): where they trade against
+each other the spread is overstated, never understated.
+
+Examples
+--------
+>>> import numpy as np
+>>> severe_fraction(np.array([[[0.2, 1.0]], [[0.9, 1.2]]]), threshold=0.8).tolist()
+[[0.5, 1.0]]
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import attrs
+import numpy as np
+
+from torsio.analysis.maps import severity_map
+from torsio.calibration.parameters import SystemFamily
+
+__all__ = ["SeverityProbability", "severe_fraction", "severity_probability"]
+
+
+def severe_fraction(severity: np.ndarray, threshold: float) -> np.ndarray:
+    """Fraction of the samples (axis 0) with S_SS above ``threshold`` (NaN: a failed
+    point, left out of its point's count)."""
+    severity = np.asarray(severity, dtype=float)
+    valid = np.isfinite(severity)
+    severe = valid & (severity > threshold)
+    counts = valid.sum(axis=0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(counts > 0, severe.sum(axis=0) / np.maximum(counts, 1), np.nan)
+
+
+@attrs.frozen(eq=False)
+class SeverityProbability:
+    """Monte Carlo severity maps over a fit's distribution.
+
+    Attributes
+    ----------
+    wob : ndarray, shape (m,)
+        Weights on bit [N].
+    rpm : ndarray, shape (n,)
+        Rotary speeds [rpm].
+    probability : ndarray, shape (n, m)
+        Fraction of the samples severe at ``rpm[i]``, ``wob[j]``.
+    severity : ndarray, shape (k, n, m)
+        S_SS of every sample.
+    samples : tuple of dict
+        The parameter values of each sample.
+    threshold : float
+        S_SS above which a point is severe.
+    """
+
+    wob: np.ndarray
+    rpm: np.ndarray
+    probability: np.ndarray
+    severity: np.ndarray
+    samples: tuple[dict[str, float], ...]
+    threshold: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data: ``wob``, ``rpm``, ``probability`` (``[i][j]`` at ``rpm[i]``,
+        ``wob[j]``), ``severity`` per sample, ``samples``, ``threshold``."""
+        return {
+            "wob": self.wob.tolist(),
+            "rpm": self.rpm.tolist(),
+            "probability": self.probability.tolist(),
+            "severity": self.severity.tolist(),
+            "samples": [dict(s) for s in self.samples],
+            "threshold": self.threshold,
+        }
+
+
+def _draws(fit: Any, family: SystemFamily, count: int, seed: int) -> list[dict[str, float]]:
+    rng = np.random.default_rng(seed)
+    draws = []
+    for _ in range(count):
+        values = {}
+        for name, value, spread in zip(fit.names, fit.values, fit.uncertainty, strict=True):
+            low, high = spread.interval
+            drawn = float(np.clip(value + spread.sigma * rng.normal(), low, high))
+            values[name] = max(drawn, family.lower_bound(name))
+        draws.append(values)
+    return draws
+
+
+def severity_probability(
+    config: Any,
+    fit: Any,
+    wob: Any,
+    rpm: Any,
+    *,
+    samples: int = 16,
+    seed: int = 0,
+    executor: Any = None,
+    **map_options: Any,
+) -> SeverityProbability:
+    """The probability of severe stick-slip over ``rpm`` x ``wob`` from ``fit``.
+
+    Parameters
+    ----------
+    config : Config
+        The configuration the fit was made on (run on the wave model).
+    fit : FitResults
+        Fitted values and their one-sigma uncertainties.
+    wob, rpm : array_like
+        The map's axes [N], [rpm] (as :func:`~torsio.analysis.maps.severity_map`).
+    samples : int
+        Number of Monte Carlo samples (each one map).
+    seed : int
+        Seed of the draws (the result is reproducible).
+    executor
+        Any executor :func:`~torsio.analysis.maps.severity_map` takes.
+    **map_options
+        Options of every map (:class:`~torsio.analysis.map_options.MapOptions` fields).
+    """
+    family = SystemFamily(config)
+    draws = _draws(fit, family, int(samples), seed)
+    maps = [
+        severity_map(
+            family.system(values), wob, rpm, executor=executor, progress=False, **map_options
+        )
+        for values in draws
+    ]
+    severity = np.stack([m.severity for m in maps])
+    threshold = float(maps[0].threshold)
+    return SeverityProbability(
+        wob=np.asarray(maps[0].wob),
+        rpm=np.asarray(maps[0].rpm),
+        probability=severe_fraction(severity, threshold),
+        severity=severity,
+        samples=tuple(draws),
+        threshold=threshold,
+    )

@@ -1,0 +1,74 @@
+"""What a fit compares: the model's surface torque against a recording's.
+
+Two objectives (docs/calibration.md measures what each recovers):
+
+* ``torque``: every sample, model minus record [N m] (the model's torque read at the
+  record's times, linear between its output steps).
+* ``features``: per recording, the sliding torque (the mean over the last quarter of the
+  record), the break-over torque (the peak) and the time of the peak times the mean
+  torque over the record's duration (a torque, so that the three weigh alike) [N m].
+
+Examples
+--------
+>>> import numpy as np
+>>> time = np.linspace(0.0, 8.0, 9)
+>>> torque = np.array([0.0, 5.0, 9.0, 7.0, 6.0, 6.0, 6.0, 6.0, 6.0])
+>>> [round(float(v), 3) for v in torque_features(time, torque)]
+[6.0, 9.0, 1.5]
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from torsio.analysis.wave import wave_response
+from torsio.errors import ConfigError
+
+__all__ = ["OBJECTIVES", "model_torque", "residuals", "torque_features"]
+
+OBJECTIVES = ("torque", "features")
+"""The objectives a fit may take (module documentation)."""
+
+
+def torque_features(time: np.ndarray, torque: np.ndarray) -> np.ndarray:
+    """Sliding torque, break-over torque and the time of the break-over scaled by the
+    mean torque over the duration (all N m): ``[mean of the last quarter, peak,
+    t_peak * mean / duration]``."""
+    time = np.asarray(time, dtype=float)
+    torque = np.asarray(torque, dtype=float)
+    span = time[-1] - time[0]
+    tail = time >= time[-1] - 0.25 * span
+    peak = int(np.argmax(torque))
+    sliding = float(np.mean(torque[tail]))
+    return np.array([sliding, float(torque[peak]), (time[peak] - time[0]) * sliding / span])
+
+
+def model_torque(system: Any, recording: Any) -> tuple[np.ndarray, Any]:
+    """The surface torque of ``system`` (its top drive set) at the record's times [N m],
+    and the transient it came from; the run lasts the record (from rest)."""
+    duration = recording.duration
+    response = wave_response(
+        system,
+        duration=duration,
+        steady_window=0.1 * duration,
+        output_step=system.model.time_step,
+        progress=False,
+    )
+    transient = response.transient
+    torque = np.interp(recording.time - recording.time[0], transient.time, transient.surface_torque)
+    return torque, transient
+
+
+def residuals(objective: str, model: np.ndarray, recording: Any) -> np.ndarray:
+    """Model minus record by ``objective`` [N m]."""
+    if objective == "torque":
+        return model - recording.surface_torque
+    if objective == "features":
+        return torque_features(recording.time, model) - torque_features(
+            recording.time, recording.surface_torque
+        )
+    raise ConfigError(
+        "objective", f"unknown objective {objective!r}; expected one of {', '.join(OBJECTIVES)}"
+    )

@@ -1,0 +1,171 @@
+"""The parameters a fit may change, by their configuration keys, and the systems they make.
+
+Fittable names (the keys of the configuration file):
+
+* ``friction_static``, ``friction_dynamic``: the ``[well]`` factors, i.e. the factors of
+  every stretch of hole that gives none of its own (in the built-in deviated well: the
+  open hole below the casing). Hole sections with their own factors keep them: a cased
+  hole's factor is usually known and the open hole's is the unknown (the practice of
+  torque-and-drag calibration).
+* ``hole[i].friction_static``, ``hole[i].friction_dynamic``: the factors of hole section i
+  (from 0, as ``[[well.hole]]`` lists them).
+* ``threshold_speed`` [rad/s]: below it a contact may stick.
+* ``alpha`` [1/s]: the distributed (mass-proportional) damping of ``[damping]``.
+
+The normal force does not depend on the friction factors (soft string rotating, no axial
+friction), so the friction capacities of the wave grid are linear in the factors of each
+stretch: :class:`SystemFamily` computes them once per stretch with unit factors and sums.
+
+Examples
+--------
+>>> from torsio.examples import deviated_well_config
+>>> family = SystemFamily(deviated_well_config())
+>>> len(family.names), family.names[2]
+(6, 'hole[0].friction_static')
+>>> family.values["friction_static"], family.values["hole[0].friction_dynamic"]
+(0.35, 0.2)
+>>> round(family.system({"friction_static": 0.7}).model.contacts.static_total)
+19327
+>>> family.check(["friction_static", "mu"])
+Traceback (most recent call last):
+...
+torsio.errors.ConfigError: fit: unknown parameter 'mu'; the fittable ones are friction_static, ...
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from typing import Any
+
+import attrs
+import numpy as np
+
+from torsio.errors import ConfigError
+from torsio.model.contacts import StringContacts
+from torsio.physics.damping import RayleighDamping
+from torsio.well.string_contacts import string_contacts
+from torsio.well.wellbore import HoleSection
+
+__all__ = ["PARAMETER_UNITS", "SystemFamily"]
+
+PARAMETER_UNITS = {"threshold_speed": "rad/s", "alpha": "1/s"}
+"""Units of the fittable parameters that have one (friction factors are pure numbers)."""
+
+LOWER_BOUNDS = {"threshold_speed": 1e-3}
+"""Lower bound of a parameter in a fit (0 where absent)."""
+
+
+def _unit_well(well: Any, zone: int) -> Any:
+    """``well`` with friction factors 1 in stretch ``zone`` (a hole section; len(hole): the
+    stretches under the well's defaults) and 0 elsewhere."""
+    default = zone == len(well.hole)
+    sections = []
+    for i, section in enumerate(well.hole):
+        own = section.friction_static is not None or section.friction_dynamic is not None
+        factor: float | None = 1.0 if i == zone else 0.0
+        if default and not own:
+            factor = None
+        sections.append(HoleSection(section.to_md, factor, factor, section.name))
+    unit = 1.0 if default else 0.0
+    return attrs.evolve(well, friction_static=unit, friction_dynamic=unit, hole=tuple(sections))
+
+
+class SystemFamily:
+    """The wave-model systems of a configuration as its fittable parameters change.
+
+    Parameters
+    ----------
+    config : Config
+        A configuration with a ``[[section]]`` string and a ``[well]``; it is run on the
+        wave model (``strategy = "wave"``) whatever its ``[discretization]`` says.
+    **discretization
+        Options of the wave grid (e.g. ``drag_spacing``).
+    """
+
+    def __init__(self, config: Any, **discretization: Any) -> None:
+        if config.well is None:
+            raise ConfigError("well", "a fit of friction needs a [well] (survey and friction)")
+        strategy = discretization.pop("strategy", "wave")
+        self.config = config
+        self.base = config.system(strategy=strategy, **discretization)
+        well = config.well
+        self.zones = len(well.hole) + 1
+        self._unit = [
+            string_contacts(self.base.model, _unit_well(well, z)) for z in range(self.zones)
+        ]
+        values: dict[str, float] = {
+            "friction_static": well.friction_static,
+            "friction_dynamic": well.friction_dynamic,
+        }
+        for i, section in enumerate(well.hole):
+            if section.friction_static is not None or section.friction_dynamic is not None:
+                static, dynamic = well._factors(section)
+                values[f"hole[{i}].friction_static"] = static
+                values[f"hole[{i}].friction_dynamic"] = dynamic
+        values["threshold_speed"] = well.threshold_speed
+        values["alpha"] = float(getattr(self.base.damping, "alpha", 0.0))
+        self.values: dict[str, float] = values
+        self.names: tuple[str, ...] = tuple(values)
+        self.polar_inertia = float(
+            sum(s.material.density * s.polar_moment * s.length for s in config.string.sections)
+        )
+        """I = int rho J dx of the string [kg m^2]: the distributed damping's torque is
+        alpha I Omega when it all turns at Omega."""
+
+    def check(self, names: Iterable[str]) -> tuple[str, ...]:
+        """The names, validated: each fittable, none twice (errors name the name)."""
+        names = tuple(names)
+        if not names:
+            raise ConfigError("fit", f"no parameter to fit; the fittable ones are {self._list()}")
+        for name in names:
+            if name not in self.values:
+                hint = ""
+                if name.startswith("hole[") and name.split(".")[-1] in self.values:
+                    hint = " (a hole section without factors of its own follows the [well] ones)"
+                raise ConfigError(
+                    "fit",
+                    f"unknown parameter {name!r}{hint}; the fittable ones are {self._list()}",
+                )
+        if len(set(names)) < len(names):
+            raise ConfigError("fit", f"a parameter is given twice in {', '.join(names)}")
+        return names
+
+    def _list(self) -> str:
+        return ", ".join(self.names)
+
+    def lower_bound(self, name: str) -> float:
+        """The smallest value a fit may try [the parameter's unit]."""
+        return LOWER_BOUNDS.get(name, 0.0)
+
+    def _zone_factors(self, values: Mapping[str, float], kind: str) -> list[float]:
+        factors = []
+        for zone in range(self.zones):
+            key = kind if zone == self.zones - 1 else f"hole[{zone}].{kind}"
+            factors.append(float(values.get(key, self.values.get(key, 0.0))))
+        return factors
+
+    def contacts(self, values: Mapping[str, float]) -> StringContacts:
+        """The friction capacities with ``values`` (the others as configured); a sliding
+        factor above the static one counts as the static one."""
+        merged = {**self.values, **values}
+        static_factors = self._zone_factors(merged, "friction_static")
+        dynamic_factors = self._zone_factors(merged, "friction_dynamic")
+        static = sum(f * c.static for f, c in zip(static_factors, self._unit, strict=True))
+        dynamic = sum(
+            min(d, s) * c.dynamic
+            for d, s, c in zip(dynamic_factors, static_factors, self._unit, strict=True)
+        )
+        return StringContacts(
+            static=np.asarray(static),
+            dynamic=np.minimum(np.asarray(dynamic), np.asarray(static)),
+            threshold_speed=float(merged["threshold_speed"]),
+        )
+
+    def system(self, values: Mapping[str, float]) -> Any:
+        """The base system with ``values`` of the fittable parameters (the rest as given)."""
+        merged = {**self.values, **values}
+        model = self.base.model.with_contacts(self.contacts(merged))
+        damping = attrs.evolve(self.base.damping, alpha=float(merged["alpha"]))
+        if not isinstance(damping, RayleighDamping):  # pragma: no cover - wave: Rayleigh only
+            raise ConfigError("damping", "the wave model takes Rayleigh damping")
+        return attrs.evolve(self.base, model=model, damping=damping)

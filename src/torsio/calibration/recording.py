@@ -1,0 +1,295 @@
+"""A rig recording: top-drive speed and surface torque against time, read from a CSV file.
+
+The header names the columns; ``time``, a top-drive speed and the surface torque are
+required, a downhole bit speed is optional, other columns are read past. A column name
+may carry its unit in brackets; without one, the defaults apply:
+
+==================  =========================  ===============================================
+column              default unit               units accepted in brackets
+==================  =========================  ===============================================
+``time``            s                          s, ms, min
+``top_rpm``         rpm                        (a name ending in ``_rpm`` is in rpm)
+``top_speed``       rad/s                      rpm, rad/s, deg/s
+``surface_torque``  N m                        N*m (N.m, Nm), kN*m (kN.m, kNm), ft*lbf (ft.lbf,
+                                               lbf*ft), kft*lbf (kft.lbf, klbf*ft)
+``bit_rpm``         rpm (optional)             as ``top_rpm``; or ``bit_speed`` as ``top_speed``
+==================  =========================  ===============================================
+
+e.g. ``time[s],top_speed[rad/s],surface_torque[kN*m]``. Blank lines and lines starting
+with ``#`` are skipped. Checks, each an error (:class:`~torsio.errors.ConfigError`) naming
+the file and the line: a missing column, a field that is not a finite number, a time that
+does not increase, an unknown unit. Warnings naming the line: a gap (a time step more
+than 5 times the median step) and a spike (a torque more than 8 robust standard deviations,
+1.4826 x median absolute deviation, from the median of its 11 neighbours).
+
+Examples
+--------
+>>> import pathlib, tempfile
+>>> with tempfile.TemporaryDirectory() as folder:
+...     path = pathlib.Path(folder) / "rig.csv"
+...     _ = path.write_text("time,top_rpm,surface_torque\\n0,0,0\\n1,30,5000\\n2,60,8000\\n")
+...     record = read_recording(path)
+>>> record
+Recording(rig.csv: 3 samples over 2 s, top speed up to 60 rpm, surface torque up to 8000 N m)
+>>> round(float(record.top_speed[-1]), 6)  # rad/s
+6.283185
+>>> with tempfile.TemporaryDirectory() as folder:
+...     path = pathlib.Path(folder) / "bad.csv"
+...     _ = path.write_text("time,top_rpm,surface_torque\\n0,0,0\\n0,30,5000\\n")
+...     read_recording(path)
+Traceback (most recent call last):
+...
+torsio.errors.ConfigError: recording: bad.csv, line 3: time 0 s does not increase ...
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+import warnings
+from pathlib import Path
+from typing import Any
+
+import attrs
+import numpy as np
+
+from torsio.csv_rows import csv_rows
+from torsio.errors import ConfigError
+
+__all__ = ["Recording", "read_recording"]
+
+RPM = math.pi / 30.0
+
+COLUMN_UNITS: dict[str, dict[str, float]] = {
+    "time": {"s": 1.0, "ms": 1e-3, "min": 60.0},
+    "speed": {"rpm": RPM, "rad/s": 1.0, "deg/s": math.pi / 180.0},
+    "torque": {
+        **dict.fromkeys(("n*m", "n.m", "nm", "n m"), 1.0),
+        **dict.fromkeys(("kn*m", "kn.m", "knm", "kn m"), 1e3),
+        **dict.fromkeys(("ft*lbf", "ft.lbf", "lbf*ft", "ft lbf"), 1.3558179483314004),
+        **dict.fromkeys(("kft*lbf", "kft.lbf", "klbf*ft", "kft lbf"), 1.3558179483314004e3),
+    },
+}
+"""Factors to SI of the units a column may name in brackets, by the column's dimension."""
+
+COLUMNS: dict[str, tuple[str, str]] = {
+    "time": ("time", "s"),
+    "top_rpm": ("speed", "rpm"),
+    "top_speed": ("speed", "rad/s"),
+    "surface_torque": ("torque", "n*m"),
+    "bit_rpm": ("speed", "rpm"),
+    "bit_speed": ("speed", "rad/s"),
+}
+"""Column names read, with their dimension and default unit."""
+
+GAP_FACTOR = 5.0
+SPIKE_SIGMAS = 8.0
+_HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
+
+
+def _frozen(values: Any) -> np.ndarray:
+    array = np.array(values, dtype=float)
+    array.setflags(write=False)
+    return array
+
+
+@attrs.frozen(eq=False, repr=False)
+class Recording:
+    """Top-drive speed and surface torque against time, in SI units.
+
+    Attributes
+    ----------
+    time : ndarray
+        Sample times [s], increasing.
+    top_speed : ndarray
+        Top-drive speed [rad/s].
+    surface_torque : ndarray
+        Torque in the string at the top [N m] (what a torque sub measures).
+    bit_speed : ndarray or None
+        Bit speed from a downhole tool [rad/s], if recorded.
+    name : str
+        Where it came from (the file's name), for messages and reports.
+    """
+
+    time: np.ndarray = attrs.field(converter=_frozen)
+    top_speed: np.ndarray = attrs.field(converter=_frozen)
+    surface_torque: np.ndarray = attrs.field(converter=_frozen)
+    bit_speed: np.ndarray | None = attrs.field(
+        default=None, converter=attrs.converters.optional(_frozen)
+    )
+    name: str = "recording"
+
+    def __attrs_post_init__(self) -> None:
+        n = self.time.size
+        arrays = [self.top_speed, self.surface_torque]
+        arrays += [] if self.bit_speed is None else [self.bit_speed]
+        if n < 2 or any(a.shape != (n,) for a in arrays):
+            raise ConfigError(
+                "recording", f"{self.name}: expected at least 2 samples, every column as long"
+            )
+        if not np.all(np.diff(self.time) > 0.0):
+            raise ConfigError("recording", f"{self.name}: times must increase")
+        if not all(np.all(np.isfinite(a)) for a in [self.time, *arrays]):
+            raise ConfigError("recording", f"{self.name}: every value must be finite")
+
+    def __repr__(self) -> str:
+        return (
+            f"Recording({self.name}: {self.time.size} samples over "
+            f"{self.duration:g} s, top speed up to {self.top_speed.max() / RPM:.4g} rpm, "
+            f"surface torque up to {self.surface_torque.max():.4g} N m)"
+        )
+
+    @property
+    def duration(self) -> float:
+        """Time from the first sample to the last [s]."""
+        return float(self.time[-1] - self.time[0])
+
+    def speed_table(self) -> np.ndarray:
+        """The top-drive speed as a set-speed table, rows (time from the first sample [s],
+        speed [rad/s]): what a top held at the recorded speed follows."""
+        return np.vstack([self.time - self.time[0], self.top_speed])
+
+    def save(self, path: str | Path) -> None:
+        """Write the recording as CSV with the header ``time,top_rpm,surface_torque``
+        (and ``bit_rpm`` if recorded), in s, rpm and N m."""
+        columns = [self.time, self.top_speed / RPM, self.surface_torque]
+        header = ["time", "top_rpm", "surface_torque"]
+        if self.bit_speed is not None:
+            columns.append(self.bit_speed / RPM)
+            header.append("bit_rpm")
+        with Path(path).open("w", newline="", encoding="utf-8") as stream:
+            writer = csv.writer(stream)
+            writer.writerow(header)
+            writer.writerows(zip(*(c.tolist() for c in columns), strict=True))
+
+
+def _columns(header: list[str], name: str, line: int) -> dict[str, tuple[int, float]]:
+    """Column index and factor to SI of each column read, by its canonical name."""
+    found: dict[str, tuple[int, float]] = {}
+    for index, cell in enumerate(header):
+        match = _HEADER.match(cell)
+        if match is None or match.group(1).lower() not in COLUMNS:
+            continue
+        column = match.group(1).lower()
+        dimension, default = COLUMNS[column]
+        unit = (match.group(2) or default).lower()
+        units = COLUMN_UNITS[dimension]
+        if unit not in units:
+            raise ConfigError(
+                "recording",
+                f"{name}, line {line}: column {cell.strip()!r}: unknown unit {unit!r}; "
+                f"expected one of {', '.join(sorted(units))}",
+            )
+        kind = column.split("_")[0] + ("_speed" if dimension == "speed" else "")
+        key = {"time": "time", "surface": "surface_torque"}.get(kind, kind)
+        if key in found:
+            raise ConfigError("recording", f"{name}, line {line}: {key} is given twice")
+        found[key] = (index, units[unit])
+    missing = [k for k in ("time", "top_speed", "surface_torque") if k not in found]
+    if missing:
+        raise ConfigError(
+            "recording",
+            f"{name}, line {line}: the header {','.join(header)!r} has no column for "
+            f"{', '.join(missing)}; expected time,top_rpm,surface_torque (optional bit_rpm)",
+        )
+    return found
+
+
+def _value(cell: str, column: str, name: str, line: int) -> float:
+    try:
+        value = float(cell)
+    except ValueError:
+        value = math.nan
+        if cell.strip().lower() not in ("nan", "inf", "-inf"):
+            raise ConfigError(
+                "recording", f"{name}, line {line}: column {column}: {cell!r} is not a number"
+            ) from None
+    if not math.isfinite(value):
+        raise ConfigError(
+            "recording",
+            f"{name}, line {line}: column {column}: {cell.strip()!r} is not a finite number "
+            "(remove or fill the sample)",
+        )
+    return value
+
+
+def _check_times(time: np.ndarray, lines: list[int], name: str) -> None:
+    steps = np.diff(time)
+    bad = np.flatnonzero(steps <= 0.0)
+    if bad.size:
+        i = int(bad[0]) + 1
+        raise ConfigError(
+            "recording",
+            f"{name}, line {lines[i]}: time {time[i]:g} s does not increase "
+            f"(the line before: {time[i - 1]:g} s)",
+        )
+    median = float(np.median(steps))
+    for i in np.flatnonzero(steps > GAP_FACTOR * median)[:3]:
+        warnings.warn(
+            f"{name}, line {lines[i + 1]}: a gap of {steps[i]:g} s in the time (the median "
+            f"step is {median:g} s); the model follows the speed linearly across it",
+            UserWarning,
+            stacklevel=4,
+        )
+
+
+def _check_spikes(torque: np.ndarray, lines: list[int], name: str) -> None:
+    if torque.size < 11:
+        return
+    padded = np.pad(torque, 5, mode="edge")
+    windows = np.lib.stride_tricks.sliding_window_view(padded, 11)
+    local = np.median(windows, axis=1)
+    deviation = np.abs(torque - local)
+    scale = 1.4826 * float(np.median(deviation))
+    if scale <= 0.0:
+        return
+    for i in np.flatnonzero(deviation > SPIKE_SIGMAS * scale)[:3]:
+        warnings.warn(
+            f"{name}, line {lines[i]}: surface torque {torque[i]:g} N m is a spike "
+            f"({deviation[i] / scale:.0f} robust standard deviations from its neighbours)",
+            UserWarning,
+            stacklevel=4,
+        )
+
+
+def read_recording(path: str | Path) -> Recording:
+    """The :class:`Recording` in the CSV file ``path`` (columns and units: module docs).
+
+    Raises
+    ------
+    ConfigError
+        The file cannot be read, its header lacks a column or names an unknown unit, a
+        line has too few fields, a value is not a finite number or a time does not
+        increase; the message names the file and the line.
+    """
+    path = Path(path)
+    name = path.name
+    rows = csv_rows(path, "recording", "recording", "time,top_rpm,surface_torque")
+    header_line, header = rows[0]
+    columns = _columns(header, name, header_line)
+    values: dict[str, list[float]] = {key: [] for key in columns}
+    lines = []
+    for number, row in rows[1:]:
+        for key, (index, factor) in columns.items():
+            if index >= len(row):
+                raise ConfigError(
+                    "recording",
+                    f"{name}, line {number}: {len(row)} fields, expected {len(header)}",
+                )
+            values[key].append(_value(row[index], header[index].strip(), name, number) * factor)
+        lines.append(number)
+    if len(lines) < 2:
+        raise ConfigError("recording", f"{name}: expected at least 2 samples after the header")
+    time = np.asarray(values["time"])
+    _check_times(time, lines, name)
+    torque = np.asarray(values["surface_torque"])
+    _check_spikes(torque, lines, name)
+    bit = values.get("bit_speed")
+    return Recording(
+        time=time,
+        top_speed=values["top_speed"],
+        surface_torque=torque,
+        bit_speed=None if bit is None else bit,
+        name=name,
+    )

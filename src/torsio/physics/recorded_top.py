@@ -1,0 +1,74 @@
+"""A top drive that follows a recording: the top held at the recorded speed.
+
+``kind = "recorded"`` with ``recording = FILE`` (a CSV of
+:mod:`torsio.calibration.recording`; in a configuration file a relative path is read from
+the file's folder) or, from Python, a :class:`~torsio.calibration.recording.Recording`.
+The top turns at the recorded top-drive speed, linear between samples and constant after
+the last one (time counted from the first sample), whatever the rig's controller did:
+a calibration against the record then needs no model of the controller. The set speed
+(for S_SS) is the last recorded speed. The wave model only (a set speed that changes in
+time).
+
+Examples
+--------
+>>> import numpy as np
+>>> from torsio.calibration.recording import Recording
+>>> record = Recording(time=[0.0, 5.0, 10.0], top_speed=[0.0, 12.0, 12.0],
+...                    surface_torque=[0.0, 9e3, 8e3], name="rig.csv")
+>>> top = RecordedTopDrive(recording=record)
+>>> boundary = top.boundary(None)
+>>> boundary.held, boundary.set_speed, boundary.speed_table.tolist()
+(True, 12.0, [[0.0, 5.0, 10.0], [0.0, 12.0, 12.0]])
+>>> RecordedTopDrive(recording=3.0)
+Traceback (most recent call last):
+...
+torsio.errors.ConfigError: top_drive.recording: expected a CSV file (a path) or a Recording, got 3.0
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, ClassVar
+
+import attrs
+
+from torsio.calibration.recording import Recording, read_recording
+from torsio.errors import ConfigError
+from torsio.physics.top_drive_boundary import TopDriveBoundary
+
+__all__ = ["RecordedTopDrive"]
+
+
+def _as_recording(value: Any) -> Recording:
+    if isinstance(value, Recording):
+        return value
+    if isinstance(value, str | Path):
+        try:
+            return read_recording(value)
+        except ConfigError as exc:
+            raise ConfigError("top_drive.recording", exc.message) from None
+    raise ConfigError(
+        "top_drive.recording", f"expected a CSV file (a path) or a Recording, got {value!r}"
+    )
+
+
+@attrs.frozen
+class RecordedTopDrive:
+    """The top held at the speed of a recording (no node, no state).
+
+    Parameters
+    ----------
+    recording : Recording or str or Path
+        The record (a path is read with :func:`~torsio.calibration.recording.read_recording`).
+    """
+
+    name: ClassVar[str] = "recorded"
+    description: ClassVar[str] = "Omega_0(t) = the recorded top-drive speed"
+    path_parameters: ClassVar[tuple[str, ...]] = ("recording",)
+
+    recording: Recording = attrs.field(converter=_as_recording)
+
+    def boundary(self, system: Any) -> TopDriveBoundary:
+        """A held top whose set speed is the recorded speed against time."""
+        table = self.recording.speed_table()
+        return TopDriveBoundary(inertia=0.0, set_speed=float(table[1, -1]), speed_table=table)

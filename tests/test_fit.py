@@ -1,0 +1,196 @@
+"""Calibration from rig data (torsio.calibration.fit, ``torsio fit``; docs/calibration.md).
+
+The recordings are made with torsio itself from known friction factors, the truth: the
+built-in deviated well (torsio.examples.deviated_well_config: open hole mu_s 0.35,
+mu_d 0.3 below a casing with its own 0.25/0.2), wave strategy, bit off bottom, 60 s
+start-ups to 120 and 150 rpm by a SoftTorque top drive (J = 2900 kg m^2) whose set speed
+ramps over 5 s, sampled every ~0.01 s; the noisy ones add 2 % (torque) and 1 % (speed)
+Gaussian noise, sample by sample, from a fixed seed.
+"""
+
+from __future__ import annotations
+
+import json
+
+import attrs
+import numpy as np
+import pytest
+
+from torsio.analysis.wave import wave_response
+from torsio.calibration.fit import fit_recordings
+from torsio.calibration.parameters import SystemFamily
+from torsio.calibration.recording import Recording
+from torsio.calibration.start import closed_form_start
+from torsio.cli import main
+from torsio.config.top_drive import TopDriveConfig
+from torsio.errors import ConfigError
+from torsio.examples import deviated_well_config
+from torsio.physics.top_drives import SoftTorqueTopDrive
+
+pytestmark = pytest.mark.filterwarnings("ignore::UserWarning")
+
+TRUTH = {"friction_static": 0.35, "friction_dynamic": 0.3}  # deviated_well.toml, open hole
+NAMES = ["friction_static", "friction_dynamic"]
+SPEEDS = (120.0, 150.0)  # rpm
+
+
+def _startup(rpm: float, torque_noise: float = 0.0, speed_noise: float = 0.0) -> Recording:
+    system = deviated_well_config().system(strategy="wave")
+    system = system.with_top(SoftTorqueTopDrive(inertia=2900.0, ramp=5.0)).at(wob=0.0, rpm=rpm)
+    tr = wave_response(
+        system, duration=60.0, steady_window=6.0, output_step=0.01, progress=False
+    ).transient
+    rng = np.random.default_rng(int(rpm))
+    n = tr.time.size
+    return Recording(
+        time=tr.time,
+        top_speed=tr.top_speed * (1.0 + speed_noise * rng.normal(size=n)),
+        surface_torque=tr.surface_torque * (1.0 + torque_noise * rng.normal(size=n)),
+        name=f"startup_{rpm:g}rpm.csv",
+    )
+
+
+@pytest.fixture(scope="module")
+def clean():
+    return [_startup(rpm) for rpm in SPEEDS]
+
+
+@pytest.fixture(scope="module")
+def noisy():
+    return [_startup(rpm, 0.02, 0.01) for rpm in SPEEDS]
+
+
+def _check_recovered(results) -> None:
+    fitted = results.parameters
+    assert abs(fitted["friction_dynamic"] - TRUTH["friction_dynamic"]) < 0.01
+    assert abs(fitted["friction_static"] - TRUTH["friction_static"]) < 0.05
+    for name, spread in zip(results.names, results.uncertainty, strict=True):
+        low, high = spread.interval  # the stated two-sigma interval
+        assert low <= TRUTH[name] <= high, (name, spread)
+        assert spread.identifiable
+
+
+@pytest.mark.parametrize("which", ["clean", "noisy"])
+def test_start_ups_recorded_by_torsio_give_back_their_friction_factors(which, request):
+    recordings = request.getfixturevalue(which)
+    config = deviated_well_config()
+    results = fit_recordings(config, recordings, NAMES)
+    _check_recovered(results)
+    # it started from the closed forms, and says so
+    start = closed_form_start(SystemFamily(config), recordings, NAMES)
+    assert set(start) == set(NAMES)
+    assert results.notes()[0].startswith("started from the closed forms")
+    assert results.to_dict()["start"]["friction_static"] != pytest.approx(0.35, abs=1e-3)
+    assert results.residual < (1.0 if which == "clean" else 0.03 * 12e3)  # N m
+
+
+def test_the_same_top_drive_and_grid_that_made_the_recordings_return_the_truth(clean):
+    # the model that made the recordings: its fit has nothing left to explain
+    config = deviated_well_config()
+    top = TopDriveConfig("soft-torque", {"inertia": 2900.0, "ramp": 5.0})
+    config = attrs.evolve(config, top_drive=top)
+    results = fit_recordings(config, clean, NAMES, top="configured", rpm=SPEEDS, profile=False)
+    for name, value in results.parameters.items():
+        assert value == pytest.approx(TRUTH[name], abs=1e-3)
+
+
+def test_a_parameter_the_data_cannot_pin_down_is_reported_with_its_interval(noisy):
+    # the first 2.5 s of a start-up: the torque has not reached the static friction of the
+    # string anywhere below the top (the bit moves after 3.9 s), so the record bounds mu_s
+    # from below only; the data allow anything from the sliding factor (0.3) upward
+    record = noisy[0]
+    early = record.time <= 2.5
+    early = Recording(
+        time=record.time[early],
+        top_speed=record.top_speed[early],
+        surface_torque=record.surface_torque[early],
+        name="early.csv",
+    )
+    results = fit_recordings(deviated_well_config(), [early], ["friction_static"])
+    assert results.weak == ("friction_static",)
+    low, high = results.to_dict()["interval"]["friction_static"]
+    assert low <= TRUTH["friction_static"] <= high and high - low > 0.2
+    assert results.to_dict()["identifiable"] == {"friction_static": False}
+    assert any("weakly identifiable" in note and f"{low:.4g}" in note for note in results.notes())
+
+
+def test_torsio_fit_json_has_the_contract_keys(clean, tmp_path, capsys):
+    paths = []
+    for record in clean:
+        record.save(tmp_path / record.name)
+        paths += ["--recording", str(tmp_path / record.name)]
+    config = deviated_well_config()
+    source = tmp_path / "well.toml"
+    from importlib import resources
+
+    source.write_text(
+        resources.files("torsio").joinpath("data/deviated_well.toml").read_text("utf-8")
+    )
+    assert config.well is not None
+    status = main(
+        ["fit", str(source), *paths, "--fit", "friction_dynamic", "--no-profile", "--json"]
+    )
+    assert status == 0
+    data = json.loads(capsys.readouterr().out)
+    assert {"parameters", "uncertainty", "residual", "recordings"} <= set(data)
+    assert data["parameters"]["friction_dynamic"] == pytest.approx(0.3, abs=1e-3)
+    assert data["uncertainty"]["friction_dynamic"] > 0.0
+    assert [r["name"] for r in data["recordings"]] == [r.name for r in clean]
+
+
+def test_a_bad_fit_name_is_an_error_naming_it_and_the_valid_ones(tmp_path, capsys):
+    record = tmp_path / "rig.csv"
+    record.write_text("time,top_rpm,surface_torque\n0,0,0\n1,60,5000\n")
+    from importlib import resources
+
+    source = tmp_path / "well.toml"
+    source.write_text(
+        resources.files("torsio").joinpath("data/deviated_well.toml").read_text("utf-8")
+    )
+    status = main(["fit", str(source), "--recording", str(record), "--fit", "mu_s"])
+    error = capsys.readouterr().err
+    assert status != 0
+    assert "'mu_s'" in error and "friction_static, friction_dynamic" in error
+
+
+def test_a_bad_recording_through_the_command_names_the_line(tmp_path, capsys):
+    record = tmp_path / "rig.csv"
+    record.write_text("time,top_rpm,surface_torque\n0,0,0\n1,sixty,5000\n")
+    status = main(["fit", "x.toml", "--recording", str(record), "--fit", "friction_dynamic"])
+    assert status != 0
+    assert capsys.readouterr().err  # the configuration is read first: it names x.toml
+    with pytest.raises(ConfigError, match=r"rig\.csv, line 3"):
+        fit_recordings(deviated_well_config(), [record], ["friction_dynamic"])
+
+
+def test_a_fit_without_spread_gives_the_severe_points_of_its_own_map():
+    # reference: severity_map of the configuration itself; with sigma 0 every sample is
+    # that configuration, so the probability is 1 where it is severe and 0 elsewhere
+    from torsio.analysis.maps import severity_map
+    from torsio.calibration.fit_results import FitResults
+    from torsio.calibration.monte_carlo import severity_probability
+    from torsio.calibration.uncertainty import ParameterSpread
+
+    config = deviated_well_config()
+    spread = ParameterSpread(0.0, 0.0, 0.0, (0.3, 0.3), "jacobian", True)
+    fit = FitResults(
+        ("friction_dynamic",),
+        (0.3,),
+        (0.3,),
+        (0.3,),
+        (spread,),
+        0.0,
+        (),
+        "torque",
+        "recorded",
+        0,
+        0.0,
+        "",
+    )
+    wob, rpm = [0.0, 160e3], [40.0, 100.0]
+    result = severity_probability(config, fit, wob, rpm, samples=2, refine=0)
+    reference = severity_map(config.system(strategy="wave"), wob, rpm, refine=0)
+    expected = (reference.severity > reference.threshold).astype(float)
+    assert result.probability.tolist() == expected.tolist()
+    assert expected.min() == 0.0 and expected.max() == 1.0  # both kinds of point
+    assert [s["friction_dynamic"] for s in result.samples] == [0.3, 0.3]

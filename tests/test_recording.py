@@ -1,0 +1,125 @@
+"""Recordings of rig data (torsio.calibration.recording) and the top drive that follows one
+(kind ``recorded``, torsio.physics.recorded_top)."""
+
+from __future__ import annotations
+
+import math
+import warnings
+from importlib import resources
+
+import numpy as np
+import pytest
+
+from torsio.analysis.wave import wave_response
+from torsio.calibration.recording import Recording, read_recording
+from torsio.config.reading import load_config
+from torsio.errors import ConfigError
+from torsio.examples import deviated_well_config
+from torsio.physics.recorded_top import RecordedTopDrive
+
+HEADER = "time,top_rpm,surface_torque\n"
+WELL_TOML = resources.files("torsio").joinpath("data/deviated_well.toml").read_text("utf-8")
+
+
+def _write(tmp_path, text, name="rig.csv"):
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def test_a_recording_reads_in_rpm_and_n_m_by_default(tmp_path):
+    # reference: 1 rpm = pi/30 rad/s
+    record = read_recording(_write(tmp_path, HEADER + "0,0,0\n0.5,60,1000\n1,120,2000\n"))
+    assert record.top_speed.tolist() == pytest.approx([0.0, 2 * math.pi, 4 * math.pi])
+    assert record.surface_torque.tolist() == [0.0, 1000.0, 2000.0]
+    assert record.bit_speed is None and record.name == "rig.csv"
+
+
+def test_units_in_the_header_and_an_optional_bit_speed(tmp_path):
+    # reference: 1 kN m = 1000 N m, 1 ms = 1e-3 s, 1 ft lbf = 1.3558179483314004 N m
+    text = "# rig 7\ntime[ms],top_speed[rad/s],surface_torque[kN*m],bit_rpm,hookload\n"
+    text += "0,0,0,0,1\n500,2,1.5,30,1\n1000,4,3,60,1\n"
+    record = read_recording(_write(tmp_path, text))
+    assert record.time.tolist() == [0.0, 0.5, 1.0]
+    assert record.top_speed.tolist() == [0.0, 2.0, 4.0]
+    assert record.surface_torque.tolist() == [0.0, 1500.0, 3000.0]
+    assert record.bit_speed[-1] == pytest.approx(2 * math.pi)
+    feet = read_recording(_write(tmp_path, "time,top_rpm,surface_torque[ft*lbf]\n0,0,0\n1,1,1\n"))
+    assert feet.surface_torque[-1] == pytest.approx(1.3558179483314004)
+
+
+@pytest.mark.parametrize(
+    ("text", "match"),
+    [
+        ("time,top_rpm\n0,0\n1,1\n", r"rig\.csv, line 1: .*no column for surface_torque"),
+        (HEADER + "0,0,0\n1,zero,0\n", r"rig\.csv, line 3: column top_rpm: 'zero' is not a number"),
+        (HEADER + "0,0,0\n1,nan,0\n", r"rig\.csv, line 3: column top_rpm: 'nan' is not a finite"),
+        (HEADER + "0,0,0\n2,1,1\n1,1,1\n", r"rig\.csv, line 4: time 1 s does not increase"),
+        (HEADER + "0,0,0\n1,1\n", r"rig\.csv, line 3: 2 fields, expected 3"),
+        ("time,top_rpm,surface_torque[lbs]\n0,0,0\n", r"line 1: .*unknown unit 'lbs'"),
+        (HEADER, r"rig\.csv: expected at least 2 samples"),
+        ("", r"rig\.csv: the file is empty"),
+    ],
+)
+def test_a_bad_recording_is_an_error_naming_the_file_and_the_line(tmp_path, text, match):
+    with pytest.raises(ConfigError, match=match):
+        read_recording(_write(tmp_path, text))
+
+
+def test_gaps_and_spikes_are_warnings_naming_the_line(tmp_path):
+    time = [0.1 * i for i in range(40)] + [10.0, 10.1]
+    torque = [1000.0 + 10.0 * math.sin(i) for i in range(42)]
+    torque[20] = 9000.0
+    rows = "".join(f"{t:g},60,{q:g}\n" for t, q in zip(time, torque, strict=True))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        read_recording(_write(tmp_path, HEADER + rows))
+    messages = [str(w.message) for w in caught]
+    assert any("line 42: a gap of 6.1 s" in m for m in messages), messages
+    assert any("line 22: surface torque 9000 N m is a spike" in m for m in messages), messages
+
+
+def test_a_recording_saved_reads_back(tmp_path):
+    record = Recording(
+        time=[0.0, 1.0], top_speed=[0.0, 3.0], surface_torque=[0.0, 5.0], bit_speed=[0.0, 1.0]
+    )
+    record.save(tmp_path / "out.csv")
+    again = read_recording(tmp_path / "out.csv")
+    assert again.top_speed.tolist() == pytest.approx([0.0, 3.0])
+    assert again.bit_speed.tolist() == pytest.approx([0.0, 1.0])
+
+
+def test_the_recorded_top_turns_at_the_recorded_speed():
+    # reference: the record itself, linear between its samples (the held top's table)
+    record = Recording(
+        time=[10.0, 12.0, 14.0, 20.0],
+        top_speed=[0.0, 6.0, 4.0, 4.0],
+        surface_torque=[0.0, 1.0, 1.0, 1.0],
+    )
+    system = deviated_well_config().system(strategy="wave")
+    system = system.with_top(RecordedTopDrive(recording=record)).at(wob=0.0, rpm=38.2)
+    tr = wave_response(
+        system, duration=6.0, steady_window=1.0, output_step=system.model.time_step, progress=False
+    ).transient
+    expected = np.interp(tr.time, record.time - 10.0, record.top_speed)
+    assert np.max(np.abs(tr.top_speed - expected)) < 1e-12
+
+
+def test_the_recorded_kind_reads_its_file_from_the_configuration_folder(tmp_path):
+    # the rule of [well] survey = "survey.csv": a relative path is the config file's folder's
+    text = WELL_TOML
+    (tmp_path / "data").mkdir()
+    _write(tmp_path / "data", HEADER + "0,0,0\n5,120,9000\n", name="startup.csv")
+    text += '\n[top_drive]\nkind = "recorded"\nrecording = "data/startup.csv"\n'
+    _write(tmp_path, text, name="well.toml")
+    config = load_config(tmp_path / "well.toml")
+    top = config.top_drive.build()
+    assert top.name == "recorded" and top.recording.name == "startup.csv"
+    assert top.boundary(None).set_speed == pytest.approx(4 * math.pi)
+
+
+def test_a_missing_recording_file_is_an_error_on_its_key(tmp_path):
+    text = WELL_TOML + '\n[top_drive]\nkind = "recorded"\nrecording = "nowhere.csv"\n'
+    _write(tmp_path, text, name="well.toml")
+    with pytest.raises(ConfigError, match=r"top_drive\.recording: cannot read recording"):
+        load_config(tmp_path / "well.toml")
