@@ -28,6 +28,7 @@ from torsio.axial import (
     simulate_axial,
 )
 from torsio.cli import main
+from torsio.config.reading import load_config
 from torsio.examples import builtin_config, rgd_two_dof_config
 from torsio.report.context import ReportContext
 from torsio.report.document import render, report_data
@@ -189,3 +190,43 @@ def test_torsional_simulate_is_unchanged(capsys):
     expected["solver"].pop("wall_time_s")
     data["solver"].pop("wall_time_s")
     assert json.loads(json.dumps(expected)) == data
+
+
+STRING_FILE = """
+[material]
+youngs_modulus = "207 GPa"
+[[section]]
+kind = "drill_pipe"
+od = "5 in"
+id = "4.276 in"
+length = "1000 m"
+[[section]]
+kind = "drill_collar"
+od = "6.75 in"
+id = "2.8125 in"
+length = "150 m"
+[[section]]
+kind = "bit"
+od = "8.5 in"
+id = 0
+length = 0.3
+[damping]
+beta = 0.06
+"""
+
+
+def test_simulate_a_string_with_the_rgd_law(capsys, tmp_path):
+    text = open(EXAMPLE, encoding="utf-8").read()
+    bit = "[bit_rock]" + text.split("[bit_rock]")[1].split("[simulation]")[0]
+    path = tmp_path / "string.toml"
+    path.write_text(STRING_FILE + bit, encoding="utf-8")
+    data = run_json(capsys, "simulate", str(path), *TIMES)
+    config = load_config(path)
+    expected = simulate_axial(
+        config.axial.assembly, rgd_example(), 100e3, 60.0, duration=20.0, window=10.0
+    ).to_dict()
+    assert data["model"]["nodes"] == 10 and data["growth_rate"] is None
+    for key, value in expected.items():
+        assert data[key] == value, key
+    path.write_text(STRING_FILE.replace('youngs_modulus = "207 GPa"', "") + bit, encoding="utf-8")
+    assert "material.youngs_modulus: missing" in run_error(capsys, "simulate", str(path))
