@@ -12,7 +12,7 @@ Examples
 >>> "tucker-wang" in bit_laws()
 True
 >>> sorted(top_drives())
-['constant-speed', 'pi', 'soft-torque', 'torque', 'z-torque']
+['constant-speed', 'pi', 'recorded', 'soft-torque', 'torque', 'z-torque']
 """
 
 from __future__ import annotations
