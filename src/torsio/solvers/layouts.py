@@ -51,9 +51,12 @@ MAX_STATES = 3
 
 # --- the lumped engine: the chain, rows of length n (upper[i] couples nodes i and i + 1) --
 # [I] diagonal and upper [kg m^2], [K] [N m/rad], [C] = [C_rel] + diag(drag) [N m s/rad],
-# the drag of each node [N m s/rad], the applied torque [N m]
+# the drag of each node [N m s/rad], the applied torque [N m]; each node's contact with the
+# borehole (model/contacts.py): static and sliding capacities C_s >= C_d [N m] (0: no
+# contact) and the speed below which it is on its static branch [rad/s]
 (CHAIN_MASS, CHAIN_MASS_UPPER, CHAIN_STIFFNESS, CHAIN_STIFFNESS_UPPER, CHAIN_DAMPING,
- CHAIN_DAMPING_UPPER, CHAIN_DRAG, CHAIN_APPLIED, CHAIN_ROWS) = field_starts(*(1,) * 8)  # fmt: skip
+ CHAIN_DAMPING_UPPER, CHAIN_DRAG, CHAIN_APPLIED, CHAIN_CONTACT_STATIC, CHAIN_CONTACT_DYNAMIC,
+ CHAIN_CONTACT_THRESHOLD, CHAIN_ROWS) = field_starts(*(1,) * 11)  # fmt: skip
 
 # --- the lumped engine: the top drive (all zero for a held top) -------------------------
 # 1.0 with a top-drive node; m, the controller states (at most MAX_STATES); the constant

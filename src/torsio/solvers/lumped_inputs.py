@@ -13,91 +13,63 @@ from typing import Any
 import numpy as np
 
 from torsio.errors import ConfigError
-from torsio.solvers.layouts import (
-    CHAIN_APPLIED,
-    CHAIN_DAMPING,
-    CHAIN_DAMPING_UPPER,
-    CHAIN_DRAG,
-    CHAIN_MASS,
-    CHAIN_MASS_UPPER,
-    CHAIN_ROWS,
-    CHAIN_STIFFNESS,
-    CHAIN_STIFFNESS_UPPER,
-    MAX_STATES,
-    RUN_ATOL,
-    RUN_BIT_RADIUS,
-    RUN_FIRST_STEP,
-    RUN_MAX_STEP,
-    RUN_MAX_STEPS,
-    RUN_OMEGA_1,
-    RUN_RTOL,
-    RUN_SIZE,
-    RUN_STEADY_TOLERANCE,
-    RUN_T_END,
-    RUN_WINDOW_START,
-    TOP_A,
-    TOP_B,
-    TOP_C,
-    TOP_C_PIPE,
-    TOP_HAS_NODE,
-    TOP_K_PIPE,
-    TOP_KP,
-    TOP_MAX_TORQUE,
-    TOP_PIPE_GAIN,
-    TOP_SIZE,
-    TOP_STATES,
-    TOP_U0,
-    TOP_W,
-)
+from torsio.solvers import layouts as slot
 
 __all__ = ["pack_chain", "pack_top", "run_settings", "step_limits"]
 
 
 def pack_chain(dynamics: Any) -> np.ndarray:
     """The chain of a :class:`torsio.physics.dynamics.Dynamics`, (``CHAIN_ROWS``, n)."""
-    chain = np.zeros((CHAIN_ROWS, np.size(dynamics.mass_diag)))
-    chain[CHAIN_MASS] = dynamics.mass_diag
-    chain[CHAIN_MASS_UPPER] = dynamics.mass_upper
-    chain[CHAIN_STIFFNESS] = dynamics.stiffness_diag
-    chain[CHAIN_STIFFNESS_UPPER] = dynamics.stiffness_upper
-    chain[CHAIN_DAMPING] = dynamics.damping_diag + dynamics.drag
-    chain[CHAIN_DAMPING_UPPER] = dynamics.damping_upper
-    chain[CHAIN_DRAG] = dynamics.drag
-    chain[CHAIN_APPLIED] = dynamics.applied
+    chain = np.zeros((slot.CHAIN_ROWS, np.size(dynamics.mass_diag)))
+    chain[slot.CHAIN_MASS] = dynamics.mass_diag
+    chain[slot.CHAIN_MASS_UPPER] = dynamics.mass_upper
+    chain[slot.CHAIN_STIFFNESS] = dynamics.stiffness_diag
+    chain[slot.CHAIN_STIFFNESS_UPPER] = dynamics.stiffness_upper
+    chain[slot.CHAIN_DAMPING] = dynamics.damping_diag + dynamics.drag
+    chain[slot.CHAIN_DAMPING_UPPER] = dynamics.damping_upper
+    chain[slot.CHAIN_DRAG] = dynamics.drag
+    chain[slot.CHAIN_APPLIED] = dynamics.applied
+    contacts = dynamics.contacts
+    if contacts is not None:
+        chain[slot.CHAIN_CONTACT_STATIC] = contacts.static
+        chain[slot.CHAIN_CONTACT_DYNAMIC] = contacts.dynamic
+        chain[slot.CHAIN_CONTACT_THRESHOLD] = contacts.threshold_speed
     return chain
 
 
 def pack_top(boundary: Any, chain: np.ndarray) -> np.ndarray:
     """The top drive (a ``TopDriveBoundary``) packed for the kernel; all zero when held.
 
-    ConfigError for a controller of more than :data:`MAX_STATES` states.
+    ConfigError for a controller of more than :data:`~torsio.solvers.layouts.MAX_STATES` states.
     """
-    top = np.zeros(TOP_SIZE)
+    top = np.zeros(slot.TOP_SIZE)
     if boundary.held:
         return top
     m = boundary.states
-    if m > MAX_STATES:
+    if m > slot.MAX_STATES:
         raise ConfigError(
             "top_drive",
-            f"the batch engine takes top-drive controllers with at most {MAX_STATES} states, "
+            f"the batch engine takes top-drive controllers with at most {slot.MAX_STATES} states, "
             f"got {m}; use engine='scipy'",
         )
-    top[TOP_HAS_NODE] = 1.0
-    top[TOP_STATES] = m
-    top[TOP_U0] = boundary.u0
-    top[TOP_MAX_TORQUE] = boundary.max_torque
-    top[TOP_K_PIPE] = -chain[CHAIN_STIFFNESS_UPPER, 0]  # the model's top spring and damper
-    top[TOP_C_PIPE] = -chain[CHAIN_DAMPING_UPPER, 0]
-    top[TOP_KP] = boundary.kp
-    top[TOP_PIPE_GAIN] = boundary.pipe_gain
-    a = np.zeros((MAX_STATES, MAX_STATES))
-    b = np.zeros((MAX_STATES, 2))
+    top[slot.TOP_HAS_NODE] = 1.0
+    top[slot.TOP_STATES] = m
+    top[slot.TOP_U0] = boundary.u0
+    top[slot.TOP_MAX_TORQUE] = boundary.max_torque
+    top[slot.TOP_K_PIPE] = -chain[
+        slot.CHAIN_STIFFNESS_UPPER, 0
+    ]  # the model's top spring and damper
+    top[slot.TOP_C_PIPE] = -chain[slot.CHAIN_DAMPING_UPPER, 0]
+    top[slot.TOP_KP] = boundary.kp
+    top[slot.TOP_PIPE_GAIN] = boundary.pipe_gain
+    a = np.zeros((slot.MAX_STATES, slot.MAX_STATES))
+    b = np.zeros((slot.MAX_STATES, 2))
     a[:m, :m] = boundary.a
     b[:m] = boundary.b
-    top[TOP_A:TOP_B] = a.ravel()
-    top[TOP_B:TOP_C] = b.ravel()
-    top[TOP_C : TOP_C + m] = boundary.c
-    top[TOP_W : TOP_W + m] = boundary.w
+    top[slot.TOP_A : slot.TOP_B] = a.ravel()
+    top[slot.TOP_B : slot.TOP_C] = b.ravel()
+    top[slot.TOP_C : slot.TOP_C + m] = boundary.c
+    top[slot.TOP_W : slot.TOP_W + m] = boundary.w
     return top
 
 
@@ -127,14 +99,14 @@ def run_settings(
     """A run's settings for the kernel: run length and steady window [s], tolerances,
     (first, largest) step [s] (:func:`step_limits`), accepted steps allowed, bit radius [m],
     steady-cycle tolerance [S_SS units] (0: run to the end), omega_1 [rad/s]."""
-    settings = np.zeros(RUN_SIZE)
-    settings[RUN_T_END] = t_end
-    settings[RUN_WINDOW_START] = t_end - window
-    settings[RUN_RTOL] = rtol
-    settings[RUN_ATOL] = atol
-    settings[RUN_FIRST_STEP], settings[RUN_MAX_STEP] = steps
-    settings[RUN_MAX_STEPS] = max_steps
-    settings[RUN_BIT_RADIUS] = bit_radius
-    settings[RUN_STEADY_TOLERANCE] = steady_tolerance
-    settings[RUN_OMEGA_1] = first_frequency
+    settings = np.zeros(slot.RUN_SIZE)
+    settings[slot.RUN_T_END] = t_end
+    settings[slot.RUN_WINDOW_START] = t_end - window
+    settings[slot.RUN_RTOL] = rtol
+    settings[slot.RUN_ATOL] = atol
+    settings[slot.RUN_FIRST_STEP], settings[slot.RUN_MAX_STEP] = steps
+    settings[slot.RUN_MAX_STEPS] = max_steps
+    settings[slot.RUN_BIT_RADIUS] = bit_radius
+    settings[slot.RUN_STEADY_TOLERANCE] = steady_tolerance
+    settings[slot.RUN_OMEGA_1] = first_frequency
     return settings
