@@ -56,8 +56,18 @@ def _optional(check: Any) -> Any:
     return lambda value: None if value is None else check(value)
 
 
-def _option(default: Any, converter: Any, flag: str | None = None, key: str | None = None) -> Any:
-    return attrs.field(default=default, converter=converter, metadata={"flag": flag, "key": key})
+def _option(
+    default: Any,
+    converter: Any,
+    flag: str | None = None,
+    key: str | None = None,
+    help: str | None = None,
+    choices: tuple[str, ...] | None = None,
+) -> Any:
+    """A field with its ``torsio map`` flag, its configuration key, the flag's help (the
+    default is added to it) and its choices: the CLI adds the flag from these."""
+    metadata = {"flag": flag, "key": key, "help": help, "choices": choices}
+    return attrs.field(default=default, converter=converter, metadata=metadata)
 
 
 @attrs.frozen
@@ -108,6 +118,7 @@ class MapOptions:
         SEVERE_THRESHOLD,
         lambda v: _number("threshold", v, 0.0, "a non-negative number"),
         "--threshold",
+        help="S_SS above which a point is severe",
     )
     stick_slip_threshold: float = _option(
         STICK_SLIP_THRESHOLD,
@@ -117,9 +128,14 @@ class MapOptions:
         DEFAULT_REFINE,
         lambda v: _whole("refine", v, 0, 40, "a whole number of bisection steps in 0..40"),
         "--refine",
+        help="bisection steps of the critical weight on bit",
     )
     rtol: float = _option(
-        DEFAULT_RTOL, lambda v: check_rtol(v, "rtol"), "--rtol", "simulation.rtol"
+        DEFAULT_RTOL,
+        lambda v: check_rtol(v, "rtol"),
+        "--rtol",
+        "simulation.rtol",
+        help="relative tolerance of the batch engine",
     )
     atol: float = _option(
         DEFAULT_ATOL,
@@ -127,11 +143,22 @@ class MapOptions:
         None,
         "simulation.atol",
     )
-    engine: str = _option("auto", str, "--engine")
+    engine: str = _option("auto", str, "--engine", help="batch engine: auto, numba, numpy or scipy")
     steady_tolerance: float = _option(
-        DEFAULT_STEADY_TOLERANCE, check_steady_tolerance, "--steady-tol"
+        DEFAULT_STEADY_TOLERANCE,
+        check_steady_tolerance,
+        "--steady-tol",
+        help="end a run once it is on a steady cycle, within this S_SS (0 runs every point "
+        "to the end)",
     )
-    on_failure: str = _option("raise", str, "--on-failure")
+    on_failure: str = _option(
+        "raise",
+        str,
+        "--on-failure",
+        help="points the solver fails on: stop with an error (raise) or keep the others "
+        "and mark them failed (mark)",
+        choices=("raise", "mark"),
+    )
     retries: int = _option(
         2, lambda v: _whole("retries", v, 0, 100, "a whole number of resubmissions in 0..100")
     )
@@ -139,6 +166,7 @@ class MapOptions:
         None,
         _optional(lambda v: _number("timeout", v, 0.0, "a positive time in s", strict=True)),
         "--timeout",
+        help="seconds to wait for the Dask scheduler (default 10)",
     )
     chunk_size: int | None = _option(
         None, _optional(lambda v: _whole("chunk_size", v, 1, 2**62, "a whole number >= 1"))

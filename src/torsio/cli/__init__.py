@@ -20,11 +20,13 @@ from torsio.errors import TorsioError
 COMMANDS = ("report", "modes", "simulate", "map", "drag", "fit", "laws", "init")
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The argument parser with every command registered."""
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The argument parser with every command registered; the flags a command takes from
+    its options class (``torsio map``'s MapOptions) are added for ``command`` (None: all)."""
     import importlib
 
     from torsio import __version__
+    from torsio.cli.common import OPTION_FLAGS, add_option_flags
 
     parser = argparse.ArgumentParser(
         prog="torsio",
@@ -41,6 +43,9 @@ def build_parser() -> argparse.ArgumentParser:
                 continue  # command not available in this build
             raise
         module.register(subparsers)
+    for name, (command_parser, options) in OPTION_FLAGS.items():
+        if command in (None, name):
+            add_option_flags(command_parser, options())
     return parser
 
 
@@ -61,8 +66,9 @@ def _warning_format(command: str) -> Iterator[None]:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``torsio`` console script; returns the exit status."""
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    words = sys.argv[1:] if argv is None else list(argv)
+    parser = build_parser(next((w for w in words if not w.startswith("-")), ""))
+    args = parser.parse_args(words)
     terminated: list[int] = []
     previous = _handle_sigterm(terminated)
     try:

@@ -19,20 +19,61 @@ if TYPE_CHECKING:
     from torsio.config.configuration import Config
 
 
+OPTION_FLAGS: dict[str, tuple[argparse.ArgumentParser, Callable[[], type]]] = {}
+"""Commands whose flags come from an options class: the parser and how to get the class
+(imported only when that command runs: ``torsio --help`` loads no engine)."""
+
+
 def add_command(
     subparsers: argparse._SubParsersAction,
     name: str,
     run: Callable[[argparse.Namespace], int],
     summary: str,
     description: str,
+    options: Callable[[], type] | None = None,
 ) -> argparse.ArgumentParser:
     """The parser of the command ``torsio NAME``: ``summary`` for ``torsio --help``,
-    ``description`` for its own help, ``run(args)`` returns the exit status."""
+    ``description`` for its own help, ``run(args)`` returns the exit status; ``options()``
+    gives the options class whose flags it takes (:func:`add_option_flags`)."""
     parser: argparse.ArgumentParser = subparsers.add_parser(
         name, help=summary, description=description
     )
     parser.set_defaults(run=run)
+    if options is not None:
+        OPTION_FLAGS[name] = (parser, options)
     return parser
+
+
+def add_option_flags(parser: argparse.ArgumentParser, options: type) -> None:
+    """The flags of an options class (attrs fields whose metadata name a ``flag`` and its
+    ``help``; :class:`torsio.analysis.map_options.MapOptions`), typed by their defaults
+    (finite numbers, whole numbers, words; ``choices`` where given), default None (the
+    options class holds the default, and checks every value). Fields whose flag has no
+    help are added elsewhere (the run length and window: :func:`add_run_time_arguments`)."""
+    import attrs
+
+    for field in attrs.fields(options):
+        flag, help_text = field.metadata.get("flag"), field.metadata.get("help")
+        if not (flag and help_text):
+            continue
+        default = field.default
+        annotation = str(field.type)  # "float | None", "int", "str" (postponed annotations)
+        kind: Callable[[str], Any] = str
+        metavar = "NAME"
+        if annotation.startswith("float"):
+            kind, metavar = finite_float, "X"
+        elif annotation.startswith("int"):
+            kind, metavar = int, "N"
+        shown = "" if default is None or "default" in help_text else f" (default {default})"
+        parser.add_argument(
+            flag,
+            dest=flag[2:].replace("-", "_"),
+            type=kind,
+            default=None,
+            choices=field.metadata.get("choices"),
+            metavar=None if field.metadata.get("choices") else metavar,
+            help=help_text + shown,
+        )
 
 
 def add_json_argument(parser: argparse.ArgumentParser) -> None:

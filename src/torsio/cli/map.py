@@ -31,6 +31,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "speed, each point started from rest; classification, the critical weight on bit "
         "per rotary speed (bisected between grid points) and the linear stability "
         "boundary. Ranges are START:STOP:N.",
+        options=_options_class,
     )
     common.add_config_argument(parser)
     parser.add_argument(
@@ -56,60 +57,16 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     common.add_discretization_arguments(parser)
     common.add_run_time_arguments(parser, length="run length of every point", run="each run")
     parser.add_argument(
-        "--threshold",
-        type=common.finite_float,
-        default=None,
-        help="S_SS above which a point is severe (default 0.8)",
-    )
-    parser.add_argument(
-        "--refine",
-        type=int,
-        default=None,
-        metavar="N",
-        help="bisection steps of the critical weight on bit (default 4)",
-    )
-    parser.add_argument(
-        "--rtol",
-        type=common.finite_float,
-        default=None,
-        help="relative tolerance of the batch engine (default 1e-5)",
-    )
-    parser.add_argument(
-        "--steady-tol",
-        type=common.finite_float,
-        default=None,
-        metavar="S",
-        help="end a run once it is on a steady cycle, within this S_SS (default 1e-3; "
-        "0 runs every point to the end)",
-    )
-    parser.add_argument(
-        "--engine", default="auto", help="batch engine: auto (default), numba, numpy, scipy"
-    )
-    parser.add_argument(
         "--threads",
         type=int,
         metavar="N",
         help="threads of the compiled engine in this process (default: all cores)",
-    )
-    parser.add_argument(
-        "--on-failure",
-        choices=("raise", "mark"),
-        default=None,
-        help="points the solver fails on: stop with an error (raise, default) or keep "
-        "the others and mark them failed (mark)",
     )
     parser.add_argument("--workers", type=int, metavar="N", help="run on N local worker processes")
     parser.add_argument(
         "--scheduler",
         metavar="ADDRESS",
         help="run on a Dask scheduler (e.g. tcp://host:8786; needs the dask extra)",
-    )
-    parser.add_argument(
-        "--timeout",
-        type=common.finite_float,
-        default=None,
-        metavar="S",
-        help="seconds to wait for the Dask scheduler (default 10)",
     )
     parser.add_argument(
         "--out",
@@ -306,6 +263,13 @@ def axial_wob_range(config: Any) -> str:
     (σ a l, below which the RGD bit does not cut), 5 points."""
     friction = config.axial.bit.friction_weight
     return f"{1.1 * friction:.6g}:{2 * friction:.6g}:5"
+
+
+def _options_class() -> type:
+    """The options whose flags ``torsio map`` takes (--threshold, --refine, --rtol, ...)."""
+    from torsio.analysis.map_options import MapOptions
+
+    return MapOptions
 
 
 def _map_options(args: argparse.Namespace, simulation: dict[str, Any]) -> Any:
