@@ -136,6 +136,12 @@ class DrillingAssembly:
         return int(self.masses.size) if self.axial_stiffnesses.size else 1
 
     @property
+    def is_two_dof(self) -> bool:
+        """Whether this is the 2-DOF model of RGD (2007): one node under the weight hook
+        (:func:`two_dof_assembly`), the model of :mod:`torsio.axial.linearization`."""
+        return self.nodes == 1 and self.hook == "weight"
+
+    @property
     def bit_mass(self) -> float:
         """The axial mass [kg] of the degree of freedom that carries the bit."""
         return float(self.masses[-1] if self.axial_stiffnesses.size else self.masses.sum())

@@ -124,7 +124,7 @@ def axial_map(
     shape = (rpm_grid.size, wob_grid.size)
     out = {name: np.zeros(shape) for name in _FIELDS}
     rates = np.zeros(shape) if growth_rate else None
-    if growth_rate and not (assembly.nodes == 1 and assembly.axial_dofs == 1):
+    if growth_rate and not assembly.is_two_dof:
         raise ConfigError("growth_rate", "the linear growth rate is of the 2-DOF model only")
     no_samples = np.zeros((0, 10))
     for i, rpm in enumerate(rpm_grid):
@@ -148,14 +148,7 @@ def axial_map(
                 from torsio.axial.stability import drilling_stability
 
                 rates[i, j] = drilling_stability(
-                    bit,
-                    float(assembly.inertias[0]),
-                    float(assembly.stiffnesses[0]),
-                    assembly.bit_mass,
-                    float(wob),
-                    float(rpm),
-                    float(assembly.damping[0]),
-                    count=1,
+                    assembly, bit, float(wob), float(rpm), count=1
                 ).growth_rate
     return AxialMap(
         wob=wob_grid,
