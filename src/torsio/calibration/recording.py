@@ -49,13 +49,13 @@ import math
 import re
 import warnings
 from pathlib import Path
-from typing import Any
 
 import attrs
 import numpy as np
 
 from torsio.csv_rows import csv_rows
 from torsio.errors import ConfigError
+from torsio.model.arrays import read_only
 
 __all__ = ["Recording", "read_recording"]
 
@@ -88,12 +88,6 @@ SPIKE_SIGMAS = 8.0
 _HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
 
 
-def _frozen(values: Any) -> np.ndarray:
-    array = np.array(values, dtype=float)
-    array.setflags(write=False)
-    return array
-
-
 @attrs.frozen(eq=False, repr=False)
 class Recording:
     """Top-drive speed and surface torque against time, in SI units.
@@ -112,11 +106,11 @@ class Recording:
         Where it came from (the file's name), for messages and reports.
     """
 
-    time: np.ndarray = attrs.field(converter=_frozen)
-    top_speed: np.ndarray = attrs.field(converter=_frozen)
-    surface_torque: np.ndarray = attrs.field(converter=_frozen)
+    time: np.ndarray = attrs.field(converter=read_only)
+    top_speed: np.ndarray = attrs.field(converter=read_only)
+    surface_torque: np.ndarray = attrs.field(converter=read_only)
     bit_speed: np.ndarray | None = attrs.field(
-        default=None, converter=attrs.converters.optional(_frozen)
+        default=None, converter=attrs.converters.optional(read_only)
     )
     name: str = "recording"
 
