@@ -48,6 +48,7 @@ import csv
 import math
 import re
 import warnings
+from collections.abc import Callable
 from pathlib import Path
 
 import attrs
@@ -208,6 +209,14 @@ def _value(cell: str, column: str, name: str, line: int) -> float:
     return value
 
 
+def _warn_at(
+    name: str, lines: list[int], samples: np.ndarray, message: Callable[[int], str]
+) -> None:
+    """A warning naming the line of each of the first three ``samples`` (indices)."""
+    for i in samples[:3]:
+        warnings.warn(f"{name}, line {lines[i]}: {message(i)}", UserWarning, stacklevel=5)
+
+
 def _check_times(time: np.ndarray, lines: list[int], name: str) -> None:
     steps = np.diff(time)
     bad = np.flatnonzero(steps <= 0.0)
@@ -219,13 +228,15 @@ def _check_times(time: np.ndarray, lines: list[int], name: str) -> None:
             f"(the line before: {time[i - 1]:g} s)",
         )
     median = float(np.median(steps))
-    for i in np.flatnonzero(steps > GAP_FACTOR * median)[:3]:
-        warnings.warn(
-            f"{name}, line {lines[i + 1]}: a gap of {steps[i]:g} s in the time (the median "
-            f"step is {median:g} s); the model follows the speed linearly across it",
-            UserWarning,
-            stacklevel=4,
-        )
+    _warn_at(
+        name,
+        lines,
+        np.flatnonzero(steps > GAP_FACTOR * median) + 1,
+        lambda i: (
+            f"a gap of {steps[i - 1]:g} s in the time (the median step is {median:g} s); "
+            "the model follows the speed linearly across it"
+        ),
+    )
 
 
 def _check_spikes(torque: np.ndarray, lines: list[int], name: str) -> None:
@@ -238,13 +249,15 @@ def _check_spikes(torque: np.ndarray, lines: list[int], name: str) -> None:
     scale = 1.4826 * float(np.median(deviation))
     if scale <= 0.0:
         return
-    for i in np.flatnonzero(deviation > SPIKE_SIGMAS * scale)[:3]:
-        warnings.warn(
-            f"{name}, line {lines[i]}: surface torque {torque[i]:g} N m is a spike "
-            f"({deviation[i] / scale:.0f} robust standard deviations from its neighbours)",
-            UserWarning,
-            stacklevel=4,
-        )
+    _warn_at(
+        name,
+        lines,
+        np.flatnonzero(deviation > SPIKE_SIGMAS * scale),
+        lambda i: (
+            f"surface torque {torque[i]:g} N m is a spike "
+            f"({deviation[i] / scale:.0f} robust standard deviations from its neighbours)"
+        ),
+    )
 
 
 def read_recording(path: str | Path) -> Recording:
