@@ -73,8 +73,8 @@ from torsio.solvers.wave_buffers import (
     _dampers,
     _dampers_with_power,
     _end_slots,
+    _node_slots,
     _read_nodes,
-    _slot,
 )
 from torsio.solvers.wave_contacts import _contact_node_speeds, _contact_speed, _contacts
 from torsio.solvers.wave_cycles import _crossing
@@ -265,24 +265,7 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
             if layout[s, slot.SPECIAL] >= 0:
                 rows_on = layout[s, slot.SPECIAL_ROW]
                 columns_on = layout[s, slot.SPECIAL_COLUMN]
-                ip = _slot(
-                    start,
-                    width,
-                    spacing,
-                    heads[s, slot.HEAD_P_ROW],
-                    heads[s, slot.HEAD_P_COLUMN],
-                    rows_on,
-                    columns_on,
-                )
-                im = _slot(
-                    start,
-                    width,
-                    spacing,
-                    heads[s, slot.HEAD_M_ROW],
-                    heads[s, slot.HEAD_M_COLUMN],
-                    rows_on,
-                    columns_on,
-                )
+                ip, im = _node_slots(layout, spacing, heads, s, rows_on, columns_on)
                 arriving_p = P[ip]
                 difference = arriving_p - M[im]
                 z = sections[s, slot.Z]
