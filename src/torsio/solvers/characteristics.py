@@ -223,10 +223,11 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     else:
         t_now = torque(parameters, w_now, wob, radius)
     taken = 0
+    set_speed = table_speed(speed_table, summary[slot.SUM_STEPS] * dt)  # at the step's start
     for step in range(steps):
         m_top_old = M[_end_slots(layout, spacing, heads, 0, False)[1]]
         t_next = (summary[slot.SUM_STEPS] + step + 1.0) * dt
-        set_before = table_speed(speed_table, t_next - dt)
+        set_before = set_speed  # the set speed at t_next - dt, read by the step before
         set_speed = table_speed(speed_table, t_next)
         # 1. transport
         _advance(layout, spacing, P, M, heads)
