@@ -50,6 +50,7 @@ import re
 import warnings
 from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import attrs
 import numpy as np
@@ -57,6 +58,9 @@ import numpy as np
 from torsio.csv_rows import csv_rows
 from torsio.errors import ConfigError
 from torsio.model.arrays import read_only
+
+if TYPE_CHECKING:
+    from torsio.analysis.transient_results import TransientResults
 
 __all__ = ["Recording", "read_recording"]
 
@@ -133,6 +137,55 @@ class Recording:
             f"Recording({self.name}: {self.time.size} samples over "
             f"{self.duration:g} s, top speed up to {self.top_speed.max() / RPM:.4g} rpm, "
             f"surface torque up to {self.surface_torque.max():.4g} N m)"
+        )
+
+    @classmethod
+    def from_transient(
+        cls,
+        results: TransientResults,
+        *,
+        torque_noise: float = 0.0,
+        speed_noise: float = 0.0,
+        seed: int = 0,
+        bit_speed: bool = False,
+        name: str = "recording",
+    ) -> Recording:
+        """What a rig would have recorded of a run: its time, top-drive speed and surface
+        torque (and, with ``bit_speed``, a downhole tool's bit speed).
+
+        ``torque_noise`` and ``speed_noise`` are relative standard deviations of Gaussian
+        noise, drawn sample by sample from ``numpy.random.default_rng(seed)`` (the speed's
+        first, then the torque's, then the bit speed's, which takes ``speed_noise``):
+        a recorded value is the run's value times (1 + noise × a standard normal draw).
+
+        Examples
+        --------
+        >>> from torsio.analysis.transient import simulate
+        >>> from torsio.examples import builtin_config
+        >>> run = simulate(builtin_config().system(strategy="A").at(wob=175e3, rpm=100))
+        >>> clean = Recording.from_transient(run, name="strategy A")
+        >>> bool((clean.surface_torque == run.surface_torque).all())
+        True
+        >>> noisy = Recording.from_transient(run, torque_noise=0.02, seed=1, bit_speed=True)
+        >>> spread = noisy.surface_torque / run.surface_torque - 1.0
+        >>> 0.015 < float(spread[run.surface_torque != 0].std()) < 0.025
+        True
+        >>> noisy.bit_speed is not None
+        True
+        """
+        rng = np.random.default_rng(seed)
+        n = results.time.size
+        top_speed = results.top_speed * (1.0 + speed_noise * rng.normal(size=n))
+        torque = results.surface_torque * (1.0 + torque_noise * rng.normal(size=n))
+        bit = None
+        if bit_speed:
+            bit = results.bit_speed * (1.0 + speed_noise * rng.normal(size=n))
+        return cls(
+            time=results.time,
+            top_speed=top_speed,
+            surface_torque=torque,
+            bit_speed=bit,
+            name=name,
         )
 
     @property
