@@ -14,7 +14,6 @@ from __future__ import annotations
 import warnings
 
 import attrs
-import numpy as np
 
 from torsio.analysis.wave import wave_response
 from torsio.calibration.fit import fit_recordings
@@ -33,13 +32,8 @@ def startup(rpm: float, noise: float) -> Recording:
     tr = wave_response(
         system, duration=60.0, steady_window=6.0, output_step=0.01, progress=False
     ).transient
-    rng = np.random.default_rng(int(rpm))
-    n = tr.time.size
-    return Recording(
-        time=tr.time,
-        top_speed=tr.top_speed * (1 + 0.5 * noise * rng.normal(size=n)),
-        surface_torque=tr.surface_torque * (1 + noise * rng.normal(size=n)),
-        name=f"{rpm:g} rpm",
+    return Recording.from_transient(
+        tr, torque_noise=noise, speed_noise=0.5 * noise, seed=int(rpm), name=f"{rpm:g} rpm"
     )
 
 

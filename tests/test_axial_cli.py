@@ -69,7 +69,7 @@ def test_simulate_json_is_the_python_api(capsys):
         "step": run.step,
     }
     assert "Euler" in data["solver"]["scheme"]
-    growth = drilling_stability(rgd_example(), 455.65, 324.857, 29981.3, 100e3, 60.0, 19.49)
+    growth = drilling_stability(rgd_two_dof_example(), rgd_example(), 100e3, 60.0)
     assert data["growth_rate"] == pytest.approx(growth.growth_rate, rel=1e-9)
 
 
@@ -141,9 +141,7 @@ def test_report_has_the_axial_section():
     ctx = ReportContext(rgd_two_dof_config())  # computed once: JSON and terminal alike
     section = report_data(ctx)["axial"]
     assert section["steady_state"]["depth_of_cut"] == pytest.approx(0.0073868312757, rel=1e-9)
-    crossings = crossing_rpm(
-        rgd_example(), 455.65, 324.857, 29981.3, 100e3, (20.0, 300.0), 19.49, points=15
-    )
+    crossings = crossing_rpm(rgd_two_dof_example(), rgd_example(), 100e3, (20.0, 300.0), points=15)
     assert section["stability"]["crossing_rpm"] == crossings
     assert section["stability"]["growth_rate"] > 0
     console = Console(width=80, record=True, file=io.StringIO())

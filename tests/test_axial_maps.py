@@ -37,7 +37,7 @@ def test_every_point_of_the_map_is_the_single_run():
             assert grid.mse[i, j] == pytest.approx(run.mse_mean, rel=1e-12)
             assert grid.axial_severity[i, j] == pytest.approx(run.axial_severity, rel=1e-12)
             assert grid.growth_rate is not None
-            rate = drilling_stability(BIT, 455.65, 324.857, 29981.3, wob, rpm, 19.49).growth_rate
+            rate = drilling_stability(ASSEMBLY, BIT, wob, rpm).growth_rate
             assert grid.growth_rate[i, j] == pytest.approx(rate, rel=1e-12)
 
 

@@ -15,6 +15,7 @@ import pytest
 import scipy.optimize
 import scipy.special
 
+from torsio.axial.assembly import pipe_assembly, two_dof_assembly
 from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
 from torsio.axial.linearization import (
     axial_linearization,
@@ -37,8 +38,13 @@ BIT = rgd_example()
 AXIAL_STIFFNESS = BIT.blades * BIT.cutting_weight_per_depth  # n ζ ε a, N/m
 
 
+DAMPED = two_dof_assembly(INERTIA, STIFFNESS, MASS, DAMPING)
+
+
 def _system(rpm, stiffness=STIFFNESS, damping=0.0):
-    return drilling_linearization(BIT, INERTIA, stiffness, MASS, WOB, rpm, damping)
+    return drilling_linearization(
+        two_dof_assembly(INERTIA, stiffness, MASS, damping), BIT, WOB, rpm
+    )
 
 
 # --- the root finder on a delay equation with roots in closed form ---------------------------
@@ -67,7 +73,7 @@ def test_collocation_and_newton_find_the_lambert_w_roots():
 def test_the_determinant_equals_the_characteristic_equation_written_out(root):
     # det of M λ² + C λ + K + E D against Δ = (Mλ² + nζεaE)(Iλ² + cλ + k) − n(εa²/2)(V₀/Ω₀)Mλ²E
     system = _system(90.0, damping=DAMPING)
-    delta = characteristic_function(BIT, INERTIA, STIFFNESS, MASS, WOB, 90.0, DAMPING)
+    delta = characteristic_function(DAMPED, BIT, WOB, 90.0)
     assert system.characteristic(root) == pytest.approx(delta(root), rel=1e-12)
 
 
@@ -116,7 +122,7 @@ def test_without_the_delay_perturbation_the_linearization_would_be_wrong():
 # --- roots of the drilling system -----------------------------------------------------------
 @pytest.mark.parametrize("rpm", [40.0, 100.0, 160.0])
 def test_refined_roots_solve_the_characteristic_equation(rpm):
-    result = drilling_stability(BIT, INERTIA, STIFFNESS, MASS, WOB, rpm, DAMPING)
+    result = drilling_stability(DAMPED, BIT, WOB, rpm)
     system = _system(rpm, damping=DAMPING)
     for root in result.roots:
         assert system.relative_residual(root) < 1e-12
@@ -126,8 +132,8 @@ def test_refined_roots_solve_the_characteristic_equation(rpm):
 @pytest.mark.parametrize("rpm", [40.0, 100.0, 160.0])
 def test_roots_agree_between_collocation_orders_n_and_2n(rpm):
     order = _system(rpm, damping=DAMPING).default_order()
-    coarse = drilling_stability(BIT, INERTIA, STIFFNESS, MASS, WOB, rpm, DAMPING, order=order)
-    fine = drilling_stability(BIT, INERTIA, STIFFNESS, MASS, WOB, rpm, DAMPING, order=2 * order)
+    coarse = drilling_stability(DAMPED, BIT, WOB, rpm, order=order)
+    fine = drilling_stability(DAMPED, BIT, WOB, rpm, order=2 * order)
     assert len(coarse.roots) >= 4
     np.testing.assert_allclose(coarse.roots[:4], fine.roots[:4], rtol=1e-9)
     # and the collocation eigenvalues themselves converge to the refined roots
@@ -139,7 +145,7 @@ def test_the_neutral_root_is_found_and_not_reported(rpm):
     system = _system(rpm, damping=DAMPING)
     assert system.characteristic(0.0) == 0  # E(0) = 0: u = const is a steady motion too
     assert abs(system.characteristic_slope(0.0)) > 0  # simple root
-    result = drilling_stability(BIT, INERTIA, STIFFNESS, MASS, WOB, rpm, DAMPING)
+    result = drilling_stability(DAMPED, BIT, WOB, rpm)
     assert abs(result.neutral_root) * system.delay < 1e-10
     eigenvalues = np.sort(np.abs(system.collocation_eigenvalues()))
     assert eigenvalues[1] * system.delay > 1e-2  # only one eigenvalue at the origin
@@ -148,8 +154,8 @@ def test_the_neutral_root_is_found_and_not_reported(rpm):
 
 
 def test_the_growth_rate_is_the_largest_real_part_and_decides_stability():
-    unstable = drilling_stability(BIT, INERTIA, STIFFNESS, MASS, WOB, 100.0, DAMPING)
-    stable = drilling_stability(BIT, INERTIA, STIFFNESS, MASS, WOB, 180.0, DAMPING)
+    unstable = drilling_stability(DAMPED, BIT, WOB, 100.0)
+    stable = drilling_stability(DAMPED, BIT, WOB, 180.0)
     assert unstable.growth_rate > 0 and not unstable.stable
     assert stable.growth_rate < 0 and stable.stable
     assert set(unstable.to_dict()) == {
@@ -193,20 +199,22 @@ def test_a_stiff_string_tends_to_the_axial_equation_like_one_over_k():
     gaps = []
     for k in (1e8, 1e10):
         # order 64: the torsional roots ±i √(k/I) are far out of reach and not wanted here
-        coupled = drilling_stability(BIT, INERTIA, k, MASS, WOB, 60.0, count=2, order=64).roots
+        coupled = drilling_stability(
+            two_dof_assembly(INERTIA, k, MASS), BIT, WOB, 60.0, count=2, order=64
+        ).roots
         gaps.append(np.abs(coupled - axial))
     np.testing.assert_allclose(gaps[1] / gaps[0], 1e-2, rtol=0.02)
 
 
 # --- crossings of the coupled model ----------------------------------------------------------
 def test_crossing_rpm_brackets_and_refines_a_change_of_sign():
-    crossings = crossing_rpm(BIT, INERTIA, STIFFNESS, MASS, WOB, (100.0, 200.0), DAMPING, points=11)
+    crossings = crossing_rpm(DAMPED, BIT, WOB, (100.0, 200.0), points=11)
     assert len(crossings) == 1
     rpm = crossings[0]
-    at = drilling_stability(BIT, INERTIA, STIFFNESS, MASS, WOB, rpm, DAMPING)
+    at = drilling_stability(DAMPED, BIT, WOB, rpm)
     assert abs(at.growth_rate) < 1e-8
-    below = drilling_stability(BIT, INERTIA, STIFFNESS, MASS, WOB, rpm - 1.0, DAMPING)
-    above = drilling_stability(BIT, INERTIA, STIFFNESS, MASS, WOB, rpm + 1.0, DAMPING)
+    below = drilling_stability(DAMPED, BIT, WOB, rpm - 1.0)
+    above = drilling_stability(DAMPED, BIT, WOB, rpm + 1.0)
     assert below.growth_rate > 0 > above.growth_rate
     # the mode that crosses is the axial one: within 1 % of the axial equation's crossing
     assert rpm == pytest.approx(_axial_crossing_rpm(0)[0], rel=1e-2)
@@ -215,23 +223,23 @@ def test_crossing_rpm_brackets_and_refines_a_change_of_sign():
 @pytest.mark.parametrize(
     ("key", "kwargs"),
     [
-        ("inertia", {"inertia": 0.0}),
-        ("stiffness", {"stiffness": -1.0}),
-        ("mass", {"mass": float("nan")}),
-        ("damping", {"damping": -1.0}),
+        ("chain.inertias[0]", {"inertia": 0.0}),
+        ("chain.stiffnesses[0]", {"stiffness": -1.0}),
+        ("chain.masses[0]", {"mass": float("nan")}),
+        ("chain.damping[0]", {"damping": -1.0}),
         ("wob", {"wob": 60e3}),
     ],
 )
 def test_invalid_inputs_name_the_key(key, kwargs):
-    args = {
-        "inertia": INERTIA,
-        "stiffness": STIFFNESS,
-        "mass": MASS,
-        "wob": WOB,
-        "rpm": 60.0,
-        "damping": 0.0,
-        **kwargs,
-    }
+    args = {"inertia": INERTIA, "stiffness": STIFFNESS, "mass": MASS, "damping": 0.0, **kwargs}
+    wob = args.pop("wob", WOB)
     with pytest.raises(ConfigError) as info:
-        drilling_stability(BIT, **args)
+        drilling_stability(two_dof_assembly(**args), BIT, wob, 60.0)
     assert info.value.key == key
+
+
+def test_only_the_two_dof_model_is_linearized():
+    chain = pipe_assembly(3, 1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5, 3.0e4, 230.0)
+    with pytest.raises(ConfigError) as info:
+        drilling_linearization(chain, BIT, WOB, 60.0)
+    assert info.value.key == "assembly"

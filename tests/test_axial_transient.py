@@ -150,7 +150,7 @@ def test_a_small_perturbation_grows_at_the_rightmost_root(
     rpm, perturbation, signal, span, tolerance
 ):
     # the crossing of the 2-DOF model with this damper is 153.25 rpm (docs/axial.md)
-    root = drilling_stability(BIT, INERTIA, STIFFNESS, MASS, WOB, rpm, DAMPING).roots[0]
+    root = drilling_stability(ASSEMBLY, BIT, WOB, rpm).roots[0]
     run = simulate_axial(
         ASSEMBLY,
         BIT,

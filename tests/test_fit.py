@@ -13,7 +13,6 @@ from __future__ import annotations
 import json
 
 import attrs
-import numpy as np
 import pytest
 
 from torsio.analysis.wave import wave_response
@@ -40,12 +39,11 @@ def _startup(rpm: float, torque_noise: float = 0.0, speed_noise: float = 0.0) ->
     tr = wave_response(
         system, duration=60.0, steady_window=6.0, output_step=0.01, progress=False
     ).transient
-    rng = np.random.default_rng(int(rpm))
-    n = tr.time.size
-    return Recording(
-        time=tr.time,
-        top_speed=tr.top_speed * (1.0 + speed_noise * rng.normal(size=n)),
-        surface_torque=tr.surface_torque * (1.0 + torque_noise * rng.normal(size=n)),
+    return Recording.from_transient(
+        tr,
+        torque_noise=torque_noise,
+        speed_noise=speed_noise,
+        seed=int(rpm),
         name=f"startup_{rpm:g}rpm.csv",
     )
 

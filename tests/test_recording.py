@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 import warnings
 from importlib import resources
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -87,6 +88,24 @@ def test_a_recording_saved_reads_back(tmp_path):
     again = read_recording(tmp_path / "out.csv")
     assert again.top_speed.tolist() == pytest.approx([0.0, 3.0])
     assert again.bit_speed.tolist() == pytest.approx([0.0, 1.0])
+
+
+def test_a_recording_of_a_run_draws_its_noise_from_the_seed():
+    # reference: the noise written out, relative and Gaussian, the speed's draws first
+    time = np.linspace(0.0, 2.0, 201)
+    run = SimpleNamespace(
+        time=time, top_speed=1.0 + time, surface_torque=2e3 + time, bit_speed=3.0 - time
+    )
+    record = Recording.from_transient(
+        run, torque_noise=0.02, speed_noise=0.01, seed=7, bit_speed=True, name="run"
+    )
+    draws = np.random.default_rng(7).normal(size=(3, time.size))
+    assert np.array_equal(record.time, time) and record.name == "run"
+    assert np.array_equal(record.top_speed, run.top_speed * (1.0 + 0.01 * draws[0]))
+    assert np.array_equal(record.surface_torque, run.surface_torque * (1.0 + 0.02 * draws[1]))
+    assert np.array_equal(record.bit_speed, run.bit_speed * (1.0 + 0.01 * draws[2]))
+    clean = Recording.from_transient(run)
+    assert np.array_equal(clean.surface_torque, run.surface_torque) and clean.bit_speed is None
 
 
 def test_the_recorded_top_turns_at_the_recorded_speed():

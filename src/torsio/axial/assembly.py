@@ -36,17 +36,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from torsio.errors import ConfigError
+from torsio.model.arrays import read_only_vector
 
 __all__ = ["DrillingAssembly", "pipe_assembly", "rgd_two_dof_example", "two_dof_assembly"]
 
 HOOKS = ("weight", "speed")
 """The boundaries at the hook: a constant weight on the top node, or a constant speed."""
-
-
-def _vector(value: Any) -> NDArray[np.float64]:
-    vector = np.array(() if value is None else value, dtype=float).reshape(-1)
-    vector.setflags(write=False)
-    return vector
 
 
 def _check(key: str, values: NDArray[np.float64], allow_zero: bool) -> None:
@@ -85,12 +80,12 @@ class DrillingAssembly:
         ``"weight"`` or ``"speed"`` (see the module docstring).
     """
 
-    inertias: NDArray[np.float64] = attrs.field(converter=_vector)
-    stiffnesses: NDArray[np.float64] = attrs.field(converter=_vector)
-    masses: NDArray[np.float64] = attrs.field(converter=_vector)
-    axial_stiffnesses: NDArray[np.float64] = attrs.field(converter=_vector, factory=tuple)
-    damping: NDArray[np.float64] = attrs.field(converter=_vector, default=None)
-    axial_damping: NDArray[np.float64] = attrs.field(converter=_vector, default=None)
+    inertias: NDArray[np.float64] = attrs.field(converter=read_only_vector)
+    stiffnesses: NDArray[np.float64] = attrs.field(converter=read_only_vector)
+    masses: NDArray[np.float64] = attrs.field(converter=read_only_vector)
+    axial_stiffnesses: NDArray[np.float64] = attrs.field(converter=read_only_vector, factory=tuple)
+    damping: NDArray[np.float64] = attrs.field(converter=read_only_vector, default=None)
+    axial_damping: NDArray[np.float64] = attrs.field(converter=read_only_vector, default=None)
     hook: str = "weight"
 
     def __attrs_post_init__(self) -> None:
@@ -105,7 +100,7 @@ class DrillingAssembly:
             _same_size(key, values, n)
             _check(key, values, zero)
         if not self.damping.size:  # none given: no dampers
-            object.__setattr__(self, "damping", _vector(np.zeros(n)))
+            object.__setattr__(self, "damping", read_only_vector(np.zeros(n)))
         _same_size("chain.damping", self.damping, n)
         _check("chain.damping", self.damping, True)
         if self.axial_stiffnesses.size:
@@ -113,7 +108,7 @@ class DrillingAssembly:
             _check("chain.axial_stiffnesses", self.axial_stiffnesses, False)
         m = self.axial_dofs
         if not self.axial_damping.size:
-            object.__setattr__(self, "axial_damping", _vector(np.zeros(m)))
+            object.__setattr__(self, "axial_damping", read_only_vector(np.zeros(m)))
         _same_size("chain.axial_damping", self.axial_damping, m)
         _check("chain.axial_damping", self.axial_damping, True)
         if self.hook not in HOOKS:
@@ -134,6 +129,12 @@ class DrillingAssembly:
     def axial_dofs(self) -> int:
         """Axial degrees of freedom: n with axial springs, 1 (the rigid body) without."""
         return int(self.masses.size) if self.axial_stiffnesses.size else 1
+
+    @property
+    def is_two_dof(self) -> bool:
+        """Whether this is the 2-DOF model of RGD (2007): one node under the weight hook
+        (:func:`two_dof_assembly`), the model of :mod:`torsio.axial.linearization`."""
+        return self.nodes == 1 and self.hook == "weight"
 
     @property
     def bit_mass(self) -> float:

@@ -41,8 +41,9 @@ distributed drill-string", J. Sound Vib. 444 (2019) 127-151.
 
 Examples
 --------
+>>> from torsio.axial.assembly import rgd_two_dof_example
 >>> from torsio.axial.rgd import rgd_example
->>> system = drilling_linearization(rgd_example(), 455.65, 324.857, 29981.3, 100e3, 60.0)
+>>> system = drilling_linearization(rgd_two_dof_example(), rgd_example(), 100e3, 60.0)
 >>> round(system.delay, 6)  # t_n0 = 2π/(n Ω₀), s
 0.25
 >>> abs(system.characteristic(0.0))  # the neutral root
@@ -52,9 +53,11 @@ Examples
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 
+from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.delay_roots import LinearDelaySystem
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
@@ -78,49 +81,58 @@ def delayed_matrix(bit: RGDBit, steady: SteadyDrilling) -> np.ndarray:
     return n * np.array([[weight, -weight * ratio], [torque, -torque * ratio]])
 
 
+def two_dof_parameters(assembly: DrillingAssembly) -> tuple[float, float, float, float]:
+    """(I [kg m²], k [N m/rad], M [kg], c [N m s/rad]) of a 2-DOF assembly
+    (:func:`~torsio.axial.assembly.two_dof_assembly`: one node under the weight hook).
+
+    Raises
+    ------
+    ConfigError
+        An assembly of more than one node, or with the speed hook.
+    """
+    if not assembly.is_two_dof:
+        raise ConfigError(
+            "assembly",
+            f"{assembly.nodes} node(s) with the {assembly.hook!r} hook: the linearization is "
+            "of the 2-DOF model only (one node under the weight hook)",
+        )
+    return (
+        float(assembly.inertias[0]),
+        float(assembly.stiffnesses[0]),
+        assembly.bit_mass,
+        float(assembly.damping[0]),
+    )
+
+
 def drilling_linearization(
-    bit: RGDBit,
-    inertia: float,
-    stiffness: float,
-    mass: float,
-    wob: float,
-    rpm: float,
-    damping: float = 0.0,
+    assembly: DrillingAssembly, bit: RGDBit, wob: float, rpm: float
 ) -> LinearDelaySystem:
     """The 2-DOF RGD model linearized about steady drilling, x = (u [m], φ [rad]).
 
     Parameters
     ----------
+    assembly : DrillingAssembly
+        The 2-DOF assembly (:func:`~torsio.axial.assembly.two_dof_assembly`): the
+        torsional inertia I [kg m²] and axial mass M [kg] of the bit assembly, the
+        torsional stiffness k [N m/rad] of the string to the top drive and a viscous
+        damper c [N m s/rad] in parallel with it.
     bit : RGDBit
         The bit law.
-    inertia : float
-        I [kg m²], torsional inertia of the bit assembly.
-    stiffness : float
-        k [N m/rad], torsional stiffness of the string to the top drive.
-    mass : float
-        M [kg], axial mass of the bit assembly.
     wob : float
-        W₀ [N], the constant weight on top of it.
+        W₀ [N], the constant weight on top of the bit assembly.
     rpm : float
         Ω₀ [rev/min], the speed of the top drive and, steadily, of the bit.
-    damping : float
-        c [N m s/rad], a viscous damper in parallel with the spring (default 0).
 
     Raises
     ------
     ConfigError
-        A non-positive inertia, stiffness or mass, a negative damping, or a weight on bit
-        at which the bit does not cut.
+        An assembly that is not 2-DOF, or a weight on bit at which the bit does not cut.
     """
-    inertia = _positive("inertia", inertia, "the torsional inertia I [kg m^2]")
-    stiffness = _positive("stiffness", stiffness, "the torsional stiffness k [N m/rad]")
-    mass = _positive("mass", mass, "the axial mass M [kg]")
-    if not (math.isfinite(damping) and damping >= 0):
-        raise ConfigError("damping", f"{damping!r} must be >= 0 (the damper c [N m s/rad])")
+    inertia, stiffness, mass, damping = two_dof_parameters(assembly)
     steady = steady_drilling(bit, wob, rpm)
     return LinearDelaySystem(
         mass=np.diag([mass, inertia]),
-        damping=np.diag([0.0, float(damping)]),
+        damping=np.diag([0.0, damping]),
         stiffness=np.diag([0.0, stiffness]),
         delayed=delayed_matrix(bit, steady),
         delay=steady.delay,
@@ -128,23 +140,19 @@ def drilling_linearization(
 
 
 def characteristic_function(
-    bit: RGDBit,
-    inertia: float,
-    stiffness: float,
-    mass: float,
-    wob: float,
-    rpm: float,
-    damping: float = 0.0,
-):
+    assembly: DrillingAssembly, bit: RGDBit, wob: float, rpm: float
+) -> Callable[[complex], complex]:
     """Δ(λ) of the module docstring, written out (a check on the matrix form).
 
     Examples
     --------
+    >>> from torsio.axial.assembly import rgd_two_dof_example
     >>> from torsio.axial.rgd import rgd_example
-    >>> delta = characteristic_function(rgd_example(), 455.65, 324.857, 29981.3, 100e3, 60.0)
+    >>> delta = characteristic_function(rgd_two_dof_example(), rgd_example(), 100e3, 60.0)
     >>> delta(0.0)
     0j
     """
+    inertia, stiffness, mass, damping = two_dof_parameters(assembly)
     steady = steady_drilling(bit, wob, rpm)
     ratio = steady.rop / steady.bit_speed
     n, tau = bit.blades, steady.delay

@@ -30,8 +30,7 @@ from numpy.typing import NDArray
 
 from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.rgd import RGDBit
-from torsio.axial.run_setup import DEFAULT_STEPS_PER_PERIOD, run_setup, summarize
-from torsio.axial.transient import run_kernel, run_times
+from torsio.axial.transient import run_times, simulate_axial
 from torsio.errors import ConfigError
 
 __all__ = ["AxialMap", "axial_map"]
@@ -107,56 +106,45 @@ def axial_map(
     wobs: Sequence[float],
     rpms: Sequence[float],
     *,
-    duration: float | None = None,
-    window: float | None = None,
-    start: str = "rest",
-    perturbation: float = 1e-3,
-    step: float | None = None,
-    steps_per_period: int = DEFAULT_STEPS_PER_PERIOD,
     growth_rate: bool = False,
+    **options: Any,
 ) -> AxialMap:
-    """Run every (rpm, wob) of the grid (options as
-    :func:`~torsio.axial.transient.simulate_axial`); ``growth_rate`` adds the linear
-    growth rate of the 2-DOF model at each point."""
+    """Run :func:`~torsio.axial.transient.simulate_axial` at every (rpm, wob) of the grid,
+    no signals kept.
+
+    ``options`` are its run options (``duration``, ``window``, ``start``,
+    ``perturbation``, ``step``, ``steps_per_period``); ``growth_rate`` adds the linear
+    growth rate of the 2-DOF model at each point.
+    """
     wob_grid = np.asarray(wobs, dtype=float).reshape(-1)
     rpm_grid = np.asarray(rpms, dtype=float).reshape(-1)
-    duration, window = run_times(assembly, duration, window)
+    duration, window = run_times(
+        assembly, options.pop("duration", None), options.pop("window", None)
+    )
     shape = (rpm_grid.size, wob_grid.size)
     out = {name: np.zeros(shape) for name in _FIELDS}
     rates = np.zeros(shape) if growth_rate else None
-    if growth_rate and not (assembly.nodes == 1 and assembly.axial_dofs == 1):
-        raise ConfigError("growth_rate", "the linear growth rate is of the 2-DOF model only")
-    no_samples = np.zeros((0, 10))
+    if growth_rate and not (assembly.is_two_dof and options.get("bit_rotation") is None):
+        raise ConfigError(
+            "growth_rate", "the linear growth rate is of the 2-DOF model (its chain turning) only"
+        )
     for i, rpm in enumerate(rpm_grid):
         for j, wob in enumerate(wob_grid):
-            setup = run_setup(
+            run = simulate_axial(
                 assembly,
                 bit,
                 float(wob),
                 float(rpm),
-                duration,
-                window,
-                start=start,
-                perturbation=perturbation,
-                step=step,
-                steps_per_period=steps_per_period,
+                duration=duration,
+                window=window,
+                samples=0,
+                growth_rate=growth_rate,
+                **options,
             )
-            summary = summarize(run_kernel(setup, no_samples, 0), setup, bit)
             for name in _FIELDS:
-                out[name][i, j] = getattr(summary, name)
+                out[name][i, j] = getattr(run.summary, name)
             if rates is not None:
-                from torsio.axial.stability import drilling_stability
-
-                rates[i, j] = drilling_stability(
-                    bit,
-                    float(assembly.inertias[0]),
-                    float(assembly.stiffnesses[0]),
-                    assembly.bit_mass,
-                    float(wob),
-                    float(rpm),
-                    float(assembly.damping[0]),
-                    count=1,
-                ).growth_rate
+                rates[i, j] = run.growth_rate
     return AxialMap(
         wob=wob_grid,
         rpm=rpm_grid,

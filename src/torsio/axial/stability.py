@@ -9,8 +9,9 @@ on a grid first, then by Brent's method between the grid points that bracket a c
 
 Examples
 --------
+>>> from torsio.axial.assembly import rgd_two_dof_example
 >>> from torsio.axial.rgd import rgd_example
->>> result = drilling_stability(rgd_example(), 455.65, 324.857, 29981.3, 100e3, 60.0)
+>>> result = drilling_stability(rgd_two_dof_example(), rgd_example(), 100e3, 60.0)
 >>> result.stable
 False
 >>> sorted(result.to_dict())
@@ -26,6 +27,7 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
+from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.delay_roots import DelayRoots, rightmost_roots
 from torsio.axial.linearization import drilling_linearization
 from torsio.axial.rgd import RGDBit
@@ -78,24 +80,21 @@ class DrillingStability:
 
 
 def drilling_stability(
+    assembly: DrillingAssembly,
     bit: RGDBit,
-    inertia: float,
-    stiffness: float,
-    mass: float,
     wob: float,
     rpm: float,
-    damping: float = 0.0,
     *,
     count: int = 6,
     order: int | None = None,
 ) -> DrillingStability:
-    """Stability of steady drilling of the 2-DOF RGD model (units as in
+    """Stability of steady drilling of the 2-DOF RGD model (the arguments as in
     :func:`~torsio.axial.linearization.drilling_linearization`; ``rpm`` in rev/min).
 
     ``count`` rightmost roots are reported; ``order`` is the collocation order N (default
     :meth:`~torsio.axial.delay_roots.LinearDelaySystem.default_order`).
     """
-    system = drilling_linearization(bit, inertia, stiffness, mass, wob, rpm, damping)
+    system = drilling_linearization(assembly, bit, wob, rpm)
     if order is None:
         order = system.default_order()
     found = rightmost_roots(system, count, order=order, deflate=(0.0,))
@@ -148,13 +147,10 @@ def growth_rate_crossings(
 
 
 def crossing_rpm(
+    assembly: DrillingAssembly,
     bit: RGDBit,
-    inertia: float,
-    stiffness: float,
-    mass: float,
     wob: float,
     rpm_range: tuple[float, float],
-    damping: float = 0.0,
     *,
     points: int = 41,
     order: int | None = None,
@@ -163,20 +159,20 @@ def crossing_rpm(
 
     Examples
     --------
-    With the damper β k = 0.06 s × 324.857 N m/rad of the built-in string's Rayleigh β,
-    steady drilling turns stable above about 153 rpm, where the axial mode crosses:
+    With the damper β k = 0.06 s × 324.857 N m/rad of the built-in string's Rayleigh β
+    (:func:`~torsio.axial.assembly.rgd_two_dof_example`), steady drilling turns stable
+    above about 153 rpm, where the axial mode crosses:
 
+    >>> from torsio.axial.assembly import rgd_two_dof_example
     >>> from torsio.axial.rgd import rgd_example
-    >>> crossings = crossing_rpm(rgd_example(), 455.65, 324.857, 29981.3, 100e3, (140.0, 170.0),
-    ...                          damping=19.49, points=7)
+    >>> crossings = crossing_rpm(rgd_two_dof_example(), rgd_example(), 100e3, (140.0, 170.0),
+    ...                          points=7)
     >>> [round(r, 1) for r in crossings]
     [153.3]
     """
 
     def growth(rpm: float) -> float:
-        return drilling_stability(
-            bit, inertia, stiffness, mass, wob, rpm, damping, count=1, order=order
-        ).growth_rate
+        return drilling_stability(assembly, bit, wob, rpm, count=1, order=order).growth_rate
 
     low, high = rpm_range
     return growth_rate_crossings(growth, float(low), float(high), points)

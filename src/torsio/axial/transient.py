@@ -229,20 +229,10 @@ def simulate_axial(
     table = np.zeros((rows, len(SAMPLE_COLUMNS)))
     stats = run_kernel(setup, table, every)
     rate = None
-    linear = assembly.nodes == 1 and assembly.axial_dofs == 1 and assembly.hook == "weight"
-    if growth_rate and linear and bit_rotation is None:
+    if growth_rate and assembly.is_two_dof and bit_rotation is None:
         from torsio.axial.stability import drilling_stability
 
-        rate = drilling_stability(
-            bit,
-            float(assembly.inertias[0]),
-            float(assembly.stiffnesses[0]),
-            assembly.bit_mass,
-            wob,
-            rpm,
-            float(assembly.damping[0]),
-            count=1,
-        ).growth_rate
+        rate = drilling_stability(assembly, bit, wob, rpm, count=1).growth_rate
     return AxialTransient(
         wob=float(wob),
         rpm=float(rpm),

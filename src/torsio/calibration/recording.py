@@ -48,14 +48,19 @@ import csv
 import math
 import re
 import warnings
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
 import attrs
 import numpy as np
 
 from torsio.csv_rows import csv_rows
 from torsio.errors import ConfigError
+from torsio.model.arrays import read_only
+
+if TYPE_CHECKING:
+    from torsio.analysis.transient_results import TransientResults
 
 __all__ = ["Recording", "read_recording"]
 
@@ -88,12 +93,6 @@ SPIKE_SIGMAS = 8.0
 _HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
 
 
-def _frozen(values: Any) -> np.ndarray:
-    array = np.array(values, dtype=float)
-    array.setflags(write=False)
-    return array
-
-
 @attrs.frozen(eq=False, repr=False)
 class Recording:
     """Top-drive speed and surface torque against time, in SI units.
@@ -112,11 +111,11 @@ class Recording:
         Where it came from (the file's name), for messages and reports.
     """
 
-    time: np.ndarray = attrs.field(converter=_frozen)
-    top_speed: np.ndarray = attrs.field(converter=_frozen)
-    surface_torque: np.ndarray = attrs.field(converter=_frozen)
+    time: np.ndarray = attrs.field(converter=read_only)
+    top_speed: np.ndarray = attrs.field(converter=read_only)
+    surface_torque: np.ndarray = attrs.field(converter=read_only)
     bit_speed: np.ndarray | None = attrs.field(
-        default=None, converter=attrs.converters.optional(_frozen)
+        default=None, converter=attrs.converters.optional(read_only)
     )
     name: str = "recording"
 
@@ -138,6 +137,55 @@ class Recording:
             f"Recording({self.name}: {self.time.size} samples over "
             f"{self.duration:g} s, top speed up to {self.top_speed.max() / RPM:.4g} rpm, "
             f"surface torque up to {self.surface_torque.max():.4g} N m)"
+        )
+
+    @classmethod
+    def from_transient(
+        cls,
+        results: TransientResults,
+        *,
+        torque_noise: float = 0.0,
+        speed_noise: float = 0.0,
+        seed: int = 0,
+        bit_speed: bool = False,
+        name: str = "recording",
+    ) -> Recording:
+        """What a rig would have recorded of a run: its time, top-drive speed and surface
+        torque (and, with ``bit_speed``, a downhole tool's bit speed).
+
+        ``torque_noise`` and ``speed_noise`` are relative standard deviations of Gaussian
+        noise, drawn sample by sample from ``numpy.random.default_rng(seed)`` (the speed's
+        first, then the torque's, then the bit speed's, which takes ``speed_noise``):
+        a recorded value is the run's value times (1 + noise × a standard normal draw).
+
+        Examples
+        --------
+        >>> from torsio.analysis.transient import simulate
+        >>> from torsio.examples import builtin_config
+        >>> run = simulate(builtin_config().system(strategy="A").at(wob=175e3, rpm=100))
+        >>> clean = Recording.from_transient(run, name="strategy A")
+        >>> bool((clean.surface_torque == run.surface_torque).all())
+        True
+        >>> noisy = Recording.from_transient(run, torque_noise=0.02, seed=1, bit_speed=True)
+        >>> spread = noisy.surface_torque / run.surface_torque - 1.0
+        >>> 0.015 < float(spread[run.surface_torque != 0].std()) < 0.025
+        True
+        >>> noisy.bit_speed is not None
+        True
+        """
+        rng = np.random.default_rng(seed)
+        n = results.time.size
+        top_speed = results.top_speed * (1.0 + speed_noise * rng.normal(size=n))
+        torque = results.surface_torque * (1.0 + torque_noise * rng.normal(size=n))
+        bit = None
+        if bit_speed:
+            bit = results.bit_speed * (1.0 + speed_noise * rng.normal(size=n))
+        return cls(
+            time=results.time,
+            top_speed=top_speed,
+            surface_torque=torque,
+            bit_speed=bit,
+            name=name,
         )
 
     @property
@@ -214,6 +262,14 @@ def _value(cell: str, column: str, name: str, line: int) -> float:
     return value
 
 
+def _warn_at(
+    name: str, lines: list[int], samples: np.ndarray, message: Callable[[int], str]
+) -> None:
+    """A warning naming the line of each of the first three ``samples`` (indices)."""
+    for i in samples[:3]:
+        warnings.warn(f"{name}, line {lines[i]}: {message(i)}", UserWarning, stacklevel=5)
+
+
 def _check_times(time: np.ndarray, lines: list[int], name: str) -> None:
     steps = np.diff(time)
     bad = np.flatnonzero(steps <= 0.0)
@@ -225,13 +281,15 @@ def _check_times(time: np.ndarray, lines: list[int], name: str) -> None:
             f"(the line before: {time[i - 1]:g} s)",
         )
     median = float(np.median(steps))
-    for i in np.flatnonzero(steps > GAP_FACTOR * median)[:3]:
-        warnings.warn(
-            f"{name}, line {lines[i + 1]}: a gap of {steps[i]:g} s in the time (the median "
-            f"step is {median:g} s); the model follows the speed linearly across it",
-            UserWarning,
-            stacklevel=4,
-        )
+    _warn_at(
+        name,
+        lines,
+        np.flatnonzero(steps > GAP_FACTOR * median) + 1,
+        lambda i: (
+            f"a gap of {steps[i - 1]:g} s in the time (the median step is {median:g} s); "
+            "the model follows the speed linearly across it"
+        ),
+    )
 
 
 def _check_spikes(torque: np.ndarray, lines: list[int], name: str) -> None:
@@ -244,13 +302,15 @@ def _check_spikes(torque: np.ndarray, lines: list[int], name: str) -> None:
     scale = 1.4826 * float(np.median(deviation))
     if scale <= 0.0:
         return
-    for i in np.flatnonzero(deviation > SPIKE_SIGMAS * scale)[:3]:
-        warnings.warn(
-            f"{name}, line {lines[i]}: surface torque {torque[i]:g} N m is a spike "
-            f"({deviation[i] / scale:.0f} robust standard deviations from its neighbours)",
-            UserWarning,
-            stacklevel=4,
-        )
+    _warn_at(
+        name,
+        lines,
+        np.flatnonzero(deviation > SPIKE_SIGMAS * scale),
+        lambda i: (
+            f"surface torque {torque[i]:g} N m is a spike "
+            f"({deviation[i] / scale:.0f} robust standard deviations from its neighbours)"
+        ),
+    )
 
 
 def read_recording(path: str | Path) -> Recording:

@@ -90,9 +90,9 @@ class AxialConfig:
 
     @property
     def is_two_dof(self) -> bool:
-        """One node, no axial spring, weight hook: RGD (2007)'s model, with a growth rate."""
-        a = self.assembly
-        return a.nodes == 1 and a.axial_dofs == 1 and a.hook == "weight"
+        """One node under the weight hook: RGD (2007)'s model, with a growth rate
+        (:attr:`torsio.axial.assembly.DrillingAssembly.is_two_dof`)."""
+        return self.assembly.is_two_dof
 
 
 def _axial_table(table: Mapping[str, Any]) -> dict[str, Any]:

@@ -31,14 +31,9 @@ import attrs
 import numpy as np
 
 from torsio.errors import ConfigError
+from torsio.model.arrays import read_only
 
 __all__ = ["StringContacts"]
-
-
-def _array(values: Any) -> np.ndarray:
-    array = np.array(values, dtype=float)
-    array.setflags(write=False)
-    return array
 
 
 @attrs.frozen(eq=False, repr=False)
@@ -58,8 +53,8 @@ class StringContacts:
         Where the capacities came from (for reports): normal-force model, totals.
     """
 
-    static: np.ndarray = attrs.field(converter=_array)
-    dynamic: np.ndarray = attrs.field(converter=_array)
+    static: np.ndarray = attrs.field(converter=read_only)
+    dynamic: np.ndarray = attrs.field(converter=read_only)
     threshold_speed: float = 0.5
     details: dict[str, Any] = attrs.field(factory=dict)
 

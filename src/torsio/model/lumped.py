@@ -25,6 +25,7 @@ import attrs
 import numpy as np
 
 from torsio.errors import ConfigError
+from torsio.model.arrays import read_only, read_only_vector
 from torsio.model.protocol import ModelEngines
 
 LUMPED_ENGINES = ModelEngines(
@@ -33,18 +34,6 @@ LUMPED_ENGINES = ModelEngines(
 )
 """The engines of every lumped model: the integrators of the chain's description
 (:mod:`torsio.physics.dynamics`) for one run and the batch engines for many."""
-
-
-def _as_matrix(value: Any) -> np.ndarray:
-    matrix = np.array(value, dtype=float)
-    matrix.setflags(write=False)
-    return matrix
-
-
-def _as_vector(value: Any) -> np.ndarray:
-    vector = np.array(value, dtype=float).reshape(-1)
-    vector.setflags(write=False)
-    return vector
 
 
 def exact_row_sums(matrix: np.ndarray) -> np.ndarray:
@@ -124,15 +113,15 @@ class LumpedModel:
     engines: ClassVar[ModelEngines] = LUMPED_ENGINES
     """The engines that run a lumped model (:func:`torsio.model.protocol.resolve`)."""
 
-    inertia: np.ndarray = attrs.field(converter=_as_matrix)
-    stiffness: np.ndarray = attrs.field(converter=_as_matrix)
-    node_depths: np.ndarray = attrs.field(converter=_as_vector)
+    inertia: np.ndarray = attrs.field(converter=read_only)
+    stiffness: np.ndarray = attrs.field(converter=read_only)
+    node_depths: np.ndarray = attrs.field(converter=read_only_vector)
     strategy: str = "custom"
     damping: np.ndarray | None = attrs.field(
-        default=None, converter=attrs.converters.optional(_as_matrix)
+        default=None, converter=attrs.converters.optional(read_only)
     )
     top_damping: np.ndarray | None = attrs.field(
-        default=None, converter=attrs.converters.optional(_as_vector)
+        default=None, converter=attrs.converters.optional(read_only_vector)
     )
     details: dict[str, Any] = attrs.field(factory=dict, eq=False)
     contacts: Any = attrs.field(default=None, eq=False)

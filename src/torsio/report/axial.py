@@ -68,11 +68,8 @@ def _torsional_frequencies(assembly: DrillingAssembly) -> list[float]:
 def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
     from torsio.axial.stability import crossing_rpm, drilling_stability
 
-    a = axial.assembly
-    args = (axial.bit, float(a.inertias[0]), float(a.stiffnesses[0]), a.bit_mass, wob)
-    damping = float(a.damping[0])
-    result = drilling_stability(*args, rpm, damping, count=1)
-    crossings = crossing_rpm(*args, CROSSING_RANGE, damping, points=15)
+    result = drilling_stability(axial.assembly, axial.bit, wob, rpm, count=1)
+    crossings = crossing_rpm(axial.assembly, axial.bit, wob, CROSSING_RANGE, points=15)
     return {
         "growth_rate": result.growth_rate,
         "stable": result.stable,

@@ -73,8 +73,8 @@ from torsio.solvers.wave_buffers import (
     _dampers,
     _dampers_with_power,
     _end_slots,
+    _node_slots,
     _read_nodes,
-    _slot,
 )
 from torsio.solvers.wave_contacts import _contact_node_speeds, _contact_speed, _contacts
 from torsio.solvers.wave_cycles import _crossing
@@ -223,10 +223,11 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     else:
         t_now = torque(parameters, w_now, wob, radius)
     taken = 0
+    set_speed = table_speed(speed_table, summary[slot.SUM_STEPS] * dt)  # at the step's start
     for step in range(steps):
         m_top_old = M[_end_slots(layout, spacing, heads, 0, False)[1]]
         t_next = (summary[slot.SUM_STEPS] + step + 1.0) * dt
-        set_before = table_speed(speed_table, t_next - dt)
+        set_before = set_speed  # the set speed at t_next - dt, read by the step before
         set_speed = table_speed(speed_table, t_next)
         # 1. transport
         _advance(layout, spacing, P, M, heads)
@@ -265,24 +266,7 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
             if layout[s, slot.SPECIAL] >= 0:
                 rows_on = layout[s, slot.SPECIAL_ROW]
                 columns_on = layout[s, slot.SPECIAL_COLUMN]
-                ip = _slot(
-                    start,
-                    width,
-                    spacing,
-                    heads[s, slot.HEAD_P_ROW],
-                    heads[s, slot.HEAD_P_COLUMN],
-                    rows_on,
-                    columns_on,
-                )
-                im = _slot(
-                    start,
-                    width,
-                    spacing,
-                    heads[s, slot.HEAD_M_ROW],
-                    heads[s, slot.HEAD_M_COLUMN],
-                    rows_on,
-                    columns_on,
-                )
+                ip, im = _node_slots(layout, spacing, heads, s, rows_on, columns_on)
                 arriving_p = P[ip]
                 difference = arriving_p - M[im]
                 z = sections[s, slot.Z]

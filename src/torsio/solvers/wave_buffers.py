@@ -145,29 +145,22 @@ def _read_nodes(layout, spacing, P, M, heads, impedances, speeds, torques):  # t
 
 
 @njit(cache=True, nogil=True, _nrt=False)
-def _end_slots(layout, spacing, heads, s, last_node):  # type: ignore[no-untyped-def,unused-ignore]
-    """(slot of p, slot of m) of node 0 of section ``s``, or of its last node."""
+def _node_slots(layout, spacing, heads, s, rows_on, columns_on):  # type: ignore[no-untyped-def,unused-ignore]
+    """(slot of p, slot of m) of the node of section ``s`` ``rows_on`` rows and
+    ``columns_on`` columns past its node 0 (:func:`_slot`)."""
     start = layout[s, BUFFER_START]
     width = layout[s, WIDTH]
+    p_row, p_column = heads[s, HEAD_P_ROW], heads[s, HEAD_P_COLUMN]
+    m_row, m_column = heads[s, HEAD_M_ROW], heads[s, HEAD_M_COLUMN]
+    return (
+        _slot(start, width, spacing, p_row, p_column, rows_on, columns_on),
+        _slot(start, width, spacing, m_row, m_column, rows_on, columns_on),
+    )
+
+
+@njit(cache=True, nogil=True, _nrt=False)
+def _end_slots(layout, spacing, heads, s, last_node):  # type: ignore[no-untyped-def,unused-ignore]
+    """(slot of p, slot of m) of node 0 of section ``s``, or of its last node."""
     rows_on = layout[s, LAST_ROW] if last_node else 0
     columns_on = layout[s, LAST_COLUMN] if last_node else 0
-    return (
-        _slot(
-            start,
-            width,
-            spacing,
-            heads[s, HEAD_P_ROW],
-            heads[s, HEAD_P_COLUMN],
-            rows_on,
-            columns_on,
-        ),
-        _slot(
-            start,
-            width,
-            spacing,
-            heads[s, HEAD_M_ROW],
-            heads[s, HEAD_M_COLUMN],
-            rows_on,
-            columns_on,
-        ),
-    )
+    return _node_slots(layout, spacing, heads, s, rows_on, columns_on)
