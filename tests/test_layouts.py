@@ -27,7 +27,9 @@ def test_sizes_and_named_starts():
     assert layouts.TOP_SIZE == layouts.TOP_W + layouts.MAX_STATES
     assert layouts.TOP_B - layouts.TOP_A == layouts.MAX_STATES**2
     assert layouts.OUT_COLUMNS == layouts.OUT_ENDED + 1
-    assert layouts.VECTOR_ROWS == layouts.VEC_CROSS + layouts.CROSS_ROWS
+    assert layouts.VEC_CONTACT_STATE == layouts.VEC_CROSS + layouts.CROSS_ROWS
+    assert layouts.VECTOR_ROWS == layouts.VEC_CONTACT_PENDING + 1
+    assert layouts.FRICTION_SIZE <= layouts.SMALL_COLUMNS
     assert layouts.SMALL_CARRY + 1 == layouts.SMALL_WINDOW < layouts.SMALL_ROWS
     assert max(layouts.CARRY_SIZE, layouts.WINDOW_SIZE, layouts.CYCLE_SIZE) <= layouts.SMALL_COLUMNS
     assert layouts.GAIN_STATES + layouts.MAX_STATES <= layouts.SMALL_COLUMNS

@@ -1,6 +1,8 @@
 """Coulomb friction along the string on the lumped models (docs/well.md, "Friction in the
 dynamics"): a contact at every node, integrated by scipy between the contacts' switches
-(torsio.solvers.contact_events), against the closed forms of torsio.well.break_off.
+(torsio.solvers.contact_events, method="LSODA") and by the compiled engine (the default;
+tests/test_compiled_contacts.py compares the two), against the closed forms of
+torsio.well.break_off.
 
 Every run is the built-in deviated well (torsio.examples.deviated_well_config: 2.5 km
 string, mu_s 0.25/0.35, mu_d 0.2/0.3, threshold 0.5 rad/s) on strategy B with 10 drill-pipe
@@ -18,7 +20,6 @@ from torsio.analysis.transient import simulate
 from torsio.errors import ConfigError
 from torsio.examples import deviated_well_config
 from torsio.physics.damping import RayleighDamping
-from torsio.solvers.contact_events import CONTACT_FALLBACK
 from torsio.well.break_off import break_off
 
 pytestmark = pytest.mark.filterwarnings("ignore::UserWarning")
@@ -53,14 +54,15 @@ def test_slow_start_up_breaks_the_bit_free_at_the_break_off_torque_and_twist(ref
     system = _system(alpha=0.0, rpm=1.0)
     duration = 1.1 * reference.twist / system.omega
     results = simulate(
-        system, duration=duration, steady_window=0.1 * duration, output_step=0.05, progress=False
-    )
+        system, duration=duration, steady_window=0.1 * duration, output_step=0.05,
+        method="LSODA", progress=False,
+    )  # fmt: skip
     moved = int(np.flatnonzero(results.bit_speed != 0.0)[0])
     assert np.all(results.node_speeds[:moved, -1] == 0.0)  # stuck: exactly at rest
     assert results.surface_torque[moved - 1] == pytest.approx(reference.torque, rel=5e-3)
     assert system.omega * results.time[moved - 1] == pytest.approx(reference.twist, rel=5e-3)
     assert results.solver["engine"] == "scipy"
-    assert results.solver["fallback"] == CONTACT_FALLBACK
+    assert results.solver["fallback"] is None  # LSODA asked for
 
 
 def test_steady_rotation_takes_the_sliding_torque_plus_the_drag():
@@ -95,14 +97,14 @@ def test_energy_balances_with_the_friction_work():
     assert balance.dissipated_friction[-1] == pytest.approx(exact, rel=1e-4)
 
 
-def test_rodas4_and_lumped_maps_are_refused_by_key():
+def test_rodas4_and_lumped_maps_run_on_the_compiled_engine():
     system = _system(alpha=0.35, rpm=60.0)
-    with pytest.raises(ConfigError, match=r"simulation\.method.*contacts"):
-        simulate(system, duration=20.0, method="RODAS4", progress=False)
+    results = simulate(system, duration=20.0, method="RODAS4", progress=False)
+    assert results.solver["engine"] == "compiled" and results.solver["fallback"] is None
     from torsio.analysis.maps import severity_map
 
-    with pytest.raises(ConfigError, match=r"^well: maps of a lumped model"):
-        severity_map(system, [0.0], [60.0])
+    grid = severity_map(system, [0.0], [60.0], duration=20.0)
+    assert np.all(np.isfinite(grid.severity))
 
 
 def test_consistent_mass_is_refused_with_a_well():

@@ -247,16 +247,9 @@ def simulate_lumped(
         reporter = stderr_progress("simulate", quiet=0.0 if progress else QUIET_SECONDS)
     report = reporter if reporter is not None else (progress or None)
     try:
-        if dynamics.contacts is not None:  # set-valued friction: scipy between switches
-            from torsio.solvers.contact_events import integrate_with_contacts
-
-            states, solver_info = integrate_with_contacts(
-                dynamics, y0, time_grid, options, where, report
-            )
-        else:
-            states, solver_info = integrate_run(
-                system, dynamics, y0, time_grid, window, options, where, report
-            )
+        states, solver_info = integrate_run(
+            system, dynamics, y0, time_grid, window, options, where, report
+        )
     finally:
         if reporter is not None:
             reporter.close()

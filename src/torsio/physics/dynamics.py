@@ -94,9 +94,10 @@ class Dynamics:
     contacts : StringContacts or None
         Coulomb contacts of the nodes with the borehole, one capacity per node (0 at a
         top-drive node). :meth:`rhs` leaves them out: their friction is set-valued, and the
-        integrator that runs them (:mod:`torsio.solvers.contact_events`) adds it by the
-        state of each contact; steady rotation (:meth:`steady_state`) takes their sliding
-        torque, and the linearization none (a sliding contact's torque has no slope).
+        integrators that run them (the compiled :mod:`torsio.solvers.contact_kernel`, scipy's
+        :mod:`torsio.solvers.contact_events`) add it by the state of each contact; steady
+        rotation (:meth:`steady_state`) takes their sliding torque, and the linearization
+        none (a sliding contact's torque has no slope).
     """
 
     mass_matrix: np.ndarray

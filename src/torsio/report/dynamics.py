@@ -9,7 +9,6 @@ import numpy as np
 from rich.table import Table
 from rich.text import Text
 
-from torsio.errors import ConfigError
 from torsio.report.context import ReportContext, ReportSection
 
 
@@ -159,15 +158,7 @@ def critical_section(ctx: ReportContext) -> ReportSection | None:
 
     low, high, points, refine = CRITICAL_SEARCH
     grid = np.linspace(low * op.wob, high * op.wob, points)
-    try:
-        row = severity_map(ctx.system, wob=grid, rpm=[op.rpm], refine=refine)
-    except ConfigError as exc:  # a model whose batch engine cannot run it (contacts)
-        if exc.key != "well":
-            raise
-        title = "Distance to the critical weight on bit"
-        return ReportSection(
-            "critical", title, {"not_run": exc.message}, Text(f"not run: {exc.message}")
-        )
+    row = severity_map(ctx.system, wob=grid, rpm=[op.rpm], refine=refine)
     critical = float(row.critical_wob[0])
     status = row.critical_status[0]
     linear = float(row.stability_wob[0])

@@ -15,7 +15,8 @@ Engines
     :mod:`torsio.solvers.rodas`, compiled with numba, points shared dynamically
     between threads. Needs a bit-rock law with a compiled kernel (``kernel()``,
     :mod:`torsio.solvers.law_kernels`; the built-in laws and the bundled plugin's have one),
-    or one numba compiles from the law's Python ``torque``.
+    or one numba compiles from the law's Python ``torque``. The only engine that takes
+    Coulomb contacts along the string (a ``[well]``, :mod:`torsio.solvers.contact_kernel`).
 ``"numpy"``
     :mod:`torsio.solvers.numpy_engine`: the same method vectorized with numpy
     across the batch; works with any law (its vectorized ``torque``). Slower; ``"auto"``
@@ -115,15 +116,14 @@ class BatchModel:
 
     @classmethod
     def from_system(cls, system: System) -> BatchModel:
-        """The chain of ``system`` (ConfigError if the model is not a chain)."""
+        """The chain of ``system``, its contacts along the string included (ConfigError if
+        the model is not a chain, or has contacts and consistent mass)."""
         dynamics = system.dynamics()
-        if dynamics.contacts is not None:
+        if dynamics.contacts is not None and not dynamics.lumped_mass:
             raise ConfigError(
-                "well",
-                "maps of a lumped model with friction along the string are not run: the "
-                "compiled batch engine takes no contacts (set-valued friction); map it on the "
-                'wave model (discretization.strategy = "wave", --strategy wave), or run single '
-                "points with torsio simulate",
+                "discretization.strategy",
+                "friction along the string needs a lumped-mass chain (a contact holds one "
+                "node's speed); use strategy A, B or C",
             )
         if not dynamics.is_chain:
             raise ConfigError(
@@ -273,6 +273,12 @@ def simulate_lumped_batch(
     rtol, atol, engine, threads = options.rtol, options.atol, options.engine, options.threads
     duration, steady_window = run_times(system, options.duration, options.steady_window)
     name, kernel = resolve_engine(engine, system.law)
+    if name != "compiled" and getattr(system.model, "contacts", None) is not None:
+        raise ConfigError(
+            "engine",
+            f"the {name} batch engine takes no contacts along the string (a [well]); the "
+            "compiled engine runs them (engine='compiled', with numba)",
+        )
     model = BatchModel.from_system(system) if name != "scipy" else None
     omega1 = model.first_frequency if model is not None else first_natural_frequency(system.model)
     steps = step_limits(omega1, options.max_step)

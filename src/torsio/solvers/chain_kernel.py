@@ -13,6 +13,10 @@ import numpy as np
 
 from torsio.solvers.compiled import njit
 from torsio.solvers.layouts import (
+    CARRY_REJECTED,
+    CARRY_STATUS,
+    CARRY_STEPS,
+    CARRY_T,
     CHAIN_APPLIED,
     CHAIN_DAMPING,
     CHAIN_DAMPING_UPPER,
@@ -25,6 +29,17 @@ from torsio.solvers.layouts import (
     GAIN_PIPE,
     GAIN_STATES,
     MAX_STATES,
+    OUT_BIT_SPEED_MAX,
+    OUT_BIT_SPEED_MIN,
+    OUT_ENDED,
+    OUT_REJECTED,
+    OUT_STATUS,
+    OUT_STEPS,
+    OUT_TOP_SPEED_MEAN,
+    RUN_T_END,
+    RUN_WINDOW_START,
+    SMALL_CARRY,
+    SMALL_WINDOW,
     TOP_A,
     TOP_B,
     TOP_C,
@@ -37,9 +52,20 @@ from torsio.solvers.layouts import (
     TOP_STATES,
     TOP_U0,
     TOP_W,
+    WINDOW_BIT_MAX,
+    WINDOW_BIT_MIN,
+    WINDOW_TOP_INTEGRAL,
 )
 
-__all__ = ["accelerations", "controller_solve", "forces", "mass_factors", "saturated"]
+__all__ = [
+    "accelerations",
+    "controller_solve",
+    "finish_run",
+    "forces",
+    "mass_factors",
+    "sample_state",
+    "saturated",
+]
 
 
 @njit(cache=True, error_model="numpy", _nrt=False, inline="always")
@@ -164,3 +190,28 @@ def saturated(top, omega, omega_set, phi, v, z) -> bool:
     for j in range(int(top[TOP_STATES])):
         free += top[TOP_C + j] * z[j]
     return abs(free) > top[TOP_MAX_TORQUE]
+
+
+@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+def sample_state(row, phi, v, z, n, m) -> None:
+    """The state [z, phi_0, v_0, ...] at a step's end, into one row of the output."""
+    for i in range(m):
+        row[i] = z[i]
+    for i in range(n):
+        row[m + 2 * i] = phi[i]
+        row[m + 2 * i + 1] = v[i]
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def finish_run(settings, omega, has_top, small, out) -> None:
+    """A run's results (``out``, :mod:`torsio.solvers.layouts`) from its carried scalars."""
+    carry, window = small[SMALL_CARRY], small[SMALL_WINDOW]
+    t_end, t_window = settings[RUN_T_END], settings[RUN_WINDOW_START]
+    out[OUT_BIT_SPEED_MAX] = window[WINDOW_BIT_MAX] + omega
+    out[OUT_BIT_SPEED_MIN] = window[WINDOW_BIT_MIN] + omega
+    out[OUT_STEPS] = carry[CARRY_STEPS]
+    out[OUT_REJECTED] = carry[CARRY_REJECTED]
+    out[OUT_STATUS] = carry[CARRY_STATUS]
+    mean = window[WINDOW_TOP_INTEGRAL] / (t_end - t_window) if has_top else 0.0
+    out[OUT_TOP_SPEED_MEAN] = omega + mean
+    out[OUT_ENDED] = carry[CARRY_T]

@@ -10,8 +10,10 @@ or w_th, a stuck node's holding torque reaching C_s), where the run restarts in 
 states. A node that sticks gets a speed of exactly 0 and the equation w' = 0: nothing
 creeps or leaks past it. Lumped mass only (a contact's friction acts on its node alone).
 
-The compiled engine does not take contacts: a run with them says so in
-``solver["fallback"]``. The friction's work is exact: while a contact slides its torque
+The compiled RODAS4 engine runs the same law (:mod:`torsio.solvers.contact_kernel`) and
+is what ``simulate`` uses by default; this module is the path of the scipy methods
+(``method="LSODA"``, ``"Radau"``, ``"BDF"``, ...) and the reference the compiled engine is
+tested against. The friction's work is exact: while a contact slides its torque
 is constant, so its work over a piece of the run is C |theta(t1) - theta(t0)|; stuck, it
 does none.
 """
@@ -31,16 +33,11 @@ from torsio.analysis.simulation_options import SimulationOptions
 from torsio.errors import ConfigError, SolverError
 from torsio.physics.dynamics import Dynamics
 
-__all__ = ["CONTACT_FALLBACK", "contact_method", "integrate_with_contacts"]
+__all__ = ["contact_method", "integrate_with_contacts"]
 
 STUCK, SLOW, FAST = 0, 1, 2
 MAX_SWITCHES_PER_SAMPLE = 50
 """Contact switches allowed per output sample before a run is reported as chattering."""
-
-CONTACT_FALLBACK = (
-    "it takes no contacts along the string (set-valued friction); scipy integrates "
-    "between the contacts' switches"
-)
 
 
 class _Contacts:
@@ -204,25 +201,25 @@ class _Contacts:
         return float(np.sum(self.friction() * (angle1 - angle0)))
 
 
-def contact_method(method: Any) -> tuple[str, str | None]:
-    """(the scipy method, the fallback note) that runs contacts for ``simulation.method``.
+def contact_method(method: Any) -> str:
+    """The scipy method that runs contacts for ``simulation.method`` (``"auto"``: LSODA).
 
-    >>> contact_method("auto")[0], contact_method("Radau")
-    ('LSODA', ('Radau', None))
+    >>> contact_method("auto"), contact_method("Radau")
+    ('LSODA', 'Radau')
     """
     if method == "RODAS4":
         raise ConfigError(
             "simulation.method",
-            "RODAS4 runs on the compiled engine, which takes no contacts along the string; "
-            "expected auto, LSODA, Radau or BDF for a run with a [well]",
+            "RODAS4 runs on the compiled engine (torsio.solvers.single_run), not between "
+            "scipy's located switches; expected auto, LSODA, Radau or BDF here",
         )
     if method == "auto":
-        return "LSODA", CONTACT_FALLBACK
+        return "LSODA"
     if not isinstance(method, str):
         raise ConfigError(
             "simulation.method", f"a run with contacts takes a scipy method name, got {method!r}"
         )
-    return method, None
+    return method
 
 
 def _jacobian_arguments(contacts: _Contacts, method: str) -> dict[str, Any]:
@@ -255,12 +252,13 @@ def integrate_with_contacts(
     progress: Callable[[int, int], None] | None,
 ) -> tuple[np.ndarray, dict[str, Any]]:
     """The states (size, samples) on the grid of a run with contacts, and the solver's record
-    (``contact_switches``, ``friction_work`` [J] and ``fallback`` besides the usual keys)."""
+    (``contact_switches``, ``friction_work`` [J] and ``fallback`` (None: the caller says why
+    the compiled engine did not run) besides the usual keys)."""
     if not dynamics.lumped_mass:
         raise ConfigError(
             "discretization.strategy", "friction along the string needs a lumped-mass chain"
         )
-    method, fallback = contact_method(options.method)
+    method = contact_method(options.method)
     contacts = _Contacts(dynamics)
     run = float(time_grid[-1])
     budget = EvaluationBudget.for_samples(time_grid.size - 1)
@@ -323,7 +321,7 @@ def integrate_with_contacts(
         "message": "integrated between the contacts' switches",
         "contact_switches": contacts.switches,
         "friction_work": work,
-        "fallback": fallback,
+        "fallback": None,
         "wall_time_s": time.perf_counter() - start,
     }
     return states, info

@@ -73,11 +73,10 @@ MAX_STATES = 3
 # --- the lumped engine: a run's settings -----------------------------------------------
 # t_end, start of the steady window [s], rtol, atol, first and largest step [s], accepted
 # steps allowed, bit radius [m], steady-cycle tolerance [S_SS units] (0: run to t_end),
-# omega_1 [rad/s]
+# omega_1 [rad/s], the contacts' switches allowed (more: the run chatters)
 (RUN_T_END, RUN_WINDOW_START, RUN_RTOL, RUN_ATOL, RUN_FIRST_STEP, RUN_MAX_STEP,
- RUN_MAX_STEPS, RUN_BIT_RADIUS, RUN_STEADY_TOLERANCE, RUN_OMEGA_1, RUN_SIZE) = field_starts(
-    *(1,) * 10
-)  # fmt: skip
+ RUN_MAX_STEPS, RUN_BIT_RADIUS, RUN_STEADY_TOLERANCE, RUN_OMEGA_1, RUN_MAX_SWITCHES,
+ RUN_SIZE) = field_starts(*(1,) * 11)  # fmt: skip
 
 # --- the lumped engine: a point's results ----------------------------------------------
 # bit speed max and min over the window [rad/s], accepted and rejected steps, status
@@ -89,24 +88,25 @@ MAX_STATES = 3
 # the six stages' increments of the twists and twist rates; the state, the stage's
 # argument and right-hand side, the mass-matrix terms, the solve, the step matrix's
 # factors, the accelerations, the factors of [I], the state at the step's start, the
-# state at the last crossing of the cycle tracker (two rows)
+# state at the last crossing of the cycle tracker (two rows); each node's contact state
+# (solvers/contact_kernel.py: 0 stuck or no contact, +-1 slow, +-2 fast, the sign the
+# direction of motion) and the switch due at the end of the step (0 none, 1 its speed or
+# holding torque, 2 its threshold)
 # the rows of the state at the last crossing: twists [rad], twist rates [rad/s]
 CROSS_TWIST, CROSS_RATE, CROSS_ROWS = field_starts(1, 1)
 (VEC_K_PHI, VEC_K_V, VEC_PHI, VEC_V, VEC_A_PHI, VEC_A_V, VEC_F_PHI, VEC_F_V, VEC_F0_V,
  VEC_U_PHI, VEC_U_V, VEC_X, VEC_PIVOTS, VEC_LOWER, VEC_BAND, VEC_ACC, VEC_MASS_PIVOTS,
- VEC_MASS_LOWER, VEC_PHI0, VEC_V0, VEC_ACC0, VEC_CROSS, VECTOR_ROWS) = field_starts(
-    6, 6, *(1,) * 19, CROSS_ROWS
-)  # fmt: skip
+ VEC_MASS_LOWER, VEC_PHI0, VEC_V0, VEC_ACC0, VEC_CROSS, VEC_CONTACT_STATE,
+ VEC_CONTACT_PENDING, VECTOR_ROWS) = field_starts(6, 6, *(1,) * 19, CROSS_ROWS, 1, 1)  # fmt: skip
 
 # --- the lumped engine: the work space of a run, short rows ----------------------------
 # the stages' controller increments; z and the stage's argument; z' and z' at the step's
 # start; the mass-matrix term; the elimination's Q and Z_y; its gains (G_e, G_T, r);
 # the 3 x 6 Gauss-Jordan work; the cycle tracker's state and settings; z and z' at the
-# step's start; the carried scalars
+# step's start; the carried scalars; the contacts' carried scalars
 (SMALL_K_Z, SMALL_Z, SMALL_F_Z, SMALL_U_Z, SMALL_Q, SMALL_GAINS, SMALL_SOLVE, SMALL_CYCLE,
- SMALL_CYCLE_SETTINGS, SMALL_START, SMALL_CARRY, SMALL_WINDOW, SMALL_ROWS) = field_starts(
-    6, 1, 1, 1, MAX_STATES, 1, MAX_STATES, 1, 1, 1, 1, 1
-)  # fmt: skip
+ SMALL_CYCLE_SETTINGS, SMALL_START, SMALL_CARRY, SMALL_WINDOW, SMALL_FRICTION,
+ SMALL_ROWS) = field_starts(6, 1, 1, 1, MAX_STATES, 1, MAX_STATES, 1, 1, 1, 1, 1, 1)  # fmt: skip
 FIRST_BLOCK, SECOND_BLOCK, BLOCKS_END = field_starts(MAX_STATES, MAX_STATES)
 """Columns of the two blocks of controller states in a short row (and their end)."""
 SMALL_COLUMNS = BLOCKS_END + 2
@@ -122,6 +122,12 @@ GAIN_E, GAIN_PIPE, GAIN_STATES = field_starts(1, 1)
 # over it, the next output sample, ended on a steady cycle
 (WINDOW_BIT_MAX, WINDOW_BIT_MIN, WINDOW_TOP_INTEGRAL, WINDOW_NEXT_SAMPLE, WINDOW_DONE,
  WINDOW_SIZE) = field_starts(*(1,) * 5)  # fmt: skip
+
+# row SMALL_FRICTION: the friction's work along the string since the start [J], the
+# contacts' switches, any node with a contact (1.0)
+(FRICTION_WORK, FRICTION_SWITCHES, FRICTION_ANY, FRICTION_SIZE) = field_starts(
+    1, 1, 1
+)  # fmt: skip
 
 # --- the steady-cycle tracker of the lumped engine -------------------------------------
 # crossings seen, time of the last one, running bit twist-rate max and min since it,

@@ -95,10 +95,12 @@ def run_settings(
     bit_radius: float,
     steady_tolerance: float,
     first_frequency: float,
+    max_switches: int | None = None,
 ) -> np.ndarray:
     """A run's settings for the kernel: run length and steady window [s], tolerances,
     (first, largest) step [s] (:func:`step_limits`), accepted steps allowed, bit radius [m],
-    steady-cycle tolerance [S_SS units] (0: run to the end), omega_1 [rad/s]."""
+    steady-cycle tolerance [S_SS units] (0: run to the end), omega_1 [rad/s], the contacts'
+    switches allowed (default: as many as the accepted steps)."""
     settings = np.zeros(slot.RUN_SIZE)
     settings[slot.RUN_T_END] = t_end
     settings[slot.RUN_WINDOW_START] = t_end - window
@@ -109,4 +111,5 @@ def run_settings(
     settings[slot.RUN_BIT_RADIUS] = bit_radius
     settings[slot.RUN_STEADY_TOLERANCE] = steady_tolerance
     settings[slot.RUN_OMEGA_1] = first_frequency
+    settings[slot.RUN_MAX_SWITCHES] = max_steps if max_switches is None else max_switches
     return settings

@@ -11,7 +11,11 @@ The chain (n nodes, node n-1 the bit) in twist coordinates about Omega_ref, with
     z'     = a z + b y + w (u - u_free),   u_free = u0 + c.z + d.y,   u = clip(u_free, +-max)
 
 with y = [e, T_pipe], e = Omega_set - Omega_0, T_pipe = k_1 (phi_0 - phi_1) + c_1 (v_0 - v_1);
-u, z and y only with a top-drive node.
+u, z and y only with a top-drive node. Coulomb contacts along the string (lumped mass) add
+a constant friction torque to each moving contact's node and hold a stuck one's speed
+(v_i' = 0); a step through a switch is retried shortened to it
+(:mod:`torsio.solvers.contact_kernel`). Without contacts the steps are those of the chain
+alone.
 
 RODAS4 (Hairer and Wanner, *Solving ODEs II*, IV.7; ``rodas.f``, METH = 1): six stages, each
 a linear solve with ``M/(gamma h) - J`` (J exact at the start of the step). Eliminating the
@@ -35,12 +39,14 @@ import math
 
 import numpy as np
 
+from torsio.solvers import contact_kernel as contact
 from torsio.solvers import layouts as slot
 from torsio.solvers.chain_kernel import (
-    accelerations,
     controller_solve,
+    finish_run,
     forces,
     mass_factors,
+    sample_state,
     saturated,
 )
 from torsio.solvers.compiled import kernel_signature, njit, prange, run_signatures
@@ -93,9 +99,11 @@ def _start(chain, top, torque, p, settings, wob, omega, omega_set, vectors, smal
     radius = settings[slot.RUN_BIT_RADIUS]
     z = small[slot.SMALL_Z, : slot.SECOND_BLOCK]
     f0z = small[slot.SMALL_F_Z, slot.SECOND_BLOCK : slot.BLOCKS_END]
-    forces(chain, top, torque, p, wob, radius, omega, omega_set, vectors[slot.VEC_PHI],
-           vectors[slot.VEC_V], z, f0v, f0z)  # fmt: skip
-    accelerations(chain, mpiv, mlow, f0v, vectors[slot.VEC_ACC])
+    phi, v, state = vectors[slot.VEC_PHI], vectors[slot.VEC_V], vectors[slot.VEC_CONTACT_STATE]
+    contacts = contact.start_contacts(chain, omega, v, state)
+    small[slot.SMALL_FRICTION, slot.FRICTION_ANY] = 1.0 if contacts else 0.0
+    contact.restart(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, f0v, f0z,
+                    mpiv, mlow, vectors[slot.VEC_ACC], state, contacts)  # fmt: skip
     t_end = settings[slot.RUN_T_END]
     cycle_settings = small[slot.SMALL_CYCLE_SETTINGS, : slot.CYCLE_SETTINGS_SIZE]
     cycle_settings[slot.CYCLE_SET_TWICE_OMEGA] = 2.0 * abs(omega)
@@ -155,7 +163,12 @@ def _advance(
     acc, mpiv = vectors[slot.VEC_ACC], vectors[slot.VEC_MASS_PIVOTS]
     mlow = vectors[slot.VEC_MASS_LOWER]
     phi0, v0, acc0 = vectors[slot.VEC_PHI0], vectors[slot.VEC_V0], vectors[slot.VEC_ACC0]
-    cross = vectors[slot.VEC_CROSS : slot.VECTOR_ROWS]
+    cross = vectors[slot.VEC_CROSS : slot.VEC_CONTACT_STATE]
+    state, pending = vectors[slot.VEC_CONTACT_STATE], vectors[slot.VEC_CONTACT_PENDING]
+    friction = small[slot.SMALL_FRICTION]
+    contacts = friction[slot.FRICTION_ANY] != 0.0
+    work, switches = friction[slot.FRICTION_WORK], int(friction[slot.FRICTION_SWITCHES])
+    max_switches, instant, h_resume = settings[slot.RUN_MAX_SWITCHES], 0, 0.0
     track = settings[slot.RUN_STEADY_TOLERANCE] > 0.0
     dense = grid.size > 0
     cycle = small[slot.SMALL_CYCLE, : slot.CYCLE_SIZE]
@@ -184,11 +197,14 @@ def _advance(
     bit_acc0 = acc[n - 1]
     top_acc0 = acc[0]
     while next_sample < grid.size and grid[next_sample] <= t:  # samples at the current time
-        _sample(samples[next_sample], phi, v, z, n, m)
+        sample_state(samples[next_sample], phi, v, z, n, m)
         next_sample += 1
     while t < t_end and status == 0 and not done and not (dense and next_sample >= stop):
         if steps >= max_steps:
             status = 1
+            break
+        if switches > max_switches or instant > 4 * n + 4:  # the contacts chatter
+            status = 5
             break
         if h < tiny:
             status = 2
@@ -196,7 +212,8 @@ def _advance(
         if t + h > t_end:
             h = t_end - t
         g = GAMMA * h
-        s = slope(p, omega + v[n - 1], wob, radius)
+        bit_stuck = contacts and contact.is_stuck(chain, state, n - 1)
+        s = 0.0 if bit_stuck else slope(p, omega + v[n - 1], wob, radius)
         if not math.isfinite(s):  # the law's slope, not the step, is at fault
             status = 3
             break
@@ -211,6 +228,8 @@ def _advance(
         singular = False
         for i in range(n):
             band[i] = mu[i] / g + cu[i] + g * ku[i]
+        if contacts:  # a stuck node's row is the identity, its couplings zero
+            contact.decouple(chain, state, band)
         for i in range(n):
             a = md[i] / g + cd[i] + g * kd[i]
             scale = md[i] / g + abs(cd[i]) + g * kd[i]
@@ -221,6 +240,8 @@ def _advance(
             if i > 0:
                 low[i] = band[i - 1] * ipiv[i - 1]
                 a -= low[i] * (band[i - 1] + (extra01 if i == 1 else 0.0))
+            if contacts and contact.is_stuck(chain, state, i):
+                a = scale
             if not abs(a) > 1e-13 * scale:
                 singular = True
                 a = 1.0
@@ -259,6 +280,8 @@ def _advance(
                     fz[i] = f0z[i]
             else:
                 forces(chain, top, torque, p, wob, radius, omega, omega_set, aphi, av, az, fv, fz)
+                if contacts:
+                    contact.add_friction(chain, state, fv)
                 for i in range(n):
                     fphi[i] = av[i] + uphi[i]
                     fv[i] += md[i] * uv[i]
@@ -277,6 +300,8 @@ def _advance(
                 x[0] += gains[slot.GAIN_PIPE] * k1 * g * (fphi[0] - fphi[1])
                 for k in range(m):
                     x[0] += gains[slot.GAIN_STATES + k] * fz[k]
+            if contacts:
+                contact.zero_stuck(chain, state, x)
             for i in range(1, n):
                 x[i] -= low[i] * x[i - 1]
             x[n - 1] *= ipiv[n - 1]
@@ -313,6 +338,24 @@ def _advance(
             continue
         factor = max(1.0 / 6.0, min(5.0, math.sqrt(math.sqrt(err)) / 0.9))
         h_new = h / factor
+        if err <= 1.0 and contacts:
+            theta = contact.check_step(
+                chain, top, torque, p, wob, radius, omega, omega_set, v, f0v, aphi, av, az,
+                kphi[5], kv[5], kz[5], acc, uphi, uv, uz, fv, fz, state, pending, h, 100.0 * tiny,
+            )  # fmt: skip
+            if theta < 0.0:  # a contact switches at the step's start: retry in its new state
+                switches += contact.switch(chain, state, omega, v, f0v, pending)
+                instant += 1
+                contact.restart(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z,
+                                f0v, f0z, mpiv, mlow, acc, state, contacts)  # fmt: skip
+                bit_acc0, top_acc0 = acc[n - 1], acc[0]
+                continue
+            if theta < 1.0:  # retry the step up to the located switch
+                h_resume = max(h_resume, h)
+                h *= theta
+                rejected += 1
+                continue
+            work += contact.friction_work(chain, state, phi, uphi, omega, h)
         if err <= 1.0:
             if steps > 0:  # Gustafsson's predictive controller (as in rodas.f)
                 predicted = h_accepted / h * math.sqrt(math.sqrt(err * err / err_accepted)) / 0.9
@@ -335,13 +378,13 @@ def _advance(
                 v[i] = av[i] + kv[5, i]
             for i in range(m):
                 z[i] = az[i] + kz[5, i]
-            forces(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, f0v, f0z)
-            accelerations(chain, mpiv, mlow, f0v, acc)
+            contact.restart(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, f0v,
+                            f0z, mpiv, mlow, acc, state, contacts)  # fmt: skip
             t_new = t + h
             while next_sample < grid.size and grid[next_sample] <= t_new:
                 position = (grid[next_sample] - t) / h
                 if position >= 1.0:
-                    _sample(samples[next_sample], phi, v, z, n, m)
+                    sample_state(samples[next_sample], phi, v, z, n, m)
                 else:
                     row = samples[next_sample]
                     for i in range(m):
@@ -366,6 +409,12 @@ def _advance(
                 steps += 1
                 done = True
                 break
+            made = contact.switch(chain, state, omega, v, f0v, pending) if contacts else 0
+            if made:  # the switches at the step's end
+                switches += made
+                contact.restart(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z,
+                                f0v, f0z, mpiv, mlow, acc, state, contacts)  # fmt: skip
+            instant = 0
             bit_acc0 = acc[n - 1]
             top_acc0 = acc[0]
             t = t_new
@@ -373,7 +422,8 @@ def _advance(
             if last_rejected:
                 h_new = min(h_new, h)
             last_rejected = False
-            h = min(h_new, hmax)
+            h = min(max(h_new, h_resume - h), hmax)  # back to the step before a location
+            h_resume = 0.0
         else:
             rejected += 1
             last_rejected = True
@@ -391,31 +441,8 @@ def _advance(
     window[slot.WINDOW_TOP_INTEGRAL] = top_integral
     window[slot.WINDOW_NEXT_SAMPLE] = next_sample
     window[slot.WINDOW_DONE] = 1.0 if done else 0.0
-
-
-@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
-def _sample(row, phi, v, z, n, m) -> None:
-    """The state [z, phi_0, v_0, ...] at a step's end, into one row of the output."""
-    for i in range(m):
-        row[i] = z[i]
-    for i in range(n):
-        row[m + 2 * i] = phi[i]
-        row[m + 2 * i + 1] = v[i]
-
-
-@njit(cache=True, error_model="numpy", _nrt=False)
-def _finish(settings, omega, has_top, small, out) -> None:
-    """A run's results (``out``, :mod:`torsio.solvers.layouts`) from its carried scalars."""
-    carry, window = small[slot.SMALL_CARRY], small[slot.SMALL_WINDOW]
-    t_end, t_window = settings[slot.RUN_T_END], settings[slot.RUN_WINDOW_START]
-    out[slot.OUT_BIT_SPEED_MAX] = window[slot.WINDOW_BIT_MAX] + omega
-    out[slot.OUT_BIT_SPEED_MIN] = window[slot.WINDOW_BIT_MIN] + omega
-    out[slot.OUT_STEPS] = carry[slot.CARRY_STEPS]
-    out[slot.OUT_REJECTED] = carry[slot.CARRY_REJECTED]
-    out[slot.OUT_STATUS] = carry[slot.CARRY_STATUS]
-    mean = window[slot.WINDOW_TOP_INTEGRAL] / (t_end - t_window) if has_top else 0.0
-    out[slot.OUT_TOP_SPEED_MEAN] = omega + mean
-    out[slot.OUT_ENDED] = carry[slot.CARRY_T]
+    friction[slot.FRICTION_WORK] = work
+    friction[slot.FRICTION_SWITCHES] = switches
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
@@ -428,7 +455,7 @@ def _point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k
     _start(chain, top, torque, p, settings, wob[k], omega[k], omega_set[k], vectors, small)
     _advance(chain, top, torque, slope, p, settings, wob[k], omega[k], omega_set[k], vectors,
              small, np.zeros(0), np.zeros((0, 1)), 0)  # fmt: skip
-    _finish(settings, omega[k], top[slot.TOP_HAS_NODE] != 0.0, small, out[k])
+    finish_run(settings, omega[k], top[slot.TOP_HAS_NODE] != 0.0, small, out[k])
 
 
 @njit(kernel_signature(), cache=True, nogil=True, error_model="numpy")

@@ -26,15 +26,20 @@ from torsio.errors import ConfigError, SolverError
 from torsio.physics.dynamics import Dynamics
 from torsio.physics.system import System
 from torsio.solvers.batch_results import STATUS_MESSAGES
+from torsio.solvers.contact_events import MAX_SWITCHES_PER_SAMPLE
 from torsio.solvers.law_kernels import LawKernel, law_kernel, python_law_kernel
 from torsio.solvers.layouts import (
     CARRY_REJECTED,
     CARRY_STATUS,
     CARRY_STEPS,
     CARRY_T,
+    FRICTION_ANY,
+    FRICTION_SWITCHES,
+    FRICTION_WORK,
     MAX_STATES,
     SMALL_CARRY,
     SMALL_COLUMNS,
+    SMALL_FRICTION,
     SMALL_ROWS,
     SMALL_WINDOW,
     SMALL_Z,
@@ -71,7 +76,9 @@ class CompiledRun:
     :data:`torsio.solvers.batch_results.STATUS_MESSAGES`; ``steps``, ``rejected``;
     ``wall_time_s``; ``window_extremes``: (max, min) of the bit speed [rad/s] over the
     steady window, from the cubic interpolant of every step (as the batch engine reads
-    them; the output grid's samples fall between the peaks).
+    them; the output grid's samples fall between the peaks); ``contacts``: whether the
+    chain has contacts along the string, ``switches`` their switches and ``friction_work``
+    the friction's work over the run [J] (exact, :mod:`torsio.solvers.contact_kernel`).
     """
 
     states: np.ndarray
@@ -81,6 +88,9 @@ class CompiledRun:
     rejected: int
     wall_time_s: float
     window_extremes: tuple[float, float]
+    contacts: bool = False
+    switches: int = 0
+    friction_work: float = 0.0
 
     @property
     def message(self) -> str:
@@ -103,6 +113,8 @@ def compiled_engine(system: System, dynamics: Dynamics) -> tuple[LawKernel | Non
         return None, "the model's matrices are not tridiagonal (a chain)"
     if dynamics.states > MAX_STATES:
         return None, f"the top drive has {dynamics.states} controller states (at most {MAX_STATES})"
+    if dynamics.contacts is not None and not dynamics.lumped_mass:
+        return None, "its contacts along the string need a lumped-mass chain"
     try:
         kernel = law_kernel(system.law)
         if kernel is None:
@@ -142,8 +154,9 @@ def integrate_compiled(
     max_steps = DEFAULT_MAX_STEPS + STEPS_PER_SAMPLE * samples
     steps = step_limits(model.first_frequency)
     settings = run_settings(
-        run, window, rtol, atol, steps, max_steps, model.bit_radius, 0.0, model.first_frequency
-    )
+        run, window, rtol, atol, steps, max_steps, model.bit_radius, 0.0, model.first_frequency,
+        MAX_SWITCHES_PER_SAMPLE * samples,
+    )  # fmt: skip
     m, n = dynamics.states, model.dofs
     vectors = np.zeros((VECTOR_ROWS, n))
     small = np.zeros((SMALL_ROWS, SMALL_COLUMNS))
@@ -173,6 +186,7 @@ def integrate_compiled(
     report = None if progress is None else (lambda done, total: progress(written(), total))
     run_in_chunks(samples, advance, report, first=max(1, samples // 1000), seconds=chunk_seconds)
     carry, window_scalars = small[SMALL_CARRY], small[SMALL_WINDOW]
+    friction = small[SMALL_FRICTION]
     return CompiledRun(
         out,
         float(carry[CARRY_T]),
@@ -184,6 +198,9 @@ def integrate_compiled(
             float(window_scalars[WINDOW_BIT_MAX]) + omega,
             float(window_scalars[WINDOW_BIT_MIN]) + omega,
         ),
+        bool(friction[FRICTION_ANY]),
+        int(friction[FRICTION_SWITCHES]),
+        float(friction[FRICTION_WORK]),
     )
 
 
@@ -200,16 +217,20 @@ def integrate_run(
     """The states (size, samples) on the grid and the solver's record; errors never hidden.
 
     ``"auto"`` runs the compiled RODAS4 engine where it can run the System and LSODA
-    otherwise, with the reason in ``solver["fallback"]``.
+    otherwise, with the reason in ``solver["fallback"]``. With contacts along the string
+    the record has ``contact_switches`` and ``friction_work`` [J]; a scipy method runs them
+    between the contacts' switches (:mod:`torsio.solvers.contact_events`).
     """
     chosen = options.method
     fallback = None
     if chosen in COMPILED_METHODS:
         kernel, why = compiled_engine(system, dynamics)
         if kernel is not None:
-            return _integrate_compiled(
-                system, dynamics, kernel, y0, time_grid, window, options, where, progress
-            )
+            result = integrate_compiled(
+                system, dynamics, kernel, y0, time_grid, window, options.rtol, options.atol,
+                progress,
+            )  # fmt: skip
+            return result.states.T, _compiled_record(result, options, where, time_grid[-1])
         if chosen == "RODAS4":
             raise ConfigError(
                 "simulation.method",
@@ -217,29 +238,25 @@ def integrate_run(
                 f"expected one of {', '.join(METHODS[2:])} for it",
             )
         fallback, chosen = why, "LSODA"
-    from torsio.solvers.scipy_run import integrate_scipy
+    if dynamics.contacts is not None:
+        from torsio.solvers.contact_events import integrate_with_contacts
 
-    states, info = integrate_scipy(dynamics, y0, time_grid, chosen, options, where, progress)
+        scipy_options = attrs.evolve(options, method=chosen)
+        states, info = integrate_with_contacts(
+            dynamics, y0, time_grid, scipy_options, where, progress
+        )
+    else:
+        from torsio.solvers.scipy_run import integrate_scipy
+
+        states, info = integrate_scipy(dynamics, y0, time_grid, chosen, options, where, progress)
     info["fallback"] = fallback
     return states, info
 
 
-def _integrate_compiled(
-    system: System,
-    dynamics: Dynamics,
-    kernel: Any,
-    y0: np.ndarray,
-    time_grid: np.ndarray,
-    window: float,
-    options: SimulationOptions,
-    where: str,
-    progress: Callable[[int, int], None] | None,
-) -> tuple[np.ndarray, dict[str, Any]]:
-    """The compiled RODAS4 engine (:mod:`torsio.solvers.single_run`) over the grid."""
-    run = float(time_grid[-1])
-    result = integrate_compiled(
-        system, dynamics, kernel, y0, time_grid, window, options.rtol, options.atol, progress
-    )
+def _compiled_record(
+    result: CompiledRun, options: SimulationOptions, where: str, run: float
+) -> dict[str, Any]:
+    """The solver's record of a run of the compiled RODAS4 engine (SolverError if it failed)."""
     if result.status != 0:
         raise SolverError(
             f"the RODAS4 integrator (compiled engine) failed at t = {result.reached:.6g} s of "
@@ -263,4 +280,8 @@ def _integrate_compiled(
         "fallback": None,
         "bit_speed_extremes": result.window_extremes,
     }
-    return result.states.T, info
+    if result.contacts:
+        info["message"] = "reached the end of the run, the contacts' switches located"
+        info["contact_switches"] = result.switches
+        info["friction_work"] = result.friction_work
+    return info
