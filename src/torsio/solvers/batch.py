@@ -114,10 +114,11 @@ class BatchModel:
     first_frequency: float
 
     @classmethod
-    def from_system(cls, system: System) -> BatchModel:
-        """The chain of ``system`` (ConfigError if the model is not a chain)."""
+    def from_system(cls, system: System, contacts: bool = False) -> BatchModel:
+        """The chain of ``system`` (ConfigError if the model is not a chain, or has contacts
+        along the string unless ``contacts``: the numpy engine runs them)."""
         dynamics = system.dynamics()
-        if dynamics.contacts is not None:
+        if dynamics.contacts is not None and not contacts:
             raise ConfigError(
                 "well",
                 "maps of a lumped model with friction along the string are not run: the "
@@ -270,7 +271,7 @@ def simulate_lumped_batch(
     rtol, atol, engine, threads = options.rtol, options.atol, options.engine, options.threads
     duration, steady_window = run_times(system, options.duration, options.steady_window)
     name, kernel = resolve_engine(engine, system.law)
-    model = BatchModel.from_system(system) if name != "scipy" else None
+    model = BatchModel.from_system(system, name == "numpy") if name != "scipy" else None
     omega1 = model.first_frequency if model is not None else first_natural_frequency(system.model)
     steps = step_limits(omega1, options.max_step)
     omega_set = rpm_arr * RPM_TO_RAD_S

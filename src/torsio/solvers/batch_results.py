@@ -22,12 +22,14 @@ STATUS_MAX_STEPS = 1
 STATUS_STEP_UNDERFLOW = 2
 STATUS_NOT_FINITE = 3
 STATUS_SOLVER_FAILED = 4
+STATUS_CONTACTS_CHATTER = 5
 STATUS_MESSAGES = {
     STATUS_OK: "ok",
     STATUS_MAX_STEPS: "too many steps",
     STATUS_STEP_UNDERFLOW: "step size underflow",
     STATUS_NOT_FINITE: "non-finite state",
     STATUS_SOLVER_FAILED: "solve_ivp failed (scipy engine)",
+    STATUS_CONTACTS_CHATTER: "the contacts along the string chatter (too many switches)",
 }
 """What each per-point status code means."""
 
