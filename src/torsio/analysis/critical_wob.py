@@ -13,7 +13,7 @@ import numpy as np
 
 from torsio.analysis.map_runs import PointRunner
 from torsio.errors import SolverError
-from torsio.solvers.batch_results import STATUS_MESSAGES
+from torsio.solvers.batch_results import STATUS_MESSAGES, BatchPoints
 
 __all__ = ["locate_critical_wob"]
 
@@ -85,7 +85,7 @@ def locate_critical_wob(
             break
         middle = 0.5 * (low[active] + high[active])
         speeds = rpm[active]
-        result = runner.run(middle, speeds)
+        result = runner.run(BatchPoints(middle, speeds))  # within the checked axes
         values = result[:, 0]
         failed = result[:, 1] != 0
         if failed.any() and on_failure == "raise":

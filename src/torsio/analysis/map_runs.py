@@ -21,7 +21,7 @@ from torsio.errors import ConfigError
 from torsio.physics.system import System
 from torsio.solvers.batch import simulate_batch
 from torsio.solvers.batch_options import BatchOptions
-from torsio.solvers.batch_results import STATUS_MESSAGES
+from torsio.solvers.batch_results import STATUS_MESSAGES, BatchPoints
 
 __all__ = ["BYTES_PER_POINT", "MapFailed", "PointRunner", "check_grid_size"]
 
@@ -122,12 +122,10 @@ def _bytes(value: float) -> str:
     return f"{value:.3g} PB"  # pragma: no cover
 
 
-def _chunk_task(
-    system: System, wob: np.ndarray, rpm: np.ndarray, options: BatchOptions
-) -> np.ndarray:
+def _chunk_task(system: System, points: BatchPoints, options: BatchOptions) -> np.ndarray:
     """Worker side: S_SS, status, steps, rejected steps, the time each run ended [s] and
     whether the bit stuck throughout the window (1.0 or 0.0), shape (k, 6)."""
-    result = simulate_batch(system, wob, rpm, options)
+    result = simulate_batch(system, points, None, options)
     stuck = result.stuck(DEFAULT_STICK_THRESHOLD)
     return np.column_stack(
         [result.severity, result.status, result.steps, result.rejected, result.ended, stuck]
@@ -190,15 +188,15 @@ class PointRunner:
 
     def run(
         self,
-        wob: np.ndarray,
-        rpm: np.ndarray,
+        points: BatchPoints,
         on_partial: Callable[[list[tuple[tuple[int, int], np.ndarray]]], None] | None = None,
     ) -> np.ndarray:
-        """Rows (severity, status, steps, rejected) of the points (wob[k], rpm[k])."""
-        count = wob.size
+        """Rows (severity, status, steps, rejected, ended, stuck) of the checked points
+        (``points.wob[k]``, ``points.rpm[k]``)."""
+        count = points.size
         size = self.chunk_size
         bounds = [(k, min(k + size, count)) for k in range(0, count, size)]
-        tasks = [(self.system, wob[a:b], rpm[a:b], self.options) for a, b in bounds]
+        tasks = [(self.system, points[a:b], self.options) for a, b in bounds]
         base = self.done_points
         if not self.fixed_total or base + count > self.total_points:
             self.total_points = max(self.total_points, base) + count

@@ -89,6 +89,7 @@ from torsio.solvers.batch import (
     simulate_batch,
 )
 from torsio.solvers.batch_options import DEFAULT_MAX_STEPS
+from torsio.solvers.batch_results import BatchPoints
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = ["dimensionless_map", "severity_map"]
@@ -323,7 +324,7 @@ def _build_map(
                     store(rows, indices[a:b])
 
             try:
-                rows = runner.run(flat_wob, flat_rpm, keep_partial)
+                rows = runner.run(BatchPoints(flat_wob, flat_rpm), keep_partial)  # axes checked
             except SweepInterrupted:
                 raise MapInterrupted(partial_map()) from None
             except SweepError as exc:

@@ -24,7 +24,6 @@ from typing import Any
 
 import attrs
 import numpy as np
-import scipy.optimize
 from numpy.typing import NDArray
 
 from torsio.axial.delay_roots import DelayRoots, rightmost_roots
@@ -132,6 +131,8 @@ def growth_rate_crossings(
         raise ConfigError("rpm", f"range {low!r}..{high!r} must be increasing and positive")
     if points < 2:
         raise ConfigError("points", f"{points!r} must be >= 2 grid points")
+    import scipy.optimize  # not at import: the torsional maps load this package too
+
     grid = np.linspace(low, high, points)
     values = [growth_rate(float(r)) for r in grid]
     crossings = []

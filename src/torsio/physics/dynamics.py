@@ -40,7 +40,6 @@ from typing import Any
 import attrs
 import numpy as np
 import scipy.linalg
-import scipy.optimize
 import scipy.sparse
 
 from torsio.errors import ConfigError
@@ -488,4 +487,6 @@ def _balance_speed(torque: float, drag: float, law: Any, wob: float, radius: flo
     i = int(change[0])
     if values[i + 1] == 0.0:
         return float(grid[i + 1])
+    import scipy.optimize  # a torque-driven top drive only
+
     return float(scipy.optimize.brentq(excess, grid[i], grid[i + 1], xtol=1e-13, rtol=1e-14))

@@ -232,8 +232,10 @@ def simulate_batch(
     ----------
     system : System
         The model, damping, bit-rock law and top drive; its own operating point is ignored.
-    wob : array_like
-        Weights on bit [N], >= 0.
+    wob : array_like or BatchPoints
+        Weights on bit [N], >= 0; or points already checked
+        (:class:`torsio.solvers.batch_results.BatchPoints`, ``rpm`` None), as a map's
+        chunks are.
     rpm : array_like or None
         Surface rotary (set) speeds [rpm], > 0; broadcast against ``wob``. None (and
         only None) for a top drive without a set speed (``torque``): its speed follows
@@ -267,7 +269,8 @@ def simulate_lumped_batch(
 ) -> BatchResults:
     """:func:`simulate_batch` of a lumped model (its batch engine,
     :data:`torsio.model.lumped.LUMPED_ENGINES`): the System, the points and the options."""
-    wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)
+    points = batch_points(system, wob, rpm)
+    wob_arr, rpm_arr, torque_driven = points.wob, points.rpm, points.torque_driven
     rtol, atol, engine, threads = options.rtol, options.atol, options.engine, options.threads
     duration, steady_window = run_times(system, options.duration, options.steady_window)
     name, kernel = resolve_engine(engine, system.law)

@@ -46,11 +46,44 @@ def check_steady_tolerance(value: Any) -> float:
     return float(value)
 
 
-def batch_points(system: Any, wob: Any, rpm: Any) -> tuple[np.ndarray, np.ndarray, bool]:
-    """(wob [N], rpm [rpm], torque_driven) of a batch, broadcast, flat and checked.
+@attrs.frozen(eq=False)
+class BatchPoints:
+    """Operating points of a batch, flat and checked: built once by :func:`batch_points`
+    (or from a map's checked axes), then sliced into chunks without checking them again.
+
+    Attributes
+    ----------
+    wob : ndarray
+        Weight on bit of each point [N], finite and >= 0.
+    rpm : ndarray
+        Surface rotary (set) speed of each point [rpm], finite and > 0; NaN for a top drive
+        without a set speed.
+    torque_driven : bool
+        Whether the top drive has no set speed (``torque``).
+    """
+
+    wob: np.ndarray
+    rpm: np.ndarray
+    torque_driven: bool = False
+
+    @property
+    def size(self) -> int:
+        """Number of points."""
+        return int(self.wob.size)
+
+    def __getitem__(self, rows: Any) -> BatchPoints:
+        return BatchPoints(self.wob[rows], self.rpm[rows], self.torque_driven)
+
+
+def batch_points(system: Any, wob: Any, rpm: Any) -> BatchPoints:
+    """The points (wob [N], rpm [rpm]) of a batch, broadcast, flat and checked.
 
     ``rpm`` is None exactly for a top drive without a set speed; its rpm are then NaN.
+    Points already checked (a :class:`BatchPoints`, with ``rpm`` None) are returned as
+    they are.
     """
+    if isinstance(wob, BatchPoints) and rpm is None:
+        return wob
     boundary = system.top.boundary(system)
     torque_driven = not boundary.held and not math.isfinite(boundary.set_speed)
     if torque_driven != (rpm is None):
@@ -74,7 +107,7 @@ def batch_points(system: Any, wob: Any, rpm: Any) -> tuple[np.ndarray, np.ndarra
         raise ConfigError("rpm", f"expected positive finite rotary speeds, got {bad!r}")
     if torque_driven:
         rpm_arr = np.full_like(wob_arr, np.nan)
-    return wob_arr, rpm_arr, torque_driven
+    return BatchPoints(wob_arr, rpm_arr, torque_driven)
 
 
 @attrs.frozen(repr=False)

@@ -96,7 +96,8 @@ def simulate_wave_batch(system: Any, wob: Any, rpm: Any, options: BatchOptions) 
     grid = system.model
     alpha = check_wave_damping(system.damping, system.model)
     kernel = _check_engine(engine, system.law)
-    wob_arr, rpm_arr, torque_driven = batch_points(system, wob, rpm)
+    points = batch_points(system, wob, rpm)
+    wob_arr, rpm_arr, torque_driven = points.wob, points.rpm, points.torque_driven
     omega_1 = grid.first_frequency()
     default_duration, default_window = default_times(omega_1)
     if duration is not None:  # the window at most half a given run, as run_times says
