@@ -219,11 +219,24 @@ def test_a_map_with_contacts_is_its_single_runs(reference) -> None:
     assert grid.severity[1, 1] == pytest.approx(single.severity, abs=1e-12)
 
 
-def test_other_batch_engines_refuse_contacts() -> None:
+def test_the_scipy_batch_engine_refuses_contacts() -> None:
     system = _deviated(alpha=0.35, wob=0.0, rpm=60.0)
-    for engine in ("numpy", "scipy"):
-        with pytest.raises(ConfigError, match=r"^engine: .*takes no contacts"):
-            simulate_batch(system, [0.0], [60.0], engine=engine)
+    with pytest.raises(ConfigError, match=r"^engine: .*takes no contacts"):
+        simulate_batch(system, [0.0], [60.0], engine="scipy")
+
+
+def test_the_numpy_and_compiled_batch_engines_agree_with_contacts() -> None:
+    # reference: the two implementations of one method (RODAS4, contacts switched at their
+    # located margins, torsio.solvers.contact_kernel and numpy_contacts), each with its own
+    # steps: S_SS the same to the tolerance's order (rtol 1e-8; measured 1.3e-9)
+    system = _deviated(alpha=0.35, wob=0.0, rpm=60.0)
+    points = ([0.0, 40e3], [60.0, 100.0])
+    run = {"duration": 10.0, "steady_window": 5.0, "rtol": 1e-8, "atol": 1e-10}
+    compiled = simulate_batch(system, *points, engine="compiled", **run)
+    numpy = simulate_batch(system, *points, engine="numpy", **run)
+    assert compiled.engine == "compiled" and numpy.engine == "numpy"
+    assert (compiled.status == 0).all() and (numpy.status == 0).all()
+    np.testing.assert_allclose(numpy.severity, compiled.severity, atol=1e-7)
 
 
 def test_contacts_behind_a_pi_top_drive_agree_with_the_scipy_engine() -> None:

@@ -273,11 +273,11 @@ def simulate_lumped_batch(
     rtol, atol, engine, threads = options.rtol, options.atol, options.engine, options.threads
     duration, steady_window = run_times(system, options.duration, options.steady_window)
     name, kernel = resolve_engine(engine, system.law)
-    if name != "compiled" and getattr(system.model, "contacts", None) is not None:
+    if name == "scipy" and getattr(system.model, "contacts", None) is not None:
         raise ConfigError(
             "engine",
             f"the {name} batch engine takes no contacts along the string (a [well]); the "
-            "compiled engine runs them (engine='compiled', with numba)",
+            "compiled and numpy engines run them (engine='compiled' or 'numpy')",
         )
     model = BatchModel.from_system(system) if name != "scipy" else None
     omega1 = model.first_frequency if model is not None else first_natural_frequency(system.model)

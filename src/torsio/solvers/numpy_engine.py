@@ -5,6 +5,12 @@ documentation for the equations and the elimination), each point with its own st
 error control, written with numpy arrays of shape (points, nodes). It runs any bit-rock
 law through the law's vectorized ``torque`` and ``slope`` (or a central difference), and
 it is the engine when numba is not installed.
+
+A chain whose nodes carry Coulomb contacts with the borehole (``CHAIN_CONTACT_*``) runs
+them as :mod:`torsio.solvers.numpy_contacts` describes: each point's contact states fixed
+within a step (a moving contact a constant torque, a stuck node's row of the step matrix
+the identity's), a step that crosses a switch retried shortened to it, the switches made
+at the step's end. Without contacts the steps are those of the chain alone.
 """
 
 from __future__ import annotations
@@ -15,6 +21,7 @@ import numpy as np
 
 from torsio.physics.law_slope import bit_slope
 from torsio.solvers import layouts as slot
+from torsio.solvers.numpy_contacts import ContactLaw, hold_rows
 from torsio.solvers.rodas import GAMMA, RODAS_A, RODAS_C
 
 __all__ = ["extremes_numpy", "integrate_numpy"]
@@ -50,6 +57,7 @@ class _Chain:
         self.w = top[slot.TOP_W : slot.TOP_W + m]
         self.law = law
         self.radius = radius
+        self.contacts: ContactLaw | None = None  # the contacts along the string, if any
         self.mpiv = np.empty(self.n)  # factors of [I], for the accelerations
         self.mlow = np.zeros(self.n)
         self.mpiv[0] = self.md[0]
@@ -121,6 +129,7 @@ def integrate_numpy(
     h0, hmax = settings[slot.RUN_FIRST_STEP], settings[slot.RUN_MAX_STEP]
     max_steps = settings[slot.RUN_MAX_STEPS]
     sys_ = _Chain(chain, top, law, float(settings[slot.RUN_BIT_RADIUS]))
+    sys_.contacts = contacts = ContactLaw.of(chain, settings)
     n, m = sys_.n, sys_.m
     count = wob.size
     out = np.zeros((count, slot.OUT_COLUMNS))
@@ -147,7 +156,12 @@ def integrate_numpy(
     state["h_accepted"] = state["h"].copy()
     s = state
     s["f0v"], s["f0z"] = sys_.forces(s["om"], s["om_set"], s["wob"], s["phi"], s["v"], s["z"])
+    if contacts is not None:
+        free, s["f0z"] = contacts.start(s, _forces_of(sys_, s))
+        s["f0v"] = free - contacts.friction(s)
     s["acc"] = sys_.accelerations(s["f0v"])
+    if contacts is not None:
+        s["acc"][contacts.stuck(s)] = 0.0
     tiny = 1e-12 * max(1.0, t_end)
     window = t_end - t_window
 
@@ -176,6 +190,16 @@ def integrate_numpy(
     return out
 
 
+def _forces_of(sys_: _Chain, s: dict[str, np.ndarray]) -> Any:
+    """The chain forces (friction left out) and z' of some points, by their rows in ``s``."""
+
+    def forces(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return sys_.forces(s["om"][rows], s["om_set"][rows], s["wob"][rows], s["phi"][rows],
+                           s["v"][rows], s["z"][rows])  # fmt: skip
+
+    return forces
+
+
 def _step(sys_: _Chain, s: dict[str, np.ndarray], t_end, t_window, rtol, atol, hmax, tiny) -> None:
     """One RODAS4 step (accepted or rejected) of every point still running."""
     n, m = sys_.n, sys_.m
@@ -199,6 +223,10 @@ def _step(sys_: _Chain, s: dict[str, np.ndarray], t_end, t_window, rtol, atol, h
     scale = md / g[:, None] + np.abs(cd) + g[:, None] * kd
     piv[:, -1] += slope
     piv[:, 0] += diag0
+    contacts = sys_.contacts
+    if contacts is not None:  # moving: a constant torque; stuck: v' = 0
+        friction, stuck = contacts.friction(s), contacts.stuck(s)
+        hold_rows(stuck, md, g, piv, upper, lower)
     low = np.zeros_like(piv)
     for i in range(1, n):
         low[:, i] = lower[:, i - 1] / piv[:, i - 1]
@@ -223,6 +251,8 @@ def _step(sys_: _Chain, s: dict[str, np.ndarray], t_end, t_window, rtol, atol, h
             fphi, fv, fz = v, s["f0v"], s["f0z"]
         else:
             fv, fz = sys_.forces(om, om_set, wob, aphi, av, az)
+            if contacts is not None:
+                fv = fv - friction
             fphi = av + uphi / h[:, None]
             fv = fv + _tri_mul(md, mu, uv / h[:, None])
             fz = fz + uz / h[:, None]
@@ -230,6 +260,8 @@ def _step(sys_: _Chain, s: dict[str, np.ndarray], t_end, t_window, rtol, atol, h
         if sys_.has_top:
             x[:, 0] += gains[:, 1] * sys_.k1 * g * (fphi[:, 0] - fphi[:, 1])
             x[:, 0] += np.einsum("pk,pk->p", r, fz)
+        if contacts is not None:
+            x[stuck] = 0.0
         for i in range(1, n):
             x[:, i] -= low[:, i] * x[:, i - 1]
         x[:, -1] /= piv[:, -1]
@@ -269,6 +301,10 @@ def _accept_or_reject(
             5.0,
         )
     accept = err <= 1.0
+    contacts = sys_.contacts
+    if contacts is not None:  # a step that crosses a switch is retried, shortened to it
+        retry, shorter, end = contacts.check(sys_, s, h, accept, yphi, yv, yz)
+        accept[retry] = False
     factor = np.where(accept & (s["steps"] > 0), np.maximum(factor, predicted), factor)
     h_new = np.where(singular, 0.5 * h, np.where(~finite, 0.25 * h, h / factor))
     s["h_accepted"] = np.where(accept, h, s["h_accepted"])
@@ -278,9 +314,14 @@ def _accept_or_reject(
         a_ = accept
         bit0, top0 = v[a_, -1], v[a_, 0]
         phi[a_], v[a_], z[a_] = yphi[a_], yv[a_], yz[a_]
-        fv, fz = sys_.forces(s["om"][a_], s["om_set"][a_], s["wob"][a_], phi[a_], v[a_], z[a_])
+        if contacts is None:
+            fv, fz = sys_.forces(s["om"][a_], s["om_set"][a_], s["wob"][a_], phi[a_], v[a_], z[a_])
+        else:
+            fv, fz = end[0] - contacts.friction(s, a_), end[1]
         s["f0v"][a_], s["f0z"][a_] = fv, fz
         acc1 = sys_.accelerations(fv)
+        if contacts is not None:
+            acc1[contacts.stuck(s, a_)] = 0.0
         acc0 = s["acc"][a_]
         t_old = s["t"][a_]
         hh = h[a_]
@@ -299,8 +340,18 @@ def _accept_or_reject(
         s["steps"][a_] += 1
         h_new[a_] = np.where(s["last_rejected"][a_], np.minimum(h_new[a_], hh), h_new[a_])
         h_new[a_] = np.minimum(h_new[a_], hmax)
+        if contacts is not None:
+            rows = np.flatnonzero(a_)
+            aimed = h_new[rows]
+            contacts.switch(sys_, s, rows, end, aimed, _forces_of(sys_, s))
+            h_new[rows] = aimed
     s["rejected"][~accept] += 1
+    if contacts is not None:  # a retry to a switch is no failure of the error control
+        last = s["last_rejected"][retry]
+        h_new[retry] = shorter
     s["last_rejected"] = ~accept
+    if contacts is not None:
+        s["last_rejected"][retry] = last
     s["h"] = h_new
 
 
