@@ -146,7 +146,7 @@ def run_map(args: argparse.Namespace, config: Any, wob: Any, rpm: Any) -> int:
     from torsio.axial.maps import axial_map
 
     _refuse(args, _MAP_REFUSED)
-    if args.engine not in ("auto", "numba"):
+    if args.engine not in (None, "auto", "numba"):
         raise ConfigError("--engine", f"{args.engine!r}: the axial engine is compiled (numba)")
     axial = config.axial
     start = time.perf_counter()
