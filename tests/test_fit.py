@@ -134,6 +134,7 @@ def test_torsio_fit_json_has_the_contract_keys(clean, tmp_path, capsys):
     assert data["parameters"]["friction_dynamic"] == pytest.approx(0.3, abs=1e-3)
     assert data["uncertainty"]["friction_dynamic"] > 0.0
     assert [r["name"] for r in data["recordings"]] == [r.name for r in clean]
+    assert data["correlation"] == {"friction_dynamic": {"friction_dynamic": 1.0}}  # one name
 
 
 def test_a_bad_fit_name_is_an_error_naming_it_and_the_valid_ones(tmp_path, capsys):

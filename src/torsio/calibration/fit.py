@@ -40,7 +40,7 @@ from torsio.calibration.parameters import SystemFamily
 from torsio.calibration.recording import RPM, Recording, read_recording
 from torsio.calibration.search import NON_SMOOTH, line_search
 from torsio.calibration.start import closed_form_start, corrected_start
-from torsio.calibration.uncertainty import parameter_uncertainty
+from torsio.calibration.uncertainty import jacobian_correlation, parameter_uncertainty
 from torsio.errors import ConfigError
 from torsio.physics.recorded_top import RecordedTopDrive
 
@@ -238,6 +238,7 @@ def fit_recordings(
         start=tuple(float(start[n]) for n in names),
         configured=tuple(float(family.values[n]) for n in names),
         uncertainty=spread,
+        correlation=jacobian_correlation(solution.jac),
         residual=float(np.sqrt(np.mean(allsamples**2))),
         recordings=fits,
         objective=objective,
