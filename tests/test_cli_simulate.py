@@ -264,3 +264,33 @@ def test_progress_only_for_long_runs_off_a_terminal(capsys):
     captured = capsys.readouterr()
     json.loads(captured.out)
     assert captured.err == ""
+
+
+def test_a_recording_written_by_simulate_is_fitted_back_to_its_friction(capsys, tmp_path):
+    # reference: the configuration's open-hole mu_d = 0.3 (data/deviated_well.toml); the fit
+    # drives the same wave grid with the recorded top speed, so the record is its own model
+    # (measured: 0.3 to 3e-12, residual 7e-8 N m)
+    from importlib import resources
+
+    source = tmp_path / "well.toml"
+    source.write_text(resources.files("torsio").joinpath("data/deviated_well.toml").read_text())
+    recording = tmp_path / "startup.csv"
+    run = ["simulate", str(source), "--strategy", "wave", "--wob", "0", "--rpm", "120"]
+    assert main([*run, "--duration", "60", "--recording", str(recording), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["recording"] == str(recording)
+    header = recording.read_text().splitlines()[0]
+    assert header == "time,top_rpm,surface_torque,bit_rpm"
+    fit = ["fit", str(source), "--recording", str(recording), "--fit", "friction_dynamic"]
+    assert main([*fit, "--no-profile", "--json"]) == 0
+    fitted = json.loads(capsys.readouterr().out)["parameters"]["friction_dynamic"]
+    assert fitted == pytest.approx(0.3, abs=1e-6)
+
+
+def test_a_recording_of_an_axial_run_is_refused(capsys, tmp_path):
+    from importlib import resources
+
+    source = tmp_path / "rgd.toml"
+    source.write_text(resources.files("torsio").joinpath("data/rgd_2dof.toml").read_text())
+    status = main(["simulate", str(source), "--recording", str(tmp_path / "r.csv")])
+    assert status == 2
+    assert "--recording" in capsys.readouterr().err

@@ -40,7 +40,7 @@ from torsio.calibration.parameters import SystemFamily
 from torsio.calibration.recording import RPM, Recording, read_recording
 from torsio.calibration.search import NON_SMOOTH, line_search
 from torsio.calibration.start import closed_form_start, corrected_start
-from torsio.calibration.uncertainty import parameter_uncertainty
+from torsio.calibration.uncertainty import jacobian_correlation, parameter_uncertainty
 from torsio.errors import ConfigError
 from torsio.physics.recorded_top import RecordedTopDrive
 
@@ -48,6 +48,9 @@ __all__ = ["TOPS", "fit_recordings"]
 
 START_STEPS = 1
 """Newton steps of the closed forms on the model's own torques before the least squares."""
+
+SPEED_SMOOTHING = 0.0
+"""Default window [s] of the recorded speed's smoothing (see :func:`fit_recordings`)."""
 
 TOPS = ("recorded", "configured")
 """What drives the top in the fit: the recorded speed, or the configured top drive."""
@@ -131,9 +134,9 @@ def _recordings(recordings: Sequence[Any]) -> list[Recording]:
     return [r if isinstance(r, Recording) else read_recording(Path(r)) for r in recordings]
 
 
-def _tops(config: Any, recordings: Sequence[Recording], top: str) -> list[Any]:
+def _tops(config: Any, recordings: Sequence[Recording], top: str, smoothing: float) -> list[Any]:
     if top == "recorded":
-        return [RecordedTopDrive(recording=r) for r in recordings]
+        return [RecordedTopDrive(recording=r, smoothing=smoothing) for r in recordings]
     if top == "configured":
         return [config.top_drive.build()] * len(recordings)
     raise ConfigError("top", f"unknown top {top!r}; expected one of {', '.join(TOPS)}")
@@ -154,6 +157,7 @@ def fit_recordings(
     wob: float = 0.0,
     rpm: Sequence[float] | None = None,
     profile: bool = True,
+    speed_smoothing: float = SPEED_SMOOTHING,
     **discretization: Any,
 ) -> FitResults:
     """Fit the parameters ``names`` of ``config`` to the surface torque of ``recordings``.
@@ -178,6 +182,9 @@ def fit_recordings(
         recorded speed over the last tenth of each record.
     profile : bool
         Profile the misfit along each parameter (the interval the data allow).
+    speed_smoothing : float
+        Window [s] the recorded speed is smoothed over before it drives the top
+        (``top="recorded"``; :class:`~torsio.physics.recorded_top.RecordedTopDrive`).
     **discretization
         Options of the wave grid.
 
@@ -193,7 +200,11 @@ def fit_recordings(
         )
     family = SystemFamily(config, **discretization)
     names = family.check(names)
-    tops = _tops(config, records, top)
+    if not (isinstance(speed_smoothing, int | float) and speed_smoothing >= 0.0):
+        raise ConfigError(
+            "speed_smoothing", f"expected a window >= 0 in s, got {speed_smoothing!r}"
+        )
+    tops = _tops(config, records, top, speed_smoothing)
     rpms = list(rpm) if rpm is not None else [_final_rpm(r) for r in records]
     if len(rpms) != len(records):
         raise ConfigError("rpm", f"expected one set speed per recording ({len(records)})")
@@ -238,6 +249,7 @@ def fit_recordings(
         start=tuple(float(start[n]) for n in names),
         configured=tuple(float(family.values[n]) for n in names),
         uncertainty=spread,
+        correlation=jacobian_correlation(solution.jac),
         residual=float(np.sqrt(np.mean(allsamples**2))),
         recordings=fits,
         objective=objective,

@@ -70,6 +70,9 @@ class FitResults:
         Model runs the fit took; ``seconds`` its wall-clock time [s].
     message : str
         The optimizer's word on its convergence.
+    correlation : ndarray or None
+        Correlation of the fitted parameters from the Jacobian (``names`` order), which
+        the Monte Carlo draws carry (:mod:`torsio.calibration.monte_carlo`).
     """
 
     names: tuple[str, ...]
@@ -84,6 +87,7 @@ class FitResults:
     runs: int
     seconds: float
     message: str
+    correlation: np.ndarray | None = None
 
     def __repr__(self) -> str:
         fitted = ", ".join(
@@ -125,7 +129,8 @@ class FitResults:
     def to_dict(self) -> dict[str, Any]:
         """Plain data for JSON: ``parameters``, ``uncertainty`` (one sigma), ``residual``
         (RMS surface torque, N m), ``recordings``, and ``start``, ``interval``,
-        ``identifiable``, ``uncertainty_method``, ``objective``, ``top``, ``notes``."""
+        ``identifiable``, ``uncertainty_method``, ``objective``, ``top``, ``notes`` and
+        ``correlation`` (name to name, from the Jacobian; None if not computed)."""
         spreads = dict(zip(self.names, self.uncertainty, strict=True))
         return {
             "parameters": self.parameters,
@@ -150,6 +155,12 @@ class FitResults:
             "runs": self.runs,
             "seconds": self.seconds,
             "notes": self.notes(),
+            "correlation": None
+            if self.correlation is None
+            else {
+                a: {b: float(self.correlation[i, j]) for j, b in enumerate(self.names)}
+                for i, a in enumerate(self.names)
+            },
         }
 
     def rows(self) -> list[tuple[str, str, str, str, str]]:

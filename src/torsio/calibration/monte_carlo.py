@@ -1,13 +1,14 @@
 """The probability of severe stick-slip over a map, from a fit's uncertainty (Monte Carlo).
 
-Each sample draws the fitted parameters from independent normal distributions (the fitted
-values, one sigma each: :class:`~torsio.calibration.fit_results.FitResults`), kept within
-their two-sigma intervals and at least each parameter's lower bound; the configuration
-with those values runs a severity map (:func:`torsio.analysis.maps.severity_map`, on any
-of its executors), and the probability of severe stick-slip at a point is the fraction
-of samples whose S_SS there exceeds the map's ``threshold``. The correlation between
-the parameters is not carried (the fit states one sigma each): where they trade against
-each other the spread is overstated, never understated.
+Each sample draws the fitted parameters from a joint normal distribution: the fitted
+values, each parameter's stated sigma, and the correlation between them from the fit's
+Jacobian (:class:`~torsio.calibration.fit_results.FitResults`; independent where the fit
+gives none), each draw kept within its two-sigma interval and at least its lower bound;
+the configuration with those values runs a severity map
+(:func:`torsio.analysis.maps.severity_map`, on any of its executors), and the probability
+of severe stick-slip at a point is the fraction of samples whose S_SS there exceeds the
+map's ``threshold``. Parameters that trade against each other in the fit (a static and a
+dynamic friction factor read from the same torque) move together in the draws.
 
 Examples
 --------
@@ -26,7 +27,7 @@ import numpy as np
 from torsio.analysis.maps import severity_map
 from torsio.calibration.parameters import SystemFamily
 
-__all__ = ["SeverityProbability", "severe_fraction", "severity_probability"]
+__all__ = ["SeverityProbability", "parameter_draws", "severe_fraction", "severity_probability"]
 
 
 def severe_fraction(severity: np.ndarray, threshold: float) -> np.ndarray:
@@ -80,14 +81,25 @@ class SeverityProbability:
         }
 
 
-def _draws(fit: Any, family: SystemFamily, count: int, seed: int) -> list[dict[str, float]]:
+def parameter_draws(fit: Any, family: Any, count: int, seed: int) -> list[dict[str, float]]:
+    """``count`` draws of the fitted parameters (module documentation): standard normals
+    correlated by the Cholesky factor of the fit's correlation, scaled by each sigma."""
     rng = np.random.default_rng(seed)
+    size = len(fit.names)
+    correlation = getattr(fit, "correlation", None)
+    if correlation is None:
+        correlation = np.eye(size)
+    eigenvalues, vectors = np.linalg.eigh(np.asarray(correlation, dtype=float))
+    factor = vectors * np.sqrt(np.maximum(eigenvalues, 0.0))  # factor @ factor.T = correlation
     draws = []
     for _ in range(count):
+        normals = factor @ rng.normal(size=size)
         values = {}
-        for name, value, spread in zip(fit.names, fit.values, fit.uncertainty, strict=True):
+        for k, (name, value, spread) in enumerate(
+            zip(fit.names, fit.values, fit.uncertainty, strict=True)
+        ):
             low, high = spread.interval
-            drawn = float(np.clip(value + spread.sigma * rng.normal(), low, high))
+            drawn = float(np.clip(value + spread.sigma * normals[k], low, high))
             values[name] = max(drawn, family.lower_bound(name))
         draws.append(values)
     return draws
@@ -124,7 +136,7 @@ def severity_probability(
         Options of every map (:class:`~torsio.analysis.map_options.MapOptions` fields).
     """
     family = SystemFamily(config)
-    draws = _draws(fit, family, int(samples), seed)
+    draws = parameter_draws(fit, family, int(samples), seed)
     maps = [
         severity_map(
             family.system(values), wob, rpm, executor=executor, progress=False, **map_options

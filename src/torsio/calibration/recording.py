@@ -93,6 +93,16 @@ SPIKE_SIGMAS = 8.0
 _HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
 
 
+def _area(time: np.ndarray, speed: np.ndarray, at: np.ndarray) -> np.ndarray:
+    """The exact integral from time[0] to ``at`` of the speed, linear between samples."""
+    step = np.diff(time)
+    cumulative = np.concatenate([[0.0], np.cumsum(0.5 * (speed[1:] + speed[:-1]) * step)])
+    k = np.clip(np.searchsorted(time, at, side="right") - 1, 0, time.size - 2)
+    x = at - time[k]
+    slope = (speed[k + 1] - speed[k]) / step[k]
+    return cumulative[k] + speed[k] * x + 0.5 * slope * x * x
+
+
 @attrs.frozen(eq=False, repr=False)
 class Recording:
     """Top-drive speed and surface torque against time, in SI units.
@@ -193,10 +203,29 @@ class Recording:
         """Time from the first sample to the last [s]."""
         return float(self.time[-1] - self.time[0])
 
-    def speed_table(self) -> np.ndarray:
+    def speed_table(self, smoothing: float = 0.0) -> np.ndarray:
         """The top-drive speed as a set-speed table, rows (time from the first sample [s],
-        speed [rad/s]): what a top held at the recorded speed follows."""
-        return np.vstack([self.time - self.time[0], self.top_speed])
+        speed [rad/s]): what a top held at the recorded speed follows.
+
+        ``smoothing`` [s]: each speed is the mean of the record (linear between samples)
+        over a window that long centred on its sample (cut at the record's ends), which
+        keeps a ramp and a constant speed and takes out sample-to-sample noise; 0: the
+        speeds as recorded.
+
+        >>> record = Recording(time=[0.0, 1.0, 2.0, 3.0], top_speed=[0.0, 1.0, 2.0, 3.0],
+        ...                    surface_torque=[0.0, 0.0, 0.0, 0.0])
+        >>> record.speed_table(smoothing=1.0)[1].tolist()   # a ramp, inside: unchanged
+        [0.25, 1.0, 2.0, 2.75]
+        """
+        time = self.time - self.time[0]
+        speed = np.asarray(self.top_speed, dtype=float)
+        if not (math.isfinite(smoothing) and smoothing >= 0.0):
+            raise ConfigError("speed_smoothing", f"expected a window >= 0 in s, got {smoothing!r}")
+        if smoothing > 0.0 and time.size > 1:
+            low = np.maximum(time - 0.5 * smoothing, time[0])
+            high = np.minimum(time + 0.5 * smoothing, time[-1])
+            speed = (_area(time, speed, high) - _area(time, speed, low)) / (high - low)
+        return np.vstack([time, speed])
 
     def save(self, path: str | Path) -> None:
         """Write the recording as CSV with the header ``time,top_rpm,surface_torque``

@@ -36,7 +36,7 @@ from collections.abc import Callable, Sequence
 import attrs
 import numpy as np
 
-__all__ = ["ParameterSpread", "correlation_time", "parameter_uncertainty"]
+__all__ = ["ParameterSpread", "correlation_time", "jacobian_correlation", "parameter_uncertainty"]
 
 SMOOTH_TOLERANCE = 0.3
 PROFILE_DOUBLINGS = 10
@@ -97,6 +97,25 @@ def _crossing(points: list[tuple[float, float]], level: float) -> float | None:
             return abs(previous[0] + fraction * (t - previous[0]))
         previous = (t, chi2)
     return None
+
+
+def jacobian_correlation(jacobian: np.ndarray) -> np.ndarray:
+    """The correlation matrix of the fitted parameters from the Jacobian of the residuals:
+    (J^T J)^-1 normalized by its diagonal (the residual variance cancels). A parameter the
+    Jacobian does not see (a zero column) is uncorrelated with the others.
+
+    >>> jacobian_correlation(np.array([[1.0, 0.0], [1.0, 1.0]])).round(6).tolist()
+    [[1.0, -0.707107], [-0.707107, 1.0]]
+    """
+    covariance = np.linalg.pinv(jacobian.T @ jacobian)
+    sigma = np.sqrt(np.maximum(np.diag(covariance), 0.0))
+    seen = sigma > 0.0
+    correlation = np.eye(sigma.size)
+    outer = np.outer(sigma, sigma)
+    both = np.outer(seen, seen)
+    correlation[both] = covariance[both] / outer[both]
+    np.fill_diagonal(correlation, 1.0)
+    return np.clip(correlation, -1.0, 1.0)
 
 
 def parameter_uncertainty(

@@ -128,15 +128,17 @@ def write_and_print(
     results: Any,
     outputs: dict[str, str],
     summary: Callable[[Any, dict[str, str]], None],
+    written: dict[str, str] | None = None,
 ) -> int:
     """Write the files ``outputs`` names (``out``: ``results.save``, ``csv``:
     ``results.to_csv``, ``plot``: ``results.plot``), then print ``results.to_dict()`` with
     the paths written as one JSON object (``--json``) or ``summary(results, written)``.
     Each of ``results.warnings`` (what limits the meaning of the result) goes to stderr
-    as ``torsio COMMAND: warning: ...``. Returns the exit status, 0."""
+    as ``torsio COMMAND: warning: ...``. ``written``: files the command wrote itself, by
+    option (reported with these). Returns the exit status, 0."""
     for text in getattr(results, "warnings", ()):
         print(f"torsio {args.command}: warning: {text}", file=sys.stderr)
-    written: dict[str, str] = {}
+    written = dict(written or {})
     if "out" in outputs:
         written["out"] = str(results.save(outputs["out"]))
     if "csv" in outputs:

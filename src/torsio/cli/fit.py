@@ -55,13 +55,19 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         action="store_true",
         help="uncertainty from the Jacobian only (no profile of the misfit)",
     )
+    parser.add_argument(
+        "--speed-smoothing",
+        metavar="T",
+        help="smooth the recorded speed over a centred window (s or with units) before it "
+        "drives the top (default 0: as recorded); against noise on the speed record",
+    )
     parser.add_argument("--plot", metavar="FILE", help="record against model (needs matplotlib)")
     common.add_json_argument(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Run ``torsio fit`` with parsed arguments; return the exit status."""
-    from torsio.calibration.fit import fit_recordings
+    from torsio.calibration.fit import SPEED_SMOOTHING, fit_recordings
     from torsio.calibration.recording import read_recording
     from torsio.config.reading import load_config
     from torsio.errors import ConfigError
@@ -75,6 +81,9 @@ def run(args: argparse.Namespace) -> int:
         raise ConfigError("well", f"{args.config} has no [well] table: nothing to fit friction to")
     wob = 0.0 if args.wob is None else to_si(args.wob, "force", key="--wob")
     recordings = [read_recording(path) for path in args.recording]
+    window = common.parse_time(args.speed_smoothing, "--speed-smoothing")
+    if window is not None and args.top != "recorded":
+        raise ConfigError("--speed-smoothing", "smooths the recorded speed: needs --top recorded")
     results = fit_recordings(
         config,
         recordings,
@@ -83,6 +92,7 @@ def run(args: argparse.Namespace) -> int:
         objective=args.objective,
         wob=wob,
         profile=not args.no_profile,
+        speed_smoothing=SPEED_SMOOTHING if window is None else window,
     )
     return common.write_and_print(args, results, outputs, _print_table)
 

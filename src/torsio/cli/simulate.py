@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 from typing import Any
 
 from torsio.cli import common
@@ -44,6 +45,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         csv="write the time series to a CSV file",
         plot="write a PNG of bit speed, surface torque and torque on bit",
     )
+    parser.add_argument(
+        "--recording",
+        metavar="FILE",
+        help="write what a rig records of the run (time, top_rpm, surface_torque, bit_rpm): "
+        "the CSV torsio fit reads",
+    )
     common.add_json_argument(parser)
 
 
@@ -52,10 +59,15 @@ def run(args: argparse.Namespace) -> int:
     from torsio.analysis.transient import simulate_config
     from torsio.errors import ConfigError
 
-    outputs = common.check_outputs(args, ("csv", "plot"))
+    outputs = common.check_outputs(args, ("csv", "plot", "recording"))
     config = common.load(args)
     if config.axial is not None:  # [chain] masses or law = "rgd": the axial engine
         from torsio.cli import axial
+
+        if args.recording is not None:
+            raise ConfigError(
+                "--recording", "a recording is of a torsional run (no axial channels)"
+            )
 
         try:
             return axial.simulate(args, config)
@@ -92,7 +104,14 @@ def run(args: argparse.Namespace) -> int:
             f"engine cannot run this model ({fallback})",
             file=sys.stderr,
         )
-    return common.write_and_print(args, results, outputs, _print_summary)
+    written: dict[str, str] = {}
+    if "recording" in outputs:
+        from torsio.calibration.recording import Recording
+
+        name = Path(outputs["recording"]).name
+        Recording.from_transient(results, bit_speed=True, name=name).save(outputs["recording"])
+        written["recording"] = outputs["recording"]
+    return common.write_and_print(args, results, outputs, _print_summary, written)
 
 
 def _refuse_integrator_options(config: Any, args: argparse.Namespace, given: dict) -> None:
@@ -180,6 +199,8 @@ def _print_summary(results: Any, written: dict[str, str]) -> None:
         rows.append(("time series", written["csv"]))
     if "plot" in written:
         rows.append(("plot", written["plot"]))
+    if "recording" in written:
+        rows.append(("recording (torsio fit)", written["recording"]))
     for name, value in rows:
         table.add_row(escape(name), escape(value))
     Console().print(table)

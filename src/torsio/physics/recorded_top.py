@@ -52,6 +52,16 @@ def _as_recording(value: Any) -> Recording:
     )
 
 
+def _as_window(value: Any) -> float:
+    if isinstance(value, str):
+        from torsio.units import to_si
+
+        value = to_si(value, "time", key="top_drive.smoothing")
+    if isinstance(value, bool) or not isinstance(value, int | float) or not value >= 0.0:
+        raise ConfigError("top_drive.smoothing", f"expected a window >= 0 in s, got {value!r}")
+    return float(value)
+
+
 @attrs.frozen
 class RecordedTopDrive:
     """The top held at the speed of a recording (no node, no state).
@@ -60,6 +70,11 @@ class RecordedTopDrive:
     ----------
     recording : Recording or str or Path
         The record (a path is read with :func:`~torsio.calibration.recording.read_recording`).
+    smoothing : float or str
+        Window [s] of the centred mean the recorded speed is smoothed with before it
+        drives the top (:meth:`~torsio.calibration.recording.Recording.speed_table`):
+        noise on the recorded speed would otherwise drive the string (an
+        errors-in-variables bias of what is fitted to the torque); 0: as recorded.
     """
 
     name: ClassVar[str] = "recorded"
@@ -67,8 +82,9 @@ class RecordedTopDrive:
     path_parameters: ClassVar[tuple[str, ...]] = ("recording",)
 
     recording: Recording = attrs.field(converter=_as_recording)
+    smoothing: float = attrs.field(default=0.0, converter=_as_window)
 
     def boundary(self, system: Any) -> TopDriveBoundary:
         """A held top whose set speed is the recorded speed against time."""
-        table = self.recording.speed_table()
+        table = self.recording.speed_table(self.smoothing)
         return TopDriveBoundary(inertia=0.0, set_speed=float(table[1, -1]), speed_table=table)

@@ -114,6 +114,7 @@ PARAMETER_DIMENSIONS: dict[str, str] = {
     "alpha": "dimensionless",
     "highpass_period": "time",
     "ramp": "time",
+    "smoothing": "time",
 }
 """Physical dimension of each parameter of the built-in top drives (for strings with units,
 in Python as in a file: ``PITopDrive(inertia="2900 kg*m^2", ...)``)."""

@@ -10,6 +10,10 @@ from __future__ import annotations
 
 from typing import Any
 
+from torsio.kernel_cache import announce_first_compile
+
+announce_first_compile()  # on stderr, before the first kernel is compiled or loaded
+
 numba: Any
 njit: Any
 prange: Any

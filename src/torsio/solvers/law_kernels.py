@@ -79,6 +79,9 @@ def compile_law_function(function: Callable[..., float]) -> Any:
     """
     import numba
 
+    from torsio.kernel_cache import announce_first_compile
+
+    announce_first_compile()
     try:
         try:
             return numba.njit(LAW_SIGNATURE, cache=True)(function)
