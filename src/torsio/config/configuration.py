@@ -190,15 +190,17 @@ class Config:
         from torsio.physics.system import System
 
         model = self.model(**discretization)
-        model = model if self.well is None else with_contacts(model, self.well, self.string)
-        damping = self.model_damping(model)
         op = self.operation
+        wob = op.wob if op.wob is not None else 0.0
+        if self.well is not None:  # the normal force at the file's weight on bit
+            model = with_contacts(model, self.well, self.string, wob)
+        damping = self.model_damping(model)
         return System(
             model=model,
             law=self.bit_law(),
             bit_radius=self.bit_radius,
             damping=damping,
-            wob=op.wob if op.wob is not None else 0.0,
+            wob=wob,
             rpm=op.rpm if op.rpm is not None else 60.0,
             top=self.top_drive.build(),
             string=self.string,

@@ -25,6 +25,7 @@ torsio.errors.ConfigError: well.friction_dynamic: expected a dynamic capacity <=
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import attrs
@@ -51,12 +52,36 @@ class StringContacts:
         |speed| below which a contact is on its static branch [rad/s] (Aarsnes & Shor 2018).
     details : dict
         Where the capacities came from (for reports): normal-force model, totals.
+    wob : float
+        Weight on bit [N] of the normal force the capacities are from (0: off bottom).
+    rebuild : callable or None
+        ``rebuild(wob)``: the contacts at another weight on bit (the soft-string normal
+        force in a curved hole changes with the tension, which the weight on bit lowers);
+        None: the capacities do not depend on it. :meth:`at_wob` calls it.
     """
 
     static: np.ndarray = attrs.field(converter=read_only)
     dynamic: np.ndarray = attrs.field(converter=read_only)
     threshold_speed: float = 0.5
     details: dict[str, Any] = attrs.field(factory=dict)
+    wob: float = 0.0
+    rebuild: Callable[[float], StringContacts] | None = attrs.field(default=None, repr=False)
+
+    def at_wob(self, wob: float) -> StringContacts:
+        """The contacts at weight on bit ``wob`` [N] (these, where they do not change).
+
+        >>> contacts = StringContacts(static=np.array([3.0]), dynamic=np.array([2.0]))
+        >>> contacts.at_wob(50e3) is contacts   # no rebuild: independent of the weight
+        True
+        """
+        if self.rebuild is None or float(wob) == self.wob:
+            return self
+        return self.rebuild(float(wob))
+
+    @property
+    def depends_on_wob(self) -> bool:
+        """Whether the capacities change with the weight on bit."""
+        return self.rebuild is not None
 
     def __attrs_post_init__(self) -> None:
         if self.static.shape != self.dynamic.shape or self.static.ndim != 1:

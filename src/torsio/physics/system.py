@@ -139,10 +139,18 @@ class System:
         return Dynamics.from_system(self)
 
     def at(self, wob: float | None = None, rpm: float | None = None) -> System:
-        """The same system at another operating point."""
-        return attrs.evolve(
+        """The same system at another operating point; contacts along the string whose
+        normal force depends on the weight on bit follow it
+        (:meth:`torsio.model.contacts.StringContacts.at_wob`)."""
+        system = attrs.evolve(
             self, wob=self.wob if wob is None else wob, rpm=self.rpm if rpm is None else rpm
         )
+        contacts = getattr(self.model, "contacts", None)
+        if contacts is not None and contacts.depends_on_wob:
+            moved = contacts.at_wob(float(system.wob))
+            if moved is not contacts:
+                system = attrs.evolve(system, model=self.model.with_contacts(moved))
+        return system
 
     # --- matrices -------------------------------------------------------------------------
     @property

@@ -260,6 +260,16 @@ def simulate_batch(
 
     run = resolve(system.model.engines.batch)  # the model names what runs it
     given = BatchOptions(**values) if options is None else options.replace(**values)
+    contacts = getattr(system.model, "contacts", None)
+    if contacts is not None and contacts.depends_on_wob:  # one set of contacts per weight
+        points = batch_points(system, wob, rpm)
+        weights = np.unique(points.wob)
+        if weights.size > 1 or (weights.size == 1 and weights[0] != contacts.wob):
+            parts = []
+            for weight in weights:
+                rows = np.flatnonzero(points.wob == weight)
+                parts.append((rows, run(system.at(wob=float(weight)), points[rows], None, given)))
+            return BatchResults.gather(parts, points.size)
     return run(system, wob, rpm, given)
 
 

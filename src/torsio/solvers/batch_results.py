@@ -110,6 +110,21 @@ def batch_points(system: Any, wob: Any, rpm: Any) -> BatchPoints:
     return BatchPoints(wob_arr, rpm_arr, torque_driven)
 
 
+_POINT_FIELDS = (
+    "wob",
+    "rpm",
+    "severity",
+    "bit_speed_max",
+    "bit_speed_min",
+    "top_speed_mean",
+    "steps",
+    "rejected",
+    "status",
+    "ended",
+)
+"""The fields of :class:`BatchResults` with one value per point."""
+
+
 @attrs.frozen(repr=False)
 class BatchResults:
     """S_SS of a batch of operating points.
@@ -164,6 +179,19 @@ class BatchResults:
         default=attrs.Factory(lambda self: np.full(self.severity.shape, self.duration), True)
     )
     steady_tolerance: float = 0.0
+
+    @classmethod
+    def gather(cls, parts: list[tuple[np.ndarray, BatchResults]], size: int) -> BatchResults:
+        """One batch of ``size`` points from parts run apart: ``(rows, results)``, the
+        rows of the whole batch each part holds (times added; the rest from the first)."""
+        first = parts[0][1]
+        arrays: dict[str, Any] = {}
+        for name in _POINT_FIELDS:
+            column = np.empty(size, dtype=getattr(first, name).dtype)
+            for rows, part in parts:
+                column[rows] = getattr(part, name)
+            arrays[name] = column
+        return attrs.evolve(first, elapsed=sum(part.elapsed for _, part in parts), **arrays)
 
     def __repr__(self) -> str:  # short: counts, no arrays
         return (

@@ -113,7 +113,9 @@ def _torsional_rigidity(string: DrillString, top: float, md: np.ndarray) -> np.n
     return rigidity[index]
 
 
-def break_off(well: Wellbore, string: DrillString, cell_length: float = 1.0) -> BreakOff:
+def break_off(
+    well: Wellbore, string: DrillString, cell_length: float = 1.0, wob: float = 0.0
+) -> BreakOff:
     """The break-off torque and twist and the sliding torque of ``string`` in ``well``.
 
     Parameters
@@ -124,6 +126,10 @@ def break_off(well: Wellbore, string: DrillString, cell_length: float = 1.0) -> 
         The string, its bit at the survey's last station.
     cell_length : float
         Longest cell of the integration [m].
+    wob : float
+        Weight on bit [N]: the normal force of the rotating state on bottom, the tension
+        less the weight on bit everywhere (0: off bottom). Only the soft-string normal
+        force depends on it (a curved hole); the gravity model's does not.
 
     Returns
     -------
@@ -131,9 +137,9 @@ def break_off(well: Wellbore, string: DrillString, cell_length: float = 1.0) -> 
     """
     if not (math.isfinite(cell_length) and cell_length > 0.0):
         raise ConfigError("cell_length", f"expected a positive length in m, got {cell_length!r}")
-    unit = torque_drag(well, string, friction=1.0, cell_length=cell_length)
+    unit = torque_drag(well, string, friction=1.0, wob=wob, cell_length=cell_length)
     md = unit.md
-    per_cell = -np.diff(unit.torque[:, 0])  # int N r_o over each cell (torque grows upward)
+    per_cell = -np.diff(unit.torque[:, 1])  # int N r_o over each cell (torque grows upward)
     mid = 0.5 * (md[:-1] + md[1:])
 
     def profile(friction: np.ndarray) -> np.ndarray:

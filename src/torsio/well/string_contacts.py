@@ -45,7 +45,7 @@ CONTACT_CELL_LENGTH = 10.0
 """Cell of the torque-and-drag integrals the capacities are taken from [m]."""
 
 
-def string_contacts(grid: Any, well: Wellbore) -> StringContacts:
+def string_contacts(grid: Any, well: Wellbore, wob: float = 0.0) -> StringContacts:
     """Static and sliding capacities [N m] of every drag node of ``grid`` in ``well``.
 
     Parameters
@@ -55,13 +55,17 @@ def string_contacts(grid: Any, well: Wellbore) -> StringContacts:
     well : Wellbore
         Survey, hole sections (mu_s, mu_d), mud, normal-force model, threshold speed.
 
+    wob : float
+        Weight on bit [N] of the rotating state's normal force (0: off bottom); the
+        contacts rebuild themselves at another (:meth:`StringContacts.at_wob`).
+
     Raises
     ------
     ConfigError
         On ``discretization.drag_spacing`` when the string has no drag node inside it to
         carry the shares of its ends.
     """
-    profile = break_off(well, grid.string, cell_length=CONTACT_CELL_LENGTH)
+    profile = break_off(well, grid.string, cell_length=CONTACT_CELL_LENGTH, wob=wob)
     md = profile.md
     top = float(md[0])
 
@@ -101,17 +105,57 @@ def string_contacts(grid: Any, well: Wellbore) -> StringContacts:
         dynamic=dynamic,
         threshold_speed=well.threshold_speed,
         details=_details(well, profile),
+        wob=float(wob),
+        rebuild=_rebuild(grid, well, grid.string),
     )
 
 
-def node_contacts(model: Any, well: Wellbore, string: Any) -> StringContacts:
+class ContactsAtWob:
+    """The contacts of a model's string in a well at any weight on bit (picklable, so a
+    System with them goes to worker processes; a few weights kept per process).
+
+    ``target``: the model without contacts (a lumped chain, or a wave grid).
+    """
+
+    KEPT = 64
+
+    def __init__(self, target: Any, well: Wellbore, string: Any) -> None:
+        self.target, self.well, self.string = target, well, string
+        self._kept: dict[float, StringContacts] = {}
+
+    def __call__(self, wob: float) -> StringContacts:
+        kept = self._kept.get(wob)
+        if kept is None:
+            if self.target.has_matrices:
+                kept = node_contacts(self.target, self.well, self.string, wob)
+            else:
+                kept = string_contacts(self.target, self.well, wob)
+            if len(self._kept) >= self.KEPT:
+                self._kept.pop(next(iter(self._kept)))
+            self._kept[wob] = kept
+        return kept
+
+    def __getstate__(self) -> dict[str, Any]:
+        return {"target": self.target, "well": self.well, "string": self.string}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__init__(state["target"], state["well"], state["string"])  # type: ignore[misc]
+
+
+def _rebuild(target: Any, well: Wellbore, string: Any) -> ContactsAtWob | None:
+    """How contacts rebuild at another weight on bit; None where the normal force does
+    not depend on it (the gravity model)."""
+    return None if well.normal_force == "gravity" else ContactsAtWob(target, well, string)
+
+
+def node_contacts(model: Any, well: Wellbore, string: Any, wob: float = 0.0) -> StringContacts:
     """Static and sliding capacities [N m] of every node of a lumped chain in ``well``.
 
     Node i (at ``model.node_depths[i]`` below the top of ``string``) stands for the string
     from half-way to the node above (the top, for the first) to half-way to the node below
     (the bottom of the string, for the last: the bit node carries the bit section and what
     a rigid BHA lumps there), so the capacities add up to the break-off and sliding torques
-    exactly.
+    exactly. The normal force is the rotating state's at ``wob`` [N] (0: off bottom).
 
     >>> from torsio.examples import deviated_well_config
     >>> config = deviated_well_config()
@@ -120,7 +164,7 @@ def node_contacts(model: Any, well: Wellbore, string: Any) -> StringContacts:
     >>> contacts.static.size, round(contacts.static_total), round(contacts.dynamic_total)
     (24, 12174, 10148)
     """
-    profile = break_off(well, string, cell_length=CONTACT_CELL_LENGTH)
+    profile = break_off(well, string, cell_length=CONTACT_CELL_LENGTH, wob=wob)
     md = profile.md
     depths = float(md[0]) + np.asarray(model.node_depths, dtype=float)
     edges = np.concatenate([[md[0]], 0.5 * (depths[:-1] + depths[1:]), [md[-1]]])
@@ -133,6 +177,8 @@ def node_contacts(model: Any, well: Wellbore, string: Any) -> StringContacts:
         dynamic=np.minimum(capacities[1], capacities[0]),  # equal to round-off where mu_s = mu_d
         threshold_speed=well.threshold_speed,
         details=_details(well, profile),
+        wob=float(wob),
+        rebuild=_rebuild(model, well, string),
     )
 
 
@@ -146,10 +192,11 @@ def _details(well: Wellbore, profile: Any) -> dict[str, Any]:
     }
 
 
-def with_contacts(model: Any, well: Wellbore, string: Any) -> Any:
-    """``model`` with the friction of ``string`` in ``well``: a contact at every node of a
-    chain with matrices (the lumped models, :func:`node_contacts`), at every drag node of a
-    characteristic grid (:func:`string_contacts`)."""
+def with_contacts(model: Any, well: Wellbore, string: Any, wob: float = 0.0) -> Any:
+    """``model`` with the friction of ``string`` in ``well`` at weight on bit ``wob`` [N]:
+    a contact at every node of a chain with matrices (the lumped models,
+    :func:`node_contacts`), at every drag node of a characteristic grid
+    (:func:`string_contacts`)."""
     if string is None:
         raise ConfigError(
             "well",
@@ -157,5 +204,5 @@ def with_contacts(model: Any, well: Wellbore, string: Any) -> Any:
             "and lengths); a [chain] has none",
         )
     if model.has_matrices:
-        return model.with_contacts(node_contacts(model, well, string))
-    return model.with_contacts(string_contacts(model, well))
+        return model.with_contacts(node_contacts(model, well, string, wob))
+    return model.with_contacts(string_contacts(model, well, wob))

@@ -98,6 +98,9 @@ class Survey:
     _tangents: np.ndarray = attrs.field(init=False)
     _doglegs: np.ndarray = attrs.field(init=False)
     _positions: np.ndarray = attrs.field(init=False)
+    _frames: dict[tuple[int, float], tuple[np.ndarray, np.ndarray]] = attrs.field(
+        init=False, factory=dict
+    )
 
     def __attrs_post_init__(self) -> None:
         md, inc, azi = self.md, self.inclination_deg, self.azimuth_deg
@@ -202,9 +205,17 @@ class Survey:
     def frame(self, interval: int, md: float) -> tuple[np.ndarray, np.ndarray]:
         """Unit tangent and curvature vector [1/m] at ``md`` on the arc of ``interval``
         (:meth:`interval`), also at its end stations, where the neighbour's arc differs."""
-        f = (md - self.md[interval]) / (self.md[interval + 1] - self.md[interval])
-        _, tangent, curvature = self._arc(interval, f)
-        return tangent, curvature
+        key = (interval, float(md))
+        kept = self._frames.get(key)
+        if kept is None:  # torque and drag at another weight on bit asks the same points
+            f = (md - self.md[interval]) / (self.md[interval + 1] - self.md[interval])
+            _, tangent, curvature = self._arc(interval, f)
+            tangent.setflags(write=False)
+            curvature.setflags(write=False)
+            kept = (tangent, curvature)
+            if len(self._frames) < 200_000:
+                self._frames[key] = kept
+        return kept
 
     def _evaluate(self, md: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         depth = np.atleast_1d(np.asarray(md, dtype=float))
