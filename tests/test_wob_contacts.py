@@ -85,6 +85,21 @@ def test_a_batch_runs_each_weight_with_its_own_contacts():
     assert at_zero.severity[0] != both.severity[1]
 
 
+def test_a_wave_batch_runs_each_point_with_the_contacts_of_its_weight():
+    # the wave engine runs point by point: each with the System at its weight, the same
+    # march as the batch of that weight alone, to the last digit
+    system = deviated_well_config().system(strategy="wave").at(wob=0.0)
+    run = {"duration": 10.0, "steady_window": 5.0}
+    both = simulate_batch(system, [20e3, 60e3], [60.0, 60.0], **run)
+    for k, wob in enumerate((20e3, 60e3)):
+        alone = simulate_batch(system.at(wob=wob), [wob], [60.0], **run)
+        assert both.severity[k] == alone.severity[0]
+    fixed = attrs.evolve(system.model.contacts, rebuild=None)  # all at 0 N
+    at_zero = simulate_batch(attrs.evolve(system, model=system.model.with_contacts(fixed)),
+                             [60e3], [60.0], **run)  # fmt: skip
+    assert at_zero.severity[0] != both.severity[1]
+
+
 def test_a_system_with_contacts_that_follow_the_weight_travels_to_workers():
     system = pickle.loads(pickle.dumps(_lumped().at(wob=30e3)))
     assert system.model.contacts.wob == 30e3

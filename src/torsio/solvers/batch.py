@@ -260,16 +260,6 @@ def simulate_batch(
 
     run = resolve(system.model.engines.batch)  # the model names what runs it
     given = BatchOptions(**values) if options is None else options.replace(**values)
-    contacts = getattr(system.model, "contacts", None)
-    if contacts is not None and contacts.depends_on_wob:  # one set of contacts per weight
-        points = batch_points(system, wob, rpm)
-        weights = np.unique(points.wob)
-        if weights.size > 1 or (weights.size == 1 and weights[0] != contacts.wob):
-            parts = []
-            for weight in weights:
-                rows = np.flatnonzero(points.wob == weight)
-                parts.append((rows, run(system.at(wob=float(weight)), points[rows], None, given)))
-            return BatchResults.gather(parts, points.size)
     return run(system, wob, rpm, given)
 
 
@@ -277,8 +267,22 @@ def simulate_lumped_batch(
     system: System, wob: Any, rpm: Any, options: BatchOptions
 ) -> BatchResults:
     """:func:`simulate_batch` of a lumped model (its batch engine,
-    :data:`torsio.model.lumped.LUMPED_ENGINES`): the System, the points and the options."""
+    :data:`torsio.model.lumped.LUMPED_ENGINES`): the System, the points and the options.
+
+    Contacts along the string whose normal force follows the weight on bit
+    (:meth:`torsio.model.contacts.StringContacts.at_wob`) give each weight its own chain:
+    the points run weight by weight."""
     points = batch_points(system, wob, rpm)
+    contacts = system.model.contacts
+    if contacts is not None and contacts.depends_on_wob:  # one chain per weight
+        weights = np.unique(points.wob)
+        if weights.size > 1 or (weights.size == 1 and weights[0] != contacts.wob):
+            parts = []
+            for weight in weights:
+                rows = np.flatnonzero(points.wob == weight)
+                weighted = system.at(wob=float(weight))
+                parts.append((rows, simulate_lumped_batch(weighted, points[rows], None, options)))
+            return BatchResults.gather(parts, points.size)
     wob_arr, rpm_arr, torque_driven = points.wob, points.rpm, points.torque_driven
     rtol, atol, engine, threads = options.rtol, options.atol, options.engine, options.threads
     duration, steady_window = run_times(system, options.duration, options.steady_window)

@@ -119,9 +119,10 @@ def simulate_wave_batch(system: Any, wob: Any, rpm: Any, options: BatchOptions) 
 
     def run_point(k: int) -> None:
         point = system.at(wob=float(wob_arr[k]), **({} if torque_driven else {"rpm": rpm_arr[k]}))
-        top = top_boundary(point, grid)
+        point_grid = point.model  # its contacts at the point's weight on bit (StringContacts)
+        top = top_boundary(point, point_grid)
         try:
-            run = march(grid, top, point.law, point.wob, point.bit_radius, alpha, steps,
+            run = march(point_grid, top, point.law, point.wob, point.bit_radius, alpha, steps,
                         window_start=steps - window_steps + 1, track_energy=False,
                         steady_tolerance=steady, cycle_gap=0.5 * math.pi / omega_1,
                         kernel=kernel, should_stop=cancelled.is_set)  # fmt: skip
