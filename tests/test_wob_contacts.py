@@ -69,31 +69,20 @@ def test_the_gravity_normal_force_does_not_depend_on_the_weight_on_bit():
     assert system.at(wob=80e3).model.contacts is system.model.contacts
 
 
-def test_a_batch_runs_each_weight_with_its_own_contacts():
-    # the same kernel on the same chain: a batch over two weights equals each weight's
+@pytest.mark.parametrize("strategy", ["B", "wave"])
+def test_a_batch_runs_each_weight_with_its_own_contacts(strategy):
+    # the same kernel on the same chain (lumped: the batch runs weight by weight; wave: each
+    # point with the System at its weight): a batch over two weights equals each weight's
     # batch run with the System at that weight, to the last digit
-    system = _lumped()
+    options = {"dp_elements": 10, "bha_elements": 4} if strategy == "B" else {}
+    system = deviated_well_config().system(strategy=strategy, **options).at(wob=0.0)
     run = {"duration": 10.0, "steady_window": 5.0}
-    both = simulate_batch(system, [20e3, 60e3, 20e3], [60.0, 60.0, 100.0], **run)
-    for k, (wob, rpm) in enumerate([(20e3, 60.0), (60e3, 60.0), (20e3, 100.0)]):
+    points = [(20e3, 60.0), (60e3, 60.0), (20e3, 100.0)]
+    both = simulate_batch(system, *np.array(points).T, **run)
+    for k, (wob, rpm) in enumerate(points):
         alone = simulate_batch(system.at(wob=wob), [wob], [rpm], **run)
         assert both.severity[k] == alone.severity[0]
         assert both.steps[k] == alone.steps[0]
-    fixed = attrs.evolve(system.model.contacts, rebuild=None)  # all at 0 N
-    at_zero = simulate_batch(attrs.evolve(system, model=system.model.with_contacts(fixed)),
-                             [60e3], [60.0], **run)  # fmt: skip
-    assert at_zero.severity[0] != both.severity[1]
-
-
-def test_a_wave_batch_runs_each_point_with_the_contacts_of_its_weight():
-    # the wave engine runs point by point: each with the System at its weight, the same
-    # march as the batch of that weight alone, to the last digit
-    system = deviated_well_config().system(strategy="wave").at(wob=0.0)
-    run = {"duration": 10.0, "steady_window": 5.0}
-    both = simulate_batch(system, [20e3, 60e3], [60.0, 60.0], **run)
-    for k, wob in enumerate((20e3, 60e3)):
-        alone = simulate_batch(system.at(wob=wob), [wob], [60.0], **run)
-        assert both.severity[k] == alone.severity[0]
     fixed = attrs.evolve(system.model.contacts, rebuild=None)  # all at 0 N
     at_zero = simulate_batch(attrs.evolve(system, model=system.model.with_contacts(fixed)),
                              [60e3], [60.0], **run)  # fmt: skip
