@@ -24,7 +24,7 @@ Examples
 (6, 'hole[0].friction_static')
 >>> family.values["friction_static"], family.values["hole[0].friction_dynamic"]
 (0.35, 0.2)
->>> round(family.system({"friction_static": 0.7}).model.contacts.static_total)
+>>> round(family.system({"friction_static": 0.7}).at(wob=0.0).model.contacts.static_total)
 19327
 >>> family.check(["friction_static", "mu"])
 Traceback (most recent call last):
@@ -150,22 +150,45 @@ class SystemFamily:
         merged = {**self.values, **values}
         static_factors = self._zone_factors(merged, "friction_static")
         dynamic_factors = self._zone_factors(merged, "friction_dynamic")
-        static = sum(f * c.static for f, c in zip(static_factors, self._unit, strict=True))
-        dynamic = sum(
-            min(d, s) * c.dynamic
-            for d, s, c in zip(dynamic_factors, static_factors, self._unit, strict=True)
-        )
-        return StringContacts(
-            static=np.asarray(static),
-            dynamic=np.minimum(np.asarray(dynamic), np.asarray(static)),
-            threshold_speed=float(merged["threshold_speed"]),
-        )
+        zones = ZoneContacts(
+            tuple(self._unit), tuple(static_factors), tuple(dynamic_factors),
+            float(merged["threshold_speed"]),
+        )  # fmt: skip
+        return zones(0.0)
 
     def system(self, values: Mapping[str, float]) -> Any:
         """The base system with ``values`` of the fittable parameters (the rest as given)."""
         merged = {**self.values, **values}
-        model = self.base.model.with_contacts(self.contacts(merged))
+        contacts = self.contacts(merged).at_wob(float(self.base.wob))  # as Config.system
+        model = self.base.model.with_contacts(contacts)
         damping = attrs.evolve(self.base.damping, alpha=float(merged["alpha"]))
         if not isinstance(damping, RayleighDamping):  # pragma: no cover - wave: Rayleigh only
             raise ConfigError("damping", "the wave model takes Rayleigh damping")
         return attrs.evolve(self.base, model=model, damping=damping)
+
+
+@attrs.frozen(eq=False)
+class ZoneContacts:
+    """Contacts from unit-friction contacts per hole zone (friction factor 1) scaled by the
+    zones' factors, at any weight on bit (each unit rebuilt there: ``rebuild`` of the
+    result, so a fitted system's contacts follow the weight as a configuration's do)."""
+
+    units: tuple[StringContacts, ...]
+    static_factors: tuple[float, ...]
+    dynamic_factors: tuple[float, ...]
+    threshold_speed: float
+
+    def __call__(self, wob: float) -> StringContacts:
+        units = [u.at_wob(wob) for u in self.units]
+        zones = zip(self.static_factors, self.dynamic_factors, units, strict=True)
+        static = sum(f * u.static for f, _, u in zones)
+        zones = zip(self.static_factors, self.dynamic_factors, units, strict=True)
+        dynamic = sum(min(d, f) * u.dynamic for f, d, u in zones)
+        depends = any(u.depends_on_wob for u in self.units)
+        return StringContacts(
+            static=np.asarray(static),
+            dynamic=np.minimum(np.asarray(dynamic), np.asarray(static)),
+            threshold_speed=self.threshold_speed,
+            wob=float(wob),
+            rebuild=self if depends else None,
+        )
