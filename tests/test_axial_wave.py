@@ -20,7 +20,7 @@ import scipy.optimize
 
 from torsio.axial import bit_step, wave_kernel
 from torsio.axial.assembly import pipe_assembly
-from torsio.axial.kernel import STATS
+from torsio.axial.kernel import SAMPLE_COLUMNS, STATS
 from torsio.axial.rgd import rgd_example
 from torsio.axial.run_setup import BitRotation
 from torsio.axial.transient import simulate_axial
@@ -33,7 +33,7 @@ from torsio.axial.wave_pipe import (
     set_top_velocity,
     smooth_end_terms,
 )
-from torsio.axial.wave_setup import pipe_grid
+from torsio.axial.wave_setup import pipe_grid, run_wave, wave_run_setup
 from torsio.errors import ConfigError
 from torsio.model.continuum import bar_frequencies
 from torsio.model.lumped import chain_matrix
@@ -54,45 +54,75 @@ def _stepped(hook: str) -> WaveDrillingAssembly:
 
 
 # --- frequencies of the grid --------------------------------------------------------------
-def _one_step_matrix(offsets, junctions, z_top, z_bottom, end_mass, step, held_top):
-    """The map of one step of a line with the BHA free at its bottom (the bit off bottom:
-    no bit force), state (p, m, V), built column by column from the step functions of
-    torsio.axial.wave_kernel (step 2, in its order: advance, the top, the BHA, the end)."""
-    n = int(offsets[-1])
+def _free_step(p, m, velocity, line, top_value, held_top=True):
+    """One step of a line with the BHA free at its bottom (the bit off bottom: no bit
+    force), in place on p, m; the BHA's new velocity. The calls of torsio.axial.wave_kernel's
+    step 2 (3 torsionally), in its order: advance, the top, the BHA, the end."""
+    offsets, junctions, z_top, z_bottom, end_mass, step = line
+    arrived = p[-1]
+    advance(p, m, offsets, junctions)
+    if held_top:
+        set_top_velocity(p, m, z_top, top_value)
+    else:
+        set_top_force(p, m, top_value)
+    force = 0.5 * (arrived + p[-1])
+    free, inverse = smooth_end_terms(velocity, end_mass, z_bottom, step)
+    new, _ = bit_step.wear_flat_contact(free, force, 0.0, inverse, step, 0.0, False)
+    close_bottom(p, m, z_bottom, new)
+    return new
+
+
+def _line(assembly, grid, name):
+    """(offsets, junctions, Z top, Z bottom, end mass or inertia, h) of a line."""
+    z = getattr(assembly, f"{name}_impedances")
+    end = assembly.bha_mass if name == "axial" else assembly.bha_inertia
+    offsets, junctions = getattr(grid, f"{name}_offsets"), getattr(grid, f"{name}_junctions")
+    return offsets, junctions, z[0], z[-1], end, grid.step
+
+
+def _one_step_matrix(line, held_top):
+    """The linear map of :func:`_free_step` (top input 0) on the state (p, m, V), built
+    column by column."""
+    n = int(line[0][-1])
     size = 2 * n + 1
     matrix = np.zeros((size, size))
     for column in range(size):
         state = np.eye(size)[column]
-        p, m, velocity = state[:n].copy(), state[n : 2 * n].copy(), state[-1]
-        arrived = p[-1]
-        advance(p, m, offsets, junctions)
-        if held_top:
-            set_top_velocity(p, m, z_top, 0.0)
-        else:
-            set_top_force(p, m, 0.0)
-        free, inverse = smooth_end_terms(velocity, end_mass, z_bottom, step)
-        force = 0.5 * (arrived + p[-1])
-        new, _ = bit_step.wear_flat_contact(free, force, 0.0, inverse, step, 0.0, False)
-        close_bottom(p, m, z_bottom, new)
+        p, m = state[:n].copy(), state[n : 2 * n].copy()
+        new = _free_step(p, m, state[-1], line, 0.0, held_top)
         matrix[:, column] = np.concatenate([p, m, [new]])
     return matrix
+
+
+def test_the_free_step_is_the_kernels_step_with_the_bit_off_bottom():
+    # the frequency tests below read the one-step map of _free_step: here the compiled run
+    # itself, its rock surface put 10 m below the bit (off bottom throughout: d < 0), gives
+    # the same bit velocity and speed at every step, to the last bit
+    assembly = _stepped("speed")
+    setup = wave_run_setup(assembly, BIT, WOB, 180.0, 0.5, 0.25, start="steady")
+    setup.history[3, : int(setup.cursor[1])] += 10.0
+    lines = {name: _line(assembly, setup.grid, name) for name in ("axial", "torsional")}
+    states = {
+        "axial": [setup.axial_p.copy(), setup.axial_m.copy(), setup.bha[1]],
+        "torsional": [setup.torsional_p.copy(), setup.torsional_m.copy(), setup.bha[3]],
+    }
+    tops = {"axial": setup.steady.rop, "torsional": setup.steady.bit_speed}
+    samples = np.zeros((setup.steps, len(SAMPLE_COLUMNS)))
+    stats = run_wave(setup, samples, 1)
+    assert stats[STATS.index("off_bottom_steps")] == stats[STATS.index("window_steps")]
+    for name, column in (("axial", "bit_velocity"), ("torsional", "bit_speed")):
+        p, m, velocity = states[name]
+        expected = [velocity]
+        for _ in range(setup.steps - 1):
+            expected.append(_free_step(p, m, expected[-1], lines[name], tops[name]))
+        np.testing.assert_array_equal(samples[:, SAMPLE_COLUMNS.index(column)], expected)
 
 
 def _grid_frequencies(assembly, line: str, held_top: bool = True):
     """The lowest MODES frequencies [rad/s] of the grid's one-step map (eigenvalues
     e^{iωh}), and the grid."""
     grid = pipe_grid(assembly, 2e-3)
-    z = getattr(assembly, f"{line}_impedances")
-    end = assembly.bha_mass if line == "axial" else assembly.bha_inertia
-    matrix = _one_step_matrix(
-        getattr(grid, f"{line}_offsets"),
-        getattr(grid, f"{line}_junctions"),
-        z[0],
-        z[-1],
-        end,
-        grid.step,
-        held_top,
-    )
+    matrix = _one_step_matrix(_line(assembly, grid, line), held_top)
     roots = np.linalg.eigvals(matrix)
     # the scheme conserves energy: every nonzero root on the unit circle
     moving = np.abs(roots) > 1e-6
