@@ -302,6 +302,10 @@ def test_the_bit_step_indices_name_the_kernels_stats():
         (lambda: PipeSection(1e3, E, G, "steel", 3.4e-3, 3e-5), "section.density"),
         (lambda: WaveDrillingAssembly([], bha_mass=MASS, bha_inertia=INERTIA), "sections"),
         (lambda: WaveDrillingAssembly([1.0], bha_mass=MASS, bha_inertia=INERTIA), "sections[0]"),
+        (
+            lambda: WaveDrillingAssembly(STEPPED[0], bha_mass=MASS, bha_inertia=INERTIA),
+            "sections",
+        ),
         (lambda: WaveDrillingAssembly(STEPPED, bha_mass=0.0, bha_inertia=INERTIA), "bha_mass"),
         (
             lambda: WaveDrillingAssembly(STEPPED, bha_mass=MASS, bha_inertia=math.nan),

@@ -84,6 +84,8 @@ class PipeSection:
 
 
 def _sections(values: Iterable[PipeSection]) -> tuple[PipeSection, ...]:
+    if isinstance(values, PipeSection) or not isinstance(values, Iterable):
+        raise ConfigError("sections", f"expected a sequence of PipeSection, got {values!r}")
     sections = tuple(values)
     for i, section in enumerate(sections):
         if not isinstance(section, PipeSection):
