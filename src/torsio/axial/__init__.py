@@ -5,9 +5,10 @@ drilling state in closed form (:mod:`torsio.axial.steady`), the linearization of
 model about it with the state-dependent delay (:mod:`torsio.axial.linearization`), the
 roots of a linear delay system (:mod:`torsio.axial.delay_roots`), the stability of steady
 drilling over rpm (:mod:`torsio.axial.stability`), lumped assemblies that move axially and
-torsionally (:mod:`torsio.axial.assembly`), their transients on a compiled fixed-step engine
-with the bit's own history (:mod:`torsio.axial.transient`) and maps over (weight, rpm)
-(:mod:`torsio.axial.maps`). The equations are in docs/axial.md.
+torsionally (:mod:`torsio.axial.assembly`) and distributed ones, a stepped pipe of axial and
+torsional wave lines above a lumped BHA (:mod:`torsio.axial.wave_assembly`), their transients
+on compiled fixed-step engines with the bit's own history (:mod:`torsio.axial.transient`) and
+maps over (weight, rpm) (:mod:`torsio.axial.maps`). The equations are in docs/axial.md.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from torsio.axial.linearization import axial_linearization, drilling_linearizati
 from torsio.axial.rgd import RGDBit, rgd_example, rgd_from_table
 from torsio.axial.stability import DrillingStability, crossing_rpm, drilling_stability
 from torsio.axial.steady import SteadyDrilling, steady_drilling
+from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly, wave_pipe_assembly
 
 # The transient and the maps load numba: their names are imported on first use (PEP 562),
 # so that reading an RGD bit from a configuration stays cheap.
@@ -43,8 +45,10 @@ __all__ = [
     "DrillingAssembly",
     "DrillingStability",
     "LinearDelaySystem",
+    "PipeSection",
     "RGDBit",
     "SteadyDrilling",
+    "WaveDrillingAssembly",
     "axial_linearization",
     "axial_map",
     "crossing_rpm",
@@ -58,6 +62,7 @@ __all__ = [
     "simulate_axial",
     "steady_drilling",
     "two_dof_assembly",
+    "wave_pipe_assembly",
 ]
 
 

@@ -31,6 +31,7 @@ from numpy.typing import NDArray
 from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.rgd import RGDBit
 from torsio.axial.transient import run_times, simulate_axial
+from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.errors import ConfigError
 
 __all__ = ["AxialMap", "axial_map"]
@@ -101,7 +102,7 @@ class AxialMap:
 
 
 def axial_map(
-    assembly: DrillingAssembly,
+    assembly: DrillingAssembly | WaveDrillingAssembly,
     bit: RGDBit,
     wobs: Sequence[float],
     rpms: Sequence[float],
