@@ -248,7 +248,7 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
                     c = sections[s, slot.C_INNER]
                     squares, rub = _contacts(
                         P[ip : ip + regular], M[im : im + regular], 2.0 * z, 1.0 / (2.0 * z + c),
-                        static[a:b], dynamic[a:b], contact_speed[a:b], below,
+                        static[a:b], dynamic[a:b], contact_speed[a:b], below, track_energy,
                     )  # fmt: skip
                     inner_power += c * squares
                     friction_power += rub
