@@ -52,7 +52,7 @@ import numpy as np
 from torsio.errors import ConfigError, SolverError
 from torsio.model.modal import first_natural_frequency, highest_natural_frequency
 from torsio.physics.system import System
-from torsio.solvers.batch_options import ENGINES, BatchOptions
+from torsio.solvers.batch_options import ENGINES, BatchOptions, batch_threads
 from torsio.solvers.batch_results import (
     STATUS_SOLVER_FAILED,
     BatchResults,
@@ -271,18 +271,14 @@ def simulate_lumped_batch(
 
     Contacts along the string whose normal force follows the weight on bit
     (:meth:`torsio.model.contacts.StringContacts.at_wob`) give each weight its own chain:
-    the points run weight by weight."""
+    the weights run side by side on ``options.threads`` threads, the points of each in
+    turn (:func:`torsio.solvers.batch_options.batch_threads`)."""
     points = batch_points(system, wob, rpm)
     contacts = system.model.contacts
     if contacts is not None and contacts.depends_on_wob:  # one chain per weight
         weights = np.unique(points.wob)
         if weights.size > 1 or (weights.size == 1 and weights[0] != contacts.wob):
-            parts = []
-            for weight in weights:
-                rows = np.flatnonzero(points.wob == weight)
-                weighted = system.at(wob=float(weight))
-                parts.append((rows, simulate_lumped_batch(weighted, points[rows], None, options)))
-            return BatchResults.gather(parts, points.size)
+            return _weight_by_weight(system, points, weights, options)
     wob_arr, rpm_arr, torque_driven = points.wob, points.rpm, points.torque_driven
     rtol, atol, engine, threads = options.rtol, options.atol, options.engine, options.threads
     duration, steady_window = run_times(system, options.duration, options.steady_window)
@@ -360,6 +356,31 @@ def simulate_lumped_batch(
         out[:, OUT_ENDED].copy(),
         steady,
     )
+
+
+def _weight_by_weight(
+    system: System, points: Any, weights: np.ndarray, options: BatchOptions
+) -> BatchResults:
+    """The points of each weight with that weight's contacts, the weights side by side
+    (the compiled runs release the GIL; one thread each, so numba's pool is not shared)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    one_thread = attrs.evolve(options, threads=1)
+    start = time.perf_counter()
+
+    def run(weight: float) -> tuple[np.ndarray, BatchResults]:
+        rows = np.flatnonzero(points.wob == weight)
+        weighted = system.at(wob=float(weight))
+        return rows, simulate_lumped_batch(weighted, points[rows], None, one_thread)
+
+    workers = batch_threads(options.threads, weights.size)
+    if workers == 1:
+        parts = [run(float(weight)) for weight in weights]
+    else:
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            parts = list(pool.map(run, weights.tolist()))
+    gathered = BatchResults.gather(parts, points.size)
+    return attrs.evolve(gathered, elapsed=time.perf_counter() - start)
 
 
 def _groups(model: BatchModel, rpm: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:

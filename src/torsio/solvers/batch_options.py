@@ -24,7 +24,14 @@ import attrs
 from torsio.errors import ConfigError
 from torsio.solvers.batch_results import DEFAULT_STEADY_TOLERANCE, check_steady_tolerance
 
-__all__ = ["DEFAULT_ATOL", "DEFAULT_MAX_STEPS", "DEFAULT_RTOL", "ENGINES", "BatchOptions"]
+__all__ = [
+    "DEFAULT_ATOL",
+    "DEFAULT_MAX_STEPS",
+    "DEFAULT_RTOL",
+    "ENGINES",
+    "BatchOptions",
+    "batch_threads",
+]
 
 ENGINES = ("auto", "compiled", "numba", "numpy", "scipy")
 """Names accepted by ``simulate_batch(engine=...)`` (``"numba"`` is ``"compiled"``)."""
@@ -118,3 +125,20 @@ class BatchOptions:
     def replace(self, **changes: Any) -> BatchOptions:
         """These options with ``changes`` (validated like the others)."""
         return attrs.evolve(self, **changes)
+
+
+def batch_threads(threads: int | None, tasks: int) -> int:
+    """Threads for ``tasks`` independent runs that release the GIL: ``threads``, else
+    numba's thread count on the main thread and one off it (a thread of a pool, a Dask
+    worker), at most one a task."""
+    import threading
+
+    if threads is None:
+        if threading.current_thread() is not threading.main_thread():
+            return 1
+        try:
+            import numba
+        except ImportError:  # pragma: no cover - plain Python holds the GIL anyway
+            return 1
+        threads = numba.get_num_threads()
+    return max(1, min(int(threads), tasks))

@@ -37,13 +37,24 @@ import numpy as np
 from torsio.solvers import layouts as slot
 from torsio.solvers.batch_results import STATUS_CHATTER
 
-__all__ = ["FAST", "MAX_SWITCHES_PER_PERIOD", "SLOW", "STUCK", "ContactLaw", "hold_rows"]
+__all__ = [
+    "CLOSEST_SWITCH",
+    "FAST",
+    "MAX_SWITCHES_PER_PERIOD",
+    "SLOW",
+    "STUCK",
+    "ContactLaw",
+    "hold_rows",
+]
 
 STUCK, SLOW, FAST = 0, 1, 2
 """A contact's states (as in :mod:`torsio.solvers.contact_events`)."""
 MAX_SWITCHES_PER_PERIOD = 50
 """Switches allowed per contact and first natural period before a point is reported as
 chattering."""
+CLOSEST_SWITCH = 100.0
+"""The shortest step aimed at a crossing, in the engine's smallest steps (1e-12 of the
+run): the compiled kernel's ``h_min`` too."""
 TOLERANCE = 1e-9
 """How near 0 a margin counts as 0, relative to its scale (contact_events' tolerance)."""
 ALL = slice(None)
@@ -71,6 +82,8 @@ class ContactLaw:
         self.threshold = chain[slot.CHAIN_CONTACT_THRESHOLD]
         self.nodes = self.static > 0.0
         self.count = int(self.nodes.sum())
+        # the shortest step aimed at a crossing [s], as the compiled kernel's
+        self.h_min = CLOSEST_SWITCH * 1e-12 * max(1.0, float(settings[slot.RUN_T_END]))
         periods = settings[slot.RUN_T_END] * settings[slot.RUN_OMEGA_1] / (2.0 * math.pi)
         self.limit = MAX_SWITCHES_PER_PERIOD * self.count * (1.0 + periods)
 
@@ -220,6 +233,10 @@ class ContactLaw:
         ok = (g0 > 0.0) & (g1 < 0.0) & (remaining > 0.0) & np.isfinite(g0)
         with np.errstate(invalid="ignore", divide="ignore"):
             estimate = np.where(ok, g0 / (g0 - g1) * remaining, np.inf)
+        # an estimate below h_min is the chord of a margin that curves (it would shrink
+        # step after step): step on and locate the crossing afresh from here
+        ok &= estimate >= self.h_min
+        estimate[~ok] = np.inf
         s["event_t"][r[~ok]] = np.nan
         h = h.copy()
         h[active] = np.minimum(h[active], estimate)

@@ -31,7 +31,7 @@ from torsio.analysis.severity import check_window, default_times
 from torsio.analysis.simulation_options import check_window_samples
 from torsio.errors import ConfigError, SolverError
 from torsio.model.wave import check_wave_damping
-from torsio.solvers.batch_options import BatchOptions
+from torsio.solvers.batch_options import BatchOptions, batch_threads
 from torsio.solvers.batch_results import (
     BatchResults,
     batch_points,
@@ -39,20 +39,6 @@ from torsio.solvers.batch_results import (
 from torsio.solvers.wave_march import RunCancelled, law_functions, march
 from torsio.solvers.wave_top import top_boundary
 from torsio.units import RPM_TO_RAD_S
-
-
-def _worker_count(threads: int | None, points: int) -> int:
-    """Threads for ``points`` points: ``threads``, else numba's count on the main thread."""
-    if threads is None:
-        if threading.current_thread() is not threading.main_thread():
-            return 1
-        try:
-            import numba
-        except ImportError:  # pragma: no cover - plain Python holds the GIL anyway
-            return 1
-        threads = numba.get_num_threads()
-    return max(1, min(int(threads), points))
-
 
 WAVE_ENGINES = ("auto", "numba", "compiled")
 """Engines a wave map accepts: its own stepping (compiled with numba when the law has a
@@ -140,7 +126,7 @@ def simulate_wave_batch(system: Any, wob: Any, rpm: Any, options: BatchOptions) 
         top_mean[k] = summary["top_speed_sum"] / window if window else math.nan
 
     start = time.perf_counter()
-    workers = _worker_count(threads, wob_arr.size)
+    workers = batch_threads(threads, wob_arr.size)
     if workers == 1:
         for k in range(wob_arr.size):
             run_point(k)
