@@ -85,7 +85,6 @@ def simulate(args: argparse.Namespace, config: Any) -> int:
         point["rpm"],
         **_times(args, config),
         **axial.run_options(),
-        growth_rate=axial.is_two_dof,
     )
     data = run.to_dict()
     data["solver"] = solver_info(run)
@@ -128,7 +127,7 @@ def _print_run(data: dict[str, Any]) -> None:
         ("steady MSE", f"{steady['mse'] / 1e6:.4g} MPa"),
         (
             "growth rate (linear)",
-            "n/a (2-DOF model only)"
+            "n/a"
             if rate is None
             else f"{rate:.4g} 1/s ({'unstable' if rate > 0 else 'stable'})",
         ),
