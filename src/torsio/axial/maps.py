@@ -128,8 +128,8 @@ def _run_point(
     growth_rate: bool,
 ) -> list[float]:
     run = simulate_axial(assembly, bit, wob, rpm, samples=0, growth_rate=growth_rate, **options)
-    rate = run.growth_rate if growth_rate else math.nan
-    return [float(getattr(run.summary, name)) for name in _FIELDS] + [float(rate)]
+    rate = math.nan if run.growth_rate is None else run.growth_rate
+    return [float(getattr(run.summary, name)) for name in _FIELDS] + [rate]
 
 
 def _thread_count(threads: int | None, points: int) -> int:

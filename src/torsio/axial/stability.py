@@ -38,7 +38,6 @@ from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 from torsio.errors import ConfigError
 
-
 AXIAL_MODE_SHARE = 0.5
 """A mode whose axial share (:func:`axial_share`) is above this is called axial."""
 

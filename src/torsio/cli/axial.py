@@ -123,9 +123,7 @@ def _print_run(data: dict[str, Any]) -> None:
         ("steady MSE", f"{steady['mse'] / 1e6:.4g} MPa"),
         (
             "growth rate (linear)",
-            "n/a"
-            if rate is None
-            else f"{rate:.4g} 1/s ({'unstable' if rate > 0 else 'stable'})",
+            "n/a" if rate is None else f"{rate:.4g} 1/s ({'unstable' if rate > 0 else 'stable'})",
         ),
         ("solver", f"axial engine, fixed step {data['solver']['step'] * 1e3:.4g} ms"),
     ]
