@@ -152,8 +152,10 @@ def test_the_hook_weight_has_its_neutral_root_found_and_not_reported():
 # --- the growth of a small perturbation in the transient ------------------------------------------
 @pytest.mark.parametrize("hook", ["weight", "speed"])
 def test_a_small_perturbation_of_a_chain_grows_at_the_rightmost_root(hook):
+    # at 80 rpm the rightmost root (3.55 1/s weight, 3.82 1/s speed) grows 8 times faster
+    # than the next one: the envelope is its own (at 100 rpm the two beat)
     chain = pipe_assembly(*PIPE, hook=hook)
-    rpm = 100.0
+    rpm = 80.0
     root = drilling_stability(chain, BIT, WOB, rpm).roots[0]
     run = simulate_axial(
         chain,

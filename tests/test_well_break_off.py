@@ -16,8 +16,9 @@ from torsio.examples import deviated_well_config
 from torsio.model.components import Bit, DrillCollar, DrillPipe, Material
 from torsio.model.drillstring import DrillString
 from torsio.well.break_off import break_off
+from torsio.well.rotating_column import GRAVITY
 from torsio.well.survey import Survey
-from torsio.well.torque_drag import GRAVITY, torque_drag
+from torsio.well.torque_drag import torque_drag
 from torsio.well.wellbore import HoleSection, Wellbore
 
 STEEL = Material(shear_modulus=80e9, density=7850.0)

@@ -12,7 +12,8 @@ from torsio.errors import ConfigError
 from torsio.model.components import Bit, DrillPipe, Material
 from torsio.model.drillstring import DrillString
 from torsio.well import Survey, Wellbore
-from torsio.well.torque_drag import GRAVITY, torque_drag
+from torsio.well.rotating_column import GRAVITY
+from torsio.well.torque_drag import torque_drag
 
 STEEL = Material(shear_modulus=80e9, density=7850.0)
 MUD = 1300.0

@@ -5,9 +5,10 @@ drilling state in closed form (:mod:`torsio.axial.steady`), the linearization of
 assembly about it with the state-dependent delay (:mod:`torsio.axial.linearization`), the
 roots of a linear delay system (:mod:`torsio.axial.delay_roots`), the stability of steady
 drilling over rpm (:mod:`torsio.axial.stability`), lumped assemblies that move axially and
-torsionally (:mod:`torsio.axial.assembly`), their transients on a compiled fixed-step engine
-with the bit's own history (:mod:`torsio.axial.transient`) and maps over (weight, rpm)
-(:mod:`torsio.axial.maps`). The equations are in docs/axial.md.
+torsionally (:mod:`torsio.axial.assembly`) and distributed ones, a stepped pipe of axial and
+torsional wave lines above a lumped BHA (:mod:`torsio.axial.wave_assembly`), their transients
+on compiled fixed-step engines with the bit's own history (:mod:`torsio.axial.transient`) and
+maps over (weight, rpm) (:mod:`torsio.axial.maps`). The equations are in docs/axial.md.
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ from torsio.axial.stability import (
     mode_crossings,
 )
 from torsio.axial.steady import SteadyDrilling, steady_drilling
+from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly, wave_pipe_assembly
 
 # The transient and the maps load numba: their names are imported on first use (PEP 562),
 # so that reading an RGD bit from a configuration stays cheap.
@@ -50,8 +52,10 @@ __all__ = [
     "DrillingStability",
     "LinearDelaySystem",
     "ModeCrossing",
+    "PipeSection",
     "RGDBit",
     "SteadyDrilling",
+    "WaveDrillingAssembly",
     "axial_linearization",
     "axial_map",
     "crossing_rpm",
@@ -66,6 +70,7 @@ __all__ = [
     "simulate_axial",
     "steady_drilling",
     "two_dof_assembly",
+    "wave_pipe_assembly",
 ]
 
 

@@ -222,9 +222,14 @@ def pipe_assembly(
 ) -> DrillingAssembly:
     """A uniform pipe of ``length`` [m] in ``nodes`` lumps above a rigid BHA on the last one.
 
-    Springs E A / Δ [N/m] and G J / Δ [N m/rad] with Δ = length / nodes; each node carries
-    ρ A Δ [kg] and ρ J Δ [kg m²] (half of it at the top node, whose other half is at the
-    hook), the last one the BHA's ``bha_mass`` [kg] and ``bha_inertia`` [kg m²] as well.
+    Springs E A / Δ [N/m] and G J / Δ [N m/rad] with Δ = length / nodes join the top to
+    node 0 and each node to the next, so node i is (i + 1) Δ below the top and the last one
+    at the bottom. Each cell's mass ρ A Δ [kg] and inertia ρ J Δ [kg m²] is shared by the
+    nodes at its ends: every node carries one cell, the last one half a cell (and the BHA's
+    ``bha_mass`` [kg] and ``bha_inertia`` [kg m²]). The top cell's upper half is at the top
+    drive (torsionally) and at the hook moving at its set speed (``hook = "speed"``); under
+    the weight hook the top of the pipe is free, so node 0 carries it as well (1.5 cells):
+    the frequencies converge to the continuum's like 1/nodes² (tests/test_axial_wave.py).
     Units: E, G [Pa], ρ [kg/m³], A [m²], J [m⁴].
     """
     if not (isinstance(nodes, int) and nodes >= 1):
@@ -241,11 +246,15 @@ def pipe_assembly(
             raise ConfigError(key, f"{value!r} must be > 0")
     spacing = length / nodes
     share = np.ones(nodes)
-    share[0] = 0.5
+    share[-1] -= 0.5
+    axial_share = share.copy()
+    if hook == "weight":
+        axial_share[0] += 0.5
+    bottom = np.eye(nodes)[-1]
     return DrillingAssembly(
-        inertias=share * density * polar_moment * spacing + np.eye(nodes)[-1] * bha_inertia,
+        inertias=share * density * polar_moment * spacing + bottom * bha_inertia,
         stiffnesses=np.full(nodes, shear_modulus * polar_moment / spacing),
-        masses=share * density * area * spacing + np.eye(nodes)[-1] * bha_mass,
+        masses=axial_share * density * area * spacing + bottom * bha_mass,
         axial_stiffnesses=np.full(nodes, youngs_modulus * area / spacing),
         hook=hook,
     )

@@ -19,6 +19,9 @@ at the velocity level over each step (Moreau's time stepping):
 4. Positions from the new velocities: U ← U + h V, θ ← θ + h ω; the top angle Ω₀ t, the
    hook position U_h0 + V_h t. The new bit state is appended to the history.
 
+The bit's part of steps 1-3 is :mod:`torsio.axial.bit_step`, shared with the distributed
+pipe's loop (:mod:`torsio.axial.wave_kernel`).
+
 ``settings``: [h, steps, Ω₀ (top speed, rad/s), W₀ (hook weight, N), hook (0 weight,
 1 speed), V_h (m/s), U_h0 (m), first step of the window, sample every, prescribed (0/1),
 amplitude A, frequency f (rad/s), t at step 0]. The bit law ``bit``: [ζ ε a, ε a²/2,
@@ -34,7 +37,15 @@ import math
 
 import numpy as np
 
-from torsio.axial.history import append, delayed_state, keep_surface
+from torsio.axial.bit_step import (
+    add_to_window,
+    cutting_forces,
+    depth_of_cut,
+    forward_rotation,
+    start_window,
+    wear_flat_contact,
+)
+from torsio.axial.history import append
 from torsio.solvers.compiled import njit
 
 __all__ = ["SAMPLE_COLUMNS", "STATS", "march"]
@@ -89,20 +100,11 @@ def march(
         settings[11],
         settings[12],
     )
-    wc_per_d, tc_per_d, wf_max, tf_per_wf, angle_per_blade, blades = (
-        bit[0],
-        bit[1],
-        bit[2],
-        bit[3],
-        bit[4],
-        bit[5],
-    )
+    wf_max, tf_per_wf = bit[2], bit[3]
     nt, na = theta.size, u.size
     bt, ba = nt - 1, na - 1
     delayed = np.zeros(2)
-    stats[0], stats[1], stats[2], stats[3] = -np.inf, np.inf, -np.inf, np.inf
-    for q in range(4, 15):
-        stats[q] = 0.0
+    start_window(stats)
     row = 0
     for step in range(steps):
         t = t_start + step * h
@@ -116,15 +118,13 @@ def march(
         if step == window_start:
             stats[7] = u[ba]
         # 1. depth of cut
-        if not delayed_state(history, cursor, theta[bt] - angle_per_blade, delayed):
+        depth = depth_of_cut(bit, history, cursor, theta[bt], u[ba], h, delayed)
+        if math.isnan(depth):
             stats[12] = 1.0
             stats[13] = step
             return
-        depth = blades * (u[ba] - delayed[1])
         on_bottom = depth > 0.0
-        keep_surface(history, cursor, max(u[ba], delayed[1]), h)
-        wc = wc_per_d * depth if on_bottom else 0.0
-        tc = tc_per_d * depth if on_bottom else 0.0
+        wc, tc = cutting_forces(bit, depth)
         # 2. axial
         hook_position = hook_start + hook_speed * (t - t_start)
         for i in range(na - 1, -1, -1):
@@ -138,16 +138,7 @@ def march(
             if i + 1 < na:
                 force -= axial[1, i + 1] * (u[i] - u[i + 1]) + axial[2, i + 1] * (v[i] - v[i + 1])
             if i == ba:
-                free = v[i] + h * (force - wc) * axial[0, i]
-                wf = 0.0
-                if on_bottom:
-                    if free - h * wf_max * axial[0, i] > 0.0:
-                        wf = wf_max
-                        free -= h * wf_max * axial[0, i]
-                    elif free >= 0.0:
-                        wf = free / (h * axial[0, i])
-                        free = 0.0
-                v[i] = free
+                v[i], wf = wear_flat_contact(v[i], force, wc, axial[0, i], h, wf_max, on_bottom)
             else:
                 v[i] += h * force * axial[0, i]
         # 3. torsional
@@ -172,11 +163,9 @@ def march(
                     torque -= torsional[1, i + 1] * (theta[i] - theta[i + 1])
                     torque -= torsional[2, i + 1] * (omega[i] - omega[i + 1])
                 if i == bt:
-                    free = omega[i] + h * (torque - tc - tf) * torsional[0, i]
-                    if free <= 0.0:
-                        bit_torque = torque + omega[i] / (h * torsional[0, i])
-                        free = 0.0
-                    omega[i] = free
+                    omega[i], bit_torque = forward_rotation(
+                        omega[i], torque, tc, tf, torsional[0, i], h
+                    )
                 else:
                     omega[i] += h * torque * torsional[0, i]
             for i in range(nt):
@@ -187,19 +176,7 @@ def march(
         append(history, cursor, t + h, theta[bt], omega[bt], u[ba], v[ba])
         bit_weight = wc + wf
         if step >= window_start:
-            stats[0] = max(stats[0], omega[bt])
-            stats[1] = min(stats[1], omega[bt])
-            stats[2] = max(stats[2], v[ba])
-            stats[3] = min(stats[3], v[ba])
-            if omega[bt] == 0.0:
-                stats[4] += 1.0
-            if not on_bottom:
-                stats[5] += 1.0
-            stats[6] += 1.0
-            stats[14] = max(stats[14], depth)
-            stats[9] += h * (bit_weight * v[ba] + bit_torque * omega[bt])
-            stats[10] += h * bit_torque
-            stats[11] += h * bit_weight
+            add_to_window(stats, omega[bt], v[ba], depth, h, bit_weight, bit_torque)
         if sampled:
             samples[row, 5] = depth
             samples[row, 6] = bit_weight

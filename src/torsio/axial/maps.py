@@ -40,6 +40,7 @@ from numpy.typing import NDArray
 from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.rgd import RGDBit
 from torsio.axial.transient import run_times, simulate_axial
+from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.errors import ConfigError
 
 if TYPE_CHECKING:
@@ -120,7 +121,7 @@ _OUTPUTS = len(_FIELDS) + 1
 
 
 def _run_point(
-    assembly: DrillingAssembly,
+    assembly: DrillingAssembly | WaveDrillingAssembly,
     bit: RGDBit,
     wob: float,
     rpm: float,
@@ -147,7 +148,7 @@ def _thread_count(threads: int | None, points: int) -> int:
 
 
 def run_points(
-    assembly: DrillingAssembly,
+    assembly: DrillingAssembly | WaveDrillingAssembly,
     bit: RGDBit,
     points: Sequence[tuple[float, float]],
     options: dict[str, Any],
@@ -208,7 +209,7 @@ def _progress_bar() -> tuple[Callable[[int, int], None], Callable[[], None]]:
 
 
 def axial_map(
-    assembly: DrillingAssembly,
+    assembly: DrillingAssembly | WaveDrillingAssembly,
     bit: RGDBit,
     wobs: Sequence[float],
     rpms: Sequence[float],
@@ -253,6 +254,12 @@ def axial_map(
     duration, window = run_times(
         assembly, options.pop("duration", None), options.pop("window", None)
     )
+    if growth_rate and not isinstance(assembly, DrillingAssembly):
+        raise ConfigError(
+            "growth_rate",
+            "the linear growth rate is of lumped assemblies; a WaveDrillingAssembly has none "
+            "(expected growth_rate=False)",
+        )
     if growth_rate and options.get("bit_rotation") is not None:
         raise ConfigError(
             "growth_rate",
@@ -292,7 +299,7 @@ def axial_map(
 
 
 def _run_grid(
-    assembly: DrillingAssembly,
+    assembly: DrillingAssembly | WaveDrillingAssembly,
     bit: RGDBit,
     points: list[tuple[float, float]],
     options: dict[str, Any],

@@ -26,7 +26,7 @@ Examples
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import attrs
 import numpy as np
@@ -38,12 +38,21 @@ from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 from torsio.errors import ConfigError
 
+if TYPE_CHECKING:
+    from torsio.axial.wave_setup import WaveRunSetup
+
 __all__ = [
     "DEFAULT_STEPS_PER_PERIOD",
     "BitRotation",
     "RunSetup",
     "WindowSummary",
+    "bit_law_row",
+    "check_run",
+    "contact_frequency",
+    "largest_step",
+    "past_times",
     "run_setup",
+    "start_history",
     "summarize",
 ]
 
@@ -101,17 +110,83 @@ class RunSetup:
     cursor: NDArray[np.float64]
 
 
-def _step(
-    assembly: DrillingAssembly, bit: RGDBit, delay: float, steps_per_period: int, step: float | None
-) -> float:
-    contact = math.sqrt(2 * bit.blades * bit.cutting_weight_per_depth / assembly.bit_mass)
-    fastest = max(contact, assembly.fastest_frequency())
+def contact_frequency(bit: RGDBit, mass: float) -> float:
+    """√(2 n ζ ε a / m_b) [rad/s]: where the bit's axial roots cross (docs/axial.md)."""
+    return math.sqrt(2 * bit.blades * bit.cutting_weight_per_depth / mass)
+
+
+def largest_step(fastest: float, steps_per_period: int, step: float | None) -> float:
+    """h_max = 2π/(``fastest`` × ``steps_per_period``) [s], capped by a given ``step``."""
     h_max = 2 * math.pi / (fastest * steps_per_period)
     if step is not None:
         if not (math.isfinite(step) and step > 0):
             raise ConfigError("step", f"{step!r} must be a positive time step in s")
         h_max = min(h_max, step)
+    return h_max
+
+
+def _step(
+    assembly: DrillingAssembly, bit: RGDBit, delay: float, steps_per_period: int, step: float | None
+) -> float:
+    fastest = max(contact_frequency(bit, assembly.bit_mass), assembly.fastest_frequency())
+    h_max = largest_step(fastest, steps_per_period, step)
     return delay / math.ceil(delay / h_max - 1e-9)
+
+
+def check_run(start: str, duration: float, window: float) -> None:
+    """A ConfigError unless ``start`` is one of :data:`STARTS` and 0 < window <= duration."""
+    if start not in STARTS:
+        raise ConfigError("simulation.start", f"{start!r} is not one of {', '.join(STARTS)}")
+    if not (0 < window <= duration and math.isfinite(duration)):
+        raise ConfigError(
+            "simulation.steady_window",
+            f"expected 0 < window <= duration, got {window!r} and {duration!r}",
+        )
+
+
+def past_times(step: float, delay: float) -> NDArray[np.float64]:
+    """The history's times before t = 0 [s]: over 1.5 steady delays and 4 steps, to 0."""
+    past = int(math.ceil(1.5 * delay / step)) + 4
+    return step * np.arange(-past, 1, dtype=float)
+
+
+def start_history(
+    times: NDArray[np.float64],
+    angle: NDArray[np.float64],
+    speed: NDArray[np.float64],
+    position: NDArray[np.float64],
+    velocity: float,
+    bit_speed: float,
+    bit_velocity: float,
+    steps: int,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(history, cursor) of :mod:`torsio.axial.history` holding the bit's motion at the
+    ``times`` up to 0 (Φ, Ω, U arrays, V constant), room for ``steps`` more, and the
+    bit's own Ω_b, V_b at t = 0."""
+    past = times.size - 1
+    history = np.zeros((5, steps + past + 2))
+    history[0, : past + 1] = times
+    history[1, : past + 1] = angle
+    history[2, : past + 1] = speed
+    history[3, : past + 1] = position
+    history[4, : past + 1] = velocity
+    history[2, past], history[4, past] = bit_speed, bit_velocity
+    return history, np.array([0.0, past + 1.0])
+
+
+def bit_law_row(bit: RGDBit) -> NDArray[np.float64]:
+    """The kernels' bit row [ζ ε a, ε a²/2, σ a l, μ γ a/2, 2π/n, n]
+    (:mod:`torsio.axial.bit_step`)."""
+    return np.array(
+        [
+            bit.cutting_weight_per_depth,
+            bit.cutting_torque_per_depth,
+            bit.friction_weight,
+            bit.contact_friction * bit.bit_geometry * bit.radius / 2,
+            2 * math.pi / bit.blades,
+            float(bit.blades),
+        ]
+    )
 
 
 def run_setup(
@@ -133,13 +208,7 @@ def run_setup(
     ``wob`` [N], ``rpm`` [rev/min], ``duration`` and ``window`` [s] (the window at the end).
     """
     steady = steady_drilling(bit, wob, rpm)
-    if start not in STARTS:
-        raise ConfigError("simulation.start", f"{start!r} is not one of {', '.join(STARTS)}")
-    if not (0 < window <= duration and math.isfinite(duration)):
-        raise ConfigError(
-            "simulation.steady_window",
-            f"expected 0 < window <= duration, got {window!r} and {duration!r}",
-        )
+    check_run(start, duration, window)
     h = _step(assembly, bit, steady.delay, steps_per_period, step)
     steps = int(math.ceil(duration / h - 1e-9))
     window_steps = min(steps, int(round(window / h)))
@@ -159,22 +228,16 @@ def run_setup(
         v[-1] *= 1.0 + perturbation
     hook_start = (u[0] + wob / assembly.axial_stiffnesses[0]) if assembly.hook == "speed" else 0.0
     # the history before t = 0: the steady motion (or a flat bottom) over one delay and more
-    past = int(math.ceil(1.5 * steady.delay / h)) + 4
-    times = h * np.arange(-past, 1)
+    times = past_times(h, steady.delay)
     if bit_rotation is not None:
         angle = bit_rotation.angle(omega0, times)
         speed = bit_rotation.speed(omega0, times)
     else:
         angle, speed = theta[-1] + omega0 * times, np.full(times.size, omega0)
     velocity = v0 if on_steady else 0.0
-    capacity = steps + past + 2
-    history = np.zeros((5, capacity))
-    history[0, : past + 1] = times
-    history[1, : past + 1] = angle
-    history[2, : past + 1] = speed
-    history[3, : past + 1] = u[-1] + velocity * times
-    history[4, : past + 1] = velocity
-    history[2, past], history[4, past] = omega[-1], v[-1]
+    history, cursor = start_history(
+        times, angle, speed, u[-1] + velocity * times, velocity, omega[-1], v[-1], steps
+    )
     rotation = bit_rotation or BitRotation()
     settings = np.array(
         [
@@ -193,23 +256,12 @@ def run_setup(
             0.0,
         ]
     )
-    b = bit
-    law = np.array(
-        [
-            b.cutting_weight_per_depth,
-            b.cutting_torque_per_depth,
-            b.friction_weight,
-            b.contact_friction * b.bit_geometry * b.radius / 2,
-            2 * math.pi / b.blades,
-            float(b.blades),
-        ]
-    )
     return RunSetup(
         steady,
         h,
         steps,
         window_steps,
-        law,
+        bit_law_row(bit),
         assembly.torsional_rows(),
         assembly.axial_rows(),
         settings,
@@ -218,7 +270,7 @@ def run_setup(
         u,
         v,
         history,
-        np.array([0.0, past + 1.0]),
+        cursor,
     )
 
 
@@ -247,8 +299,9 @@ class WindowSummary:
     depth_of_cut_max: float
 
 
-def summarize(stats: NDArray, setup: RunSetup, bit: RGDBit) -> WindowSummary:
-    """The window summary of the kernel's ``stats`` (:data:`torsio.axial.kernel.STATS`)."""
+def summarize(stats: NDArray, setup: RunSetup | WaveRunSetup, bit: RGDBit) -> WindowSummary:
+    """The window summary of a kernel's ``stats`` (:data:`torsio.axial.kernel.STATS`), the
+    lumped or the distributed one (``setup.step`` and ``setup.steady`` are read)."""
     s = dict(zip(STATS, stats, strict=True))
     count = s["window_steps"]
     length = count * setup.step

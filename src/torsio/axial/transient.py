@@ -47,21 +47,26 @@ from torsio.axial.run_setup import (
     summarize,
 )
 from torsio.axial.steady import SteadyDrilling
-from torsio.errors import SolverError
+from torsio.axial.wave_assembly import WaveDrillingAssembly
+from torsio.axial.wave_setup import WaveRunSetup, run_wave, wave_run_setup
+from torsio.errors import ConfigError, SolverError
 from torsio.model.lumped import chain_matrix
 
 __all__ = ["AxialTransient", "first_torsional_frequency", "run_times", "simulate_axial"]
 
 
-def first_torsional_frequency(assembly: DrillingAssembly) -> float:
-    """ω₁ [rad/s] of the torsional chain, top held, undamped."""
+def first_torsional_frequency(assembly: DrillingAssembly | WaveDrillingAssembly) -> float:
+    """ω₁ [rad/s] of the torsional chain (or the distributed pipe's exact one), top held,
+    undamped."""
+    if isinstance(assembly, WaveDrillingAssembly):
+        return float(assembly.torsional_frequencies(1)[0])
     stiffness = chain_matrix(assembly.stiffnesses)
     values = scipy.linalg.eigh(stiffness, np.diag(assembly.inertias), eigvals_only=True)
     return float(math.sqrt(values[0]))
 
 
 def run_times(
-    assembly: DrillingAssembly, duration: float | None, window: float | None
+    assembly: DrillingAssembly | WaveDrillingAssembly, duration: float | None, window: float | None
 ) -> tuple[float, float]:
     """(duration, window) [s]: the given ones, or torsio's defaults (40 and 15 periods of
     ω₁; a given duration gets at most half of it as its default window)."""
@@ -74,34 +79,42 @@ def run_times(
     return float(duration), float(window)
 
 
-def run_kernel(setup: RunSetup, samples: NDArray[np.float64], sample_every: int) -> NDArray:
-    """Run the compiled loop on ``setup`` (its state arrays change); the stats vector.
+def run_kernel(
+    setup: RunSetup | WaveRunSetup, samples: NDArray[np.float64], sample_every: int
+) -> NDArray:
+    """Run the compiled loop of ``setup``, lumped or distributed (its state arrays change);
+    the stats vector.
 
     Raises SolverError when the history could not give the delay.
     """
-    settings = setup.settings.copy()
-    settings[8] = sample_every
-    stats = np.zeros(len(STATS))
-    march(
-        setup.bit,
-        setup.torsional,
-        setup.axial,
-        settings,
-        setup.theta,
-        setup.omega,
-        setup.u,
-        setup.v,
-        setup.history,
-        setup.cursor,
-        stats,
-        samples,
-    )
+    if isinstance(setup, WaveRunSetup):
+        stats = run_wave(setup, samples, sample_every)
+        state = [setup.axial_p, setup.torsional_p, setup.bha]
+    else:
+        settings = setup.settings.copy()
+        settings[8] = sample_every
+        stats = np.zeros(len(STATS))
+        march(
+            setup.bit,
+            setup.torsional,
+            setup.axial,
+            settings,
+            setup.theta,
+            setup.omega,
+            setup.u,
+            setup.v,
+            setup.history,
+            setup.cursor,
+            stats,
+            samples,
+        )
+        state = [setup.u, setup.theta]
     if stats[STATS.index("failed")]:
         raise SolverError(
             f"the bit's history did not hold the delay at step {int(stats[-1])} "
             f"(t = {stats[-1] * setup.step:.6g} s): non-finite state or a stalled bit"
         )
-    if not np.isfinite(setup.u).all() or not np.isfinite(setup.theta).all():
+    if not all(np.isfinite(values).all() for values in state):
         raise SolverError("the run produced non-finite values; try a smaller step")
     return stats
 
@@ -178,7 +191,7 @@ class AxialTransient:
 
 
 def simulate_axial(
-    assembly: DrillingAssembly,
+    assembly: DrillingAssembly | WaveDrillingAssembly,
     bit: RGDBit,
     wob: float,
     rpm: float,
@@ -197,40 +210,65 @@ def simulate_axial(
 
     Parameters
     ----------
+    assembly : DrillingAssembly or WaveDrillingAssembly
+        A lumped chain (:mod:`torsio.axial.kernel`) or a distributed pipe above a lumped
+        BHA (:mod:`torsio.axial.wave_kernel`).
     duration, window : float, optional
         Run length and steady window at its end [s] (:func:`run_times`).
     start : str
         ``"rest"`` (default) or ``"steady"`` with the bit speed raised by ``perturbation``.
     step, steps_per_period : float, int
-        The step rule of :mod:`torsio.axial.run_setup`.
+        The step rule of :mod:`torsio.axial.run_setup` (lumped) or
+        :mod:`torsio.axial.wave_setup` (distributed).
     samples : int
         About how many rows of signals to keep (0: none; every step at most).
     bit_rotation : BitRotation, optional
-        A prescribed bit rotation instead of the torsional chain.
+        A prescribed bit rotation instead of the torsional chain (lumped assemblies only).
     growth_rate : bool
         Compute the linear growth rate (any assembly; not with ``bit_rotation``, whose
         torsional chain is not integrated).
     """
     duration, window = run_times(assembly, duration, window)
-    setup = run_setup(
-        assembly,
-        bit,
-        wob,
-        rpm,
-        duration,
-        window,
-        start=start,
-        perturbation=perturbation,
-        step=step,
-        steps_per_period=steps_per_period,
-        bit_rotation=bit_rotation,
-    )
+    setup: RunSetup | WaveRunSetup
+    if isinstance(assembly, WaveDrillingAssembly):
+        if bit_rotation is not None:
+            raise ConfigError(
+                "bit_rotation",
+                f"{bit_rotation!r} given; a prescribed rotation applies to lumped assemblies "
+                "only (expected None with a WaveDrillingAssembly)",
+            )
+        setup = wave_run_setup(
+            assembly,
+            bit,
+            wob,
+            rpm,
+            duration,
+            window,
+            start=start,
+            perturbation=perturbation,
+            step=step,
+            steps_per_period=steps_per_period,
+        )
+    else:
+        setup = run_setup(
+            assembly,
+            bit,
+            wob,
+            rpm,
+            duration,
+            window,
+            start=start,
+            perturbation=perturbation,
+            step=step,
+            steps_per_period=steps_per_period,
+            bit_rotation=bit_rotation,
+        )
     every = max(1, setup.steps // samples) if samples > 0 else 0
     rows = (setup.steps - 1) // every + 1 if every else 0
     table = np.zeros((rows, len(SAMPLE_COLUMNS)))
     stats = run_kernel(setup, table, every)
     rate = None
-    if growth_rate and bit_rotation is None:
+    if growth_rate and isinstance(assembly, DrillingAssembly) and bit_rotation is None:
         from torsio.axial.stability import drilling_stability
 
         rate = drilling_stability(assembly, bit, wob, rpm, count=1).growth_rate

@@ -4,7 +4,9 @@ Each flexible section obeys the torsional wave equation G J theta'' = rho J thet
 (wave speed c = sqrt(G/rho)); the top is fixed (the prescribed top drive has no
 dynamic rotation), the bit is a rigid inertia at the bottom. This is the
 reference the lumped models are measured against; it replaces the paper's
-2430-element FEM, which only approximates it.
+2430-element FEM, which only approximates it. :func:`bar_frequencies` gives the
+frequencies of any stepped bar of the same form (the axial bar: E A, sqrt(E/rho) and
+the BHA's mass in place of G J, sqrt(G/rho) and its inertia).
 
 Root search
 -----------
@@ -46,7 +48,7 @@ _RELATIVE_WIDTH = 1e-14
 
 @attrs.frozen
 class _Member:
-    torsional_rigidity: float  # G J [N m^2/rad]
+    torsional_rigidity: float  # G J [N m^2/rad] (E A [N] in an axial bar, bar_frequencies)
     length: float  # [m]
     wave_speed: float  # [m/s]
     top_depth: float  # [m]
@@ -191,6 +193,11 @@ def continuum_modes(
     if isinstance(count, bool) or not isinstance(count, int) or count < 1:
         raise ConfigError("count", f"expected a whole number of modes >= 1, got {count!r}")
     members, tip_inertia = _members(string, rigid_bha)
+    return ContinuumModes(string, rigid_bha, _frequencies(members, tip_inertia, count), members)
+
+
+def _frequencies(members: Sequence[_Member], tip_inertia: float, count: int) -> np.ndarray:
+    """The first ``count`` frequencies [rad/s] of the members, top fixed, tip lumped."""
     # a lower bound on the spacing scale: the slowest member's first clamped frequency
     step = min(math.pi * m.wave_speed / m.length for m in members)
     frequencies = []
@@ -201,4 +208,35 @@ def continuum_modes(
             low, high = high, 2.0 * high
         frequencies.append(_bisect_mode(index, members, tip_inertia, low, high))
         low = frequencies[-1] * (1 - 4 * _RELATIVE_WIDTH)
-    return ContinuumModes(string, rigid_bha, np.array(frequencies), members)
+    return np.array(frequencies)
+
+
+def bar_frequencies(
+    rigidities: Sequence[float] | np.ndarray,
+    lengths: Sequence[float] | np.ndarray,
+    wave_speeds: Sequence[float] | np.ndarray,
+    tip: float,
+    count: int = 10,
+) -> np.ndarray:
+    """The first ``count`` exact natural frequencies [rad/s] of a stepped bar, top fixed.
+
+    The mathematics of the torsional shaft for any wave line: sections from the top down
+    with ``rigidities`` (G J [N m²] torsionally, E A [N] axially), ``lengths`` [m] and
+    ``wave_speeds`` [m/s] (√(G/ρ), √(E/ρ)), and a lumped ``tip`` at the bottom (inertia
+    [kg m²] or mass [kg]; 0: a free end). One uniform section with a tip mass m_b has
+    κL tan(κL) = ρ A L / m_b, κ = ω/c.
+
+    >>> omega = bar_frequencies([2.0e11 * 3.4e-3], [1000.0], [5047.0], 3.0e4, count=1)
+    >>> x = float(omega[0]) * 1000.0 / 5047.0  # κL
+    >>> round(x * math.tan(x) - 2.0e11 * 3.4e-3 * 1000.0 / 5047.0**2 / 3.0e4, 10)
+    0.0
+    """
+    if isinstance(count, bool) or not isinstance(count, int) or count < 1:
+        raise ConfigError("count", f"expected a whole number of modes >= 1, got {count!r}")
+    members, top = [], 0.0
+    for rigidity, length, speed in zip(rigidities, lengths, wave_speeds, strict=True):
+        members.append(_Member(float(rigidity), float(length), float(speed), top))
+        top += float(length)
+    if not members:
+        raise ConfigError("sections", "a bar needs at least one section")
+    return _frequencies(members, float(tip), count)

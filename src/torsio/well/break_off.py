@@ -17,8 +17,9 @@ Once everything slides, the **sliding torque** is the same integral with mu_d. T
 the references of the dynamics with friction along the string (a slowly ramped start-up
 breaks the bit free at that torque and twist).
 
-Numerics: the per-cell integrals of N r_o come from :func:`torque_drag` (accurate to
-1e-9 relative on its closed forms); within a cell mu and G J are constant, and the twist
+Numerics: the per-cell integrals of N r_o come from the rotating state of torque and drag
+(:class:`torsio.well.rotating_column.RotatingColumn`, accurate to 1e-9 relative on its
+closed forms); within a cell mu and G J are constant, and the twist
 takes the trapezoidal rule over cells of ``cell_length`` (default 1 m: tau_s is smooth
 in a cell, so the rule's relative error is of order (cell length / string length)^2).
 
@@ -56,7 +57,7 @@ import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.model.drillstring import DrillString
-from torsio.well.torque_drag import torque_drag
+from torsio.well.rotating_column import RotatingColumn
 from torsio.well.wellbore import Wellbore
 
 __all__ = ["BreakOff", "break_off"]
@@ -114,7 +115,11 @@ def _torsional_rigidity(string: DrillString, top: float, md: np.ndarray) -> np.n
 
 
 def break_off(
-    well: Wellbore, string: DrillString, cell_length: float = 1.0, wob: float = 0.0
+    well: Wellbore,
+    string: DrillString,
+    cell_length: float = 1.0,
+    wob: float = 0.0,
+    column: RotatingColumn | None = None,
 ) -> BreakOff:
     """The break-off torque and twist and the sliding torque of ``string`` in ``well``.
 
@@ -130,6 +135,9 @@ def break_off(
         Weight on bit [N]: the normal force of the rotating state on bottom, the tension
         less the weight on bit everywhere (0: off bottom). Only the soft-string normal
         force depends on it (a curved hole); the gravity model's does not.
+    column : RotatingColumn, optional
+        The rotating state of ``string`` in ``well`` on cells of ``cell_length``, kept to
+        take the break-off at many weights on bit (built when not given).
 
     Returns
     -------
@@ -137,9 +145,12 @@ def break_off(
     """
     if not (math.isfinite(cell_length) and cell_length > 0.0):
         raise ConfigError("cell_length", f"expected a positive length in m, got {cell_length!r}")
-    unit = torque_drag(well, string, friction=1.0, wob=wob, cell_length=cell_length)
-    md = unit.md
-    per_cell = -np.diff(unit.torque[:, 1])  # int N r_o over each cell (torque grows upward)
+    if not (math.isfinite(wob) and wob >= 0.0):
+        raise ConfigError("wob", f"expected a non-negative weight on bit in N, got {wob!r}")
+    if column is None:
+        column = RotatingColumn(well, string, cell_length)
+    md = column.md
+    per_cell = column.friction_per_cell(wob)  # int N r_o over each cell
     mid = 0.5 * (md[:-1] + md[1:])
 
     def profile(friction: np.ndarray) -> np.ndarray:
@@ -148,7 +159,7 @@ def break_off(
 
     static = profile(well.friction_static_at(mid))
     sliding = profile(well.friction_dynamic_at(mid))
-    rigidity = _torsional_rigidity(string, unit.string_top_md, mid)
+    rigidity = _torsional_rigidity(string, column.string_top_md, mid)
     twist = float(np.sum(0.5 * (static[:-1] + static[1:]) * np.diff(md) / rigidity))
     return BreakOff(
         torque=float(static[0]),

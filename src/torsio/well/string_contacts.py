@@ -37,6 +37,7 @@ from torsio.errors import ConfigError
 from torsio.model.contacts import StringContacts
 from torsio.model.wave import drag_lumping
 from torsio.well.break_off import break_off
+from torsio.well.rotating_column import RotatingColumn
 from torsio.well.wellbore import Wellbore
 
 __all__ = ["CONTACT_CELL_LENGTH", "node_contacts", "string_contacts", "with_contacts"]
@@ -45,7 +46,9 @@ CONTACT_CELL_LENGTH = 10.0
 """Cell of the torque-and-drag integrals the capacities are taken from [m]."""
 
 
-def string_contacts(grid: Any, well: Wellbore, wob: float = 0.0) -> StringContacts:
+def string_contacts(
+    grid: Any, well: Wellbore, wob: float = 0.0, column: RotatingColumn | None = None
+) -> StringContacts:
     """Static and sliding capacities [N m] of every drag node of ``grid`` in ``well``.
 
     Parameters
@@ -58,6 +61,9 @@ def string_contacts(grid: Any, well: Wellbore, wob: float = 0.0) -> StringContac
     wob : float
         Weight on bit [N] of the rotating state's normal force (0: off bottom); the
         contacts rebuild themselves at another (:meth:`StringContacts.at_wob`).
+    column : RotatingColumn, optional
+        The string's rotating state in ``well`` on cells of :data:`CONTACT_CELL_LENGTH`,
+        shared by the contacts at every weight (built when not given).
 
     Raises
     ------
@@ -65,7 +71,8 @@ def string_contacts(grid: Any, well: Wellbore, wob: float = 0.0) -> StringContac
         On ``discretization.drag_spacing`` when the string has no drag node inside it to
         carry the shares of its ends.
     """
-    profile = break_off(well, grid.string, cell_length=CONTACT_CELL_LENGTH, wob=wob)
+    column = column or RotatingColumn(well, grid.string, CONTACT_CELL_LENGTH)
+    profile = break_off(well, grid.string, CONTACT_CELL_LENGTH, wob, column)
     md = profile.md
     top = float(md[0])
 
@@ -106,7 +113,7 @@ def string_contacts(grid: Any, well: Wellbore, wob: float = 0.0) -> StringContac
         threshold_speed=well.threshold_speed,
         details=_details(well, profile),
         wob=float(wob),
-        rebuild=_rebuild(grid, well, grid.string),
+        rebuild=_rebuild(grid, well, grid.string, column),
     )
 
 
@@ -114,22 +121,29 @@ class ContactsAtWob:
     """The contacts of a model's string in a well at any weight on bit (picklable, so a
     System with them goes to worker processes; a few weights kept per process).
 
-    ``target``: the model without contacts (a lumped chain, or a wave grid).
+    ``target``: the model without contacts (a lumped chain, or a wave grid); ``column``
+    the string's rotating state in the well, one for every weight (built when first
+    needed: it is not pickled).
     """
 
     KEPT = 64
 
-    def __init__(self, target: Any, well: Wellbore, string: Any) -> None:
+    def __init__(
+        self, target: Any, well: Wellbore, string: Any, column: RotatingColumn | None = None
+    ) -> None:
         self.target, self.well, self.string = target, well, string
+        self._column = column
         self._kept: dict[float, StringContacts] = {}
 
     def __call__(self, wob: float) -> StringContacts:
         kept = self._kept.get(wob)
         if kept is None:
+            if self._column is None:
+                self._column = RotatingColumn(self.well, self.string, CONTACT_CELL_LENGTH)
             if self.target.has_matrices:
-                kept = node_contacts(self.target, self.well, self.string, wob)
+                kept = node_contacts(self.target, self.well, self.string, wob, self._column)
             else:
-                kept = string_contacts(self.target, self.well, wob)
+                kept = string_contacts(self.target, self.well, wob, self._column)
             if len(self._kept) >= self.KEPT:
                 self._kept.pop(next(iter(self._kept)))
             self._kept[wob] = kept
@@ -142,20 +156,31 @@ class ContactsAtWob:
         self.__init__(state["target"], state["well"], state["string"])  # type: ignore[misc]
 
 
-def _rebuild(target: Any, well: Wellbore, string: Any) -> ContactsAtWob | None:
+def _rebuild(
+    target: Any, well: Wellbore, string: Any, column: RotatingColumn
+) -> ContactsAtWob | None:
     """How contacts rebuild at another weight on bit; None where the normal force does
     not depend on it (the gravity model)."""
-    return None if well.normal_force == "gravity" else ContactsAtWob(target, well, string)
+    if well.normal_force == "gravity":
+        return None
+    return ContactsAtWob(target, well, string, column)
 
 
-def node_contacts(model: Any, well: Wellbore, string: Any, wob: float = 0.0) -> StringContacts:
+def node_contacts(
+    model: Any,
+    well: Wellbore,
+    string: Any,
+    wob: float = 0.0,
+    column: RotatingColumn | None = None,
+) -> StringContacts:
     """Static and sliding capacities [N m] of every node of a lumped chain in ``well``.
 
     Node i (at ``model.node_depths[i]`` below the top of ``string``) stands for the string
     from half-way to the node above (the top, for the first) to half-way to the node below
     (the bottom of the string, for the last: the bit node carries the bit section and what
     a rigid BHA lumps there), so the capacities add up to the break-off and sliding torques
-    exactly. The normal force is the rotating state's at ``wob`` [N] (0: off bottom).
+    exactly. The normal force is the rotating state's at ``wob`` [N] (0: off bottom);
+    ``column`` as for :func:`string_contacts`.
 
     >>> from torsio.examples import deviated_well_config
     >>> config = deviated_well_config()
@@ -164,7 +189,8 @@ def node_contacts(model: Any, well: Wellbore, string: Any, wob: float = 0.0) -> 
     >>> contacts.static.size, round(contacts.static_total), round(contacts.dynamic_total)
     (24, 12174, 10148)
     """
-    profile = break_off(well, string, cell_length=CONTACT_CELL_LENGTH, wob=wob)
+    column = column or RotatingColumn(well, string, CONTACT_CELL_LENGTH)
+    profile = break_off(well, string, CONTACT_CELL_LENGTH, wob, column)
     md = profile.md
     depths = float(md[0]) + np.asarray(model.node_depths, dtype=float)
     edges = np.concatenate([[md[0]], 0.5 * (depths[:-1] + depths[1:]), [md[-1]]])
@@ -178,7 +204,7 @@ def node_contacts(model: Any, well: Wellbore, string: Any, wob: float = 0.0) -> 
         threshold_speed=well.threshold_speed,
         details=_details(well, profile),
         wob=float(wob),
-        rebuild=_rebuild(model, well, string),
+        rebuild=_rebuild(model, well, string, column),
     )
 
 

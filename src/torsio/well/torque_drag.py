@@ -15,7 +15,10 @@ force keeps its physical sign: in a build (kappa towards the high side) under te
 T kappa pulls the pipe to the high side against its weight. The equations are integrated
 exactly enough to hold the closed forms to 1e-9: classical Runge-Kutta steps that turn the
 tangent by at most :data:`MAX_STEP_TURN` on each cell (a cell lies on one survey arc, one
-string section and one hole section, so the coefficients are smooth within it).
+string section and one hole section, so the coefficients are smooth within it). The two
+rotating operations take their tension and normal force from
+:class:`torsio.well.rotating_column.RotatingColumn` (sigma = 0: the tension needs no
+integration of N, so one column serves every weight on bit).
 
 Examples
 --------
@@ -40,45 +43,14 @@ import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.model.drillstring import DrillString
+from torsio.well.rotating_column import RotatingColumn, step_counts
 from torsio.well.torque_drag_results import TorqueDragResults
-from torsio.well.wellbore import Wellbore, string_top_md
+from torsio.well.wellbore import Wellbore
 
-__all__ = ["GRAVITY", "MAX_STEP_TURN", "torque_drag"]
+__all__ = ["torque_drag"]
 
-GRAVITY = 9.80665
-"""Standard gravity [m/s^2]."""
-
-MAX_STEP_TURN = 0.002
-"""Largest turn of the tangent over one integration step [rad]."""
-
-# the operations integrated side by side: tension states and the sign of their axial friction
-_SIGMA = np.array([1.0, -1.0, 0.0, 0.0])  # trip out, trip in, rotating off / on bottom
-_ROTATING = slice(2, 4)
-
-
-def _grid(well: Wellbore, string: DrillString, top: float, cell_length: float) -> np.ndarray:
-    """Cell boundaries [m]: every section end, survey station and hole bottom in the string,
-    and at most ``cell_length`` apart."""
-    lengths = np.array([s.length for s in string.sections])
-    bottom = well.survey.depth  # the bit at the last station (top + the length, to round-off)
-    marks = [top + np.concatenate([[0.0], np.cumsum(lengths)]), well.survey.md, well.hole_bottoms]
-    edges = np.unique(np.clip(np.concatenate(marks), top, bottom))
-    edges[-1] = bottom
-    points = [edges[:1]]
-    for a, b in zip(edges[:-1], edges[1:], strict=True):
-        count = max(1, math.ceil((b - a) / cell_length - 1e-9))
-        points.append(np.linspace(a, b, count + 1)[1:])
-    return np.concatenate(points)
-
-
-def _section_properties(string: DrillString, top: float, md: np.ndarray, mud: float) -> Any:
-    """Buoyed weight per metre [N/m] and outer radius [m] of the section at each ``md``."""
-    ends = top + np.cumsum([s.length for s in string.sections])
-    index = np.minimum(np.searchsorted(ends, md, side="left"), len(ends) - 1)
-    area = np.array([math.pi / 4.0 * (s.od**2 - s.id**2) for s in string.sections])
-    density = np.array([s.material.density for s in string.sections])
-    radius = np.array([s.od / 2.0 for s in string.sections])
-    return (GRAVITY * area * (density - mud))[index], radius[index]
+# the trip operations integrated side by side, and the sign of their axial friction
+_SIGMA = np.array([1.0, -1.0])  # trip out, trip in
 
 
 def torque_drag(
@@ -126,52 +98,53 @@ def torque_drag(
             raise ConfigError(name, f"expected a non-negative finite number, got {value!r}")
     if not (math.isfinite(cell_length) and cell_length > 0.0):
         raise ConfigError("cell_length", f"expected a positive length, got {cell_length!r}")
-    length = float(sum(s.length for s in string.sections))
-    top = string_top_md(well, length)
-    md = _grid(well, string, top, cell_length)
+    column = RotatingColumn(well, string, cell_length)  # the two rotating operations
+    md, top = column.md, column.string_top_md
     survey = well.survey
     soft = well.normal_force == "soft-string"
 
-    def rates(s: float, tension: np.ndarray, arc: int, w: float, r: float, mu: float) -> Any:
+    def rates(s: float, tension: np.ndarray, arc: int, w: float, mu: float) -> Any:
         t, k = survey.frame(arc, s)
         lateral = np.array([0.0, 0.0, 1.0]) - t[2] * t  # gravity's part normal to the hole
         if soft:
             normal = np.linalg.norm(tension[:, None] * k + w * lateral, axis=1)
         else:
             normal = np.full(tension.shape, abs(w) * np.linalg.norm(lateral))
-        return w * t[2] + _SIGMA * mu * normal, mu * normal[_ROTATING] * r, normal
+        return w * t[2] + _SIGMA * mu * normal, normal
 
     n = md.size
-    tension = np.empty((n, 4))
-    torque = np.empty((n, 2))
-    normal = np.empty((n, 4))
     mid = 0.5 * (md[:-1] + md[1:])
-    weights, radii = _section_properties(string, top, mid, well.mud_density)
+    weights = column.weights
     mus = well.friction_dynamic_at(mid) if friction is None else np.full(mid.size, friction)
-    tension[-1] = [0.0, 0.0, 0.0, -wob]
-    torque[-1] = [0.0, bit_torque]
-    for j in range(n - 2, -1, -1):  # from the bit up
-        w, r, mu = float(weights[j]), float(radii[j]), float(mus[j])
-        h_cell = md[j + 1] - md[j]
-        arc = survey.interval(mid[j])  # the cell lies on one arc of the survey
-        turn = float(survey.station_doglegs[arc]) * h_cell / float(np.diff(survey.md)[arc])
-        steps = max(1, math.ceil(turn / MAX_STEP_TURN))
-        h = h_cell / steps
-        y, m = tension[j + 1].copy(), torque[j + 1].copy()
-        s = md[j + 1]
-        for _ in range(steps):  # classical Runge-Kutta, l = up the hole
-            k1, q1, _n = rates(s, y, arc, w, r, mu)
-            k2, q2, _n = rates(s - h / 2, y + h / 2 * k1, arc, w, r, mu)
-            k3, q3, _n = rates(s - h / 2, y + h / 2 * k2, arc, w, r, mu)
+    arcs, counts = step_counts(well, md)
+    trips = np.empty((n, 2))
+    trips[-1] = 0.0
+    for j in range(n - 2, -1, -1):  # from the bit up, classical Runge-Kutta, l = up the hole
+        w, mu, arc = float(weights[j]), float(mus[j]), int(arcs[j])
+        h = (md[j + 1] - md[j]) / counts[j]
+        y, s = trips[j + 1].copy(), md[j + 1]
+        for _ in range(counts[j]):
+            k1, _n = rates(s, y, arc, w, mu)
+            k2, _n = rates(s - h / 2, y + h / 2 * k1, arc, w, mu)
+            k3, _n = rates(s - h / 2, y + h / 2 * k2, arc, w, mu)
             s = max(s - h, md[j])
-            k4, q4, _n = rates(s, y + h * k3, arc, w, r, mu)
+            k4, _n = rates(s, y + h * k3, arc, w, mu)
             y = y + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-            m = m + h / 6 * (q1 + 2 * q2 + 2 * q3 + q4)
-        tension[j], torque[j] = y, m
-    for j in range(n):  # the normal force at each boundary, with the cell below's pipe
-        cell = min(j, n - 2)
-        arc = survey.interval(mid[cell])
-        normal[j] = rates(md[j], tension[j], arc, float(weights[cell]), 0.0, 0.0)[2]
+        trips[j] = y
+    trip_normal = np.array(  # at each boundary, with the cell below's pipe
+        [
+            rates(md[j], trips[j], int(arcs[min(j, n - 2)]), float(weights[min(j, n - 2)]), 0.0)[1]
+            for j in range(n)
+        ]
+    )
+
+    def rotating_torque(on_bit: float, weight: float) -> np.ndarray:
+        per_cell = mus * column.friction_per_cell(weight)
+        return on_bit + np.concatenate([np.cumsum(per_cell[::-1])[::-1], [0.0]])
+
+    tension = np.column_stack([trips, column.tension(0.0), column.tension(wob)])
+    torque = np.column_stack([rotating_torque(0.0, 0.0), rotating_torque(bit_torque, wob)])
+    normal = np.column_stack([trip_normal, column.normal_force(0.0), column.normal_force(wob)])
     return TorqueDragResults(
         md=md,
         tension=tension,

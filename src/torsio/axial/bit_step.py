@@ -1,0 +1,146 @@
+"""The RGD bit's part of one time step, shared by the lumped and the distributed kernels.
+
+Each function is the bit's treatment in Moreau's time stepping (docs/axial.md, "The
+scheme"), written once and called from the step loops of :mod:`torsio.axial.kernel`
+(lumped chain) and :mod:`torsio.axial.wave_kernel` (distributed pipe):
+
+- :func:`depth_of_cut`: d = n (U_b − U(t − t_n)) from the run's history
+  (:mod:`torsio.axial.history`), the rock surface kept off bottom;
+- :func:`cutting_forces`: W_c = ζ ε a d and T_c = ε a² d/2 on bottom, zero off it;
+- :func:`wear_flat_contact`: the bit's new axial velocity and the wear-flat weight
+  W_f ∈ [0, σ a l] consistent with it (drilling down, at rest, moving up);
+- :func:`forward_rotation`: the bit's new speed, never backwards, and the bit torque (the
+  reaction while stuck);
+- :func:`add_to_window`: the window's statistics (:data:`torsio.axial.kernel.STATS`).
+
+A step's smooth forces enter through ``force`` (or ``torque``) and the inverse mass (or
+inertia) the step sees: the lumped kernel passes the spring forces and 1/m, the
+distributed one the force of the arriving wave and 1/(m + h Z/2) (docs/axial.md, "The
+distributed pipe").
+
+``bit``, the law's row: [ζ ε a (N/m), ε a²/2 (N m/m), σ a l (N), μ γ a/2 (m), 2π/n (rad),
+n].
+
+Examples
+--------
+>>> velocity, wear_flat = wear_flat_contact(0.01, 1.0e5, 2.0e4, 1.0 / 3.0e4, 1e-3, 7.0e4,
+...                                         True)
+>>> round(velocity, 12), wear_flat  # drilling down: the wear flats carry σ a l
+(0.010333333333, 70000.0)
+>>> speed, torque = forward_rotation(0.001, 10.0, 500.0, 100.0, 1.0 / 500.0, 1e-3)
+>>> speed, round(torque, 9)  # stuck: the reaction 10 + I Ω/h, below T_c + T_f = 600
+(0.0, 510.0)
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from torsio.axial.history import delayed_state, keep_surface
+from torsio.solvers.compiled import njit
+
+__all__ = [
+    "add_to_window",
+    "cutting_forces",
+    "depth_of_cut",
+    "forward_rotation",
+    "start_window",
+    "wear_flat_contact",
+]
+
+# the bit law's row (:func:`torsio.axial.run_setup.bit_law_row`)
+CUTTING_WEIGHT_PER_DEPTH, CUTTING_TORQUE_PER_DEPTH, FRICTION_WEIGHT = 0, 1, 2
+FRICTION_TORQUE_PER_WEIGHT, ANGLE_PER_BLADE, BLADES = 3, 4, 5
+
+# the window's statistics, in the order of :data:`torsio.axial.kernel.STATS`
+SPEED_MAX, SPEED_MIN, VELOCITY_MAX, VELOCITY_MIN, STUCK, OFF_BOTTOM, COUNT = range(7)
+WORK, TORQUE_INTEGRAL, WEIGHT_INTEGRAL, DEPTH_MAX = 9, 10, 11, 14
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def depth_of_cut(
+    bit, history, cursor, angle, position, step, delayed
+) -> float:  # pragma: no cover - compiled
+    """d = n (U_b − U(t − t_n)) [m per rev] for the bit at ``angle`` [rad] and ``position``
+    [m]; ``delayed`` receives [t − t_n, U(t − t_n)]. The newest history entry gets the rock
+    surface the blade leaves, max(U_b, U(t − t_n)) (``step`` [s] for its slope). NaN when
+    the history does not hold the delay (the history is then left as it was)."""
+    if not delayed_state(history, cursor, angle - bit[ANGLE_PER_BLADE], delayed):
+        return math.nan
+    depth = bit[BLADES] * (position - delayed[1])
+    keep_surface(history, cursor, max(position, delayed[1]), step)
+    return depth
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def cutting_forces(bit, depth) -> tuple[float, float]:  # pragma: no cover - compiled
+    """(W_c [N], T_c [N m]) of the depth of cut ``depth``: zero off bottom (d ≤ 0)."""
+    if depth > 0.0:
+        return bit[CUTTING_WEIGHT_PER_DEPTH] * depth, bit[CUTTING_TORQUE_PER_DEPTH] * depth
+    return 0.0, 0.0
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def wear_flat_contact(
+    velocity, force, cutting_weight, inverse_mass, step, friction_weight, on_bottom
+) -> tuple[float, float]:  # pragma: no cover - compiled
+    """(V_b [m/s], W_f [N]) after one step of ``step`` [s] from ``velocity`` under the smooth
+    ``force`` [N] (down), less W_c and the wear-flat weight W_f ∈ [0, σ a l] (on bottom):
+    W_f = σ a l when the bit still moves down with it, 0 when it moves up without it, else
+    the bit stops (V_b = 0) and W_f is what stops it. ``inverse_mass`` [1/kg]."""
+    free = velocity + step * (force - cutting_weight) * inverse_mass
+    wear_flat = 0.0
+    if on_bottom:
+        if free - step * friction_weight * inverse_mass > 0.0:
+            wear_flat = friction_weight
+            free -= step * friction_weight * inverse_mass
+        elif free >= 0.0:
+            wear_flat = free / (step * inverse_mass)
+            free = 0.0
+    return free, wear_flat
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def forward_rotation(
+    speed, torque, cutting_torque, friction_torque, inverse_inertia, step
+) -> tuple[float, float]:  # pragma: no cover - compiled
+    """(Ω_b [rad/s], bit torque [N m]) after one step of ``step`` [s] from ``speed`` under
+    the smooth ``torque`` [N m] less T_c + T_f. The bit does not turn backwards: when the
+    free speed is not positive it sticks, and the bit torque is the reaction that holds it,
+    ``torque`` + Ω_b/(h/I). ``inverse_inertia`` [1/(kg m²)]."""
+    free = speed + step * (torque - cutting_torque - friction_torque) * inverse_inertia
+    if free <= 0.0:
+        return 0.0, torque + speed / (step * inverse_inertia)
+    return free, cutting_torque + friction_torque
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def add_to_window(
+    stats, speed, velocity, depth, step, weight, torque
+) -> None:  # pragma: no cover - compiled
+    """Add one step of the window to ``stats``: extremes of Ω_b and V_b, stuck and off-bottom
+    steps, the work (W V_b + T Ω_b) h [J], the integrals of T and W, the largest d."""
+    stats[SPEED_MAX] = max(stats[SPEED_MAX], speed)
+    stats[SPEED_MIN] = min(stats[SPEED_MIN], speed)
+    stats[VELOCITY_MAX] = max(stats[VELOCITY_MAX], velocity)
+    stats[VELOCITY_MIN] = min(stats[VELOCITY_MIN], velocity)
+    if speed == 0.0:
+        stats[STUCK] += 1.0
+    if not depth > 0.0:
+        stats[OFF_BOTTOM] += 1.0
+    stats[COUNT] += 1.0
+    stats[DEPTH_MAX] = max(stats[DEPTH_MAX], depth)
+    stats[WORK] += step * (weight * velocity + torque * speed)
+    stats[TORQUE_INTEGRAL] += step * torque
+    stats[WEIGHT_INTEGRAL] += step * weight
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def start_window(stats) -> None:  # pragma: no cover - compiled
+    """Empty statistics: extremes at ∓inf, every sum 0."""
+    for q in range(stats.size):
+        stats[q] = 0.0
+    stats[SPEED_MAX], stats[SPEED_MIN] = -np.inf, np.inf
+    stats[VELOCITY_MAX], stats[VELOCITY_MIN] = -np.inf, np.inf

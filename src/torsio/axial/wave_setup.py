@@ -1,0 +1,249 @@
+"""What one run of the distributed pipe needs: its grid and step, the initial state, the
+history before t = 0 (:mod:`torsio.axial.wave_kernel`).
+
+**Step rule.** h_max = 2π / (ω_fast × ``steps_per_period``), ω_fast the largest of the
+bit's axial contact frequency √(2 n ζ ε a / m_b) and the rates Z_a/m_b, Z_t/I_b at which the
+bottom section takes the BHA's motion away; a given ``step`` caps it further. Then
+:func:`torsio.model.wave_grid.choose_time_step` takes the largest h ≤ h_max that makes
+every section's axial and torsional travel time L/c a whole number of steps within the
+assembly's ``travel_time_tolerance`` (one h for both lines: the cells per section differ by
+line). The grid is then the pipe of lengths n h c: the same impedances and wave speeds,
+each travel time changed by at most the tolerance, and so (by Rayleigh's quotient: a
+section's strain energy scales as 1/(1 + ε), its kinetic energy as 1 + ε) each natural
+frequency by at most about the same fraction (docs/axial.md, "The distributed pipe").
+
+**Starts.** ``"steady"``: the pipe carrying W₀ and T₀ throughout (a uniform strain and
+twist gradient), every point at V₀ and Ω₀: p = F + Z v, m = F − Z v with (F, v) = (W₀, V₀)
+axially and (T₀, Ω₀) torsionally; the bit speed raised by ``perturbation``. ``"rest"``:
+the pipe at rest carrying W₀ axially (p = m = W₀), untwisted (p = m = 0), the bottom flat,
+the top drive turning at Ω₀ (and the speed hook moving at V₀) from t = 0.
+
+Examples
+--------
+>>> from torsio.axial.wave_assembly import wave_pipe_assembly
+>>> assembly = wave_pipe_assembly(1000.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 3e-5, 3e4, 455.65)
+>>> grid = pipe_grid(assembly, 2e-3)
+>>> grid.axial_cells, grid.torsional_cells, round(grid.step * 1e3, 6)  # ms
+((100,), (161,), 1.933599)
+>>> bool(grid.travel_time_errors.max() <= assembly.travel_time_tolerance)
+True
+>>> from torsio.axial.kernel import STATS
+>>> from torsio.axial.rgd import rgd_example
+>>> setup = wave_run_setup(assembly, rgd_example(), 100e3, 180.0, 1.0, 0.5, start="steady",
+...                        perturbation=0.0)
+>>> stats = run_wave(setup, np.zeros((0, 10)), 0)
+>>> advance = stats[STATS.index("position_end")] - stats[STATS.index("position_start")]
+>>> round(float(advance) / (setup.window_steps * setup.step) / setup.steady.rop, 12)  # V₀
+1.0
+"""
+
+from __future__ import annotations
+
+import math
+
+import attrs
+import numpy as np
+from numpy.typing import NDArray
+
+from torsio.axial import wave_kernel as slot
+from torsio.axial.kernel import STATS
+from torsio.axial.rgd import RGDBit
+from torsio.axial.run_setup import (
+    DEFAULT_STEPS_PER_PERIOD,
+    bit_law_row,
+    check_run,
+    contact_frequency,
+    largest_step,
+    past_times,
+    start_history,
+)
+from torsio.axial.steady import SteadyDrilling, steady_drilling
+from torsio.axial.wave_assembly import WaveDrillingAssembly
+from torsio.axial.wave_pipe import junction_rows
+from torsio.model.wave_grid import choose_time_step
+
+__all__ = ["PipeGrid", "WaveRunSetup", "pipe_grid", "run_wave", "wave_run_setup"]
+
+
+def _offsets(cells: NDArray[np.int64]) -> NDArray[np.int64]:
+    return np.concatenate([[0], np.cumsum(cells + 1)]).astype(np.int64)
+
+
+@attrs.frozen(eq=False)
+class PipeGrid:
+    """The characteristic grid of a distributed pipe, both lines on one step.
+
+    Attributes
+    ----------
+    step : float
+        h [s]; a wave crosses one cell per step.
+    axial_cells, torsional_cells : tuple of int
+        Cells per section, from the top down.
+    axial_offsets, torsional_offsets : ndarray of int
+        First node of each section in the line's state, and the line's size.
+    axial_junctions, torsional_junctions : ndarray (4, sections − 1)
+        :func:`torsio.axial.wave_pipe.junction_rows`.
+    travel_time_errors : ndarray (2, sections)
+        |n h − L/c| / (L/c) of each section, axially (row 0) and torsionally (row 1).
+    """
+
+    step: float
+    axial_cells: tuple[int, ...]
+    torsional_cells: tuple[int, ...]
+    axial_offsets: NDArray[np.int64]
+    torsional_offsets: NDArray[np.int64]
+    axial_junctions: NDArray[np.float64]
+    torsional_junctions: NDArray[np.float64]
+    travel_time_errors: NDArray[np.float64]
+
+
+def pipe_grid(assembly: WaveDrillingAssembly, max_step: float) -> PipeGrid:
+    """The grid with the largest step ≤ ``max_step`` [s] within the assembly's travel-time
+    tolerance (ConfigError on ``discretization.travel_time_tolerance`` when there is none)."""
+    axial = assembly.lengths / assembly.axial_wave_speeds
+    torsional = assembly.lengths / assembly.torsional_wave_speeds
+    taus = np.concatenate([axial, torsional])
+    h, cells = choose_time_step(taus, max_step, assembly.travel_time_tolerance)
+    sections = axial.size
+    axial_cells, torsional_cells = cells[:sections], cells[sections:]
+    errors = (np.abs(cells * h - taus) / taus).reshape(2, sections)
+    return PipeGrid(
+        step=float(h),
+        axial_cells=tuple(int(n) for n in axial_cells),
+        torsional_cells=tuple(int(n) for n in torsional_cells),
+        axial_offsets=_offsets(axial_cells),
+        torsional_offsets=_offsets(torsional_cells),
+        axial_junctions=junction_rows(assembly.axial_impedances),
+        torsional_junctions=junction_rows(assembly.torsional_impedances),
+        travel_time_errors=errors,
+    )
+
+
+def _line_state(
+    offsets: NDArray[np.int64], impedances: NDArray[np.float64], force: float, velocity: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """p, m of a line carrying ``force`` everywhere and moving at ``velocity``."""
+    z = np.repeat(impedances, np.diff(offsets))
+    return force + z * velocity, force - z * velocity
+
+
+@attrs.frozen(eq=False)
+class WaveRunSetup:
+    """The distributed kernel's arrays for one run (:func:`torsio.axial.wave_kernel.march`)."""
+
+    steady: SteadyDrilling
+    step: float
+    steps: int
+    window_steps: int
+    grid: PipeGrid
+    bit: NDArray[np.float64]
+    settings: NDArray[np.float64]
+    axial_p: NDArray[np.float64]
+    axial_m: NDArray[np.float64]
+    torsional_p: NDArray[np.float64]
+    torsional_m: NDArray[np.float64]
+    bha: NDArray[np.float64]
+    history: NDArray[np.float64]
+    cursor: NDArray[np.float64]
+
+
+def wave_run_setup(
+    assembly: WaveDrillingAssembly,
+    bit: RGDBit,
+    wob: float,
+    rpm: float,
+    duration: float,
+    window: float,
+    *,
+    start: str = "rest",
+    perturbation: float = 1e-3,
+    step: float | None = None,
+    steps_per_period: int = DEFAULT_STEPS_PER_PERIOD,
+) -> WaveRunSetup:
+    """The grid, the initial state and the history of a run (see the module docstring).
+
+    ``wob`` [N], ``rpm`` [rev/min], ``duration`` and ``window`` [s] (the window at the end).
+    """
+    steady = steady_drilling(bit, wob, rpm)
+    check_run(start, duration, window)
+    fastest = max(contact_frequency(bit, assembly.bha_mass), assembly.fastest_rate())
+    grid = pipe_grid(assembly, largest_step(fastest, steps_per_period, step))
+    h = grid.step
+    steps = int(math.ceil(duration / h - 1e-9))
+    window_steps = min(steps, int(round(window / h)))
+    omega0, v0 = steady.bit_speed, steady.rop
+    on_steady = start == "steady"
+    axial_z, torsional_z = assembly.axial_impedances, assembly.torsional_impedances
+    speed, velocity = (omega0, v0) if on_steady else (0.0, 0.0)
+    torque = steady.bit_torque if on_steady else 0.0
+    axial_p, axial_m = _line_state(grid.axial_offsets, axial_z, wob, velocity)
+    torsional_p, torsional_m = _line_state(grid.torsional_offsets, torsional_z, torque, speed)
+    bit_speed = speed * (1.0 + perturbation) if on_steady else 0.0
+    torsional_m[-1] = torsional_p[-1] - 2.0 * torsional_z[-1] * bit_speed  # the bit's end
+    bha = np.array([0.0, velocity, 0.0, bit_speed])
+    times = past_times(h, steady.delay)
+    history, cursor = start_history(
+        times,
+        omega0 * times,
+        np.full(times.size, omega0),
+        velocity * times,
+        velocity,
+        bit_speed,
+        velocity,
+        steps,
+    )
+    settings = np.zeros(len(slot.SETTINGS))
+    settings[slot.STEP], settings[slot.STEPS] = h, steps
+    settings[slot.TOP_SPEED], settings[slot.HOOK_WEIGHT] = omega0, wob
+    speed_hook = assembly.hook == "speed"
+    settings[slot.SPEED_HOOK] = 1.0 if speed_hook else 0.0
+    settings[slot.HOOK_SPEED] = v0 if speed_hook else 0.0
+    settings[slot.WINDOW_START] = steps - window_steps
+    settings[slot.BHA_MASS], settings[slot.BHA_INERTIA] = assembly.bha_mass, assembly.bha_inertia
+    settings[slot.AXIAL_TOP_IMPEDANCE] = axial_z[0]
+    settings[slot.AXIAL_BOTTOM_IMPEDANCE] = axial_z[-1]
+    settings[slot.TORSIONAL_TOP_IMPEDANCE] = torsional_z[0]
+    settings[slot.TORSIONAL_BOTTOM_IMPEDANCE] = torsional_z[-1]
+    return WaveRunSetup(
+        steady=steady,
+        step=h,
+        steps=steps,
+        window_steps=window_steps,
+        grid=grid,
+        bit=bit_law_row(bit),
+        settings=settings,
+        axial_p=axial_p,
+        axial_m=axial_m,
+        torsional_p=torsional_p,
+        torsional_m=torsional_m,
+        bha=bha,
+        history=history,
+        cursor=cursor,
+    )
+
+
+def run_wave(setup: WaveRunSetup, samples: NDArray[np.float64], sample_every: int) -> NDArray:
+    """Run the compiled loop on ``setup`` (its state arrays change); the stats vector
+    (:data:`torsio.axial.kernel.STATS`)."""
+    settings = setup.settings.copy()
+    settings[slot.SAMPLE_EVERY] = sample_every
+    stats = np.zeros(len(STATS))
+    grid = setup.grid
+    slot.march(
+        setup.bit,
+        settings,
+        grid.axial_offsets,
+        grid.axial_junctions,
+        setup.axial_p,
+        setup.axial_m,
+        grid.torsional_offsets,
+        grid.torsional_junctions,
+        setup.torsional_p,
+        setup.torsional_m,
+        setup.bha,
+        setup.history,
+        setup.cursor,
+        stats,
+        samples,
+    )
+    return stats

@@ -1,0 +1,344 @@
+"""The distributed (wave) axial-torsional model with the RGD bit (torsio.axial.wave_*).
+
+Independent references: the exact continuum frequencies of the axial and the torsional bar
+with a lumped end (torsio.model.continuum.bar_frequencies, Wittrick-Williams, checked in
+tests/test_continuum.py; and the closed form sin x + r x cos x = 0 of a free-top bar found
+here by brentq), the eigenfrequencies of the fine lumped chain (pipe_assembly), the steady
+drilling state in closed form (torsio.axial.steady: RGD 2007, Teale 1965) and the
+conservation of the power (p² − m²)/(4 Z) at a junction.
+"""
+
+from __future__ import annotations
+
+import math
+
+import attrs
+import numpy as np
+import pytest
+import scipy.linalg
+import scipy.optimize
+
+from torsio.axial import bit_step, wave_kernel
+from torsio.axial.assembly import pipe_assembly
+from torsio.axial.kernel import SAMPLE_COLUMNS, STATS
+from torsio.axial.rgd import rgd_example
+from torsio.axial.run_setup import BitRotation
+from torsio.axial.transient import simulate_axial
+from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly, wave_pipe_assembly
+from torsio.axial.wave_pipe import (
+    advance,
+    close_bottom,
+    junction_rows,
+    set_top_force,
+    set_top_velocity,
+    smooth_end_terms,
+)
+from torsio.axial.wave_setup import pipe_grid, run_wave, wave_run_setup
+from torsio.errors import ConfigError
+from torsio.model.continuum import bar_frequencies
+from torsio.model.lumped import chain_matrix
+from torsio.report.axial import axial_frequencies
+
+BIT = rgd_example()
+WOB = 100e3
+# the BHA of the 2-DOF example of docs/axial.md (M = 29981.3 kg, I = 455.65 kg m²) and the
+# steel drill pipe of its pipe_assembly example (E = 210 GPa, G = 81 GPa, ρ = 7850 kg/m³)
+MASS, INERTIA = 29981.3, 455.65
+E, G, RHO = 2.1e11, 8.1e10, 7850.0
+STEPPED = [PipeSection(600.0, E, G, RHO, 3.4e-3, 3.0e-5), PipeSection(400.0, E, G, RHO, 6e-3, 5e-5)]
+MODES = 6
+
+
+def _stepped(hook: str) -> WaveDrillingAssembly:
+    return WaveDrillingAssembly(STEPPED, bha_mass=MASS, bha_inertia=INERTIA, hook=hook)
+
+
+# --- frequencies of the grid --------------------------------------------------------------
+def _free_step(p, m, velocity, line, top_value, held_top=True):
+    """One step of a line with the BHA free at its bottom (the bit off bottom: no bit
+    force), in place on p, m; the BHA's new velocity. The calls of torsio.axial.wave_kernel's
+    step 2 (3 torsionally), in its order: advance, the top, the BHA, the end."""
+    offsets, junctions, z_top, z_bottom, end_mass, step = line
+    arrived = p[-1]
+    advance(p, m, offsets, junctions)
+    if held_top:
+        set_top_velocity(p, m, z_top, top_value)
+    else:
+        set_top_force(p, m, top_value)
+    force = 0.5 * (arrived + p[-1])
+    free, inverse = smooth_end_terms(velocity, end_mass, z_bottom, step)
+    new, _ = bit_step.wear_flat_contact(free, force, 0.0, inverse, step, 0.0, False)
+    close_bottom(p, m, z_bottom, new)
+    return new
+
+
+def _line(assembly, grid, name):
+    """(offsets, junctions, Z top, Z bottom, end mass or inertia, h) of a line."""
+    z = getattr(assembly, f"{name}_impedances")
+    end = assembly.bha_mass if name == "axial" else assembly.bha_inertia
+    offsets, junctions = getattr(grid, f"{name}_offsets"), getattr(grid, f"{name}_junctions")
+    return offsets, junctions, z[0], z[-1], end, grid.step
+
+
+def _one_step_matrix(line, held_top):
+    """The linear map of :func:`_free_step` (top input 0) on the state (p, m, V), built
+    column by column."""
+    n = int(line[0][-1])
+    size = 2 * n + 1
+    matrix = np.zeros((size, size))
+    for column in range(size):
+        state = np.eye(size)[column]
+        p, m = state[:n].copy(), state[n : 2 * n].copy()
+        new = _free_step(p, m, state[-1], line, 0.0, held_top)
+        matrix[:, column] = np.concatenate([p, m, [new]])
+    return matrix
+
+
+def test_the_free_step_is_the_kernels_step_with_the_bit_off_bottom():
+    # the frequency tests below read the one-step map of _free_step: here the compiled run
+    # itself, its rock surface put 10 m below the bit (off bottom throughout: d < 0), gives
+    # the same bit velocity and speed at every step, to the last bit
+    assembly = _stepped("speed")
+    setup = wave_run_setup(assembly, BIT, WOB, 180.0, 0.5, 0.25, start="steady")
+    setup.history[3, : int(setup.cursor[1])] += 10.0
+    lines = {name: _line(assembly, setup.grid, name) for name in ("axial", "torsional")}
+    states = {
+        "axial": [setup.axial_p.copy(), setup.axial_m.copy(), setup.bha[1]],
+        "torsional": [setup.torsional_p.copy(), setup.torsional_m.copy(), setup.bha[3]],
+    }
+    tops = {"axial": setup.steady.rop, "torsional": setup.steady.bit_speed}
+    samples = np.zeros((setup.steps, len(SAMPLE_COLUMNS)))
+    stats = run_wave(setup, samples, 1)
+    assert stats[STATS.index("off_bottom_steps")] == stats[STATS.index("window_steps")]
+    for name, column in (("axial", "bit_velocity"), ("torsional", "bit_speed")):
+        p, m, velocity = states[name]
+        expected = [velocity]
+        for _ in range(setup.steps - 1):
+            expected.append(_free_step(p, m, expected[-1], lines[name], tops[name]))
+        np.testing.assert_array_equal(samples[:, SAMPLE_COLUMNS.index(column)], expected)
+
+
+def _grid_frequencies(assembly, line: str, held_top: bool = True):
+    """The lowest MODES frequencies [rad/s] of the grid's one-step map (eigenvalues
+    e^{iωh}), and the grid."""
+    grid = pipe_grid(assembly, 2e-3)
+    matrix = _one_step_matrix(_line(assembly, grid, line), held_top)
+    roots = np.linalg.eigvals(matrix)
+    # the scheme conserves energy: every nonzero root on the unit circle
+    moving = np.abs(roots) > 1e-6
+    np.testing.assert_allclose(np.abs(roots[moving]), 1.0, atol=1e-12)
+    oscillating = roots[moving & (roots.imag > 1e-12)]
+    return np.sort(np.angle(oscillating))[:MODES] / grid.step, grid
+
+
+@pytest.mark.parametrize("line", ["axial", "torsional"])
+def test_the_grid_frequencies_of_a_stepped_pipe_are_the_exact_continuum(line):
+    # top held (the speed hook axially, the top drive torsionally), the BHA free: the exact
+    # continuum of the stepped bar with a lumped end (κL tan κL = ρAL/m_b for one section).
+    # The grid is the pipe of lengths n h c (travel times rounded to whole steps), exact but
+    # for the BHA's trapezoidal rule, whose phase error is at most (ω h)²/12 relative
+    assembly = _stepped("speed")
+    measured, grid = _grid_frequencies(assembly, line)
+    row = 0 if line == "axial" else 1
+    speeds = getattr(assembly, f"{line}_wave_speeds")
+    cells = np.array(getattr(grid, f"{line}_cells"))
+    rigidity = [s.youngs_modulus * s.area for s in STEPPED]
+    if line == "torsional":
+        rigidity = [s.shear_modulus * s.polar_moment for s in STEPPED]
+    end = MASS if line == "axial" else INERTIA
+    rounded = bar_frequencies(rigidity, cells * grid.step * speeds, speeds, end, MODES)
+    scheme = (measured * grid.step) ** 2 / 12
+    assert np.all(np.abs(measured / rounded - 1) <= scheme)
+    # against the pipe as given: the rounding moves each frequency by at most the largest
+    # relative travel-time error (Rayleigh's quotient, docs/axial.md)
+    exact = getattr(assembly, f"{line}_frequencies")(MODES)
+    rounding = grid.travel_time_errors[row].max()
+    assert np.all(np.abs(measured / exact - 1) <= rounding + scheme)
+
+
+def test_the_grid_frequencies_with_the_weight_hook_are_those_of_a_free_top():
+    # a constant force at the top: the top is free (F = 0 for a perturbation). With U =
+    # cos(κx), E A κ sin κL = m_b ω² cos κL, that is sin x + r x cos x = 0, x = κL,
+    # r = m_b/(ρ A L): one root in each ((j − ½)π, jπ), found here by brentq
+    section = STEPPED[0]
+    assembly = WaveDrillingAssembly([section], bha_mass=MASS, bha_inertia=INERTIA)
+    measured, grid = _grid_frequencies(assembly, "axial", held_top=False)
+    ratio = MASS / (RHO * section.area * section.length)
+    c = float(assembly.axial_wave_speeds[0])
+    exact = [
+        scipy.optimize.brentq(
+            lambda x: math.sin(x) + ratio * x * math.cos(x), (j - 0.5) * math.pi, j * math.pi
+        )
+        * c
+        / section.length
+        for j in range(1, MODES + 1)
+    ]
+    bound = grid.travel_time_errors[0].max() + (measured * grid.step) ** 2 / 12
+    assert np.all(np.abs(measured / exact - 1) <= bound)
+    # the lumped chain under the weight hook (report.axial_frequencies, its rigid-body zero
+    # left out) converges to the same roots at second order: the error ratio of halved
+    # cells tends to 4 (3.76-3.92 at 50, 100, 200 nodes)
+    errors = []
+    for nodes in (50, 100, 200):
+        chain = pipe_assembly(nodes, section.length, E, G, RHO, section.area, 3e-5, MASS, INERTIA)
+        hz = np.array(axial_frequencies(chain)[:3])
+        errors.append(np.abs(2 * math.pi * hz / exact[:3] - 1))
+    for coarse, fine in zip(errors, errors[1:], strict=False):
+        assert np.all((3.5 < coarse / fine) & (coarse / fine < 4.5))
+
+
+def _lumped_frequencies(nodes: int, line: str) -> np.ndarray:
+    chain = pipe_assembly(nodes, 1000.0, E, G, RHO, 3.4e-3, 3e-5, MASS, INERTIA, hook="speed")
+    springs = chain.axial_stiffnesses if line == "axial" else chain.stiffnesses
+    masses = chain.masses if line == "axial" else chain.inertias
+    values = scipy.linalg.eigh(chain_matrix(springs), np.diag(masses), eigvals_only=True)
+    return np.sqrt(values[:3])
+
+
+@pytest.mark.parametrize("line", ["axial", "torsional"])
+def test_a_fine_lumped_pipe_converges_to_the_same_continuum_as_the_grid(line):
+    # one uniform section: the wave grid and pipe_assembly of 50, 100, 200 nodes against the
+    # exact continuum; the lumped error falls like 1/nodes² (second-order chain), the grid's
+    # is bounded by its travel-time tolerance (here 3e-5: 1.03e-5 reached, h = 1.64 ms)
+    pipe = wave_pipe_assembly(1000.0, E, G, RHO, 3.4e-3, 3e-5, MASS, INERTIA, hook="speed")
+    assembly = attrs.evolve(pipe, travel_time_tolerance=3e-5)
+    exact = getattr(assembly, f"{line}_frequencies")(3)
+    errors = [np.abs(_lumped_frequencies(n, line) / exact - 1) for n in (50, 100, 200)]
+    for coarse, fine in zip(errors, errors[1:], strict=False):
+        np.testing.assert_allclose(coarse / fine, 4.0, rtol=0.02)
+    measured, grid = _grid_frequencies(assembly, line)
+    row = 0 if line == "axial" else 1
+    wave_error = np.abs(measured[:3] / exact - 1)
+    assert np.all(
+        wave_error <= grid.travel_time_errors[row].max() + (measured[:3] * grid.step) ** 2 / 12
+    )
+
+
+def test_a_junction_carries_the_power_through():
+    # (p² − m²)/(4 Z) is the power F v; at a junction what arrives leaves (F, v continuous)
+    z = np.array([2.0e4, 1.3e5])
+    rows = junction_rows(z)
+    rng = np.random.default_rng(7)
+    for down, up in rng.normal(size=(5, 2)) * 1e5:
+        reflected = rows[0, 0] * down + rows[1, 0] * up
+        transmitted = rows[2, 0] * down + rows[3, 0] * up
+        arriving = down**2 / z[0] + up**2 / z[1]
+        leaving = reflected**2 / z[0] + transmitted**2 / z[1]
+        assert leaving == pytest.approx(arriving, rel=1e-14)
+        # the same force and velocity on both sides
+        assert down + reflected == pytest.approx(transmitted + up, rel=1e-14)
+        assert (down - reflected) / z[0] == pytest.approx((transmitted - up) / z[1], rel=1e-14)
+
+
+# --- runs ----------------------------------------------------------------------------------
+@pytest.mark.parametrize("hook", ["weight", "speed"])
+def test_steady_drilling_is_a_fixed_point_of_the_wave_model(hook):
+    # started on the closed-form steady state (steady.py) at 180 rpm, where it is stable
+    # (docs/axial.md), the run keeps ROP, torque and MSE at the closed form
+    run = simulate_axial(
+        _stepped(hook),
+        BIT,
+        WOB,
+        180.0,
+        duration=6.0,
+        window=3.0,
+        start="steady",
+        perturbation=0.0,
+        samples=0,
+    )
+    steady = run.steady
+    assert run.rop_mean == pytest.approx(steady.rop, rel=1e-12)
+    assert run.torque_mean == pytest.approx(steady.bit_torque, rel=1e-12)
+    assert run.weight_mean == pytest.approx(WOB, rel=1e-12)
+    assert run.mse_mean == pytest.approx(steady.mse, rel=1e-12)
+    assert run.severity < 1e-12 and run.axial_severity < 1e-12
+    assert run.stick_fraction == 0.0 and run.off_bottom_fraction == 0.0
+    assert run.growth_rate is None
+
+
+def test_one_section_and_two_equal_sections_give_the_same_run():
+    # a junction of equal impedances transmits exactly (coefficients 1 and 0): the same run
+    # to the last bit, from rest in stick-slip at 60 rpm. Wave speeds 5000 and 3125 m/s
+    # (E/ρ, G/ρ exact squares) and h = 1 ms make both grids alike: 200 and 320 cells
+    e, g, rho = 2.0e11, 7.8125e10, 8000.0
+    runs = []
+    for sections in (1, 2):
+        assembly = wave_pipe_assembly(
+            1000.0, e, g, rho, 3.4e-3, 3e-5, MASS, INERTIA, sections=sections
+        )
+        assert pipe_grid(assembly, 1e-3).axial_cells == ((200,) if sections == 1 else (100, 100))
+        runs.append(simulate_axial(assembly, BIT, WOB, 60.0, duration=20.0, window=10.0, step=1e-3))
+    np.testing.assert_array_equal(runs[0].samples, runs[1].samples)
+    assert runs[0].stick_fraction > 0  # the comparison covers the bit's stuck phases
+
+
+def test_the_bit_step_indices_name_the_kernels_stats():
+    # torsio.axial.bit_step and torsio.axial.wave_kernel write STATS by index
+    names = {
+        "bit_speed_max": bit_step.SPEED_MAX,
+        "bit_speed_min": bit_step.SPEED_MIN,
+        "axial_speed_max": bit_step.VELOCITY_MAX,
+        "axial_speed_min": bit_step.VELOCITY_MIN,
+        "stuck_steps": bit_step.STUCK,
+        "off_bottom_steps": bit_step.OFF_BOTTOM,
+        "window_steps": bit_step.COUNT,
+        "work": bit_step.WORK,
+        "torque_integral": bit_step.TORQUE_INTEGRAL,
+        "weight_integral": bit_step.WEIGHT_INTEGRAL,
+        "depth_of_cut_max": bit_step.DEPTH_MAX,
+        "position_start": wave_kernel.POSITION_START,
+        "position_end": wave_kernel.POSITION_END,
+        "failed": wave_kernel.FAILED,
+        "steps_done": wave_kernel.STEPS_DONE,
+    }
+    assert {name: STATS.index(name) for name in names} == names
+
+
+# --- bad input ---------------------------------------------------------------------------
+@pytest.mark.parametrize(
+    ("build", "key"),
+    [
+        (lambda: PipeSection(-1.0, E, G, RHO, 3.4e-3, 3e-5), "section.length"),
+        (lambda: PipeSection(1e3, E, G, "steel", 3.4e-3, 3e-5), "section.density"),
+        (lambda: WaveDrillingAssembly([], bha_mass=MASS, bha_inertia=INERTIA), "sections"),
+        (lambda: WaveDrillingAssembly([1.0], bha_mass=MASS, bha_inertia=INERTIA), "sections[0]"),
+        (
+            lambda: WaveDrillingAssembly(STEPPED[0], bha_mass=MASS, bha_inertia=INERTIA),
+            "sections",
+        ),
+        (lambda: WaveDrillingAssembly(STEPPED, bha_mass=0.0, bha_inertia=INERTIA), "bha_mass"),
+        (
+            lambda: WaveDrillingAssembly(STEPPED, bha_mass=MASS, bha_inertia=math.nan),
+            "bha_inertia",
+        ),
+        (
+            lambda: WaveDrillingAssembly(STEPPED, bha_mass=MASS, bha_inertia=INERTIA, hook="up"),
+            "axial.hook",
+        ),
+        (
+            lambda: WaveDrillingAssembly(
+                STEPPED, bha_mass=MASS, bha_inertia=INERTIA, travel_time_tolerance=0.0
+            ),
+            "discretization.travel_time_tolerance",
+        ),
+        (
+            lambda: wave_pipe_assembly(1e3, E, G, RHO, 3.4e-3, 3e-5, MASS, INERTIA, sections=0),
+            "sections",
+        ),
+        (
+            lambda: simulate_axial(_stepped("weight"), BIT, WOB, 60.0, duration=1.0, start="x"),
+            "simulation.start",
+        ),
+        (
+            lambda: simulate_axial(
+                _stepped("weight"), BIT, WOB, 60.0, duration=1.0, bit_rotation=BitRotation()
+            ),
+            "bit_rotation",
+        ),
+        (lambda: simulate_axial(_stepped("weight"), BIT, WOB, 60.0, step=-1.0), "step"),
+    ],
+)
+def test_bad_input_names_the_key(build, key):
+    with pytest.raises(ConfigError) as error:
+        build()
+    assert error.value.key == key
