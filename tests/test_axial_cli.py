@@ -117,6 +117,18 @@ def test_map_json_is_the_python_api(capsys):
     assert data["info"]["engine"] == "axial"
 
 
+@pytest.mark.parametrize("flags", [["--threads", "2"], ["--workers", "2"]])
+def test_map_runs_on_threads_and_workers_as_the_serial_map(capsys, flags):
+    # reference: the Python map on one thread (identical to the bit wherever it runs)
+    grid = ["--wob", "80kN:120kN:2", "--rpm", "60:150:2"]
+    data = run_json(capsys, "map", EXAMPLE, *grid, *TIMES, *flags)
+    serial = axial_map(rgd_two_dof_example(), rgd_example(), [80e3, 120e3], [60.0, 150.0],
+                       duration=20.0, window=10.0, growth_rate=True, threads=1)  # fmt: skip
+    for key, value in serial.to_dict().items():
+        assert data[key] == value, key
+    assert data["info"]["executor"] == ("threads(2)" if flags[0] == "--threads" else "processes(2)")
+
+
 @pytest.mark.parametrize(
     "flags",
     [
@@ -127,7 +139,7 @@ def test_map_json_is_the_python_api(capsys):
         ["map", "--rtol", "1e-3"],
         ["map", "--pi1", "0.5:1:2", "--pi2", "1:2:2"],
         ["map", "--threshold", "0.5"],
-        ["map", "--workers", "2"],
+        ["map", "--refine", "2"],
         ["map", "--engine", "numpy"],
     ],
 )
@@ -223,7 +235,10 @@ def test_simulate_a_string_with_the_rgd_law(capsys, tmp_path):
     expected = simulate_axial(
         config.axial.assembly, rgd_example(), 100e3, 60.0, duration=20.0, window=10.0
     ).to_dict()
-    assert data["model"]["nodes"] == 10 and data["growth_rate"] is None
+    assert data["model"]["nodes"] == 10
+    # a chain has its growth rate too: the rightmost root of its linearization
+    stability = drilling_stability(config.axial.assembly, rgd_example(), 100e3, 60.0, count=1)
+    assert data["growth_rate"] == stability.growth_rate
     for key, value in expected.items():
         assert data[key] == value, key
     path.write_text(STRING_FILE.replace('youngs_modulus = "207 GPa"', "") + bit, encoding="utf-8")

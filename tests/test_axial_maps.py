@@ -50,10 +50,67 @@ def test_the_map_gives_design_keys_as_plain_json():
     assert data["growth_rate"] is None
 
 
-def test_the_growth_rate_is_refused_for_a_chain():
-    chain = pipe_assembly(2, 900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5, 29981.3, 230.0)
-    with pytest.raises(ConfigError, match="growth_rate"):
-        axial_map(chain, BIT, WOBS[:1], RPMS[:1], duration=2.0, window=1.0, growth_rate=True)
+# --- where the points run: the same map to the bit -----------------------------------------
+FIELDS = ("severity", "axial_severity", "stick_fraction", "off_bottom_fraction", "rop", "mse")
+CHAIN = pipe_assembly(2, 900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5, 29981.3, 230.0)
+
+
+def _same_to_the_bit(first, second):
+    for name in (*FIELDS, "growth_rate"):
+        np.testing.assert_array_equal(getattr(first, name), getattr(second, name), err_msg=name)
+
+
+def _small_map(assembly, **where):
+    return axial_map(assembly, BIT, WOBS, RPMS, duration=10.0, window=5.0, growth_rate=True,
+                     **where)  # fmt: skip
+
+
+@pytest.mark.parametrize("assembly", [ASSEMBLY, CHAIN], ids=["2-DOF", "chain"])
+def test_threads_and_processes_give_the_serial_map_to_the_bit(assembly):
+    # reference: the map run point after point on one thread
+    serial = _small_map(assembly, threads=1)
+    assert serial.executor == "threads(1)"
+    threaded = _small_map(assembly, threads=2)
+    assert threaded.executor == "threads(2)"
+    _same_to_the_bit(serial, threaded)
+    processes = _small_map(assembly, executor=2, chunk_size=2)
+    assert processes.executor == "processes(2)"
+    _same_to_the_bit(serial, processes)
+
+
+def test_a_dask_scheduler_gives_the_serial_map_to_the_bit():
+    distributed = pytest.importorskip("distributed")
+    serial = _small_map(ASSEMBLY, threads=1)
+    with distributed.LocalCluster(
+        n_workers=2,
+        threads_per_worker=1,
+        processes=False,
+        protocol="tcp://",
+        host="127.0.0.1",
+        dashboard_address=None,
+        silence_logs=40,
+    ) as cluster:
+        on_dask = _small_map(ASSEMBLY, executor=cluster.scheduler_address, timeout=10.0)
+    assert on_dask.executor == f"dask({cluster.scheduler_address})"
+    _same_to_the_bit(serial, on_dask)
+
+
+def test_progress_counts_every_point():
+    seen = []
+    axial_map(ASSEMBLY, BIT, WOBS, RPMS[:1], duration=2.0, window=1.0, threads=2,
+              progress=lambda done, total: seen.append((done, total)))  # fmt: skip
+    assert sorted(seen) == [(1, 3), (2, 3), (3, 3)]
+
+
+@pytest.mark.parametrize(
+    ("where", "key"),
+    [({"threads": 0}, "threads"), ({"threads": 2, "executor": 2}, "threads"),
+     ({"executor": 2, "chunk_size": 0}, "chunk_size")],
+)  # fmt: skip
+def test_bad_parallel_options_name_their_key(where, key):
+    with pytest.raises(ConfigError) as info:
+        axial_map(ASSEMBLY, BIT, WOBS[:1], RPMS[:1], duration=2.0, window=1.0, **where)
+    assert info.value.key == key
 
 
 @pytest.mark.slow

@@ -238,8 +238,9 @@ def test_invalid_inputs_name_the_key(key, kwargs):
     assert info.value.key == key
 
 
-def test_only_the_two_dof_model_is_linearized():
+def test_the_determinant_is_written_out_for_the_two_dof_model_only():
+    # chains are linearized too (tests/test_axial_chain_stability.py); Δ(λ) by hand is 2-DOF
     chain = pipe_assembly(3, 1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5, 3.0e4, 230.0)
     with pytest.raises(ConfigError) as info:
-        drilling_linearization(chain, BIT, WOB, 60.0)
+        characteristic_function(chain, BIT, WOB, 60.0)
     assert info.value.key == "assembly"

@@ -1,8 +1,8 @@
 """Axial-torsional drilling with the RGD bit (Richard, Germay and Detournay 2004, 2007).
 
 The bit law with its depth of cut per revolution (:mod:`torsio.axial.rgd`), the steady
-drilling state in closed form (:mod:`torsio.axial.steady`), the linearization of the 2-DOF
-model about it with the state-dependent delay (:mod:`torsio.axial.linearization`), the
+drilling state in closed form (:mod:`torsio.axial.steady`), the linearization of any lumped
+assembly about it with the state-dependent delay (:mod:`torsio.axial.linearization`), the
 roots of a linear delay system (:mod:`torsio.axial.delay_roots`), the stability of steady
 drilling over rpm (:mod:`torsio.axial.stability`), lumped assemblies that move axially and
 torsionally (:mod:`torsio.axial.assembly`) and distributed ones, a stepped pipe of axial and
@@ -24,7 +24,13 @@ from torsio.axial.assembly import (
 from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
 from torsio.axial.linearization import axial_linearization, drilling_linearization
 from torsio.axial.rgd import RGDBit, rgd_example, rgd_from_table
-from torsio.axial.stability import DrillingStability, crossing_rpm, drilling_stability
+from torsio.axial.stability import (
+    DrillingStability,
+    ModeCrossing,
+    crossing_rpm,
+    drilling_stability,
+    mode_crossings,
+)
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly, wave_pipe_assembly
 
@@ -45,6 +51,7 @@ __all__ = [
     "DrillingAssembly",
     "DrillingStability",
     "LinearDelaySystem",
+    "ModeCrossing",
     "PipeSection",
     "RGDBit",
     "SteadyDrilling",
@@ -54,6 +61,7 @@ __all__ = [
     "crossing_rpm",
     "drilling_linearization",
     "drilling_stability",
+    "mode_crossings",
     "pipe_assembly",
     "rgd_example",
     "rgd_from_table",

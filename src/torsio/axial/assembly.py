@@ -133,7 +133,8 @@ class DrillingAssembly:
     @property
     def is_two_dof(self) -> bool:
         """Whether this is the 2-DOF model of RGD (2007): one node under the weight hook
-        (:func:`two_dof_assembly`), the model of :mod:`torsio.axial.linearization`."""
+        (:func:`two_dof_assembly`), whose characteristic equation
+        :func:`torsio.axial.linearization.characteristic_function` writes out."""
         return self.nodes == 1 and self.hook == "weight"
 
     @property

@@ -11,15 +11,18 @@ whose solutions x = x̂ e^{λt} need det Λ(λ) = 0 with the characteristic matr
 Its rightmost roots are found in two steps (Breda, Maset and Vermiglio 2005):
 
 1. **Pseudospectral collocation.** The delay system is the abstract ODE y' = 𝒜 y on the
-   history y(θ), θ ∈ [−τ, 0] (y = (x, x')). 𝒜 is discretized on the N + 1 Chebyshev
-   points θ_j = τ (cos(jπ/N) − 1)/2: the derivative of the interpolating polynomial at
-   θ_1..θ_N, the equation of motion y'(0) = A₀ y(0) + A₁ y(−τ) at θ_0 = 0. The
-   eigenvalues of this matrix approximate the roots of smallest modulus with spectral
-   accuracy.
-2. **Newton on det Λ(λ)**, started from each collocation eigenvalue, with det' from
-   Jacobi's formula tr(adj Λ · Λ'). A root known in advance (the neutral root λ = 0 of
-   the drilling system) is deflated: Newton runs on det Λ(λ) / λ, so it is never
-   reported again.
+   state y(0) = (x, x')(0) and the history of the delayed coordinates z = Vᵀ x, D = U S Vᵀ
+   of rank r (the drilling systems' D has rank 1: the bit's depth of cut). The history is
+   discretized on the N + 1 Chebyshev points θ_j = τ (cos(jπ/N) − 1)/2 of [−τ, 0]: at
+   θ_1..θ_N the derivative of the interpolating polynomial of z (z(θ_0) = Vᵀ x(0)), at
+   θ_0 = 0 the equation of motion y'(0) = A₀ y(0) + B z(−τ). The 2m + N r eigenvalues of
+   this matrix approximate the roots of smallest modulus with spectral accuracy (the full
+   state's history, (N + 1)·2m unknowns, has the same roots).
+2. **Newton on det Λ(λ)**, started from each collocation eigenvalue, with the logarithmic
+   derivative Δ'/Δ = tr(Λ⁻¹ Λ') (Jacobi's formula). The roots every parameter has, the
+   system's ``neutral_roots`` (λ = 0 of the drilling system under a hook weight: a shift
+   of the axial position), are deflated: Newton runs on det Λ(λ) / λ, so they are never
+   reported.
 
 Reference: D. Breda, S. Maset and R. Vermiglio, "Pseudospectral differencing methods for
 characteristic roots of delay differential equations", SIAM J. Sci. Comput. 27 (2005)
@@ -54,7 +57,10 @@ DEFAULT_ORDER = 32
 """Smallest default collocation order N (N + 1 Chebyshev points on [−τ, 0])."""
 
 MAX_DEFAULT_ORDER = 256
-"""Largest default collocation order (a matrix of 257·2m rows)."""
+"""Largest default collocation order (a matrix of 2m + 256 r rows)."""
+
+RANK_TOLERANCE = 1e-12
+"""Singular values of D below this fraction of the largest are zero (its rank r)."""
 
 
 def _square(value: ArrayLike) -> NDArray[np.float64]:
@@ -62,6 +68,10 @@ def _square(value: ArrayLike) -> NDArray[np.float64]:
     if matrix.shape[0] != matrix.shape[1]:
         raise ValueError(f"expected a square matrix, got shape {matrix.shape}")
     return matrix
+
+
+def _roots(values: Sequence[complex]) -> tuple[complex, ...]:
+    return tuple(complex(value) for value in values)
 
 
 @attrs.frozen(eq=False)
@@ -74,6 +84,9 @@ class LinearDelaySystem:
         M (invertible), C, K and D, all m × m.
     delay : float
         τ > 0 [s].
+    neutral_roots : sequence of complex
+        Roots of Δ(λ) for every parameter [1/s]: steady motions, not modes (default none).
+        :func:`rightmost_roots` deflates them.
     """
 
     mass: NDArray[np.float64] = attrs.field(converter=_square)
@@ -81,6 +94,7 @@ class LinearDelaySystem:
     stiffness: NDArray[np.float64] = attrs.field(converter=_square)
     delayed: NDArray[np.float64] = attrs.field(converter=_square)
     delay: float = attrs.field(converter=float)
+    neutral_roots: tuple[complex, ...] = attrs.field(default=(), converter=_roots)
 
     def __attrs_post_init__(self) -> None:
         shapes = {m.shape for m in (self.mass, self.damping, self.stiffness, self.delayed)}
@@ -118,16 +132,23 @@ class LinearDelaySystem:
         return complex(np.linalg.det(self.characteristic_matrix(root)))
 
     def characteristic_slope(self, root: complex) -> complex:
-        """Δ'(λ) = tr(adj Λ(λ) Λ'(λ)) (Jacobi's formula)."""
+        """Δ'(λ) = tr(adj Λ(λ) Λ'(λ)) (Jacobi's formula; also where Λ is singular)."""
         matrix = self.characteristic_matrix(root)
         return complex(np.trace(_adjugate(matrix) @ self.characteristic_derivative(root)))
+
+    def logarithmic_derivative(self, root: complex) -> complex:
+        """Δ'(λ)/Δ(λ) = tr(Λ(λ)⁻¹ Λ'(λ)) [s], without forming Δ (which over- or
+        underflows for many DOFs). Raises numpy's LinAlgError where Λ is singular."""
+        matrix = self.characteristic_matrix(root)
+        return complex(np.trace(np.linalg.solve(matrix, self.characteristic_derivative(root))))
 
     def relative_residual(self, root: complex) -> float:
         """|Δ(λ)| relative to its scale: 0 at a root, at most 1.
 
         The scale is Hadamard's bound Π_i ‖row_i S‖ on the matrix of term magnitudes
         S = |λ|² |M| + |λ| |C| + |K| + |1 − e^{−λτ}| |D| (entrywise), which bounds |Δ(λ)|
-        and does not vanish where the terms of Λ(λ) cancel.
+        and does not vanish where the terms of Λ(λ) cancel. Both are taken as logarithms
+        (many DOFs would overflow them).
         """
         lam = complex(root)
         magnitudes = (
@@ -136,8 +157,13 @@ class LinearDelaySystem:
             + np.abs(self.stiffness)
             + abs(1 - np.exp(-lam * self.delay)) * np.abs(self.delayed)
         )
-        scale = float(np.prod(np.linalg.norm(magnitudes, axis=1)))
-        return abs(self.characteristic(lam)) / scale if scale > 0 else 0.0
+        rows = np.linalg.norm(magnitudes, axis=1)
+        if not np.all(rows > 0):
+            return 0.0
+        sign, log_value = np.linalg.slogdet(self.characteristic_matrix(lam))
+        if sign == 0:
+            return 0.0
+        return float(np.exp(log_value - np.sum(np.log(rows))))
 
     def first_order(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """A₀, A₁ of y' = A₀ y(t) + A₁ y(t − τ), y = (x, x')."""
@@ -166,17 +192,30 @@ class LinearDelaySystem:
         wanted = math.ceil(3 * self.frequency_scale() * self.delay)
         return min(MAX_DEFAULT_ORDER, max(DEFAULT_ORDER, wanted))
 
+    def delayed_coordinates(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """(U S, V) of D = (U S) Vᵀ, rank r: the coordinates z = Vᵀ x whose past enters
+        the equation, and how (m × r each; r = 0 without delay terms)."""
+        left, values, right = np.linalg.svd(self.delayed)
+        rank = int(np.sum(values > RANK_TOLERANCE * values[0])) if values[0] > 0 else 0
+        return left[:, :rank] * values[:rank], right[:rank].T
+
     def collocation_matrix(self, order: int = DEFAULT_ORDER) -> NDArray[np.float64]:
-        """The (N + 1)·2m square pseudospectral discretization of the generator 𝒜."""
+        """The (2m + N r) square pseudospectral discretization of the generator 𝒜: the
+        state y(0) = (x, x')(0), then the delayed coordinates z at θ_1 .. θ_N (the module
+        docstring)."""
         if order < 2:
             raise ValueError(f"collocation order {order!r} must be >= 2")
-        a0, a1 = self.first_order()
-        size = a0.shape[0]
+        a0, _ = self.first_order()
+        weights, coordinates = self.delayed_coordinates()
+        m, r = self.dofs, weights.shape[1]
+        size = 2 * m
         derivative = chebyshev_differentiation(order) * (2.0 / self.delay)
-        generator = np.asarray(np.kron(derivative, np.eye(size)), dtype=float)
-        generator[:size, :] = 0.0
+        generator = np.zeros((size + order * r, size + order * r))
         generator[:size, :size] = a0
-        generator[:size, order * size :] = a1
+        generator[m:size, size + (order - 1) * r :] = np.linalg.solve(self.mass, weights)
+        history = generator[size:, :]
+        history[:, :m] = np.kron(derivative[1:, :1], coordinates.T)  # z(θ_0) = Vᵀ x(0)
+        history[:, size:] = np.kron(derivative[1:, 1:], np.eye(r))
         return generator
 
     def collocation_eigenvalues(self, order: int = DEFAULT_ORDER) -> NDArray[np.complex128]:
@@ -193,11 +232,13 @@ class LinearDelaySystem:
         """
         lam = complex(start)
         for _ in range(60):
-            value = self.characteristic(lam)
-            if value == 0:
+            try:
+                logarithmic = self.logarithmic_derivative(lam)
+            except np.linalg.LinAlgError:  # Λ(λ) exactly singular: λ is a root
                 return lam
-            logarithmic = self.characteristic_slope(lam) / value
             logarithmic -= sum(1.0 / (lam - r) for r in deflate)
+            if not (np.isfinite(logarithmic) and logarithmic != 0):
+                break
             step = 1.0 / logarithmic
             lam -= step
             if abs(step) <= 1e-14 * max(1.0, abs(lam)):
@@ -255,6 +296,9 @@ class DelayRoots:
         The roots known in advance and kept out (e.g. the neutral root 0).
     order : int
         Collocation order N.
+    dropped : tuple of complex
+        The collocation eigenvalue nearest each deflated root, dropped (a check: it
+        approximates that root).
     """
 
     roots: NDArray[np.complex128]
@@ -262,6 +306,7 @@ class DelayRoots:
     collocation: NDArray[np.complex128]
     deflated: tuple[complex, ...]
     order: int
+    dropped: tuple[complex, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """Roots as ``[real, imag]`` pairs [1/s, rad/s], for JSON."""
@@ -277,7 +322,7 @@ def rightmost_roots(
     count: int = 6,
     *,
     order: int | None = None,
-    deflate: Sequence[complex] = (0.0,),
+    deflate: Sequence[complex] | None = None,
 ) -> DelayRoots:
     """The ``count`` rightmost roots of ``system`` (Im >= 0), collocation then Newton.
 
@@ -285,7 +330,8 @@ def rightmost_roots(
     e^{λθ} on [−τ, 0]) are candidates; the one nearest each deflated root is dropped (it
     approximates that root), every other is refined by Newton with the deflation; refined
     roots that coincide are kept once. ``order`` defaults to
-    :meth:`LinearDelaySystem.default_order`. A root beyond |λ| = N / (2τ) is not seen:
+    :meth:`LinearDelaySystem.default_order`; ``deflate`` to the system's
+    ``neutral_roots``. A root beyond |λ| = N / (2τ) is not seen:
     for a retarded delay equation like this one the roots far from the origin lie ever
     further left (Re λ falls like −ln|λ| / τ), and comparing N with 2N checks the cut.
 
@@ -296,11 +342,16 @@ def rightmost_roots(
     """
     if order is None:
         order = system.default_order()
+    if deflate is None:
+        deflate = system.neutral_roots
     eigenvalues = system.collocation_eigenvalues(order)
     tau = system.delay
     keep = np.ones(eigenvalues.size, dtype=bool)
+    dropped = []
     for known in deflate:
-        keep[int(np.argmin(np.abs(eigenvalues - known)))] = False
+        nearest = int(np.argmin(np.abs(eigenvalues - known)))
+        keep[nearest] = False
+        dropped.append(complex(eigenvalues[nearest]))
     candidates = eigenvalues[keep & (eigenvalues.imag >= -1e-9 * np.abs(eigenvalues))]
     candidates = candidates[np.abs(candidates) * tau < order / 2]
     candidates = candidates[np.argsort(-candidates.real)]
@@ -332,4 +383,5 @@ def rightmost_roots(
         collocation=np.array([starts[i] for i in ordering], dtype=complex),
         deflated=tuple(complex(r) for r in deflate),
         order=order,
+        dropped=tuple(dropped),
     )

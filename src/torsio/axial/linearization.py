@@ -1,9 +1,9 @@
-"""The 2-DOF RGD drilling model linearized about steady drilling, with its delay.
+"""Steady drilling of a lumped assembly linearized about its steady state, with its delay.
 
-The model of Richard, Germay and Detournay (2007): the bit assembly, of axial mass M and
-torsional inertia I, is pushed down by the constant weight W₀ (the axial stiffness of the
-string neglected) and turned through a torsional spring k (and a damper c in parallel)
-whose top turns at Ω₀:
+The 2-DOF model of Richard, Germay and Detournay (2007) first: the bit assembly, of axial
+mass M and torsional inertia I, is pushed down by the constant weight W₀ (the axial
+stiffness of the string neglected) and turned through a torsional spring k (and a damper c
+in parallel) whose top turns at Ω₀:
 
     M U'' = W₀ − W(d),
     I Φ'' = k (Ω₀ t − Φ) + c (Ω₀ − Φ') − T(d),
@@ -28,9 +28,18 @@ and the characteristic equation, with E(λ) = 1 − e^{−λ t_n0}, is
 
     Δ(λ) = (M λ² + n ζ ε a E)(I λ² + c λ + k) − n (ε a² / 2)(V₀/Ω₀) M λ² E = 0.
 
-λ = 0 is always a root (E(0) = 0): a shift of the bit's axial position, u = const, is a
-steady motion too, since the depth of cut reads only differences of U. It is neutral, not
-a mode.
+**A chain** (:class:`~torsio.axial.assembly.DrillingAssembly`, n nodes, m axial DOFs) is
+linearized the same way about its steady state (every node at Ω₀ and V₀, every spring
+carrying T₀ and W₀): x = (u_0 .. u_m−1, φ_0 .. φ_n−1), M = diag(m_i, I_i), C and K block
+diagonal with the chain's tridiagonal matrices (:func:`chain_matrices`), and D the 2 × 2
+block above on the bit's entries (u_m−1, φ_n−1). The 2-DOF model is the chain of one node.
+
+**The neutral root.** Under the hook weight, λ = 0 is a root for every parameter
+(E(0) = 0 and K has no axial spring to the ground): a shift of the whole string's axial
+position, u_i = const, is a steady motion too, since the depth of cut reads only
+differences of U and the hook's force is constant. It is neutral, not a mode: the
+system's ``neutral_roots`` = (0,). Under the hook speed the spring k_a,0 pins the axial
+position (det K ≠ 0): no neutral root.
 
 References: Richard, Germay and Detournay, J. Sound Vib. 305 (2007) 432-456; the
 linearized state-dependent delay as in X. Liu, N. Vlajic, X. Long, G. Meng and
@@ -41,13 +50,18 @@ distributed drill-string", J. Sound Vib. 444 (2019) 127-151.
 
 Examples
 --------
->>> from torsio.axial.assembly import rgd_two_dof_example
+>>> from torsio.axial.assembly import pipe_assembly, rgd_two_dof_example
 >>> from torsio.axial.rgd import rgd_example
 >>> system = drilling_linearization(rgd_two_dof_example(), rgd_example(), 100e3, 60.0)
 >>> round(system.delay, 6)  # t_n0 = 2π/(n Ω₀), s
 0.25
->>> abs(system.characteristic(0.0))  # the neutral root
-0.0
+>>> abs(system.characteristic(0.0)), system.neutral_roots  # the neutral root
+(0.0, (0j,))
+>>> chain = pipe_assembly(3, 900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5, 3e4, 230.0,
+...                       hook="speed")
+>>> system = drilling_linearization(chain, rgd_example(), 100e3, 60.0)
+>>> system.dofs, system.neutral_roots  # 3 axial and 3 torsional DOFs, the hook pins u
+(6, ())
 """
 
 from __future__ import annotations
@@ -62,6 +76,7 @@ from torsio.axial.delay_roots import LinearDelaySystem
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 from torsio.errors import ConfigError
+from torsio.model.lumped import chain_matrix
 
 
 def _positive(key: str, value: float, what: str) -> float:
@@ -71,9 +86,10 @@ def _positive(key: str, value: float, what: str) -> float:
 
 
 def delayed_matrix(bit: RGDBit, steady: SteadyDrilling) -> np.ndarray:
-    """D of the linearized bit forces: (δW, δT) = D (x(t) − x(t − t_n0)), x = (u, φ).
+    """D of the linearized bit forces: (δW, δT) = D (x_b(t) − x_b(t − t_n0)), x_b = (u_b, φ_b)
+    the bit's axial displacement and angle.
 
-    Rows: weight [N] and torque [N m]; columns: per metre of u and per radian of φ.
+    Rows: weight [N] and torque [N m]; columns: per metre of u_b and per radian of φ_b.
     """
     ratio = steady.rop / steady.bit_speed  # V₀ / Ω₀ = d₀ / 2π, m/rad
     n = bit.blades
@@ -83,7 +99,8 @@ def delayed_matrix(bit: RGDBit, steady: SteadyDrilling) -> np.ndarray:
 
 def two_dof_parameters(assembly: DrillingAssembly) -> tuple[float, float, float, float]:
     """(I [kg m²], k [N m/rad], M [kg], c [N m s/rad]) of a 2-DOF assembly
-    (:func:`~torsio.axial.assembly.two_dof_assembly`: one node under the weight hook).
+    (:func:`~torsio.axial.assembly.two_dof_assembly`: one node under the weight hook), for
+    the characteristic equation written out (:func:`characteristic_function`).
 
     Raises
     ------
@@ -93,8 +110,9 @@ def two_dof_parameters(assembly: DrillingAssembly) -> tuple[float, float, float,
     if not assembly.is_two_dof:
         raise ConfigError(
             "assembly",
-            f"{assembly.nodes} node(s) with the {assembly.hook!r} hook: the linearization is "
-            "of the 2-DOF model only (one node under the weight hook)",
+            f"{assembly.nodes} node(s) with the {assembly.hook!r} hook: Δ(λ) is written out "
+            "for the 2-DOF model only (one node under the weight hook); "
+            "drilling_linearization(...).characteristic is that of any assembly",
         )
     return (
         float(assembly.inertias[0]),
@@ -104,38 +122,89 @@ def two_dof_parameters(assembly: DrillingAssembly) -> tuple[float, float, float,
     )
 
 
+def axial_matrices(assembly: DrillingAssembly) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(M [kg], C [N s/m], K [N/m]) of the axial DOFs u_0 .. u_m−1 about steady drilling.
+
+    Spring and damper i join node i − 1 to node i (:mod:`torsio.axial.assembly`): under
+    the hook speed k_a,0 and c_a,0 join node 0 to the hook (the ground of the
+    perturbation); under the hook weight node 0 has none (the weight is constant); with no
+    axial springs the string is one rigid body of mass Σ m_i (K = C = 0).
+    """
+    if not assembly.axial_stiffnesses.size:
+        return np.array([[assembly.bit_mass]]), np.zeros((1, 1)), np.zeros((1, 1))
+    springs = np.array(assembly.axial_stiffnesses, dtype=float)
+    dampers = np.array(assembly.axial_damping, dtype=float)
+    if assembly.hook == "weight":
+        springs[0] = dampers[0] = 0.0
+    return np.diag(assembly.masses), chain_matrix(dampers), chain_matrix(springs)
+
+
+def chain_matrices(assembly: DrillingAssembly) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(M, C, K) of x = (u_0 .. u_m−1 [m], φ_0 .. φ_n−1 [rad]) about steady drilling: the
+    axial block of :func:`axial_matrices`, then the torsional chain, its spring and damper 0
+    to the top drive (held at Ω₀ t: the ground of the perturbation). SI units of the DOFs.
+
+    Examples
+    --------
+    >>> from torsio.axial.assembly import two_dof_assembly
+    >>> mass, damping, stiffness = chain_matrices(two_dof_assembly(455.65, 324.857, 3e4, 19.49))
+    >>> np.diag(mass).tolist(), np.diag(damping).tolist(), np.diag(stiffness).tolist()
+    ([30000.0, 455.65], [0.0, 19.49], [0.0, 324.857])
+    """
+    axial_mass, axial_damping, axial_stiffness = axial_matrices(assembly)
+    return (
+        _block_diagonal(axial_mass, np.diag(assembly.inertias)),
+        _block_diagonal(axial_damping, chain_matrix(assembly.damping)),
+        _block_diagonal(axial_stiffness, chain_matrix(assembly.stiffnesses)),
+    )
+
+
+def _block_diagonal(first: np.ndarray, second: np.ndarray) -> np.ndarray:
+    size = first.shape[0]
+    matrix = np.zeros((size + second.shape[0],) * 2)
+    matrix[:size, :size] = first
+    matrix[size:, size:] = second
+    return matrix
+
+
 def drilling_linearization(
     assembly: DrillingAssembly, bit: RGDBit, wob: float, rpm: float
 ) -> LinearDelaySystem:
-    """The 2-DOF RGD model linearized about steady drilling, x = (u [m], φ [rad]).
+    """Steady drilling of ``assembly`` linearized about its steady state (module docstring).
+
+    x = (u_0 .. u_m−1 [m], φ_0 .. φ_n−1 [rad]): the m axial DOFs
+    (:attr:`~torsio.axial.assembly.DrillingAssembly.axial_dofs`), then the n angles; the
+    bit's are the last of each. For the 2-DOF model x = (u, φ).
 
     Parameters
     ----------
     assembly : DrillingAssembly
-        The 2-DOF assembly (:func:`~torsio.axial.assembly.two_dof_assembly`): the
-        torsional inertia I [kg m²] and axial mass M [kg] of the bit assembly, the
-        torsional stiffness k [N m/rad] of the string to the top drive and a viscous
-        damper c [N m s/rad] in parallel with it.
+        Any lumped assembly, both hooks (:mod:`torsio.axial.assembly`).
     bit : RGDBit
         The bit law.
     wob : float
-        W₀ [N], the constant weight on top of the bit assembly.
+        W₀ [N], the weight on bit of steady drilling (the hook weight, or what the hook
+        speed V₀ gives).
     rpm : float
-        Ω₀ [rev/min], the speed of the top drive and, steadily, of the bit.
+        Ω₀ [rev/min], the speed of the top drive and, steadily, of every node.
 
     Raises
     ------
     ConfigError
-        An assembly that is not 2-DOF, or a weight on bit at which the bit does not cut.
+        A weight on bit at which the bit does not cut.
     """
-    inertia, stiffness, mass, damping = two_dof_parameters(assembly)
     steady = steady_drilling(bit, wob, rpm)
+    mass, damping, stiffness = chain_matrices(assembly)
+    bit_dofs = [assembly.axial_dofs - 1, mass.shape[0] - 1]
+    delayed = np.zeros_like(mass)
+    delayed[np.ix_(bit_dofs, bit_dofs)] = delayed_matrix(bit, steady)
     return LinearDelaySystem(
-        mass=np.diag([mass, inertia]),
-        damping=np.diag([0.0, damping]),
-        stiffness=np.diag([0.0, stiffness]),
-        delayed=delayed_matrix(bit, steady),
+        mass=mass,
+        damping=damping,
+        stiffness=stiffness,
+        delayed=delayed,
         delay=steady.delay,
+        neutral_roots=(0.0,) if assembly.hook == "weight" else (),
     )
 
 
@@ -189,4 +258,5 @@ def axial_linearization(bit: RGDBit, mass: float, wob: float, rpm: float) -> Lin
         stiffness=[[0.0]],
         delayed=[[bit.blades * bit.cutting_weight_per_depth]],
         delay=steady.delay,
+        neutral_roots=(0.0,),
     )

@@ -1,18 +1,24 @@
 """Maps over (weight on bit, rpm) of axial-torsional runs with the RGD bit.
 
-:func:`axial_map` runs :mod:`torsio.axial.kernel` at every point of the grid, one after
-the other, with the options of :func:`torsio.axial.transient.simulate_axial` (no signals
-kept), and returns :class:`AxialMap`: S_SS, axial severity, stuck and off-bottom
-fractions, mean ROP [m/s] and mean MSE [Pa], each of shape (rpm, wob) like torsio's
-severity maps (``severity[i][j]`` at ``rpm[i]``, ``wob[j]``), and optionally the linear
-growth rate of the 2-DOF model.
+:func:`axial_map` runs :mod:`torsio.axial.kernel` at every point of the grid with the
+options of :func:`torsio.axial.transient.simulate_axial` (no signals kept), and returns
+:class:`AxialMap`: S_SS, axial severity, stuck and off-bottom fractions, mean ROP [m/s] and
+mean MSE [Pa], each of shape (rpm, wob) like torsio's severity maps (``severity[i][j]`` at
+``rpm[i]``, ``wob[j]``), and optionally the linear growth rate of steady drilling.
+
+**Where the points run**, as torsio's severity maps (:mod:`torsio.analysis.sweep`):
+``executor=None`` in this process, side by side on ``threads`` threads (default numba's
+thread count, the machine's cores; the compiled loop releases the GIL), or on an
+executor: N local processes, a Dask scheduler's address (the ``dask`` extra) or any
+:class:`concurrent.futures.Executor`, in chunks of points each run on one thread. Every
+point is the same deterministic run wherever it runs: the map is identical to the bit.
 
 Examples
 --------
 >>> from torsio.axial.assembly import rgd_two_dof_example
 >>> from torsio.axial.rgd import rgd_example
 >>> grid = axial_map(rgd_two_dof_example(), rgd_example(), [90e3, 110e3], [60.0, 120.0],
-...                  duration=20.0, window=10.0)
+...                  duration=20.0, window=10.0, threads=2)
 >>> grid.severity.shape
 (2, 2)
 >>> sorted(grid.to_dict())[:4]
@@ -21,8 +27,11 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import Any
+import math
+import threading
+from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from typing import TYPE_CHECKING, Any
 
 import attrs
 import numpy as np
@@ -33,6 +42,9 @@ from torsio.axial.rgd import RGDBit
 from torsio.axial.transient import run_times, simulate_axial
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.errors import ConfigError
+
+if TYPE_CHECKING:
+    from torsio.analysis.sweep import ExecutorSpec
 
 __all__ = ["AxialMap", "axial_map"]
 
@@ -60,9 +72,11 @@ class AxialMap:
         Mean ROP [m/s] and mean MSE [Pa] over the window (MSE inf where the bit did not
         advance).
     growth_rate : ndarray or None
-        The linear growth rate [1/s] of steady drilling (2-DOF model, when asked).
+        The linear growth rate [1/s] of steady drilling (when asked).
     duration, window : float
         Run length and window [s].
+    executor : str
+        What ran the points: ``"threads(N)"``, ``"processes(N)"``, ``"dask(address)"``.
     """
 
     wob: NDArray[np.float64]
@@ -76,6 +90,7 @@ class AxialMap:
     growth_rate: NDArray[np.float64] | None
     duration: float
     window: float
+    executor: str = "threads(1)"
 
     def to_dict(self) -> dict[str, Any]:
         """DESIGN.md's keys for ``torsio map --json`` with axial dynamics: ``wob``, ``rpm``,
@@ -101,6 +116,98 @@ class AxialMap:
         }
 
 
+_OUTPUTS = len(_FIELDS) + 1
+"""Values of one point: the window's fields, then the growth rate (NaN when not asked)."""
+
+
+def _run_point(
+    assembly: DrillingAssembly | WaveDrillingAssembly,
+    bit: RGDBit,
+    wob: float,
+    rpm: float,
+    options: dict[str, Any],
+    growth_rate: bool,
+) -> list[float]:
+    run = simulate_axial(assembly, bit, wob, rpm, samples=0, growth_rate=growth_rate, **options)
+    rate = math.nan if run.growth_rate is None else run.growth_rate
+    return [float(getattr(run.summary, name)) for name in _FIELDS] + [rate]
+
+
+def _thread_count(threads: int | None, points: int) -> int:
+    """``threads``, else numba's thread count on the main thread and one elsewhere (a Dask
+    worker's thread, a thread pool's), at most one per point."""
+    if threads is None:
+        if threading.current_thread() is not threading.main_thread():
+            return 1
+        from torsio.solvers.compiled import numba
+
+        if numba is None:  # pragma: no cover - plain Python holds the GIL anyway
+            return 1
+        threads = numba.get_num_threads()
+    return max(1, min(int(threads), points))
+
+
+def run_points(
+    assembly: DrillingAssembly | WaveDrillingAssembly,
+    bit: RGDBit,
+    points: Sequence[tuple[float, float]],
+    options: dict[str, Any],
+    growth_rate: bool,
+    threads: int | None = 1,
+    progress: Callable[[int, int], None] | None = None,
+) -> NDArray[np.float64]:
+    """The (wob [N], rpm) ``points`` on ``threads`` threads: rows of the window's fields
+    and the growth rate (a task of :func:`axial_map`; module-level, so it pickles)."""
+    total = len(points)
+    rows = np.empty((total, _OUTPUTS))
+    done = [0]
+    lock = threading.Lock()
+
+    def one(k: int) -> None:
+        wob, rpm = points[k]
+        rows[k] = _run_point(assembly, bit, wob, rpm, options, growth_rate)
+        if progress is not None:
+            with lock:
+                done[0] += 1
+                progress(done[0], total)
+
+    workers = _thread_count(threads, total)
+    if workers == 1:
+        for k in range(total):
+            one(k)
+    else:  # the compiled loop releases the GIL: points run side by side
+        with ThreadPoolExecutor(max_workers=workers, thread_name_prefix="torsio-axial") as pool:
+            list(pool.map(one, range(total)))
+    return rows
+
+
+def _check_threads(threads: Any, executor: Any) -> int | None:
+    if threads is None:
+        return None
+    if isinstance(threads, bool) or not isinstance(threads, int) or threads < 1:
+        raise ConfigError("threads", f"expected a number of threads >= 1, got {threads!r}")
+    if executor is not None and executor != "serial":
+        raise ConfigError(
+            "threads",
+            f"{threads!r} applies to this process; on the executor {executor!r} every chunk "
+            "of points runs on one thread",
+        )
+    return int(threads)
+
+
+def _progress_bar() -> tuple[Callable[[int, int], None], Callable[[], None]]:
+    from torsio.solvers.run_chunks import progress_bar
+
+    bar = progress_bar("axial map", "runs")
+    task = bar.add_task("map", total=None)
+    bar.start()
+
+    def update(done: int, total: int) -> None:
+        bar.update(task, completed=done, total=total)
+
+    return update, bar.stop
+
+
 def axial_map(
     assembly: DrillingAssembly | WaveDrillingAssembly,
     bit: RGDBit,
@@ -108,44 +215,73 @@ def axial_map(
     rpms: Sequence[float],
     *,
     growth_rate: bool = False,
+    threads: int | None = None,
+    executor: ExecutorSpec = None,
+    progress: bool | Callable[[int, int], None] | None = None,
+    timeout: float | None = None,
+    chunk_size: int | None = None,
     **options: Any,
 ) -> AxialMap:
     """Run :func:`~torsio.axial.transient.simulate_axial` at every (rpm, wob) of the grid,
     no signals kept.
 
-    ``options`` are its run options (``duration``, ``window``, ``start``,
-    ``perturbation``, ``step``, ``steps_per_period``); ``growth_rate`` adds the linear
-    growth rate of the 2-DOF model at each point.
+    Parameters
+    ----------
+    wobs, rpms : sequence of float
+        The grid: weights on bit [N] and rotary speeds [rev/min].
+    growth_rate : bool
+        Add the linear growth rate [1/s] of steady drilling at each point (any assembly;
+        not with a prescribed ``bit_rotation``).
+    threads : int, optional
+        Points side by side in this process (default numba's thread count: the cores).
+    executor : None, int, str or concurrent.futures.Executor
+        None: this process, on ``threads``; N local processes, a Dask scheduler address
+        (``"tcp://host:8786"``, the ``dask`` extra) or an executor
+        (:mod:`torsio.analysis.sweep`), chunks of ``chunk_size`` points (default about
+        four per worker) on one thread each. The result does not depend on it.
+    progress : bool or callable, optional
+        ``progress(done_points, total_points)``; True shows a progress bar on stderr.
+    timeout : float, optional
+        Seconds to wait for a Dask scheduler (default
+        :data:`torsio.analysis.sweep.CONNECT_TIMEOUT`).
+    **options
+        The run options of ``simulate_axial`` (``duration``, ``window``, ``start``,
+        ``perturbation``, ``step``, ``steps_per_period``, ``bit_rotation``).
     """
     wob_grid = np.asarray(wobs, dtype=float).reshape(-1)
     rpm_grid = np.asarray(rpms, dtype=float).reshape(-1)
+    threads = _check_threads(threads, executor)
     duration, window = run_times(
         assembly, options.pop("duration", None), options.pop("window", None)
     )
-    shape = (rpm_grid.size, wob_grid.size)
-    out = {name: np.zeros(shape) for name in _FIELDS}
-    rates = np.zeros(shape) if growth_rate else None
-    if growth_rate and not (assembly.is_two_dof and options.get("bit_rotation") is None):
+    if growth_rate and not isinstance(assembly, DrillingAssembly):
         raise ConfigError(
-            "growth_rate", "the linear growth rate is of the 2-DOF model (its chain turning) only"
+            "growth_rate",
+            "the linear growth rate is of lumped assemblies; a WaveDrillingAssembly has none "
+            "(expected growth_rate=False)",
         )
-    for i, rpm in enumerate(rpm_grid):
-        for j, wob in enumerate(wob_grid):
-            run = simulate_axial(
-                assembly,
-                bit,
-                float(wob),
-                float(rpm),
-                duration=duration,
-                window=window,
-                samples=0,
-                growth_rate=growth_rate,
-                **options,
-            )
-            for name in _FIELDS:
-                out[name][i, j] = getattr(run.summary, name)
-            if rates is not None:
-                rates[i, j] = run.growth_rate
+    if growth_rate and options.get("bit_rotation") is not None:
+        raise ConfigError(
+            "growth_rate",
+            "the linear growth rate is of the assembly's turning chain; a prescribed "
+            "bit_rotation does not integrate it",
+        )
+    run_options = {"duration": duration, "window": window, **options}
+    shape = (rpm_grid.size, wob_grid.size)
+    points = [(float(w), float(r)) for r in rpm_grid for w in wob_grid]  # row-major: (rpm, wob)
+    stop: Callable[[], None] | None = None
+    callback = progress if callable(progress) else None
+    if progress is True:
+        callback, stop = _progress_bar()
+    try:
+        rows, ran_on = _run_grid(
+            assembly, bit, points, run_options, growth_rate, threads, executor, callback,
+            timeout, chunk_size,
+        )  # fmt: skip
+    finally:
+        if stop is not None:
+            stop()
+    out = {name: rows[:, k].reshape(shape) for k, name in enumerate(_FIELDS)}
     return AxialMap(
         wob=wob_grid,
         rpm=rpm_grid,
@@ -155,7 +291,49 @@ def axial_map(
         off_bottom_fraction=out["off_bottom_fraction"],
         rop=out["rop_mean"],
         mse=out["mse_mean"],
-        growth_rate=rates,
+        growth_rate=rows[:, -1].reshape(shape) if growth_rate else None,
         duration=duration,
         window=window,
+        executor=ran_on,
     )
+
+
+def _run_grid(
+    assembly: DrillingAssembly | WaveDrillingAssembly,
+    bit: RGDBit,
+    points: list[tuple[float, float]],
+    options: dict[str, Any],
+    growth_rate: bool,
+    threads: int | None,
+    executor: ExecutorSpec,
+    progress: Callable[[int, int], None] | None,
+    timeout: float | None,
+    chunk_size: int | None,
+) -> tuple[NDArray[np.float64], str]:
+    """The rows of every point, in order, and what ran them."""
+    if executor is None or executor == "serial":
+        workers = _thread_count(threads, len(points))
+        rows = run_points(assembly, bit, points, options, growth_rate, workers, progress)
+        return rows, f"threads({workers})"
+    from torsio.analysis.sweep import CONNECT_TIMEOUT, run_tasks, worker_count
+
+    if chunk_size is not None and (
+        isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1
+    ):
+        raise ConfigError("chunk_size", f"expected a whole number >= 1, got {chunk_size!r}")
+    size = chunk_size or max(1, math.ceil(len(points) / (4 * worker_count(executor))))
+    bounds = [(k, min(k + size, len(points))) for k in range(0, len(points), size)]
+    tasks = [(assembly, bit, points[a:b], options, growth_rate) for a, b in bounds]
+
+    def report(done: int, total: int) -> None:
+        if progress is not None:
+            progress(len(points) if done == total else min(done * size, len(points)), len(points))
+
+    outcome = run_tasks(
+        run_points,
+        tasks,
+        executor,
+        progress=report,
+        timeout=CONNECT_TIMEOUT if timeout is None else timeout,
+    )
+    return np.concatenate(outcome.results), outcome.executor

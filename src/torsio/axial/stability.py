@@ -1,11 +1,15 @@
 """Linear stability of steady drilling with the RGD bit, and the rpm where it changes.
 
-:func:`drilling_stability` linearizes the 2-DOF model about steady drilling
-(:func:`torsio.axial.linearization.drilling_linearization`), finds the rightmost roots of
-its characteristic equation (:func:`torsio.axial.delay_roots.rightmost_roots`, the
-neutral root λ = 0 deflated) and reports the growth rate, the largest real part of the
-others. :func:`crossing_rpm` finds where the growth rate changes sign over a range of rpm:
-on a grid first, then by Brent's method between the grid points that bracket a change.
+:func:`drilling_stability` linearizes any lumped assembly about steady drilling
+(:func:`torsio.axial.linearization.drilling_linearization`: the 2-DOF model or a chain,
+either hook), finds the rightmost roots of its characteristic equation
+(:func:`torsio.axial.delay_roots.rightmost_roots`, the neutral root λ = 0 of the weight
+hook deflated) and reports the growth rate, the largest real part of the others, and how
+axial each root's mode is (:func:`axial_share`). :func:`mode_crossings` finds where the
+growth rate changes sign over a range of rpm (on a grid first, then by Brent's method
+between the grid points that bracket a change) and the root that crosses there: its
+frequency Im λ and axial share tell the axial from a torsional mode. :func:`crossing_rpm`
+gives their rpm.
 
 Examples
 --------
@@ -28,11 +32,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from torsio.axial.assembly import DrillingAssembly
-from torsio.axial.delay_roots import DelayRoots, rightmost_roots
+from torsio.axial.delay_roots import DelayRoots, LinearDelaySystem, rightmost_roots
 from torsio.axial.linearization import drilling_linearization
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 from torsio.errors import ConfigError
+
+AXIAL_MODE_SHARE = 0.5
+"""A mode whose axial share (:func:`axial_share`) is above this is called axial."""
 
 
 @attrs.frozen(eq=False)
@@ -46,37 +53,55 @@ class DrillingStability:
     roots : ndarray of complex
         The rightmost characteristic roots λ = σ + iω [1/s, rad/s], Im >= 0, largest real
         part first, the neutral root left out.
+    axial_shares : ndarray of float
+        :func:`axial_share` of each root's mode: 1 axial, 0 torsional.
     growth_rate : float
         max Re λ over ``roots`` [1/s] (DESIGN.md's JSON ``growth_rate``).
     stable : bool
         Whether the growth rate is negative (the neutral root does not count).
-    neutral_root : complex
+    neutral_root : complex or None
         The collocation eigenvalue that approximates the neutral root λ = 0 (a check: it is
-        zero to round-off).
+        zero to round-off); None under the hook speed, which has none.
     details : DelayRoots
         Residuals, collocation starts and order of the root search.
     """
 
     steady: SteadyDrilling
     roots: NDArray[np.complex128]
+    axial_shares: NDArray[np.float64]
     growth_rate: float
     stable: bool
-    neutral_root: complex
+    neutral_root: complex | None
     details: DelayRoots
 
     def to_dict(self) -> dict[str, Any]:
-        """Plain data for JSON: roots as ``[real, imag]`` pairs."""
+        """Plain data for JSON: roots as ``[real, imag]`` pairs (``neutral_root`` null
+        when there is none)."""
+        neutral = self.neutral_root
         return {
             "growth_rate": self.growth_rate,
             "stable": self.stable,
             "roots": [[r.real, r.imag] for r in self.roots],
-            "neutral_root": [self.neutral_root.real, self.neutral_root.imag],
+            "neutral_root": None if neutral is None else [neutral.real, neutral.imag],
             "steady_state": self.steady.to_dict(),
         }
 
     def __repr__(self) -> str:
         word = "stable" if self.stable else "unstable"
         return f"DrillingStability({word}, growth_rate={self.growth_rate:.4g} 1/s)"
+
+
+def axial_share(system: LinearDelaySystem, root: complex, axial_dofs: int) -> float:
+    """The axial part of the kinetic energy of the mode x̂ e^{λt} at ``root``, in [0, 1].
+
+    x̂ spans the null space of Λ(λ) (the right singular vector of its smallest singular
+    value); the share is Σ_axial M_ii |x̂_i|² / Σ M_ii |x̂_i|², the first ``axial_dofs``
+    entries being the axial ones (:func:`~torsio.axial.linearization.drilling_linearization`):
+    1 for a purely axial mode, 0 for a purely torsional one.
+    """
+    _, _, right = np.linalg.svd(system.characteristic_matrix(root))
+    energy = np.diag(system.mass) * np.abs(right[-1]) ** 2
+    return float(energy[:axial_dofs].sum() / energy.sum())
 
 
 def drilling_stability(
@@ -88,27 +113,59 @@ def drilling_stability(
     count: int = 6,
     order: int | None = None,
 ) -> DrillingStability:
-    """Stability of steady drilling of the 2-DOF RGD model (the arguments as in
-    :func:`~torsio.axial.linearization.drilling_linearization`; ``rpm`` in rev/min).
+    """Stability of steady drilling of ``assembly`` (the arguments as in
+    :func:`~torsio.axial.linearization.drilling_linearization`: any lumped assembly,
+    either hook; ``wob`` [N], ``rpm`` in rev/min).
 
     ``count`` rightmost roots are reported; ``order`` is the collocation order N (default
-    :meth:`~torsio.axial.delay_roots.LinearDelaySystem.default_order`).
+    :meth:`~torsio.axial.delay_roots.LinearDelaySystem.default_order`). The cost grows
+    with the DOFs and N (a dense eigenvalue problem of 2m + N rows, then Newton on an
+    m × m determinant from each candidate).
     """
     system = drilling_linearization(assembly, bit, wob, rpm)
     if order is None:
         order = system.default_order()
-    found = rightmost_roots(system, count, order=order, deflate=(0.0,))
-    eigenvalues = system.collocation_eigenvalues(order)
-    neutral = complex(eigenvalues[int(np.argmin(np.abs(eigenvalues)))])
+    found = rightmost_roots(system, count, order=order)
     growth = float(found.roots[0].real)
+    shares = [axial_share(system, root, assembly.axial_dofs) for root in found.roots]
     return DrillingStability(
         steady=steady_drilling(bit, wob, rpm),
         roots=found.roots,
+        axial_shares=np.array(shares),
         growth_rate=growth,
         stable=growth < 0,
-        neutral_root=neutral,
+        neutral_root=found.dropped[0] if found.dropped else None,
         details=found,
     )
+
+
+@attrs.frozen
+class ModeCrossing:
+    """Where the growth rate of steady drilling changes sign over rpm, and the root that
+    crosses the imaginary axis there.
+
+    Attributes
+    ----------
+    rpm : float
+        The crossing [rev/min].
+    frequency : float
+        Im λ of the crossing root [rad/s].
+    axial_share : float
+        :func:`axial_share` of its mode (above :data:`AXIAL_MODE_SHARE`: axial).
+    """
+
+    rpm: float
+    frequency: float
+    axial_share: float
+
+    @property
+    def mode(self) -> str:
+        """``"axial"`` or ``"torsional"``, by the axial share of the kinetic energy."""
+        return "axial" if self.axial_share > AXIAL_MODE_SHARE else "torsional"
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data for JSON: ``rpm``, ``frequency`` [rad/s], ``axial_share``, ``mode``."""
+        return {**attrs.asdict(self), "mode": self.mode}
 
 
 def growth_rate_crossings(
@@ -146,6 +203,49 @@ def growth_rate_crossings(
     return crossings
 
 
+def mode_crossings(
+    assembly: DrillingAssembly,
+    bit: RGDBit,
+    wob: float,
+    rpm_range: tuple[float, float],
+    *,
+    points: int = 41,
+    order: int | None = None,
+) -> list[ModeCrossing]:
+    """Where in ``rpm_range`` [rev/min] the growth rate of steady drilling crosses 0
+    (:func:`growth_rate_crossings`), each with the root that crosses: the rightmost root
+    there, whose real part is then 0.
+
+    The modes are told apart at the crossings only (by Im λ and the axial share), not
+    followed over rpm.
+
+    Examples
+    --------
+    With the damper of :func:`~torsio.axial.assembly.rgd_two_dof_example` steady drilling
+    turns stable above about 153 rpm, where the axial mode crosses at 32.1 rad/s (the
+    axial equation alone crosses at √(2 n ζ ε a / M) = 32.2 rad/s, docs/axial.md):
+
+    >>> from torsio.axial.assembly import rgd_two_dof_example
+    >>> from torsio.axial.rgd import rgd_example
+    >>> [crossing] = mode_crossings(rgd_two_dof_example(), rgd_example(), 100e3,
+    ...                             (140.0, 170.0), points=7)
+    >>> round(crossing.rpm, 1), round(crossing.frequency, 1), crossing.mode
+    (153.3, 32.1, 'axial')
+    """
+
+    def stability(rpm: float) -> DrillingStability:
+        return drilling_stability(assembly, bit, wob, rpm, count=1, order=order)
+
+    low, high = rpm_range
+    found = []
+    for rpm in growth_rate_crossings(
+        lambda r: stability(r).growth_rate, float(low), float(high), points
+    ):
+        at = stability(rpm)
+        found.append(ModeCrossing(rpm, float(at.roots[0].imag), float(at.axial_shares[0])))
+    return found
+
+
 def crossing_rpm(
     assembly: DrillingAssembly,
     bit: RGDBit,
@@ -155,7 +255,8 @@ def crossing_rpm(
     points: int = 41,
     order: int | None = None,
 ) -> list[float]:
-    """The rpm [rev/min] in ``rpm_range`` where the growth rate of steady drilling crosses 0.
+    """The rpm [rev/min] in ``rpm_range`` where the growth rate of steady drilling crosses 0
+    (:func:`mode_crossings` without the modes).
 
     Examples
     --------
@@ -170,9 +271,5 @@ def crossing_rpm(
     >>> [round(r, 1) for r in crossings]
     [153.3]
     """
-
-    def growth(rpm: float) -> float:
-        return drilling_stability(assembly, bit, wob, rpm, count=1, order=order).growth_rate
-
-    low, high = rpm_range
-    return growth_rate_crossings(growth, float(low), float(high), points)
+    found = mode_crossings(assembly, bit, wob, rpm_range, points=points, order=order)
+    return [crossing.rpm for crossing in found]

@@ -5,8 +5,8 @@ with an :class:`~torsio.axial.rgd.RGDBit` under the weight W₀ with the top tur
 from rest or from the steady state (:mod:`torsio.axial.run_setup`), with the fixed-step
 scheme of :mod:`torsio.axial.kernel`, and returns :class:`AxialTransient`: the window's
 S_SS, axial severity, stuck and off-bottom fractions, mean ROP and MSE, the bit's
-signals, and for the 2-DOF model the growth rate of the linearization
-(:func:`torsio.axial.stability.drilling_stability`).
+signals, and the growth rate of the linearization of steady drilling
+(:func:`torsio.axial.stability.drilling_stability`; not with a prescribed bit rotation).
 
 Default run length and window as torsio's other runs
 (:func:`torsio.analysis.severity.default_times`): 40 and 15 periods of the first torsional
@@ -136,7 +136,7 @@ class AxialTransient:
         The window's outputs (also as attributes: ``severity``, ``rop_mean`` ...).
     growth_rate : float or None
         The rightmost root's real part [1/s] of the linearization about the steady state
-        (2-DOF model with the weight hook only; None otherwise or when not asked).
+        (None with a prescribed bit rotation or when not asked).
     step, duration, window : float
         The step h, the run's length and its window [s].
     start : str
@@ -225,7 +225,8 @@ def simulate_axial(
     bit_rotation : BitRotation, optional
         A prescribed bit rotation instead of the torsional chain (lumped assemblies only).
     growth_rate : bool
-        Compute the linear growth rate (2-DOF model with the weight hook).
+        Compute the linear growth rate (any assembly; not with ``bit_rotation``, whose
+        torsional chain is not integrated).
     """
     duration, window = run_times(assembly, duration, window)
     setup: RunSetup | WaveRunSetup
@@ -267,12 +268,7 @@ def simulate_axial(
     table = np.zeros((rows, len(SAMPLE_COLUMNS)))
     stats = run_kernel(setup, table, every)
     rate = None
-    if (
-        growth_rate
-        and isinstance(assembly, DrillingAssembly)
-        and assembly.is_two_dof
-        and bit_rotation is None
-    ):
+    if growth_rate and isinstance(assembly, DrillingAssembly) and bit_rotation is None:
         from torsio.axial.stability import drilling_stability
 
         rate = drilling_stability(assembly, bit, wob, rpm, count=1).growth_rate

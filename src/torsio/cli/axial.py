@@ -37,11 +37,7 @@ _MAP_REFUSED = {
     "refine": "--refine",
     "rtol": "--rtol",
     "steady_tol": "--steady-tol",
-    "threads": "--threads",
     "on_failure": "--on-failure",
-    "workers": "--workers",
-    "scheduler": "--scheduler",
-    "timeout": "--timeout",
     "out": "--out",
     "csv": "--csv",
     "plot": "--plot",
@@ -85,7 +81,6 @@ def simulate(args: argparse.Namespace, config: Any) -> int:
         point["rpm"],
         **_times(args, config),
         **axial.run_options(),
-        growth_rate=axial.is_two_dof,
     )
     data = run.to_dict()
     data["solver"] = solver_info(run)
@@ -128,9 +123,7 @@ def _print_run(data: dict[str, Any]) -> None:
         ("steady MSE", f"{steady['mse'] / 1e6:.4g} MPa"),
         (
             "growth rate (linear)",
-            "n/a (2-DOF model only)"
-            if rate is None
-            else f"{rate:.4g} 1/s ({'unstable' if rate > 0 else 'stable'})",
+            "n/a" if rate is None else f"{rate:.4g} 1/s ({'unstable' if rate > 0 else 'stable'})",
         ),
         ("solver", f"axial engine, fixed step {data['solver']['step'] * 1e3:.4g} ms"),
     ]
@@ -140,7 +133,10 @@ def _print_run(data: dict[str, Any]) -> None:
 
 
 def run_map(args: argparse.Namespace, config: Any, wob: Any, rpm: Any) -> int:
-    """``torsio map`` on an axial configuration over the grids ``wob`` [N] and ``rpm``."""
+    """``torsio map`` on an axial configuration over the grids ``wob`` [N] and ``rpm``:
+    in this process on ``--threads`` threads (default all cores), or on ``--workers``
+    processes or a Dask ``--scheduler`` (the flags of the torsional maps)."""
+    import sys
     import time
 
     from torsio.axial.maps import axial_map
@@ -157,7 +153,11 @@ def run_map(args: argparse.Namespace, config: Any, wob: Any, rpm: Any) -> int:
         rpm,
         **_times(args, config),
         **axial.run_options(),
-        growth_rate=axial.is_two_dof,
+        growth_rate=True,
+        threads=args.threads,
+        executor=args.workers if args.workers is not None else args.scheduler,
+        timeout=args.timeout,
+        progress=(not args.json) and sys.stdout.isatty() or None,
     )
     data = grid.to_dict()
     data["info"] = {
@@ -165,6 +165,7 @@ def run_map(args: argparse.Namespace, config: Any, wob: Any, rpm: Any) -> int:
         "scheme": SCHEME,
         "start": axial.start,
         "elapsed_s": time.perf_counter() - start,
+        "executor": grid.executor,
         "model": axial.assembly.describe(),
     }
     if args.json:

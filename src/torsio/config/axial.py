@@ -90,7 +90,7 @@ class AxialConfig:
 
     @property
     def is_two_dof(self) -> bool:
-        """One node under the weight hook: RGD (2007)'s model, with a growth rate
+        """One node under the weight hook: RGD (2007)'s model
         (:attr:`torsio.axial.assembly.DrillingAssembly.is_two_dof`)."""
         return self.assembly.is_two_dof
 

@@ -2,9 +2,10 @@
 
 The assembly's natural frequencies (torsional, top held; axial, bit free, the top free
 under the weight hook or held by k_a,0 under the speed hook), the steady drilling state at
-the operating point (depth of cut, ROP, bit torque, MSE) and, for the 2-DOF model, its
-linear stability: the growth rate and the rpm where it crosses zero
-(:func:`torsio.axial.stability.crossing_rpm` over :data:`CROSSING_RANGE`).
+the operating point (depth of cut, ROP, bit torque, MSE) and its linear stability: the
+growth rate and the rpm where it crosses zero, each with the frequency and the kind (axial
+or torsional) of the mode that crosses there (:func:`torsio.axial.stability.mode_crossings`
+over :data:`CROSSING_RANGE`).
 
 Examples
 --------
@@ -15,6 +16,8 @@ Examples
 7.3868
 >>> [round(r, 1) for r in section.data["stability"]["crossing_rpm"]]
 [153.3]
+>>> [c["mode"] for c in section.data["stability"]["crossings"]]
+['axial']
 """
 
 from __future__ import annotations
@@ -27,6 +30,7 @@ import scipy.linalg
 from rich.table import Table
 
 from torsio.axial.assembly import DrillingAssembly
+from torsio.axial.linearization import axial_matrices
 from torsio.model.lumped import chain_matrix
 from torsio.report.context import ReportContext, ReportSection
 
@@ -46,13 +50,10 @@ def axial_frequencies(assembly: DrillingAssembly) -> list[float]:
     >>> [round(f, 3) for f in axial_frequencies(chain)][:2]
     [1.596, 3.867]
     """
-    springs = assembly.axial_stiffnesses
-    if not springs.size:
+    if not assembly.axial_stiffnesses.size:
         return []
-    stiffness = chain_matrix(springs)
-    if assembly.hook == "weight":
-        stiffness[0, 0] -= springs[0]
-    values = scipy.linalg.eigh(stiffness, np.diag(assembly.masses), eigvals_only=True)
+    mass, _, stiffness = axial_matrices(assembly)
+    values = scipy.linalg.eigh(stiffness, mass, eigvals_only=True)
     if assembly.hook == "weight":
         values = values[1:]
     return [math.sqrt(max(v, 0.0)) / (2 * math.pi) for v in values]
@@ -66,14 +67,15 @@ def _torsional_frequencies(assembly: DrillingAssembly) -> list[float]:
 
 
 def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
-    from torsio.axial.stability import crossing_rpm, drilling_stability
+    from torsio.axial.stability import drilling_stability, mode_crossings
 
     result = drilling_stability(axial.assembly, axial.bit, wob, rpm, count=1)
-    crossings = crossing_rpm(axial.assembly, axial.bit, wob, CROSSING_RANGE, points=15)
+    crossings = mode_crossings(axial.assembly, axial.bit, wob, CROSSING_RANGE, points=15)
     return {
         "growth_rate": result.growth_rate,
         "stable": result.stable,
-        "crossing_rpm": crossings,
+        "crossing_rpm": [c.rpm for c in crossings],
+        "crossings": [c.to_dict() for c in crossings],
         "crossing_range_rpm": list(CROSSING_RANGE),
     }
 
@@ -108,10 +110,7 @@ def axial_section(ctx: ReportContext) -> ReportSection | None:
     else:
         steady = steady_drilling(axial.bit, op.wob, op.rpm)
         data["steady_state"] = steady.to_dict()
-        if axial.is_two_dof:
-            data["stability"] = _stability(axial, op.wob, op.rpm)
-        else:
-            data["note"] = "the linear stability is of the 2-DOF model only"
+        data["stability"] = _stability(axial, op.wob, op.rpm)
     return ReportSection("axial", "Axial dynamics (RGD bit)", data, _body(data))
 
 
@@ -142,13 +141,16 @@ def _body(data: dict[str, Any]) -> Table:
     stability = data["stability"]
     if stability is not None:
         rate = stability["growth_rate"]
-        crossings = stability["crossing_rpm"]
+        crossings = stability["crossings"]
         low, high = stability["crossing_range_rpm"]
         rows += [
             ("growth rate", f"{rate:.4g} 1/s ({'stable' if rate < 0 else 'unstable'})"),
             (
                 "crossing rpm",
-                ", ".join(f"{r:.4g}" for r in crossings) + " rpm"
+                ", ".join(
+                    f"{c['rpm']:.4g} rpm ({c['mode']}, {c['frequency'] / (2 * math.pi):.4g} Hz)"
+                    for c in crossings
+                )
                 if crossings
                 else f"none in {low:g}..{high:g} rpm",
             ),
