@@ -19,6 +19,16 @@ at the velocity level over each step (Moreau's time stepping):
 4. Positions from the new velocities: U ← U + h V, θ ← θ + h ω; the top angle Ω₀ t, the
    hook position U_h0 + V_h t. The new bit state is appended to the history.
 
+With a top drive that is not held (``top[TOP_HELD]`` 0), the top is a node (J, drag) with
+a linear controller (:class:`torsio.physics.top_drive_boundary.TopDriveBoundary`), advanced
+in step 3 after the chain with the surface torque T_pipe = k_0 (θ_top − θ_0) + c_0 (Ω_top −
+ω_0) of the state at the step's start: y = [Ω_set − Ω_top, T_pipe], u_free = u0 + c·z +
+d·y, u = clip(u_free, ±max_torque), z ← z + h (a z + b y + w (u − u_free)),
+Ω_top ← Ω_top + h (u − drag Ω_top − T_pipe)/J, θ_top ← θ_top + h Ω_top (the new speed).
+``top`` holds the slots named ``TOP_*`` below; ``top_state`` is [θ_top (rad), Ω_top
+(rad/s)], ``controller_state`` z; ``ctrl_a`` (m, m), ``ctrl_b`` (m, 2), ``ctrl_c`` (m,),
+``ctrl_d`` (2,), ``ctrl_w`` (m,) the controller's matrices.
+
 The bit's part of steps 1-3 is :mod:`torsio.axial.bit_step`, shared with the distributed
 pipe's loop (:mod:`torsio.axial.wave_kernel`).
 
@@ -48,7 +58,21 @@ from torsio.axial.bit_step import (
 from torsio.axial.history import append
 from torsio.solvers.compiled import njit
 
-__all__ = ["SAMPLE_COLUMNS", "STATS", "march"]
+__all__ = ["SAMPLE_COLUMNS", "STATS", "TOP_SLOTS", "march"]
+
+TOP_SLOTS = (
+    "held",
+    "inverse_inertia",
+    "drag",
+    "motor_torque_constant",
+    "max_torque",
+    "set_speed",
+    "ramp",
+)
+"""The slots of the kernel's ``top`` array, in order: 1 when the top is held at Ω₀ (no
+node), 1/J [1/(kg m²)], drag [N m s/rad], u0 [N m], max_torque [N m] (inf: none), Ω_set
+[rad/s] (NaN: none, e = 0), the set-speed ramp [s] (0: a step)."""
+TOP_HELD, TOP_INVERSE_INERTIA, TOP_DRAG, TOP_U0, TOP_MAX_TORQUE, TOP_SET_SPEED, TOP_RAMP = range(7)
 
 STATS = (
     "bit_speed_max",
@@ -82,15 +106,41 @@ SAMPLE_COLUMNS = (
     "bit_torque",
     "delay",
     "top_torque",
+    "top_speed",
+    "motor_torque",
+    "surface_torque",
 )
-"""The columns of ``samples``: s, rad, rad/s, m (down), m/s, m per rev, N, N m, s, N m."""
+"""The columns of ``samples``: s, rad, rad/s, m (down), m/s, m per rev, N, N m, s, N m, then
+the top drive's speed [rad/s], its motor torque [N m] and the surface torque [N m] (the
+torque in the string at the top, ``top_torque`` again under the name the torsional runs use;
+with the top held the motor torque is the surface torque)."""
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
 def march(
-    bit, torsional, axial, settings, theta, omega, u, v, history, cursor, stats, samples
+    bit,
+    torsional,
+    axial,
+    settings,
+    theta,
+    omega,
+    u,
+    v,
+    history,
+    cursor,
+    stats,
+    samples,
+    top,
+    top_state,
+    controller_state,
+    ctrl_a,
+    ctrl_b,
+    ctrl_c,
+    ctrl_d,
+    ctrl_w,
 ) -> None:  # pragma: no cover - compiled
-    """Advance the run ``settings[1]`` steps from the state (θ, ω, U, V) in place."""
+    """Advance the run ``settings[1]`` steps from the state (θ, ω, U, V) and the top
+    drive's (``top_state``, ``controller_state``) in place."""
     h, steps, top_speed, weight = settings[0], int(settings[1]), settings[2], settings[3]
     speed_hook, hook_speed, hook_start = settings[4] != 0.0, settings[5], settings[6]
     window_start, sample_every = int(settings[7]), int(settings[8])
@@ -104,6 +154,9 @@ def march(
     nt, na = theta.size, u.size
     bt, ba = nt - 1, na - 1
     delayed = np.zeros(2)
+    held = top[TOP_HELD] != 0.0
+    states = controller_state.size
+    rate = np.zeros(states)
     start_window(stats)
     row = 0
     for step in range(steps):
@@ -143,10 +196,14 @@ def march(
                 v[i] += h * force * axial[0, i]
         # 3. torsional
         tf = tf_per_wf * wf
-        top_angle = top_speed * t
+        if held:
+            top_angle, top_rate = top_speed * t, top_speed
+        else:
+            top_angle, top_rate = top_state[0], top_state[1]
         top_torque = torsional[1, 0] * (top_angle - theta[0]) + torsional[2, 0] * (
-            top_speed - omega[0]
+            top_rate - omega[0]
         )
+        motor = top_torque
         bit_torque = tc + tf
         if prescribed:
             tt = t + h
@@ -170,6 +227,28 @@ def march(
                     omega[i] += h * torque * torsional[0, i]
             for i in range(nt):
                 theta[i] += h * omega[i]
+        if not held:
+            set_speed = top[TOP_SET_SPEED]
+            if top[TOP_RAMP] > 0.0:
+                set_speed *= min(1.0, t / top[TOP_RAMP])
+            error = 0.0 if math.isnan(set_speed) else set_speed - top_rate
+            free = top[TOP_U0] + ctrl_d[0] * error + ctrl_d[1] * top_torque
+            for j in range(states):
+                free += ctrl_c[j] * controller_state[j]
+            limit = top[TOP_MAX_TORQUE]
+            motor = min(max(free, -limit), limit)
+            for j in range(states):
+                value = ctrl_b[j, 0] * error + ctrl_b[j, 1] * top_torque
+                value += ctrl_w[j] * (motor - free)
+                for k in range(states):
+                    value += ctrl_a[j, k] * controller_state[k]
+                rate[j] = value
+            for j in range(states):
+                controller_state[j] += h * rate[j]
+            top_state[1] += (
+                h * (motor - top[TOP_DRAG] * top_rate - top_torque) * top[TOP_INVERSE_INERTIA]
+            )
+            top_state[0] += h * top_state[1]
         # 4. positions and history
         for i in range(na):
             u[i] += h * v[i]
@@ -183,6 +262,9 @@ def march(
             samples[row, 7] = bit_torque
             samples[row, 8] = t - delayed[0]
             samples[row, 9] = top_torque
+            samples[row, 10] = top_rate
+            samples[row, 11] = motor
+            samples[row, 12] = top_torque
             row += 1
     stats[8] = u[ba]
     stats[13] = steps

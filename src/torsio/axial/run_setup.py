@@ -5,7 +5,10 @@ history before t = 0, and the summary of the window it returns.
 bit's axial contact frequency √(2 n ζ ε a / m_b) (where the axial roots cross the
 imaginary axis, docs/axial.md) and the chain's node frequencies; a given ``step`` caps it
 further. h = t_n0 / ⌈t_n0 / h_max⌉: a whole number of steps per steady delay
-t_n0 = 2π/(n Ω₀).
+t_n0 = 2π/(n Ω₀). With a top drive that is not held, ω_fast also counts the largest
+|λ| of the top node and its controller against the string's top spring
+(:func:`torsio.axial.top_drive.top_drive_rates`), and a step with |λ| h above
+:data:`TOP_DRIVE_STEP_LIMIT` is refused (``simulation.step``).
 
 **Starts.** ``"steady"``: the steady drilling state (each spring carrying T₀ and W₀, every
 node at Ω₀ and V₀, the history the steady motion), the bit speed raised by
@@ -36,7 +39,9 @@ from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.kernel import STATS
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
+from torsio.axial.top_drive import TopDriveArrays, steady_controller_state, top_drive_rates
 from torsio.errors import ConfigError
+from torsio.physics.top_drive_boundary import TopDriveBoundary
 
 if TYPE_CHECKING:
     from torsio.axial.wave_setup import WaveRunSetup
@@ -60,6 +65,11 @@ DEFAULT_STEPS_PER_PERIOD = 100
 """Steps per period of the fastest frequency the run resolves (docs/axial.md, convergence)."""
 
 STARTS = ("rest", "steady")
+
+TOP_DRIVE_STEP_LIMIT = 1.0
+"""Largest |λ| h of the top drive's rates (:func:`torsio.axial.top_drive.top_drive_rates`)
+the explicit step takes: well inside the stability bound 2 of explicit and symplectic Euler
+(a real rate and an oscillation alike)."""
 
 
 @attrs.frozen
@@ -108,6 +118,9 @@ class RunSetup:
     v: NDArray[np.float64]
     history: NDArray[np.float64]
     cursor: NDArray[np.float64]
+    top: TopDriveArrays = attrs.field(factory=lambda: TopDriveArrays.from_boundary(None))
+    top_state: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(2))
+    controller_state: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(0))
 
 
 def contact_frequency(bit: RGDBit, mass: float) -> float:
@@ -126,11 +139,30 @@ def largest_step(fastest: float, steps_per_period: int, step: float | None) -> f
 
 
 def _step(
-    assembly: DrillingAssembly, bit: RGDBit, delay: float, steps_per_period: int, step: float | None
+    assembly: DrillingAssembly,
+    bit: RGDBit,
+    delay: float,
+    steps_per_period: int,
+    step: float | None,
+    top_drive: TopDriveBoundary | None = None,
 ) -> float:
     fastest = max(contact_frequency(bit, assembly.bit_mass), assembly.fastest_frequency())
+    top_rate = 0.0
+    if top_drive is not None and not top_drive.held:
+        rates = top_drive_rates(top_drive, assembly.stiffnesses[0], assembly.damping[0])
+        top_rate = float(np.abs(rates).max())
+        fastest = max(fastest, top_rate)
     h_max = largest_step(fastest, steps_per_period, step)
-    return delay / math.ceil(delay / h_max - 1e-9)
+    h = delay / math.ceil(delay / h_max - 1e-9)
+    if top_rate * h > TOP_DRIVE_STEP_LIMIT:
+        raise ConfigError(
+            "simulation.step",
+            f"a step of {h:.6g} s does not resolve the top drive: its fastest rate "
+            f"|λ| = {top_rate:.6g} 1/s (the top node and its controller) needs |λ| h <= "
+            f"{TOP_DRIVE_STEP_LIMIT:g}, a step of at most {TOP_DRIVE_STEP_LIMIT / top_rate:.6g} s "
+            "(or more steps per period)",
+        )
+    return h
 
 
 def check_run(start: str, duration: float, window: float) -> None:
@@ -202,14 +234,25 @@ def run_setup(
     step: float | None = None,
     steps_per_period: int = DEFAULT_STEPS_PER_PERIOD,
     bit_rotation: BitRotation | None = None,
+    top_drive: TopDriveBoundary | None = None,
 ) -> RunSetup:
     """The step, the initial state and the history of a run (see the module docstring).
 
-    ``wob`` [N], ``rpm`` [rev/min], ``duration`` and ``window`` [s] (the window at the end).
+    ``wob`` [N], ``rpm`` [rev/min], ``duration`` and ``window`` [s] (the window at the end);
+    ``top_drive`` the top's boundary (:func:`torsio.axial.top_drive.top_boundary`; None:
+    held at Ω₀). A top drive that is not held starts with the string: from rest (angle,
+    speed and controller states zero) or on the steady state (at Ω₀, the controller state
+    of :func:`torsio.axial.top_drive.steady_controller_state`).
     """
     steady = steady_drilling(bit, wob, rpm)
     check_run(start, duration, window)
-    h = _step(assembly, bit, steady.delay, steps_per_period, step)
+    if top_drive is not None and not top_drive.held and bit_rotation is not None:
+        raise ConfigError(
+            "top_drive",
+            "a prescribed bit_rotation does not integrate the torsional chain, so it takes no "
+            "top drive (expected top_drive=None or a held top)",
+        )
+    h = _step(assembly, bit, steady.delay, steps_per_period, step, top_drive)
     steps = int(math.ceil(duration / h - 1e-9))
     window_steps = min(steps, int(round(window / h)))
     omega0, v0 = steady.bit_speed, steady.rop
@@ -239,6 +282,12 @@ def run_setup(
         times, angle, speed, u[-1] + velocity * times, velocity, omega[-1], v[-1], steps
     )
     rotation = bit_rotation or BitRotation()
+    top_state, controller_state = np.zeros(2), np.zeros(0)
+    if top_drive is not None and not top_drive.held:
+        controller_state = np.zeros(top_drive.states)
+        if on_steady:
+            top_state[1] = omega0
+            controller_state = steady_controller_state(top_drive, steady.bit_torque, omega0)
     settings = np.array(
         [
             h,
@@ -271,6 +320,9 @@ def run_setup(
         v,
         history,
         cursor,
+        TopDriveArrays.from_boundary(top_drive),
+        top_state,
+        controller_state,
     )
 
 

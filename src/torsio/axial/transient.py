@@ -90,6 +90,10 @@ def run_kernel(
     if isinstance(setup, WaveRunSetup):
         stats = run_wave(setup, samples, sample_every)
         state = [setup.axial_p, setup.torsional_p, setup.bha]
+        top_torque = samples[:, SAMPLE_COLUMNS.index("top_torque")]
+        samples[:, SAMPLE_COLUMNS.index("top_speed")] = setup.steady.bit_speed  # held at Ω₀
+        samples[:, SAMPLE_COLUMNS.index("motor_torque")] = top_torque
+        samples[:, SAMPLE_COLUMNS.index("surface_torque")] = top_torque
     else:
         settings = setup.settings.copy()
         settings[8] = sample_every
@@ -107,8 +111,16 @@ def run_kernel(
             setup.cursor,
             stats,
             samples,
+            setup.top.top,
+            setup.top_state,
+            setup.controller_state,
+            setup.top.a,
+            setup.top.b,
+            setup.top.c,
+            setup.top.d,
+            setup.top.w,
         )
-        state = [setup.u, setup.theta]
+        state = [setup.u, setup.theta, setup.top_state]
     if stats[STATS.index("failed")]:
         raise SolverError(
             f"the bit's history did not hold the delay at step {int(stats[-1])} "
@@ -141,8 +153,14 @@ class AxialTransient:
         The step h, the run's length and its window [s].
     start : str
         ``"rest"`` or ``"steady"``.
-    samples : ndarray (k, 10)
-        The bit's signals, columns :data:`torsio.axial.kernel.SAMPLE_COLUMNS`.
+    samples : ndarray (k, 13)
+        The bit's and the top drive's signals, columns
+        :data:`torsio.axial.kernel.SAMPLE_COLUMNS`.
+    top_drive : str
+        The top drive's kind (``"constant-speed"``: the top held at Ω₀).
+    stability_of_held_top : bool
+        Whether ``growth_rate`` is that of the top held at Ω₀ while the run's top drive is
+        not held (the linearization holds the top; :mod:`torsio.axial.stability`).
     """
 
     wob: float
@@ -155,6 +173,8 @@ class AxialTransient:
     window: float
     start: str
     samples: NDArray[np.float64]
+    top_drive: str = "constant-speed"
+    stability_of_held_top: bool = False
 
     def __getattr__(self, name: str) -> Any:
         if name in _SUMMARY_NAMES:
@@ -165,13 +185,41 @@ class AxialTransient:
         """One column of :attr:`samples` by name (e.g. ``"bit_speed"``)."""
         return self.samples[:, SAMPLE_COLUMNS.index(name)]
 
+    def window_rows(self) -> NDArray[np.bool_]:
+        """The sample rows inside the steady window."""
+        return self.signal("time") >= self.duration - self.window - 0.5 * self.step
+
+    def top_drive_summary(self) -> dict[str, float | None]:
+        """The top drive over the window's samples: ``top_speed_mean`` [rad/s],
+        ``surface_torque_min``, ``surface_torque_max``, ``mean_surface_torque``,
+        ``mean_motor_torque`` [N m] (window), ``surface_torque_peak`` [N m] (whole run);
+        null without samples."""
+        keys = ("top_speed_mean", "surface_torque_min", "surface_torque_max",
+                "mean_surface_torque", "mean_motor_torque", "surface_torque_peak")  # fmt: skip
+        rows = self.window_rows() if self.samples.shape[0] else np.zeros(0, bool)
+        if not rows.any():
+            return dict.fromkeys(keys)
+        surface = self.signal("surface_torque")
+        values = (
+            self.signal("top_speed")[rows].mean(),
+            surface[rows].min(),
+            surface[rows].max(),
+            surface[rows].mean(),
+            self.signal("motor_torque")[rows].mean(),
+            surface.max(),
+        )
+        return {key: float(value) for key, value in zip(keys, values, strict=True)}
+
     def to_dict(self) -> dict[str, Any]:
         """DESIGN.md's JSON keys: ``wob``, ``rpm``, ``severity``, ``rop_mean`` (m/s),
         ``mse_mean`` (Pa; null when the bit did not advance), ``off_bottom_fraction``,
-        ``stick_fraction``, ``axial_severity``, ``steady_state``, ``growth_rate`` and more."""
+        ``stick_fraction``, ``axial_severity``, ``steady_state``, ``growth_rate``, the top
+        drive's (:meth:`top_drive_summary`, ``top_drive``, ``stability_of_held_top``) and
+        more."""
         data: dict[str, Any] = {"wob": self.wob, "rpm": self.rpm}
         for key, value in attrs.asdict(self.summary).items():
             data[key] = value if math.isfinite(value) else None
+        data.update(self.top_drive_summary())
         data.update(
             steady_state=self.steady.to_dict(),
             growth_rate=self.growth_rate,
@@ -179,6 +227,8 @@ class AxialTransient:
             duration=self.duration,
             steady_window=self.window,
             start=self.start,
+            top_drive=self.top_drive,
+            stability_of_held_top=self.stability_of_held_top,
         )
         return data
 
@@ -205,6 +255,8 @@ def simulate_axial(
     samples: int = 4000,
     bit_rotation: BitRotation | None = None,
     growth_rate: bool = True,
+    top_drive: Any = None,
+    string: Any = None,
 ) -> AxialTransient:
     """Run the assembly drilling at ``wob`` [N] and ``rpm`` [rev/min].
 
@@ -226,10 +278,31 @@ def simulate_axial(
         A prescribed bit rotation instead of the torsional chain (lumped assemblies only).
     growth_rate : bool
         Compute the linear growth rate (any assembly; not with ``bit_rotation``, whose
-        torsional chain is not integrated).
+        torsional chain is not integrated). It is the growth rate with the top held at Ω₀
+        (``stability_of_held_top`` says so when the run's top drive is not held).
+    top_drive : top drive, optional
+        Any registered top drive (:mod:`torsio.physics.top_drives`, plugins; e.g.
+        ``PITopDrive(inertia=2900.0, kp=5000.0, ki=1800.0)``) turning the top as a node with
+        its controller (:mod:`torsio.axial.top_drive`); None or ``ConstantSpeedTop()``: held
+        at Ω₀. Lumped assemblies only.
+    string : DrillString, optional
+        The drill string the assembly was built from, for tunings that read the top pipe's
+        impedance (``soft-torque``, ``z-torque`` defaults).
     """
     duration, window = run_times(assembly, duration, window)
     setup: RunSetup | WaveRunSetup
+    kind = getattr(top_drive, "name", "constant-speed") if top_drive is not None else None
+    boundary = None
+    if top_drive is not None and isinstance(assembly, WaveDrillingAssembly):
+        raise ConfigError(
+            "top_drive",
+            f"{kind!r} given with a WaveDrillingAssembly: the distributed pipe's top is held "
+            "at Ω₀ (expected top_drive=None, or a lumped DrillingAssembly)",
+        )
+    if top_drive is not None:
+        from torsio.axial.top_drive import top_boundary
+
+        boundary = top_boundary(top_drive, assembly, rpm, string)
     if isinstance(assembly, WaveDrillingAssembly):
         if bit_rotation is not None:
             raise ConfigError(
@@ -262,6 +335,7 @@ def simulate_axial(
             step=step,
             steps_per_period=steps_per_period,
             bit_rotation=bit_rotation,
+            top_drive=boundary,
         )
     every = max(1, setup.steps // samples) if samples > 0 else 0
     rows = (setup.steps - 1) // every + 1 if every else 0
@@ -283,4 +357,6 @@ def simulate_axial(
         window=setup.window_steps * setup.step,
         start=start,
         samples=table,
+        top_drive=kind or "constant-speed",
+        stability_of_held_top=rate is not None and boundary is not None and not boundary.held,
     )

@@ -1,0 +1,196 @@
+"""The top drive of a lumped axial-torsional run: any kind, as node −1 with its controller.
+
+Every top drive (:mod:`torsio.physics.top_drives`, plugins included) reduces to a
+:class:`~torsio.physics.top_drive_boundary.TopDriveBoundary`: the inertia J and drag of the
+top and a linear controller z' = a z + b y + w (u − u_free), u_free = u0 + c·z + d·y,
+y = [Ω_set − Ω_top, T_pipe]. :func:`top_boundary` asks the top drive for it on what its
+tunings read of a system (:class:`AxialTopSystem`: the set speed, the first torsional
+frequency with the top held, the string when there is one); :class:`TopDriveArrays` is what
+the compiled loop (:mod:`torsio.axial.kernel`) takes; :func:`top_drive_rates` gives the
+eigenvalues of the top node and its controller against the string's top spring (the
+fastest rate the explicit step must resolve) and :func:`steady_controller_state` the
+controller state of steady drilling.
+
+Examples
+--------
+>>> from torsio.axial.assembly import rgd_two_dof_example
+>>> from torsio.physics.top_drives import PITopDrive
+>>> boundary = top_boundary(PITopDrive(inertia=2900.0, kp=5000.0, ki=2900.0 * 0.8**2),
+...                         rgd_two_dof_example(), 60.0)
+>>> boundary.held, round(boundary.set_speed, 6)
+(False, 6.283185)
+>>> steady_controller_state(boundary, 1000.0).tolist()  # ki z = T₀
+[0.5387931034482759]
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import attrs
+import numpy as np
+from numpy.typing import NDArray
+
+from torsio.axial.assembly import DrillingAssembly
+from torsio.axial.kernel import TOP_SLOTS
+from torsio.errors import ConfigError
+from torsio.physics.top_drive_boundary import TopDriveBoundary
+from torsio.units import RPM_TO_RAD_S
+
+__all__ = [
+    "AxialTopSystem",
+    "TopDriveArrays",
+    "steady_controller_state",
+    "top_boundary",
+    "top_drive_rates",
+]
+
+
+@attrs.frozen
+class _AssemblyModel:
+    """The torsional chain as a top drive's tuning reads it: its first frequency."""
+
+    assembly: DrillingAssembly
+
+    def first_frequency(self) -> float:
+        """ω₁ [rad/s] of the torsional chain, top held, undamped."""
+        from torsio.axial.transient import first_torsional_frequency
+
+        return first_torsional_frequency(self.assembly)
+
+
+@attrs.frozen
+class AxialTopSystem:
+    """What ``top_drive.boundary(system)`` reads of an axial run: ``omega`` the set speed
+    [rad/s], ``model`` (its ``first_frequency()``, ω₁ with the top held) and ``string``
+    (the drill string the assembly was built from, for the top pipe's impedance; None for a
+    chain given directly)."""
+
+    model: Any
+    omega: float
+    string: Any = None
+
+
+def top_boundary(
+    top_drive: Any, assembly: DrillingAssembly, rpm: float, string: Any = None
+) -> TopDriveBoundary:
+    """The boundary of ``top_drive`` (any registered kind) on ``assembly`` at ``rpm``.
+
+    Raises
+    ------
+    ConfigError
+        A top drive with a set speed that changes in time as a table (``recorded``): the
+        lumped axial engine takes a held speed or a controller (with its ``ramp``).
+    """
+    system = AxialTopSystem(_AssemblyModel(assembly), float(rpm) * RPM_TO_RAD_S, string)
+    boundary = top_drive.boundary(system)
+    if not isinstance(boundary, TopDriveBoundary):
+        raise ConfigError(
+            "top_drive", f"{top_drive!r}.boundary() returned {boundary!r}, not a TopDriveBoundary"
+        )
+    if boundary.speed_table is not None:
+        raise ConfigError(
+            "top_drive.kind",
+            f"{getattr(top_drive, 'name', top_drive)!r} drives the top with a speed table; the "
+            "lumped axial engine takes a held speed or a controlled top drive (constant-speed, "
+            "torque, pi, soft-torque, z-torque, plugins)",
+        )
+    if boundary.held and boundary.ramp > 0.0:
+        raise ConfigError("top_drive.ramp", "a held top has no ramp in the axial engine")
+    return boundary
+
+
+@attrs.frozen(eq=False)
+class TopDriveArrays:
+    """The compiled loop's top drive: ``top`` (slots :data:`torsio.axial.kernel.TOP_SLOTS`)
+    and the controller matrices a (m, m), b (m, 2), c (m,), d (2,), w (m,)."""
+
+    top: NDArray[np.float64]
+    a: NDArray[np.float64]
+    b: NDArray[np.float64]
+    c: NDArray[np.float64]
+    d: NDArray[np.float64]
+    w: NDArray[np.float64]
+
+    @classmethod
+    def from_boundary(cls, boundary: TopDriveBoundary | None) -> TopDriveArrays:
+        """The arrays of ``boundary`` (None or a held one: the top held, no controller)."""
+        top = np.zeros(len(TOP_SLOTS))
+        if boundary is None or boundary.held:
+            top[TOP_SLOTS.index("held")] = 1.0
+            return cls(
+                top, np.zeros((0, 0)), np.zeros((0, 2)), np.zeros(0), np.zeros(2), np.zeros(0)
+            )
+        values = {
+            "held": 0.0,
+            "inverse_inertia": 1.0 / boundary.inertia,
+            "drag": boundary.drag,
+            "motor_torque_constant": boundary.u0,
+            "max_torque": boundary.max_torque,
+            "set_speed": boundary.set_speed,
+            "ramp": boundary.ramp,
+        }
+        for slot, value in values.items():
+            top[TOP_SLOTS.index(slot)] = value
+        m = boundary.states
+        return cls(
+            top,
+            np.ascontiguousarray(np.asarray(boundary.a, dtype=float).reshape(m, m)),
+            np.ascontiguousarray(np.asarray(boundary.b, dtype=float).reshape(m, 2)),
+            np.ascontiguousarray(np.asarray(boundary.c, dtype=float).reshape(m)),
+            np.ascontiguousarray(np.asarray(boundary.d, dtype=float).reshape(2)),
+            np.ascontiguousarray(np.asarray(boundary.w, dtype=float).reshape(m)),
+        )
+
+
+def top_drive_matrix(boundary: TopDriveBoundary, stiffness: float, damper: float) -> NDArray:
+    """The linear system x' = A x of x = (θ_top, Ω_top, z) with the string's first node held
+    (T_pipe = k θ_top + c Ω_top, ``stiffness`` [N m/rad], ``damper`` [N m s/rad]), the motor
+    unsaturated and the set speed constant."""
+    m = boundary.states
+    a, b = np.asarray(boundary.a, float).reshape(m, m), np.asarray(boundary.b, float).reshape(m, 2)
+    c, d = np.asarray(boundary.c, float).reshape(m), np.asarray(boundary.d, float).reshape(2)
+    # y = [e, T] = Y x with e = −Ω_top, T = k θ + c Ω
+    outputs = np.zeros((2, 2 + m))
+    outputs[0, 1] = -1.0
+    outputs[1, 0], outputs[1, 1] = stiffness, damper
+    torque = outputs[1]
+    motor = d @ outputs
+    motor[2:] += c
+    matrix = np.zeros((2 + m, 2 + m))
+    matrix[0, 1] = 1.0
+    matrix[1] = (motor - torque) / boundary.inertia
+    matrix[1, 1] -= boundary.drag / boundary.inertia
+    matrix[2:] = b @ outputs
+    matrix[2:, 2:] += a
+    return matrix
+
+
+def top_drive_rates(
+    boundary: TopDriveBoundary, stiffness: float, damper: float
+) -> NDArray[np.complex128]:
+    """The eigenvalues [1/s] of :func:`top_drive_matrix`: the top drive's own rates."""
+    return np.linalg.eigvals(top_drive_matrix(boundary, stiffness, damper))
+
+
+def steady_controller_state(
+    boundary: TopDriveBoundary, torque: float, speed: float | None = None
+) -> NDArray[np.float64]:
+    """The controller state z of steady drilling: the top at its set speed (e = 0), the
+    string carrying ``torque`` T₀ [N m], z' = 0 and u = T₀ + drag Ω_set, by least squares
+    (a kind that cannot hold it, e.g. a constant torque, gets the nearest z; ``speed``
+    [rad/s] default the set speed)."""
+    m = boundary.states
+    if m == 0:
+        return np.zeros(0)
+    omega = boundary.set_speed if speed is None else speed
+    omega = 0.0 if not math.isfinite(omega) else omega
+    a, b = np.asarray(boundary.a, float).reshape(m, m), np.asarray(boundary.b, float).reshape(m, 2)
+    c, d = np.asarray(boundary.c, float).reshape(m), np.asarray(boundary.d, float).reshape(2)
+    matrix = np.vstack([a, c[None, :]])
+    right = np.concatenate(
+        [-b[:, 1] * torque, [torque + boundary.drag * omega - boundary.u0 - d[1] * torque]]
+    )
+    state, *_ = np.linalg.lstsq(matrix, right, rcond=None)
+    return np.asarray(state, dtype=float)
