@@ -62,6 +62,8 @@ def test_builtin_file_is_the_api_example():
         "perturbation": 1e-3,
         "step": None,
         "steps_per_period": 100,
+        "top_drive": None,
+        "string": None,
     }
     assert axial.is_two_dof
     assert (config.operation.wob, config.operation.rpm) == (100e3, 60.0)
@@ -92,6 +94,8 @@ def test_axial_keys_are_read_with_units():
         "perturbation": 0.01,
         "step": 1e-3,
         "steps_per_period": 50,
+        "top_drive": None,
+        "string": None,
     }
 
 
@@ -141,7 +145,7 @@ REFUSALS = [
     (BASE, "simulation.rtol", 1e-6, "simulation.rtol"),
     (BASE, "simulation.method", "RK45", "simulation.method"),
     (BASE, "damping.alpha", 0.1, "damping.alpha"),
-    (BASE, "top_drive", {"kind": "torque", "inertia": 930.0, "torque": 1e4}, "top_drive"),
+    (BASE, "top_drive", {"kind": "torque", "inertia": 930.0, "torque": 1e4}, "top_drive.kind"),
     (BASE, "well", {"survey": []}, "well"),
     (STRING, "material.youngs_modulus", None, "material.youngs_modulus"),
     (STRING, "material.youngs_modulus", -1.0, "material.youngs_modulus"),

@@ -19,8 +19,8 @@ Examples
 ...                         rgd_two_dof_example(), 60.0)
 >>> boundary.held, round(boundary.set_speed, 6)
 (False, 6.283185)
->>> steady_controller_state(boundary, 1000.0).tolist()  # ki z = T₀
-[0.5387931034482759]
+>>> [round(z, 9) for z in steady_controller_state(boundary, 1000.0)]  # ki z = T₀
+[0.538793103]
 """
 
 from __future__ import annotations

@@ -299,7 +299,7 @@ def simulate_axial(
             f"{kind!r} given with a WaveDrillingAssembly: the distributed pipe's top is held "
             "at Ω₀ (expected top_drive=None, or a lumped DrillingAssembly)",
         )
-    if top_drive is not None:
+    if top_drive is not None and isinstance(assembly, DrillingAssembly):
         from torsio.axial.top_drive import top_boundary
 
         boundary = top_boundary(top_drive, assembly, rpm, string)

@@ -126,7 +126,16 @@ def _print_run(data: dict[str, Any]) -> None:
             "n/a" if rate is None else f"{rate:.4g} 1/s ({'unstable' if rate > 0 else 'stable'})",
         ),
         ("solver", f"axial engine, fixed step {data['solver']['step'] * 1e3:.4g} ms"),
+        ("top drive", data["top_drive"]),
     ]
+    if data["stability_of_held_top"]:
+        rows.append(("growth rate is of", "the top held at the set speed"))
+    if data["top_speed_mean"] is not None:
+        rows += [
+            ("mean top speed", f"{data['top_speed_mean'] * 60 / (2 * 3.141592653589793):.4g} rpm"),
+            ("surface torque (window)", f"{data['surface_torque_min'] / 1e3:.4g} to "
+             f"{data['surface_torque_max'] / 1e3:.4g} kN m"),
+        ]  # fmt: skip
     for name, value in rows:
         table.add_row(name, value)
     Console().print(table)

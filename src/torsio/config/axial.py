@@ -12,8 +12,9 @@ Examples
 >>> axial = rgd_two_dof_config().axial
 >>> axial.assembly.nodes, axial.assembly.hook, axial.bit.blades
 (1, 'weight', 4)
->>> axial.run_options()
-{'start': 'rest', 'perturbation': 0.001, 'step': None, 'steps_per_period': 100}
+>>> sorted(axial.run_options().items())  # doctest: +NORMALIZE_WHITESPACE
+[('perturbation', 0.001), ('start', 'rest'), ('step', None), ('steps_per_period', 100),
+ ('string', None), ('top_drive', None)]
 """
 
 from __future__ import annotations
@@ -70,6 +71,10 @@ class AxialConfig:
         Largest time step [s] (``[simulation] step``; None: the engine's rule).
     steps_per_period : int
         Steps per period of the fastest node frequency (``[axial] steps_per_period``).
+    top_drive : top drive or None
+        The ``[top_drive]`` (None: absent, the top held at Ω₀).
+    string : DrillString or None
+        The ``[[section]]`` string the assembly was built from (None for ``[chain]``).
     """
 
     assembly: DrillingAssembly
@@ -78,6 +83,8 @@ class AxialConfig:
     perturbation: float = 1e-3
     step: float | None = None
     steps_per_period: int = 100
+    top_drive: Any = None
+    string: Any = None
 
     def run_options(self) -> dict[str, Any]:
         """Keywords of :func:`~torsio.axial.transient.simulate_axial` from the file."""
@@ -86,6 +93,8 @@ class AxialConfig:
             "perturbation": self.perturbation,
             "step": self.step,
             "steps_per_period": self.steps_per_period,
+            "top_drive": self.top_drive,
+            "string": self.string,
         }
 
     @property
@@ -303,5 +312,5 @@ def string_axial(table: Mapping[str, Any], string: DrillString) -> AxialConfig |
     )
     return AxialConfig(
         assembly, _bit(table, "law = 'rgd'"), steps_per_period=options["steps_per_period"],
-        **_simulation_options(table),
+        string=string, **_simulation_options(table),
     )  # fmt: skip

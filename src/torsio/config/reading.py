@@ -145,11 +145,10 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
         if "chain" in table
         else _string_config(table, name, source)
     )
-    for key in ("top_drive", "well"):
-        if config.axial is not None and key in table:
-            raise ConfigError(
-                key, f"[{key}] is not in the axial engine (the top turns at constant speed)"
-            )
+    if config.axial is not None and "well" in table:
+        raise ConfigError("well", "[well] is not in the axial engine (no contact along the string)")
+    if config.axial is not None and "top_drive" in table:
+        config = attrs.evolve(config, axial=_axial_top_drive(config.axial, top_drive))
     if not top_drive.has_set_speed and config.operation.rpm is not None:
         raise ConfigError(
             "operation.rpm",
@@ -158,6 +157,19 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
         )
     well = well_table(table, config.string, source)
     return attrs.evolve(config, top_drive=top_drive, well=well)
+
+
+def _axial_top_drive(axial: Any, top_drive: Any) -> Any:
+    """The axial dynamics with the ``[top_drive]`` of the file (every kind with a set speed:
+    the axial engine's steady state, delay and step are those of the set rpm)."""
+    if not top_drive.has_set_speed:
+        raise ConfigError(
+            "top_drive.kind",
+            f"{top_drive.kind!r} has no set speed; the axial engine reads its steady state, "
+            "delay and step at the set rpm: expected a kind with a set speed (constant-speed, "
+            "pi, soft-torque, z-torque, plugins), or the torque kind from Python with an rpm",
+        )
+    return attrs.evolve(axial, top_drive=top_drive.build())
 
 
 def _string_config(table: Mapping[str, Any], name: str, source: str) -> Config:

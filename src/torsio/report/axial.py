@@ -99,6 +99,8 @@ def axial_section(ctx: ReportContext) -> ReportSection | None:
         "steady_state": None,
         "stability": None,
         "note": "",
+        "top_drive": getattr(axial.top_drive, "name", "constant-speed"),
+        "stability_of_held_top": False,
     }
     if op.wob is None or op.rpm is None:
         data["note"] = "no [operation] wob and rpm: no steady state"
@@ -111,6 +113,7 @@ def axial_section(ctx: ReportContext) -> ReportSection | None:
         steady = steady_drilling(axial.bit, op.wob, op.rpm)
         data["steady_state"] = steady.to_dict()
         data["stability"] = _stability(axial, op.wob, op.rpm)
+        data["stability_of_held_top"] = data["top_drive"] != "constant-speed"
     return ReportSection("axial", "Axial dynamics (RGD bit)", data, _body(data))
 
 
@@ -128,6 +131,7 @@ def _body(data: dict[str, Any]) -> Table:
          f"{model['hook']}, total mass {sum(model['masses']) / 1e3:.4g} t"),
         ("torsional frequencies", _hz(data["torsional_frequencies_hz"])),
         ("axial frequencies", _hz(data["axial_frequencies_hz"])),
+        ("top drive", data["top_drive"]),
     ]  # fmt: skip
     steady = data["steady_state"]
     if steady is not None:
@@ -144,7 +148,15 @@ def _body(data: dict[str, Any]) -> Table:
         crossings = stability["crossings"]
         low, high = stability["crossing_range_rpm"]
         rows += [
-            ("growth rate", f"{rate:.4g} 1/s ({'stable' if rate < 0 else 'unstable'})"),
+            (
+                "growth rate",
+                f"{rate:.4g} 1/s ({'stable' if rate < 0 else 'unstable'})"
+                + (
+                    " with the top held at the set speed, not with the top drive"
+                    if data["stability_of_held_top"]
+                    else ""
+                ),
+            ),
             (
                 "crossing rpm",
                 ", ".join(
