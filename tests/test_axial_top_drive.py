@@ -1,0 +1,201 @@
+"""The top drive as a node with its controller in the lumped axial engine.
+
+Each check against a reference computed another way: the held top against the results of
+the engine before the top drive came in (recorded at commit f444b44), a PI top drive on
+the closed-form steady state (RGD 2007; docs/axial.md), the run with the bit stuck against
+the matrix exponential of the linear top drive and string, the SoftTorque tuning against
+the held top where it stick-slips (a physical expectation), and the refusals.
+"""
+
+from __future__ import annotations
+
+import json
+from importlib import resources
+
+import numpy as np
+import pytest
+import scipy.linalg
+
+from torsio.axial import (
+    PipeSection,
+    WaveDrillingAssembly,
+    pipe_assembly,
+    rgd_example,
+    rgd_two_dof_example,
+    simulate_axial,
+)
+from torsio.axial.maps import axial_map
+from torsio.axial.run_setup import BitRotation
+from torsio.axial.top_drive import top_boundary, top_drive_matrix
+from torsio.cli import main
+from torsio.errors import ConfigError
+from torsio.physics.top_drives import (
+    ConstantSpeedTop,
+    PITopDrive,
+    SoftTorqueTopDrive,
+    ZTorqueTopDrive,
+)
+
+BIT = rgd_example()
+PI = PITopDrive(inertia=2900.0, kp=5000.0, ki=2067.6)  # ki ≈ ω₁² J, ω₁ = 0.8444 rad/s
+CHAIN = pipe_assembly(4, 1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5, 3.0e4, 230.0)
+
+
+def test_held_top_is_the_engine_before_the_top_drive():
+    # reference: S_SS, mean ROP [m/s], mean MSE [Pa] of the same runs on the engine before
+    # the top drive came in (commit f444b44), equal to the bit
+    before = {
+        "two_dof": (1.0969508830625656, 0.007222174071044282, 104336205.60315032),
+        "chain": (0.48715872373428387, 0.009488942412422076, 97425660.33640856),
+    }
+    for top in (None, ConstantSpeedTop()):
+        runs = {
+            "two_dof": simulate_axial(
+                rgd_two_dof_example(), BIT, 100e3, 60.0, duration=20.0, window=10.0,
+                growth_rate=False, top_drive=top,
+            ),
+            "chain": simulate_axial(
+                CHAIN, BIT, 100e3, 60.0, duration=10.0, window=5.0, growth_rate=False,
+                start="steady", top_drive=top,
+            ),
+        }  # fmt: skip
+        for name, run in runs.items():
+            assert (run.severity, run.rop_mean, run.mse_mean) == before[name]
+            speed = run.signal("top_speed")
+            assert np.all(speed == run.steady.bit_speed)
+            assert np.array_equal(run.signal("motor_torque"), run.signal("surface_torque"))
+            assert np.array_equal(run.signal("surface_torque"), run.signal("top_torque"))
+    assert runs["chain"].top_drive == "constant-speed"
+    assert not runs["chain"].stability_of_held_top
+
+
+@pytest.mark.parametrize("assembly", [rgd_two_dof_example(), CHAIN], ids=["two_dof", "chain"])
+def test_pi_top_drive_stays_on_the_steady_state(assembly):
+    # reference: the closed form (docs/axial.md): V₀ = Ω₀ d₀/2π, T₀, the surface torque T₀
+    # (the string carries the bit torque), the top at Ω₀; 180 rpm is above the 153 rpm
+    # crossing (stable). Measured: 3e-13 relative (ROP, torques), S_SS 1e-12.
+    run = simulate_axial(
+        assembly, BIT, 100e3, 180.0, duration=6.0, window=3.0, start="steady",
+        perturbation=0.0, top_drive=PI, growth_rate=False,
+    )  # fmt: skip
+    steady = run.steady
+    top = run.top_drive_summary()
+    assert run.rop_mean == pytest.approx(steady.rop, rel=1e-10)
+    assert run.torque_mean == pytest.approx(steady.bit_torque, rel=1e-10)
+    assert top["mean_surface_torque"] == pytest.approx(steady.bit_torque, rel=1e-10)
+    assert top["mean_motor_torque"] == pytest.approx(steady.bit_torque, rel=1e-10)
+    assert top["top_speed_mean"] == pytest.approx(steady.bit_speed, rel=1e-12)
+    assert run.severity < 1e-10
+
+
+def test_stuck_bit_against_the_matrix_exponential():
+    # reference: with the bit stuck (from rest, 100 kN, 60 rpm: the string's torque stays
+    # below T_c + T_f for 0.5 s) the top drive, its PI and the string's spring to the bit
+    # are the linear system x' = A x + f of torsio.axial.top_drive.top_drive_matrix, solved by
+    # scipy.linalg.expm. The scheme is first order: the error halves with the step
+    # (measured 2.0007, 2.0003, 2.0002 for 256 .. 2048 steps per delay).
+    assembly = rgd_two_dof_example()
+    boundary = top_boundary(PI, assembly, 60.0)
+    matrix = top_drive_matrix(boundary, assembly.stiffnesses[0], assembly.damping[0])
+    n = matrix.shape[0]
+    affine = np.zeros((n + 1, n + 1))
+    affine[:n, :n] = matrix
+    affine[1, n] = boundary.d[0] * boundary.set_speed / boundary.inertia
+    affine[2:n, n] = boundary.b[:, 0] * boundary.set_speed
+    horizon = 0.5
+    exact = scipy.linalg.expm(affine * horizon)[:, n]
+    errors = []
+    for per_delay in (512, 1024):
+        h = 0.25 / per_delay  # the steady delay t_n0 = 0.25 s at 60 rpm
+        run = simulate_axial(
+            assembly, BIT, 100e3, 60.0, duration=horizon + 2 * h, window=2 * h, step=h,
+            samples=10**9, top_drive=PI, growth_rate=False,
+        )  # fmt: skip
+        k = 2 * per_delay
+        assert run.signal("time")[k] == pytest.approx(horizon, abs=1e-12)
+        assert np.all(run.signal("bit_speed")[: k + 1] == 0.0)  # stuck throughout
+        errors.append(abs(run.signal("top_speed")[k] - exact[1]))
+        surface = assembly.stiffnesses[0] * exact[0] + assembly.damping[0] * exact[1]
+        assert run.signal("surface_torque")[k] == pytest.approx(surface, rel=2e-3)
+    assert errors[1] < 1e-3 * abs(exact[1])
+    assert errors[0] / errors[1] == pytest.approx(2.0, abs=0.05)
+
+
+def test_soft_torque_lowers_stick_slip_against_the_held_top():
+    # a physical expectation, not a closed form: at 100 kN, 60 rpm the held top stick-slips
+    # (measured S_SS 1.144, stuck 0.094 of the window over the last 50 of 100 s); SoftTorque
+    # with kp the chain's impedance √(k I) = 384.7 N m s/rad and ki = ω₁² J (the default)
+    # measured 1.059 and 0.036, Z-Torque (ζ = √(k I), the defaults) 0.423 and 0.
+    assembly = rgd_two_dof_example()
+    impedance = float(np.sqrt(assembly.stiffnesses[0] * assembly.inertias[0]))
+    options = {"duration": 100.0, "window": 50.0, "growth_rate": False}
+    held = simulate_axial(assembly, BIT, 100e3, 60.0, **options)
+    soft = simulate_axial(
+        assembly, BIT, 100e3, 60.0, top_drive=SoftTorqueTopDrive(inertia=2900.0, kp=impedance),
+        **options,
+    )  # fmt: skip
+    z_torque = simulate_axial(
+        assembly, BIT, 100e3, 60.0, top_drive=ZTorqueTopDrive(inertia=2900.0, zeta=impedance),
+        **options,
+    )  # fmt: skip
+    assert held.stick_fraction > 0.05
+    assert soft.severity < held.severity - 0.05
+    assert soft.stick_fraction < 0.5 * held.stick_fraction
+    assert z_torque.severity < 0.5 * held.severity
+
+
+def test_refusals_name_their_key():
+    wave = WaveDrillingAssembly(
+        [PipeSection(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5)],
+        bha_mass=3.0e4,
+        bha_inertia=230.0,
+    )
+    with pytest.raises(ConfigError) as info:
+        simulate_axial(wave, BIT, 100e3, 60.0, duration=1.0, window=0.5, top_drive=PI)
+    assert info.value.key == "top_drive" and "WaveDrillingAssembly" in info.value.message
+    with pytest.raises(ConfigError) as info:
+        axial_map(wave, BIT, [100e3], [60.0], duration=1.0, window=0.5, top_drive=PI)
+    assert info.value.key == "top_drive"
+    # a stiff speed loop (kp/J = 3.4e4 1/s) on 3 steps per period: |λ| h = 2.1 > 1
+    stiff = PITopDrive(inertia=2900.0, kp=1e8, ki=2067.6)
+    with pytest.raises(ConfigError) as info:
+        simulate_axial(
+            rgd_two_dof_example(), BIT, 100e3, 60.0, duration=1.0, window=0.5,
+            top_drive=stiff, steps_per_period=3,
+        )  # fmt: skip
+    assert info.value.key == "simulation.step" and "top drive" in info.value.message
+    # the default rule resolves it: h |λ| = 2π/100
+    run = simulate_axial(
+        rgd_two_dof_example(), BIT, 100e3, 180.0, duration=0.5, window=0.25,
+        top_drive=stiff, growth_rate=False, start="steady", perturbation=0.0,
+    )  # fmt: skip
+    assert run.step < 2 * np.pi / (100 * 1e8 / 2900.0) * 1.0001
+    with pytest.raises(ConfigError) as info:
+        simulate_axial(
+            rgd_two_dof_example(), BIT, 100e3, 60.0, duration=1.0, window=0.5, top_drive=PI,
+            bit_rotation=BitRotation(),
+        )  # fmt: skip
+    assert info.value.key == "top_drive"
+
+
+def test_pi_file_through_the_command_line(tmp_path, capsys):
+    text = resources.files("torsio").joinpath("data/rgd_2dof.toml").read_text(encoding="utf-8")
+    text += '\n[top_drive]\nkind = "pi"\ninertia = "2900 kg*m^2"\nkp = 5000.0\nki = 2067.6\n'
+    path = tmp_path / "pi.toml"
+    path.write_text(text, encoding="utf-8")
+    status = main(["simulate", str(path), "--rpm", "180", "--duration", "20", "--window", "10",
+                   "--json"])  # fmt: skip
+    captured = capsys.readouterr()
+    assert status == 0, captured.err
+    data = json.loads(captured.out)
+    for key in ("top_speed_mean", "surface_torque_min", "surface_torque_max",
+                "surface_torque_peak", "mean_surface_torque", "mean_motor_torque"):  # fmt: skip
+        assert isinstance(data[key], float), key
+    assert data["top_drive"] == "pi" and data["stability_of_held_top"] is True
+    assert data["severity"] >= 0.0
+    text = text.replace('kind = "pi"', 'kind = "torque"\ntorque = 5000.0').replace(
+        "kp = 5000.0\nki = 2067.6\n", ""
+    )
+    path.write_text(text, encoding="utf-8")
+    assert main(["simulate", str(path), "--json"]) != 0
+    assert "top_drive.kind" in capsys.readouterr().err
