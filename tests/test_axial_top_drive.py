@@ -199,3 +199,44 @@ def test_pi_file_through_the_command_line(tmp_path, capsys):
     path.write_text(text, encoding="utf-8")
     assert main(["simulate", str(path), "--json"]) != 0
     assert "top_drive.kind" in capsys.readouterr().err
+
+
+def test_section_string_gives_the_soft_torque_defaults():
+    # reference: kp = ζ = J_p √(G ρ) of the top pipe (torsio.physics.top_drive_boundary),
+    # ki = ω₁² J with ω₁ of the assembly's torsional chain, top held
+    from torsio.axial.transient import first_torsional_frequency
+    from torsio.config.reading import parse_config
+    from torsio.physics.top_drive_boundary import top_pipe_impedance
+
+    data = {
+        "material": {"shear_modulus": "79.3 GPa", "density": 7850, "youngs_modulus": "207 GPa"},
+        "section": [
+            {"kind": "drill_pipe", "od": "5 in", "id": "4.276 in", "length": "1000 m"},
+            {"kind": "drill_collar", "od": "6.75 in", "id": "2.8125 in", "length": "150 m"},
+            {"kind": "bit", "od": "8.5 in", "id": 0.0, "length": 0.3},
+        ],
+        "damping": {"beta": 0.06},
+        "bit_rock": {
+            "law": "rgd",
+            "radius": 0.108,
+            "blades": 4,
+            "intrinsic_specific_energy": 60e6,
+            "cutting_force_ratio": 0.6,
+            "contact_stress": 60e6,
+            "wear_flat_length": 0.011,
+            "contact_friction": 0.6,
+        },  # fmt: skip
+        "operation": {"wob": "100 kN", "rpm": 60},
+        "top_drive": {"kind": "soft-torque", "inertia": 2900.0},
+    }
+    axial = parse_config(data).axial
+    boundary = top_boundary(axial.top_drive, axial.assembly, 60.0, axial.string)
+    zeta = top_pipe_impedance(axial)
+    assert boundary.kp == pytest.approx(zeta, rel=1e-15)
+    omega1 = first_torsional_frequency(axial.assembly)
+    assert boundary.c[0] == pytest.approx(omega1**2 * 2900.0, rel=1e-12)
+    run = simulate_axial(
+        axial.assembly, axial.bit, 100e3, 60.0, duration=2.0, window=1.0, growth_rate=False,
+        **axial.run_options(),
+    )  # fmt: skip
+    assert run.top_drive == "soft-torque" and np.isfinite(run.severity)
