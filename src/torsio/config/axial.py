@@ -2,9 +2,13 @@
 
 A configuration has axial dynamics when ``[chain]`` gives ``masses`` (each node also moves
 axially) or a ``[[section]]`` string has ``[bit_rock] law = "rgd"`` (its axial data from
-E, ρ and the sections). Either needs the RGD bit. :func:`chain_axial` and
-:func:`string_axial` build an :class:`AxialConfig` that
-:func:`torsio.axial.transient.simulate_axial` and :func:`torsio.axial.maps.axial_map` run.
+E, ρ and the sections: :func:`axial_sections`, read once). Either needs the RGD bit.
+:func:`chain_axial` and :func:`string_axial` build an :class:`AxialConfig` that
+:func:`torsio.axial.transient.simulate_axial` and :func:`torsio.axial.maps.axial_map` run:
+a lumped chain (:func:`lumped_chain`, elements of at most ``[axial] element_length``), or
+with ``[discretization] strategy = "wave"`` the distributed pipe
+(:class:`~torsio.axial.wave_assembly.WaveDrillingAssembly`), which takes no element
+length and no damping (both refused by key).
 
 Examples
 --------
