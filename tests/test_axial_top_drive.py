@@ -240,3 +240,15 @@ def test_section_string_gives_the_soft_torque_defaults():
         **axial.run_options(),
     )  # fmt: skip
     assert run.top_drive == "soft-torque" and np.isfinite(run.severity)
+
+
+def test_wave_pipe_file_refuses_a_top_drive():
+    from torsio.config.reading import parse_config_text
+
+    text = resources.files("torsio").joinpath("data/rgd_wave_pipe.toml").read_text("utf-8")
+    pi = '\n[top_drive]\nkind = "pi"\ninertia = 2900.0\nkp = 5000.0\nki = 2067.6\n'
+    with pytest.raises(ConfigError) as info:
+        parse_config_text(text + pi)
+    assert info.value.key == "top_drive" and "'pi'" in info.value.message
+    held = parse_config_text(text + '\n[top_drive]\nkind = "constant-speed"\n')
+    assert held.axial.top_drive is None

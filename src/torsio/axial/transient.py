@@ -293,7 +293,8 @@ def simulate_axial(
     setup: RunSetup | WaveRunSetup
     kind = getattr(top_drive, "name", "constant-speed") if top_drive is not None else None
     boundary = None
-    if top_drive is not None and isinstance(assembly, WaveDrillingAssembly):
+    held = top_drive is None or getattr(top_drive, "name", None) == "constant-speed"
+    if not held and isinstance(assembly, WaveDrillingAssembly):
         raise ConfigError(
             "top_drive",
             f"{kind!r} given with a WaveDrillingAssembly: the distributed pipe's top is held "

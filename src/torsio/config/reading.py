@@ -42,6 +42,7 @@ from typing import Any
 import attrs
 
 from torsio.axial.rgd import rgd_from_table
+from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.config.axial import AXIAL_SIMULATION_KEYS, chain_axial, string_axial
 from torsio.config.chain import parse_chain
 from torsio.config.configuration import (
@@ -169,6 +170,15 @@ def _axial_top_drive(axial: Any, top_drive: Any) -> Any:
             "delay and step at the set rpm: expected a kind with a set speed (constant-speed, "
             "pi, soft-torque, z-torque, plugins), or the torque kind from Python with an rpm",
         )
+    if top_drive.kind == "constant-speed":
+        return axial  # the held top, as without the table
+    if isinstance(axial.assembly, WaveDrillingAssembly):
+        raise ConfigError(
+            "top_drive",
+            f"kind = {top_drive.kind!r} with [discretization] strategy = 'wave': the "
+            "distributed axial pipe's top is held at the set speed (expected no [top_drive], "
+            "kind = 'constant-speed', or a lumped chain: another strategy)",
+        )
     return attrs.evolve(axial, top_drive=top_drive.build())
 
 
@@ -183,13 +193,15 @@ def _string_config(table: Mapping[str, Any], name: str, source: str) -> Config:
     ]
     string = DrillString(sections, name=name)
     discretization = _discretization(table.get("discretization", {}))
+    axial = string_axial(table, string)
     discretizer = discretization.build()
-    if hasattr(discretizer, "element_counts"):
+    if axial is None and hasattr(discretizer, "element_counts"):
+        # (the axial engine builds its own chain or pipe: the torsional element counts
+        # do not apply to it)
         try:
             discretizer.element_counts(string)
         except ConfigError as exc:
             raise ConfigError(f"discretization.{exc.key}", exc.message) from None
-    axial = string_axial(table, string)
     if axial is None:
         _warn_if_undamped(table, source)
     return Config(
