@@ -19,7 +19,7 @@ Examples
 ...                         rgd_two_dof_example(), 60.0)
 >>> boundary.held, round(boundary.set_speed, 6)
 (False, 6.283185)
->>> [round(z, 9) for z in steady_controller_state(boundary, 1000.0)]  # ki z = T₀
+>>> [round(float(z), 9) for z in steady_controller_state(boundary, 1000.0)]  # ki z = T₀
 [0.538793103]
 """
 
@@ -54,10 +54,16 @@ class _AssemblyModel:
     assembly: DrillingAssembly
 
     def first_frequency(self) -> float:
-        """ω₁ [rad/s] of the torsional chain, top held, undamped."""
-        from torsio.axial.transient import first_torsional_frequency
+        """ω₁ [rad/s] of the torsional chain, top held, undamped (as
+        :func:`torsio.axial.transient.first_torsional_frequency`)."""
+        import scipy.linalg  # not at import: the torsional engines load this package too
 
-        return first_torsional_frequency(self.assembly)
+        from torsio.model.lumped import chain_matrix
+
+        stiffness = chain_matrix(self.assembly.stiffnesses)
+        inertia = np.diag(self.assembly.inertias)
+        values = scipy.linalg.eigh(stiffness, inertia, eigvals_only=True)
+        return float(math.sqrt(values[0]))
 
 
 @attrs.frozen
