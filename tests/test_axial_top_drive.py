@@ -252,3 +252,18 @@ def test_wave_pipe_file_refuses_a_top_drive():
     assert info.value.key == "top_drive" and "'pi'" in info.value.message
     held = parse_config_text(text + '\n[top_drive]\nkind = "constant-speed"\n')
     assert held.axial.top_drive is None
+
+
+def test_map_with_a_top_drive_is_its_runs():
+    # reference: simulate_axial at each point with the same top drive (the map's own runs)
+    grid = axial_map(
+        rgd_two_dof_example(), BIT, [90e3, 110e3], [120.0], duration=10.0, window=5.0,
+        top_drive=PI, threads=2,
+    )  # fmt: skip
+    for j, wob in enumerate((90e3, 110e3)):
+        run = simulate_axial(
+            rgd_two_dof_example(), BIT, wob, 120.0, duration=10.0, window=5.0, top_drive=PI,
+            growth_rate=False,
+        )  # fmt: skip
+        assert grid.severity[0, j] == run.severity
+        assert grid.rop[0, j] == run.rop_mean
