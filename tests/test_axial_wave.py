@@ -18,9 +18,9 @@ import pytest
 import scipy.linalg
 import scipy.optimize
 
-from torsio.axial import bit_step, wave_kernel
+from torsio.axial import bit_step, layouts
 from torsio.axial.assembly import pipe_assembly
-from torsio.axial.kernel import SAMPLE_COLUMNS, STATS
+from torsio.axial.layouts import SAMPLE_COLUMNS, STATS
 from torsio.axial.rgd import rgd_example
 from torsio.axial.run_setup import BitRotation
 from torsio.axial.transient import simulate_axial
@@ -272,24 +272,24 @@ def test_one_section_and_two_equal_sections_give_the_same_run():
     assert runs[0].stick_fraction > 0  # the comparison covers the bit's stuck phases
 
 
-def test_the_bit_step_indices_name_the_kernels_stats():
-    # torsio.axial.bit_step and torsio.axial.wave_kernel write STATS by index
+def test_the_layout_indices_name_the_kernels_stats():
+    # torsio.axial.bit_step and both kernels write STATS by the indices of layouts.py
     names = {
-        "bit_speed_max": bit_step.SPEED_MAX,
-        "bit_speed_min": bit_step.SPEED_MIN,
-        "axial_speed_max": bit_step.VELOCITY_MAX,
-        "axial_speed_min": bit_step.VELOCITY_MIN,
-        "stuck_steps": bit_step.STUCK,
-        "off_bottom_steps": bit_step.OFF_BOTTOM,
-        "window_steps": bit_step.COUNT,
-        "work": bit_step.WORK,
-        "torque_integral": bit_step.TORQUE_INTEGRAL,
-        "weight_integral": bit_step.WEIGHT_INTEGRAL,
-        "depth_of_cut_max": bit_step.DEPTH_MAX,
-        "position_start": wave_kernel.POSITION_START,
-        "position_end": wave_kernel.POSITION_END,
-        "failed": wave_kernel.FAILED,
-        "steps_done": wave_kernel.STEPS_DONE,
+        "bit_speed_max": layouts.SPEED_MAX,
+        "bit_speed_min": layouts.SPEED_MIN,
+        "axial_speed_max": layouts.VELOCITY_MAX,
+        "axial_speed_min": layouts.VELOCITY_MIN,
+        "stuck_steps": layouts.STUCK,
+        "off_bottom_steps": layouts.OFF_BOTTOM,
+        "window_steps": layouts.COUNT,
+        "position_start": layouts.POSITION_START,
+        "position_end": layouts.POSITION_END,
+        "work": layouts.WORK,
+        "torque_integral": layouts.TORQUE_INTEGRAL,
+        "weight_integral": layouts.WEIGHT_INTEGRAL,
+        "failed": layouts.FAILED,
+        "steps_done": layouts.STEPS_DONE,
+        "depth_of_cut_max": layouts.DEPTH_MAX,
     }
     assert {name: STATS.index(name) for name in names} == names
 

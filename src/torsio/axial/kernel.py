@@ -22,13 +22,13 @@ at the velocity level over each step (Moreau's time stepping):
 The bit's part of steps 1-3 is :mod:`torsio.axial.bit_step`, shared with the distributed
 pipe's loop (:mod:`torsio.axial.wave_kernel`).
 
-``settings``: [h, steps, Ω₀ (top speed, rad/s), W₀ (hook weight, N), hook (0 weight,
-1 speed), V_h (m/s), U_h0 (m), first step of the window, sample every, prescribed (0/1),
-amplitude A, frequency f (rad/s), t at step 0]. The bit law ``bit``: [ζ ε a, ε a²/2,
-σ a l, μ γ a / 2, 2π/n, n]. ``torsional``: rows 1/I, k, c (spring and damper i join node
-i − 1, the top for i = 0, to node i). ``axial``: rows 1/m, k, c likewise (node 0's spring
-joins the hook; with the weight hook it carries W₀ and is not used). ``stats`` on return:
-see :data:`STATS`.
+``settings`` holds the entries named by :data:`torsio.axial.layouts.CHAIN_SETTINGS`, at
+those indices. The bit law
+``bit``: [ζ ε a, ε a²/2, σ a l, μ γ a / 2, 2π/n, n] (:data:`torsio.axial.layouts.BIT_ROW`).
+``torsional``: rows 1/I, k, c (spring and damper i join node i − 1, the top for i = 0, to
+node i). ``axial``: rows 1/m, k, c likewise (node 0's spring joins the hook; with the
+weight hook it carries W₀ and is not used). ``stats`` on return and ``samples``: see
+:data:`torsio.axial.layouts.STATS` and :data:`torsio.axial.layouts.SAMPLE_COLUMNS`.
 """
 
 from __future__ import annotations
@@ -37,94 +37,47 @@ import math
 
 import numpy as np
 
-from torsio.axial.bit_step import (
-    add_to_window,
-    cutting_forces,
-    depth_of_cut,
-    forward_rotation,
-    start_window,
-    wear_flat_contact,
-)
+from torsio.axial import bit_step
+from torsio.axial import layouts as slot
 from torsio.axial.history import append
 from torsio.solvers.compiled import njit
 
-__all__ = ["SAMPLE_COLUMNS", "STATS", "march"]
-
-STATS = (
-    "bit_speed_max",
-    "bit_speed_min",
-    "axial_speed_max",
-    "axial_speed_min",
-    "stuck_steps",
-    "off_bottom_steps",
-    "window_steps",
-    "position_start",
-    "position_end",
-    "work",
-    "torque_integral",
-    "weight_integral",
-    "failed",
-    "steps_done",
-    "depth_of_cut_max",
-)
-"""The entries of ``stats`` after :func:`march`, in order (window quantities; work [J],
-integrals of the bit torque [N m s] and weight [N s]; ``failed`` 1 when the history was
-too short for the delay; the largest depth of cut [m per rev])."""
-
-SAMPLE_COLUMNS = (
-    "time",
-    "bit_angle",
-    "bit_speed",
-    "bit_position",
-    "bit_velocity",
-    "depth_of_cut",
-    "bit_weight",
-    "bit_torque",
-    "delay",
-    "top_torque",
-)
-"""The columns of ``samples``: s, rad, rad/s, m (down), m/s, m per rev, N, N m, s, N m."""
+__all__ = ["march"]
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
 def march(
     bit, torsional, axial, settings, theta, omega, u, v, history, cursor, stats, samples
 ) -> None:  # pragma: no cover - compiled
-    """Advance the run ``settings[1]`` steps from the state (θ, ω, U, V) in place."""
-    h, steps, top_speed, weight = settings[0], int(settings[1]), settings[2], settings[3]
-    speed_hook, hook_speed, hook_start = settings[4] != 0.0, settings[5], settings[6]
-    window_start, sample_every = int(settings[7]), int(settings[8])
-    prescribed, amplitude, frequency, t_start = (
-        settings[9] != 0.0,
-        settings[10],
-        settings[11],
-        settings[12],
-    )
-    wf_max, tf_per_wf = bit[2], bit[3]
+    """Advance the run ``settings[slot.STEPS]`` steps from the state (θ, ω, U, V) in place."""
+    h, steps = settings[slot.STEP], int(settings[slot.STEPS])
+    top_speed, weight = settings[slot.TOP_SPEED], settings[slot.HOOK_WEIGHT]
+    speed_hook, hook_speed = settings[slot.SPEED_HOOK] != 0.0, settings[slot.HOOK_SPEED]
+    window_start, sample_every = int(settings[slot.WINDOW_START]), int(settings[slot.SAMPLE_EVERY])
+    t_start, hook_start = settings[slot.START_TIME], settings[slot.HOOK_START]
+    prescribed, amplitude = settings[slot.PRESCRIBED] != 0.0, settings[slot.AMPLITUDE]
+    frequency = settings[slot.FREQUENCY]
+    wf_max, tf_per_wf = bit[slot.FRICTION_WEIGHT], bit[slot.FRICTION_TORQUE_PER_WEIGHT]
     nt, na = theta.size, u.size
     bt, ba = nt - 1, na - 1
     delayed = np.zeros(2)
-    start_window(stats)
+    bit_step.start_window(stats)
     row = 0
     for step in range(steps):
         t = t_start + step * h
         sampled = sample_every > 0 and step % sample_every == 0 and row < samples.shape[0]
         if sampled:
-            samples[row, 0] = t
-            samples[row, 1] = theta[bt]
-            samples[row, 2] = omega[bt]
-            samples[row, 3] = u[ba]
-            samples[row, 4] = v[ba]
+            bit_step.sample_motion(samples, row, t, theta[bt], omega[bt], u[ba], v[ba])
         if step == window_start:
-            stats[7] = u[ba]
+            stats[slot.POSITION_START] = u[ba]
         # 1. depth of cut
-        depth = depth_of_cut(bit, history, cursor, theta[bt], u[ba], h, delayed)
+        depth = bit_step.depth_of_cut(bit, history, cursor, theta[bt], u[ba], h, delayed)
         if math.isnan(depth):
-            stats[12] = 1.0
-            stats[13] = step
+            stats[slot.FAILED] = 1.0
+            stats[slot.STEPS_DONE] = step
             return
         on_bottom = depth > 0.0
-        wc, tc = cutting_forces(bit, depth)
+        wc, tc = bit_step.cutting_forces(bit, depth)
         # 2. axial
         hook_position = hook_start + hook_speed * (t - t_start)
         for i in range(na - 1, -1, -1):
@@ -138,7 +91,9 @@ def march(
             if i + 1 < na:
                 force -= axial[1, i + 1] * (u[i] - u[i + 1]) + axial[2, i + 1] * (v[i] - v[i + 1])
             if i == ba:
-                v[i], wf = wear_flat_contact(v[i], force, wc, axial[0, i], h, wf_max, on_bottom)
+                v[i], wf = bit_step.wear_flat_contact(
+                    v[i], force, wc, axial[0, i], h, wf_max, on_bottom
+                )
             else:
                 v[i] += h * force * axial[0, i]
         # 3. torsional
@@ -163,7 +118,7 @@ def march(
                     torque -= torsional[1, i + 1] * (theta[i] - theta[i + 1])
                     torque -= torsional[2, i + 1] * (omega[i] - omega[i + 1])
                 if i == bt:
-                    omega[i], bit_torque = forward_rotation(
+                    omega[i], bit_torque = bit_step.forward_rotation(
                         omega[i], torque, tc, tf, torsional[0, i], h
                     )
                 else:
@@ -174,15 +129,9 @@ def march(
         for i in range(na):
             u[i] += h * v[i]
         append(history, cursor, t + h, theta[bt], omega[bt], u[ba], v[ba])
-        bit_weight = wc + wf
-        if step >= window_start:
-            add_to_window(stats, omega[bt], v[ba], depth, h, bit_weight, bit_torque)
-        if sampled:
-            samples[row, 5] = depth
-            samples[row, 6] = bit_weight
-            samples[row, 7] = bit_torque
-            samples[row, 8] = t - delayed[0]
-            samples[row, 9] = top_torque
-            row += 1
-    stats[8] = u[ba]
-    stats[13] = steps
+        row = bit_step.record_step(
+            stats, samples, row, step >= window_start, sampled, omega[bt], v[ba], depth, h, wc + wf,
+            bit_torque, t - delayed[0], top_torque,
+        )  # fmt: skip
+    stats[slot.POSITION_END] = u[ba]
+    stats[slot.STEPS_DONE] = steps

@@ -32,8 +32,8 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
+from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
-from torsio.axial.kernel import STATS
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 from torsio.errors import ConfigError
@@ -51,6 +51,7 @@ __all__ = [
     "contact_frequency",
     "largest_step",
     "past_times",
+    "run_settings",
     "run_setup",
     "start_history",
     "summarize",
@@ -176,17 +177,32 @@ def start_history(
 
 def bit_law_row(bit: RGDBit) -> NDArray[np.float64]:
     """The kernels' bit row [ζ ε a, ε a²/2, σ a l, μ γ a/2, 2π/n, n]
-    (:mod:`torsio.axial.bit_step`)."""
-    return np.array(
-        [
-            bit.cutting_weight_per_depth,
-            bit.cutting_torque_per_depth,
-            bit.friction_weight,
-            bit.contact_friction * bit.bit_geometry * bit.radius / 2,
-            2 * math.pi / bit.blades,
-            float(bit.blades),
-        ]
-    )
+    (:data:`torsio.axial.layouts.BIT_ROW`)."""
+    row = np.zeros(len(slot.BIT_ROW))
+    row[slot.CUTTING_WEIGHT_PER_DEPTH] = bit.cutting_weight_per_depth
+    row[slot.CUTTING_TORQUE_PER_DEPTH] = bit.cutting_torque_per_depth
+    row[slot.FRICTION_WEIGHT] = bit.friction_weight
+    row[slot.FRICTION_TORQUE_PER_WEIGHT] = bit.contact_friction * bit.bit_geometry * bit.radius / 2
+    row[slot.ANGLE_PER_BLADE] = 2 * math.pi / bit.blades
+    row[slot.BLADES] = float(bit.blades)
+    return row
+
+
+def run_settings(
+    size: int, steady: SteadyDrilling, step: float, steps: int, window_steps: int, hook: str
+) -> NDArray[np.float64]:
+    """A kernel's ``settings`` of ``size`` entries with the head both kernels share filled in
+    (:data:`torsio.axial.layouts.RUN_SETTINGS`: the step h [s], the steps, Ω₀ and W₀ of
+    ``steady``, the ``hook`` and its speed V₀ when it is ``"speed"``, the window of the last
+    ``window_steps``), the rest 0."""
+    settings = np.zeros(size)
+    settings[slot.STEP], settings[slot.STEPS] = step, steps
+    settings[slot.TOP_SPEED], settings[slot.HOOK_WEIGHT] = steady.bit_speed, steady.wob
+    speed_hook = hook == "speed"
+    settings[slot.SPEED_HOOK] = 1.0 if speed_hook else 0.0
+    settings[slot.HOOK_SPEED] = steady.rop if speed_hook else 0.0
+    settings[slot.WINDOW_START] = steps - window_steps
+    return settings
 
 
 def run_setup(
@@ -239,23 +255,10 @@ def run_setup(
         times, angle, speed, u[-1] + velocity * times, velocity, omega[-1], v[-1], steps
     )
     rotation = bit_rotation or BitRotation()
-    settings = np.array(
-        [
-            h,
-            steps,
-            omega0,
-            wob,
-            1.0 if assembly.hook == "speed" else 0.0,
-            v0 if assembly.hook == "speed" else 0.0,
-            hook_start,
-            steps - window_steps,
-            0,
-            1.0 if bit_rotation is not None else 0.0,
-            rotation.amplitude,
-            rotation.frequency,
-            0.0,
-        ]
-    )
+    settings = run_settings(len(slot.CHAIN_SETTINGS), steady, h, steps, window_steps, assembly.hook)
+    settings[slot.HOOK_START] = hook_start
+    settings[slot.PRESCRIBED] = 1.0 if bit_rotation is not None else 0.0
+    settings[slot.AMPLITUDE], settings[slot.FREQUENCY] = rotation.amplitude, rotation.frequency
     return RunSetup(
         steady,
         h,
@@ -300,9 +303,9 @@ class WindowSummary:
 
 
 def summarize(stats: NDArray, setup: RunSetup | WaveRunSetup, bit: RGDBit) -> WindowSummary:
-    """The window summary of a kernel's ``stats`` (:data:`torsio.axial.kernel.STATS`), the
+    """The window summary of a kernel's ``stats`` (:data:`torsio.axial.layouts.STATS`), the
     lumped or the distributed one (``setup.step`` and ``setup.steady`` are read)."""
-    s = dict(zip(STATS, stats, strict=True))
+    s = dict(zip(slot.STATS, stats, strict=True))
     count = s["window_steps"]
     length = count * setup.step
     advance = s["position_end"] - s["position_start"]

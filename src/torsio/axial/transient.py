@@ -35,8 +35,9 @@ import scipy.linalg
 from numpy.typing import NDArray
 
 from torsio.analysis.severity import default_times
+from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
-from torsio.axial.kernel import SAMPLE_COLUMNS, STATS, march
+from torsio.axial.kernel import march
 from torsio.axial.rgd import RGDBit
 from torsio.axial.run_setup import (
     DEFAULT_STEPS_PER_PERIOD,
@@ -92,8 +93,8 @@ def run_kernel(
         state = [setup.axial_p, setup.torsional_p, setup.bha]
     else:
         settings = setup.settings.copy()
-        settings[8] = sample_every
-        stats = np.zeros(len(STATS))
+        settings[slot.SAMPLE_EVERY] = sample_every
+        stats = np.zeros(len(slot.STATS))
         march(
             setup.bit,
             setup.torsional,
@@ -109,10 +110,11 @@ def run_kernel(
             samples,
         )
         state = [setup.u, setup.theta]
-    if stats[STATS.index("failed")]:
+    if stats[slot.FAILED]:
+        done = stats[slot.STEPS_DONE]
         raise SolverError(
-            f"the bit's history did not hold the delay at step {int(stats[-1])} "
-            f"(t = {stats[-1] * setup.step:.6g} s): non-finite state or a stalled bit"
+            f"the bit's history did not hold the delay at step {int(done)} "
+            f"(t = {done * setup.step:.6g} s): non-finite state or a stalled bit"
         )
     if not all(np.isfinite(values).all() for values in state):
         raise SolverError("the run produced non-finite values; try a smaller step")
@@ -142,7 +144,7 @@ class AxialTransient:
     start : str
         ``"rest"`` or ``"steady"``.
     samples : ndarray (k, 10)
-        The bit's signals, columns :data:`torsio.axial.kernel.SAMPLE_COLUMNS`.
+        The bit's signals, columns :data:`torsio.axial.layouts.SAMPLE_COLUMNS`.
     """
 
     wob: float
@@ -163,7 +165,7 @@ class AxialTransient:
 
     def signal(self, name: str) -> NDArray[np.float64]:
         """One column of :attr:`samples` by name (e.g. ``"bit_speed"``)."""
-        return self.samples[:, SAMPLE_COLUMNS.index(name)]
+        return self.samples[:, slot.SAMPLE_COLUMNS.index(name)]
 
     def to_dict(self) -> dict[str, Any]:
         """DESIGN.md's JSON keys: ``wob``, ``rpm``, ``severity``, ``rop_mean`` (m/s),
@@ -265,7 +267,7 @@ def simulate_axial(
         )
     every = max(1, setup.steps // samples) if samples > 0 else 0
     rows = (setup.steps - 1) // every + 1 if every else 0
-    table = np.zeros((rows, len(SAMPLE_COLUMNS)))
+    table = np.zeros((rows, len(slot.SAMPLE_COLUMNS)))
     stats = run_kernel(setup, table, every)
     rate = None
     if growth_rate and isinstance(assembly, DrillingAssembly) and bit_rotation is None:

@@ -27,7 +27,7 @@ Examples
 ((100,), (161,), 1.933599)
 >>> bool(grid.travel_time_errors.max() <= assembly.travel_time_tolerance)
 True
->>> from torsio.axial.kernel import STATS
+>>> from torsio.axial.layouts import STATS
 >>> from torsio.axial.rgd import rgd_example
 >>> setup = wave_run_setup(assembly, rgd_example(), 100e3, 180.0, 1.0, 0.5, start="steady",
 ...                        perturbation=0.0)
@@ -45,8 +45,8 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.axial import wave_kernel as slot
-from torsio.axial.kernel import STATS
+from torsio.axial import layouts as slot
+from torsio.axial import wave_kernel
 from torsio.axial.rgd import RGDBit
 from torsio.axial.run_setup import (
     DEFAULT_STEPS_PER_PERIOD,
@@ -55,6 +55,7 @@ from torsio.axial.run_setup import (
     contact_frequency,
     largest_step,
     past_times,
+    run_settings,
     start_history,
 )
 from torsio.axial.steady import SteadyDrilling, steady_drilling
@@ -192,14 +193,11 @@ def wave_run_setup(
         velocity,
         steps,
     )
-    settings = np.zeros(len(slot.SETTINGS))
-    settings[slot.STEP], settings[slot.STEPS] = h, steps
-    settings[slot.TOP_SPEED], settings[slot.HOOK_WEIGHT] = omega0, wob
-    speed_hook = assembly.hook == "speed"
-    settings[slot.SPEED_HOOK] = 1.0 if speed_hook else 0.0
-    settings[slot.HOOK_SPEED] = v0 if speed_hook else 0.0
-    settings[slot.WINDOW_START] = steps - window_steps
-    settings[slot.BHA_MASS], settings[slot.BHA_INERTIA] = assembly.bha_mass, assembly.bha_inertia
+    settings = run_settings(len(slot.WAVE_SETTINGS), steady, h, steps, window_steps, assembly.hook)
+    settings[slot.BHA_MASS], settings[slot.BHA_INERTIA] = (
+        assembly.bha_mass,
+        assembly.bha_inertia,
+    )
     settings[slot.AXIAL_TOP_IMPEDANCE] = axial_z[0]
     settings[slot.AXIAL_BOTTOM_IMPEDANCE] = axial_z[-1]
     settings[slot.TORSIONAL_TOP_IMPEDANCE] = torsional_z[0]
@@ -224,12 +222,12 @@ def wave_run_setup(
 
 def run_wave(setup: WaveRunSetup, samples: NDArray[np.float64], sample_every: int) -> NDArray:
     """Run the compiled loop on ``setup`` (its state arrays change); the stats vector
-    (:data:`torsio.axial.kernel.STATS`)."""
+    (:data:`torsio.axial.layouts.STATS`)."""
     settings = setup.settings.copy()
     settings[slot.SAMPLE_EVERY] = sample_every
-    stats = np.zeros(len(STATS))
+    stats = np.zeros(len(slot.STATS))
     grid = setup.grid
-    slot.march(
+    wave_kernel.march(
         setup.bit,
         settings,
         grid.axial_offsets,
