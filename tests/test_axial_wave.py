@@ -22,7 +22,7 @@ from torsio.axial import bit_step, layouts
 from torsio.axial.assembly import pipe_assembly
 from torsio.axial.layouts import SAMPLE_COLUMNS, STATS
 from torsio.axial.rgd import rgd_example
-from torsio.axial.run_setup import BitRotation
+from torsio.axial.run_setup import BitRotation, RunOptions
 from torsio.axial.transient import simulate_axial
 from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly, wave_pipe_assembly
 from torsio.axial.wave_pipe import (
@@ -99,7 +99,7 @@ def test_the_free_step_is_the_kernels_step_with_the_bit_off_bottom():
     # itself, its rock surface put 10 m below the bit (off bottom throughout: d < 0), gives
     # the same bit velocity and speed at every step, to the last bit
     assembly = _stepped("speed")
-    setup = wave_run_setup(assembly, BIT, WOB, 180.0, 0.5, 0.25, start="steady")
+    setup = wave_run_setup(assembly, BIT, WOB, 180.0, RunOptions(0.5, 0.25, start="steady"))
     setup.history[3, : int(setup.cursor[1])] += 10.0
     lines = {name: _line(assembly, setup.grid, name) for name in ("axial", "torsional")}
     states = {

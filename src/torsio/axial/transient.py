@@ -42,6 +42,7 @@ from torsio.axial.rgd import RGDBit
 from torsio.axial.run_setup import (
     DEFAULT_STEPS_PER_PERIOD,
     BitRotation,
+    RunOptions,
     RunSetup,
     WindowSummary,
     run_setup,
@@ -231,6 +232,7 @@ def simulate_axial(
         torsional chain is not integrated).
     """
     duration, window = run_times(assembly, duration, window)
+    options = RunOptions(duration, window, start, perturbation, step, steps_per_period)
     setup: RunSetup | WaveRunSetup
     if isinstance(assembly, WaveDrillingAssembly):
         if bit_rotation is not None:
@@ -239,32 +241,9 @@ def simulate_axial(
                 f"{bit_rotation!r} given; a prescribed rotation applies to lumped assemblies "
                 "only (expected None with a WaveDrillingAssembly)",
             )
-        setup = wave_run_setup(
-            assembly,
-            bit,
-            wob,
-            rpm,
-            duration,
-            window,
-            start=start,
-            perturbation=perturbation,
-            step=step,
-            steps_per_period=steps_per_period,
-        )
+        setup = wave_run_setup(assembly, bit, wob, rpm, options)
     else:
-        setup = run_setup(
-            assembly,
-            bit,
-            wob,
-            rpm,
-            duration,
-            window,
-            start=start,
-            perturbation=perturbation,
-            step=step,
-            steps_per_period=steps_per_period,
-            bit_rotation=bit_rotation,
-        )
+        setup = run_setup(assembly, bit, wob, rpm, options, bit_rotation)
     every = max(1, setup.steps // samples) if samples > 0 else 0
     rows = (setup.steps - 1) // every + 1 if every else 0
     table = np.zeros((rows, len(slot.SAMPLE_COLUMNS)))
