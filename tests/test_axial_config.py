@@ -3,7 +3,8 @@ against the Python API's example, a [[section]] string's chain from E, ρ and th
 every refusal by key, and the torsional engines refusing ``law = "rgd"``.
 
 Numbers checked: the file's assembly and bit equal rgd_two_dof_example() and rgd_example();
-the string's chain carries the string's whole mass and its springs are E A / Δ, G J / Δ.
+the string's chain carries the string's whole mass under the weight hook (less the top
+half element at the hook under the speed hook) and its springs are E A / Δ, G J / Δ.
 """
 
 from __future__ import annotations
@@ -106,7 +107,17 @@ def test_string_chain_from_youngs_modulus():
     assert a.stiffnesses == pytest.approx(79.3e9 * pipe.polar_moment / 100.0)
     bha_mass = sum(7850 * math.pi * (s.od**2 - s.id**2) / 4 * s.length for s in (collars, bit))
     pipe_mass = 7850 * area * 1000.0
-    assert a.masses.sum() == pytest.approx(bha_mass + pipe_mass - 7850 * area * 50.0)
+    # under the weight hook the top of the pipe is free: the chain carries the whole mass
+    # (the top element's upper half on node 0, as pipe_assembly); torsionally that half
+    # inertia is at the top drive
+    assert a.masses.sum() == pytest.approx(bha_mass + pipe_mass, rel=1e-14)
+    assert a.inertias.sum() == pytest.approx(
+        string.bha_inertia + 7850 * pipe.polar_moment * 950.0, rel=1e-14
+    )
+    speed = parse_config(_with(_with(STRING, "axial.hook", "speed"), "damping", None)).axial
+    assert speed.assembly.masses.sum() == pytest.approx(
+        bha_mass + pipe_mass - 7850 * area * 50.0, rel=1e-14
+    )
     assert a.damping == pytest.approx(0.06 * a.stiffnesses)
     assert a.axial_damping == pytest.approx(0.06 * a.axial_stiffnesses)
     coarse = parse_config(_with(STRING, "axial.element_length", "250 m")).axial.assembly

@@ -10,6 +10,8 @@
 2500.0
 >>> rgd_two_dof_config().axial.assembly.masses.tolist()
 [29981.3]
+>>> rgd_wave_pipe_config().axial.assembly.lengths.tolist()
+[900.0, 100.0]
 """
 
 from __future__ import annotations
@@ -20,7 +22,13 @@ from torsio.config.configuration import Config
 from torsio.config.reading import parse_config_text
 from torsio.model.drillstring import DrillString
 
-__all__ = ["builtin_config", "deviated_well_config", "rgd_two_dof_config", "ritto2017_string"]
+__all__ = [
+    "builtin_config",
+    "deviated_well_config",
+    "rgd_two_dof_config",
+    "rgd_wave_pipe_config",
+    "ritto2017_string",
+]
 
 
 def _data(name: str) -> Config:
@@ -52,3 +60,10 @@ def rgd_two_dof_config() -> Config:
     parameters of :func:`torsio.axial.assembly.rgd_two_dof_example` and
     :func:`torsio.axial.rgd.rgd_example`, 100 kN at 60 rpm; the built-in axial example."""
     return _data("rgd_2dof.toml")
+
+
+def rgd_wave_pipe_config() -> Config:
+    """A 1 km stepped pipe (900 m of 5 in drill pipe, 100 m of HWDP) as the distributed
+    axial-torsional model above a rigid BHA with the RGD bit (``data/rgd_wave_pipe.toml``,
+    ``[discretization] strategy = "wave"``), 100 kN at 60 rpm."""
+    return _data("rgd_wave_pipe.toml")

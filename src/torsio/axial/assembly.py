@@ -176,6 +176,7 @@ class DrillingAssembly:
     def describe(self) -> dict[str, Any]:
         """Plain data for reports and JSON."""
         return {
+            "kind": "lumped",
             "nodes": self.nodes,
             "axial_dofs": self.axial_dofs,
             "hook": self.hook,

@@ -173,12 +173,15 @@ class WaveDrillingAssembly:
         g, rho = self._column("shear_modulus"), self._column("density")
         return self._column("polar_moment") * np.sqrt(g * rho)
 
-    def axial_frequencies(self, count: int = 10) -> NDArray[np.float64]:
-        """The first exact axial frequencies [rad/s] of the pipe with the BHA, the top held
-        (the speed hook) and the bit off bottom (:func:`torsio.model.continuum.bar_frequencies`
-        with E A, √(E/ρ) and m_b)."""
+    def axial_frequencies(self, count: int = 10, *, free_top: bool = False) -> NDArray[np.float64]:
+        """The first exact axial frequencies [rad/s] of the pipe with the BHA and the bit off
+        bottom (:func:`torsio.model.continuum.bar_frequencies` with E A, √(E/ρ) and m_b): the
+        top held (the speed hook), or with ``free_top`` free (the weight hook's constant
+        force; the rigid-body zero left out)."""
         rigidity = self._column("youngs_modulus") * self._column("area")
-        return bar_frequencies(rigidity, self.lengths, self.axial_wave_speeds, self.bha_mass, count)
+        return bar_frequencies(
+            rigidity, self.lengths, self.axial_wave_speeds, self.bha_mass, count, free_top=free_top
+        )
 
     def torsional_frequencies(self, count: int = 10) -> NDArray[np.float64]:
         """The first exact torsional frequencies [rad/s], the top drive held and the bit free
@@ -201,6 +204,7 @@ class WaveDrillingAssembly:
     def describe(self) -> dict[str, Any]:
         """Plain data for reports and JSON."""
         return {
+            "kind": "distributed",
             "sections": [attrs.asdict(s) for s in self.sections],
             "bha_mass": self.bha_mass,
             "bha_inertia": self.bha_inertia,

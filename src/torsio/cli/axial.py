@@ -10,11 +10,15 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from torsio.axial.assembly import DrillingAssembly
 from torsio.cli import common
 from torsio.errors import ConfigError
 
 SCHEME = "semi-implicit Euler, set-valued contacts at the velocity level (Moreau)"
 """The axial engine's fixed-step scheme (:mod:`torsio.axial.kernel`)."""
+
+NO_GROWTH_RATE = "n/a (the distributed pipe has no linearization; see torsio report)"
+"""The growth-rate row of a distributed pipe's run (the report gives its lumped twin's)."""
 
 _SIMULATE_REFUSED = {
     "strategy": "--strategy",
@@ -96,12 +100,10 @@ def _print_run(data: dict[str, Any]) -> None:
     from rich.console import Console
     from rich.table import Table
 
+    from torsio.report.axial import assembly_summary
+
     steady = data["steady_state"]
-    model = data["model"]
-    table = Table(
-        title=f"Axial-torsional run: {model['nodes']} node(s), {model['axial_dofs']} axial "
-        f"DOF, hook {model['hook']}, RGD bit"
-    )
+    table = Table(title=f"Axial-torsional run: {assembly_summary(data['model'])}, RGD bit")
     table.add_column("quantity")
     table.add_column("value", justify="right")
     mse = data["mse_mean"]
@@ -123,7 +125,9 @@ def _print_run(data: dict[str, Any]) -> None:
         ("steady MSE", f"{steady['mse'] / 1e6:.4g} MPa"),
         (
             "growth rate (linear)",
-            "n/a" if rate is None else f"{rate:.4g} 1/s ({'unstable' if rate > 0 else 'stable'})",
+            NO_GROWTH_RATE
+            if rate is None
+            else f"{rate:.4g} 1/s ({'unstable' if rate > 0 else 'stable'})",
         ),
         ("solver", f"axial engine, fixed step {data['solver']['step'] * 1e3:.4g} ms"),
     ]
@@ -153,7 +157,7 @@ def run_map(args: argparse.Namespace, config: Any, wob: Any, rpm: Any) -> int:
         rpm,
         **_times(args, config),
         **axial.run_options(),
-        growth_rate=True,
+        growth_rate=isinstance(axial.assembly, DrillingAssembly),  # none for a wave pipe
         threads=args.threads,
         executor=args.workers if args.workers is not None else args.scheduler,
         timeout=args.timeout,

@@ -2,9 +2,13 @@
 
 A configuration has axial dynamics when ``[chain]`` gives ``masses`` (each node also moves
 axially) or a ``[[section]]`` string has ``[bit_rock] law = "rgd"`` (its axial data from
-E, ρ and the sections). Either needs the RGD bit. :func:`chain_axial` and
-:func:`string_axial` build an :class:`AxialConfig` that
-:func:`torsio.axial.transient.simulate_axial` and :func:`torsio.axial.maps.axial_map` run.
+E, ρ and the sections: :func:`axial_sections`, read once). Either needs the RGD bit.
+:func:`chain_axial` and :func:`string_axial` build an :class:`AxialConfig` that
+:func:`torsio.axial.transient.simulate_axial` and :func:`torsio.axial.maps.axial_map` run:
+a lumped chain (:func:`lumped_chain`, elements of at most ``[axial] element_length``), or
+with ``[discretization] strategy = "wave"`` the distributed pipe
+(:class:`~torsio.axial.wave_assembly.WaveDrillingAssembly`), which takes no element
+length and no damping (both refused by key).
 
 Examples
 --------
@@ -27,13 +31,23 @@ import numpy as np
 
 from torsio.axial.assembly import HOOKS, DrillingAssembly
 from torsio.axial.rgd import RGDBit, rgd_from_table
+from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly
 from torsio.config.chain import ChainConfig, _values
 from torsio.config.tables import _positive_number, _string, _table
 from torsio.errors import ConfigError
 from torsio.model.drillstring import DrillString
+from torsio.model.wave import DEFAULT_TRAVEL_TIME_TOLERANCE
 from torsio.units import to_si
 
-__all__ = ["AXIAL_SIMULATION_KEYS", "AxialConfig", "chain_axial", "string_axial"]
+__all__ = [
+    "AXIAL_SIMULATION_KEYS",
+    "AxialConfig",
+    "AxialSections",
+    "axial_sections",
+    "chain_axial",
+    "lumped_chain",
+    "string_axial",
+]
 
 AXIAL_KEYS = {"hook", "steps_per_period", "element_length"}
 """Keys of the ``[axial]`` table."""
@@ -58,8 +72,9 @@ class AxialConfig:
 
     Attributes
     ----------
-    assembly : DrillingAssembly
-        The nodes that turn and move axially, the bit on the last one.
+    assembly : DrillingAssembly or WaveDrillingAssembly
+        The lumped nodes that turn and move axially, the bit on the last one; or the
+        distributed pipe above the rigid BHA (``[discretization] strategy = "wave"``).
     bit : RGDBit
         The RGD bit of ``[bit_rock]``.
     start : str
@@ -70,14 +85,19 @@ class AxialConfig:
         Largest time step [s] (``[simulation] step``; None: the engine's rule).
     steps_per_period : int
         Steps per period of the fastest node frequency (``[axial] steps_per_period``).
+    lumped_twin : DrillingAssembly or None
+        With the distributed pipe: the lumped chain of the same sections in elements of at
+        most :data:`DEFAULT_ELEMENT_LENGTH`, on which its linear stability is computed
+        (the distributed pipe has no linearization yet); None with a lumped assembly.
     """
 
-    assembly: DrillingAssembly
+    assembly: DrillingAssembly | WaveDrillingAssembly
     bit: RGDBit
     start: str = "rest"
     perturbation: float = 1e-3
     step: float | None = None
     steps_per_period: int = 100
+    lumped_twin: DrillingAssembly | None = None
 
     def run_options(self) -> dict[str, Any]:
         """Keywords of :func:`~torsio.axial.transient.simulate_axial` from the file."""
@@ -87,6 +107,26 @@ class AxialConfig:
             "step": self.step,
             "steps_per_period": self.steps_per_period,
         }
+
+    @property
+    def stability_assembly(self) -> DrillingAssembly:
+        """The lumped chain whose linearization gives the growth rate and crossings: the
+        assembly itself, or the distributed pipe's :attr:`lumped_twin`."""
+        if isinstance(self.assembly, DrillingAssembly):
+            return self.assembly
+        assert self.lumped_twin is not None
+        return self.lumped_twin
+
+    @property
+    def stability_model(self) -> str:
+        """What :attr:`stability_assembly` is, for reports: ``"the assembly"`` or
+        ``"lumped twin, N nodes (elements of at most 100 m)"``."""
+        if isinstance(self.assembly, DrillingAssembly):
+            return "the assembly"
+        return (
+            f"lumped twin, {self.stability_assembly.nodes} nodes (elements of at most "
+            f"{DEFAULT_ELEMENT_LENGTH:g} m)"
+        )
 
     @property
     def is_two_dof(self) -> bool:
@@ -152,6 +192,11 @@ def _bit(table: Mapping[str, Any], given: str) -> RGDBit:
 
 def _dampers(table: Mapping[str, Any], springs: np.ndarray) -> np.ndarray:
     """Dampers β k [N m s/rad or N s/m] from ``[damping] beta``; alpha and ratios refused."""
+    return _damping_beta(table) * springs
+
+
+def _damping_beta(table: Mapping[str, Any]) -> float:
+    """β [s] of ``[damping]`` (default 0); alpha and ratios refused."""
     raw = table.get("damping", {})
     raw = raw if isinstance(raw, Mapping) else {}
     for key in ("alpha", "ratios"):
@@ -161,8 +206,7 @@ def _dampers(table: Mapping[str, Any], springs: np.ndarray) -> np.ndarray:
                 "the axial engine's dampers join nodes: only stiffness-proportional damping "
                 "(damping.beta, c = beta k) applies; remove it",
             )
-    beta = _positive_number(raw.get("beta", 0.0), "damping.beta", "time")
-    return beta * springs
+    return _positive_number(raw.get("beta", 0.0), "damping.beta", "time")
 
 
 def chain_axial(table: Mapping[str, Any], chain: ChainConfig) -> AxialConfig | None:
@@ -238,35 +282,38 @@ def _youngs_modulus(raw: Any, key: str, default: float | None) -> float | None:
     return value
 
 
-def string_axial(table: Mapping[str, Any], string: DrillString) -> AxialConfig | None:
-    """The axial dynamics of a ``[[section]]`` file (None unless ``law = "rgd"``).
+@attrs.frozen
+class AxialSections:
+    """A ``[[section]]`` string read once for axial dynamics (:func:`axial_sections`).
 
-    The pipe sections above the BHA are split into elements of at most
-    ``[axial] element_length`` [m], each with springs E A / Δ [N/m] and G J / Δ [N m/rad]
-    and its mass ρ A Δ and inertia ρ J Δ shared by its two end nodes (the top half at the
-    hook); the BHA (with the bit) is rigid on the last node.
+    Attributes
+    ----------
+    pipe : tuple of PipeSection
+        The sections above the BHA, from the top down: L [m], E, G [Pa], ρ [kg/m³],
+        A = π (od² − id²)/4 [m²], J [m⁴].
+    bha_mass : float
+        Σ ρ A L of the BHA's sections and the bit [kg].
+    bha_inertia : float
+        Σ ρ J L of the same [kg m²].
     """
-    raw = table.get("bit_rock")
-    law = raw.get("law") if isinstance(raw, Mapping) else None
-    if law != "rgd":
-        _refuse_axial_tables(table, "[bit_rock] law = 'rgd' and [material] youngs_modulus")
-        return None
-    options = _axial_table(table)
+
+    pipe: tuple[PipeSection, ...]
+    bha_mass: float
+    bha_inertia: float
+
+
+def axial_sections(table: Mapping[str, Any], string: DrillString) -> AxialSections:
+    """The pipe sections (with E from ``[material]`` or the section's own) and the rigid
+    BHA's sums: what both the lumped chain and the distributed pipe are built from."""
     default_e = _youngs_modulus(table.get("material"), "material", None)
-    inertias: list[float] = []
-    stiffnesses: list[float] = []
-    masses: list[float] = []
-    springs: list[float] = []
-    carry_i = carry_m = 0.0  # the lower half of the element above
-    bha_i = bha_m = 0.0
+    pipe: list[PipeSection] = []
+    bha_mass = bha_inertia = 0.0
     for i, (section, raw_section) in enumerate(zip(string.sections, table["section"], strict=True)):
-        key = f"section[{i}].material"
-        e = _youngs_modulus(raw_section.get("material"), key, default_e)
-        rho, g = section.material.density, section.material.shear_modulus
+        e = _youngs_modulus(raw_section.get("material"), f"section[{i}].material", default_e)
         area = math.pi * (section.od**2 - section.id**2) / 4
         if section.in_bha:
-            bha_i += section.inertia
-            bha_m += rho * area * section.length
+            bha_mass += section.material.density * area * section.length
+            bha_inertia += section.inertia
             continue
         if e is None:
             raise ConfigError(
@@ -275,33 +322,144 @@ def string_axial(table: Mapping[str, Any], string: DrillString) -> AxialConfig |
                 f"Young's modulus E of section[{i}] ({section.describe()}) "
                 "(e.g. youngs_modulus = '207 GPa')",
             )
-        count = math.ceil(section.length / options["element_length"] - 1e-9)
+        material = section.material
+        pipe.append(
+            PipeSection(
+                section.length, e, material.shear_modulus, material.density, area,
+                section.polar_moment,
+            )
+        )  # fmt: skip
+    if not pipe:
+        raise ConfigError("section", "axial dynamics need a flexible pipe above the BHA")
+    return AxialSections(tuple(pipe), bha_mass, bha_inertia)
+
+
+def lumped_chain(
+    sections: AxialSections,
+    element_length: float,
+    hook: str,
+    beta: float = 0.0,
+) -> DrillingAssembly:
+    """The lumped chain of ``sections``: each pipe section split into elements of at most
+    ``element_length`` [m], with springs E A / Δ [N/m] and G J / Δ [N m/rad] and dampers
+    β k; each element's mass ρ A Δ and inertia ρ J Δ shared by its two end nodes, the BHA
+    rigid on the last node. The top element's upper half of inertia is at the top drive;
+    its upper half of mass at the hook under the speed hook, on node 0 under the weight
+    hook (the top of the pipe is free there), as :func:`torsio.axial.assembly.pipe_assembly`.
+    """
+    inertias: list[float] = []
+    stiffnesses: list[float] = []
+    masses: list[float] = []
+    springs: list[float] = []
+    carry_i = carry_m = 0.0  # the lower half of the element above
+    free_top_mass = 0.0
+    for section in sections.pipe:
+        count = math.ceil(section.length / element_length - 1e-9)
         spacing = section.length / count
+        element_i = section.density * section.polar_moment * spacing
+        element_m = section.density * section.area * spacing
         for _ in range(count):
-            element_i = rho * section.polar_moment * spacing
-            element_m = rho * area * spacing
-            if stiffnesses:
+            if stiffnesses:  # the node between this element and the one above
                 inertias.append(carry_i + element_i / 2)
                 masses.append(carry_m + element_m / 2)
-            stiffnesses.append(g * section.polar_moment / spacing)
-            springs.append(e * area / spacing)
+            elif hook == "weight":  # the free top's half element rides on node 0
+                free_top_mass = element_m / 2
+            stiffnesses.append(section.shear_modulus * section.polar_moment / spacing)
+            springs.append(section.youngs_modulus * section.area / spacing)
             carry_i, carry_m = element_i / 2, element_m / 2
-    if not stiffnesses:
-        raise ConfigError("section", "axial dynamics need a flexible pipe above the BHA")
-    inertias.append(carry_i + bha_i)
-    masses.append(carry_m + bha_m)
+    inertias.append(carry_i + sections.bha_inertia)
+    masses.append(carry_m + sections.bha_mass)
+    masses[0] += free_top_mass
     torsional = np.array(stiffnesses)
     axial = np.array(springs)
-    assembly = _assembly(
+    return _assembly(
         inertias=inertias,
         stiffnesses=torsional,
         masses=masses,
         axial_stiffnesses=axial,
-        damping=_dampers(table, torsional),
-        axial_damping=_dampers(table, axial),
-        hook=options["hook"],
+        damping=beta * torsional,
+        axial_damping=beta * axial,
+        hook=hook,
     )
-    return AxialConfig(
-        assembly, _bit(table, "law = 'rgd'"), steps_per_period=options["steps_per_period"],
-        **_simulation_options(table),
-    )  # fmt: skip
+
+
+WAVE_REFUSED_DISCRETIZATION = {
+    "time_step": "the axial engine's largest step is simulation.step (the distributed "
+    "pipe's step rule: axial.steps_per_period and discretization.travel_time_tolerance); "
+    "give it there",
+    "drag_spacing": "the distributed axial pipe carries no distributed drag (the axial "
+    "engine takes no [well] and no damping); remove it",
+}
+"""``[discretization]`` keys of the torsional wave strategy that the distributed axial pipe
+refuses, and why."""
+
+
+def _wave_pipe(
+    table: Mapping[str, Any], sections: AxialSections, hook: str
+) -> WaveDrillingAssembly:
+    """The distributed pipe of ``[discretization] strategy = "wave"``: one
+    :class:`~torsio.axial.wave_assembly.PipeSection` per section above the BHA."""
+    if "element_length" in table.get("axial", {}):
+        raise ConfigError(
+            "axial.element_length",
+            f"{table['axial']['element_length']!r} given, but [discretization] strategy = "
+            "'wave' builds the distributed pipe, which has no elements (its grid follows the "
+            "wave speeds within discretization.travel_time_tolerance); remove it, or choose "
+            "the lumped chain (another strategy)",
+        )
+    discretization = table.get("discretization", {})
+    for key, why in WAVE_REFUSED_DISCRETIZATION.items():
+        if key in discretization:
+            raise ConfigError(f"discretization.{key}", f"{discretization[key]!r}: {why}")
+    if discretization.get("rigid_bha", True) is not True:
+        raise ConfigError(
+            "discretization.rigid_bha",
+            f"{discretization['rigid_bha']!r}: the distributed axial pipe's BHA is one rigid "
+            "body with the bit (expected true, or leave it out)",
+        )
+    damping = table.get("damping", {})
+    damping = damping if isinstance(damping, Mapping) else {}
+    for key in ("alpha", "beta", "ratios"):
+        if key in damping and damping[key] not in (0, 0.0):
+            raise ConfigError(
+                f"damping.{key}",
+                f"{damping[key]!r}: the distributed axial pipe has no damping yet (its lines "
+                "carry no dampers); remove it, or choose the lumped chain (a [discretization] "
+                "strategy other than 'wave') for stiffness-proportional dampers",
+            )
+    tolerance = discretization.get("travel_time_tolerance", DEFAULT_TRAVEL_TIME_TOLERANCE)
+    return WaveDrillingAssembly(
+        sections.pipe,
+        bha_mass=sections.bha_mass,
+        bha_inertia=sections.bha_inertia,
+        hook=hook,
+        travel_time_tolerance=tolerance,
+    )
+
+
+def string_axial(table: Mapping[str, Any], string: DrillString) -> AxialConfig | None:
+    """The axial dynamics of a ``[[section]]`` file (None unless ``law = "rgd"``).
+
+    With ``[discretization] strategy = "wave"`` the distributed pipe
+    (:class:`~torsio.axial.wave_assembly.WaveDrillingAssembly`, one section per pipe
+    section, the BHA rigid; its lumped twin at :data:`DEFAULT_ELEMENT_LENGTH` for the linear
+    stability); otherwise the lumped chain of :func:`lumped_chain` with elements of at most
+    ``[axial] element_length`` [m].
+    """
+    raw = table.get("bit_rock")
+    law = raw.get("law") if isinstance(raw, Mapping) else None
+    if law != "rgd":
+        _refuse_axial_tables(table, "[bit_rock] law = 'rgd' and [material] youngs_modulus")
+        return None
+    options = _axial_table(table)
+    sections = axial_sections(table, string)
+    discretization = table.get("discretization", {})
+    bit = _bit(table, "law = 'rgd'")
+    run = {"steps_per_period": options["steps_per_period"], **_simulation_options(table)}
+    if isinstance(discretization, Mapping) and discretization.get("strategy") == "wave":
+        pipe = _wave_pipe(table, sections, options["hook"])
+        twin = lumped_chain(sections, DEFAULT_ELEMENT_LENGTH, options["hook"])
+        return AxialConfig(pipe, bit, lumped_twin=twin, **run)
+    beta = _damping_beta(table)
+    chain = lumped_chain(sections, options["element_length"], options["hook"], beta)
+    return AxialConfig(chain, bit, **run)

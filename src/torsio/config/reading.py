@@ -171,13 +171,15 @@ def _string_config(table: Mapping[str, Any], name: str, source: str) -> Config:
     ]
     string = DrillString(sections, name=name)
     discretization = _discretization(table.get("discretization", {}))
+    axial = string_axial(table, string)
     discretizer = discretization.build()
-    if hasattr(discretizer, "element_counts"):
+    if axial is None and hasattr(discretizer, "element_counts"):
+        # (the axial engine builds its own chain or pipe: the torsional element counts
+        # do not apply to it)
         try:
             discretizer.element_counts(string)
         except ConfigError as exc:
             raise ConfigError(f"discretization.{exc.key}", exc.message) from None
-    axial = string_axial(table, string)
     if axial is None:
         _warn_if_undamped(table, source)
     return Config(

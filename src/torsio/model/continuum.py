@@ -68,11 +68,18 @@ def _members(string: DrillString, rigid_bha: bool) -> tuple[list[_Member], float
     return members, tip_inertia
 
 
-def count_below(omega: float, members: Sequence[_Member], tip_inertia: float) -> int:
-    """Number of natural frequencies strictly below ``omega`` [rad/s] (Wittrick-Williams)."""
+def count_below(
+    omega: float, members: Sequence[_Member], tip_inertia: float, free_top: bool = False
+) -> int:
+    """Number of natural frequencies strictly below ``omega`` [rad/s] (Wittrick-Williams).
+
+    ``free_top``: the top end free instead of fixed (one more node, at the top); the
+    rigid-body zero is then counted for every ``omega`` > 0.
+    """
     if omega <= 0:
         return 0
-    n = len(members)
+    top_node = 1 if free_top else 0  # index of the first member's bottom node
+    n = len(members) + top_node
     diagonal = np.zeros(n)
     off_diagonal = np.zeros(n - 1)
     clamped = 0
@@ -89,10 +96,11 @@ def count_below(omega: float, members: Sequence[_Member], tip_inertia: float) ->
             half_periods += -1 if phase / math.pi - half_periods < 0.5 else 1
         clamped += half_periods
         factor = m.torsional_rigidity * omega / m.wave_speed / sin_phase
-        diagonal[i] += factor * math.cos(phase)
-        if i > 0:
-            diagonal[i - 1] += factor * math.cos(phase)
-            off_diagonal[i - 1] = -factor
+        bottom = i + top_node
+        diagonal[bottom] += factor * math.cos(phase)
+        if bottom > 0:  # the member's top end is a node (not the fixed top)
+            diagonal[bottom - 1] += factor * math.cos(phase)
+            off_diagonal[bottom - 1] = -factor
     diagonal[-1] -= omega**2 * tip_inertia
     negative = 0
     pivot = diagonal[0]
@@ -106,12 +114,18 @@ def count_below(omega: float, members: Sequence[_Member], tip_inertia: float) ->
 
 
 def _bisect_mode(
-    index: int, members: Sequence[_Member], tip_inertia: float, low: float, high: float
+    index: int,
+    members: Sequence[_Member],
+    tip_inertia: float,
+    low: float,
+    high: float,
+    free_top: bool = False,
 ) -> float:
-    """The ``index``-th (1-based) frequency, knowing J(low) < index <= J(high)."""
+    """The ``index``-th (1-based) frequency, knowing J(low) < index <= J(high) (with
+    ``free_top``, J less the rigid-body zero)."""
     while (high - low) > _RELATIVE_WIDTH * high:
         middle = 0.5 * (low + high)
-        if count_below(middle, members, tip_inertia) >= index:
+        if count_below(middle, members, tip_inertia, free_top) - free_top >= index:
             high = middle
         else:
             low = middle
@@ -196,17 +210,20 @@ def continuum_modes(
     return ContinuumModes(string, rigid_bha, _frequencies(members, tip_inertia, count), members)
 
 
-def _frequencies(members: Sequence[_Member], tip_inertia: float, count: int) -> np.ndarray:
-    """The first ``count`` frequencies [rad/s] of the members, top fixed, tip lumped."""
+def _frequencies(
+    members: Sequence[_Member], tip_inertia: float, count: int, free_top: bool = False
+) -> np.ndarray:
+    """The first ``count`` frequencies [rad/s] of the members, tip lumped, top fixed (or
+    free: the nonzero ones, the rigid-body zero left out)."""
     # a lower bound on the spacing scale: the slowest member's first clamped frequency
     step = min(math.pi * m.wave_speed / m.length for m in members)
     frequencies = []
     low = 0.0
     for index in range(1, count + 1):
         high = max(low, step)
-        while count_below(high, members, tip_inertia) < index:
+        while count_below(high, members, tip_inertia, free_top) - free_top < index:
             low, high = high, 2.0 * high
-        frequencies.append(_bisect_mode(index, members, tip_inertia, low, high))
+        frequencies.append(_bisect_mode(index, members, tip_inertia, low, high, free_top))
         low = frequencies[-1] * (1 - 4 * _RELATIVE_WIDTH)
     return np.array(frequencies)
 
@@ -217,14 +234,18 @@ def bar_frequencies(
     wave_speeds: Sequence[float] | np.ndarray,
     tip: float,
     count: int = 10,
+    *,
+    free_top: bool = False,
 ) -> np.ndarray:
-    """The first ``count`` exact natural frequencies [rad/s] of a stepped bar, top fixed.
+    """The first ``count`` exact natural frequencies [rad/s] of a stepped bar, top fixed
+    (``free_top``: top free, the rigid-body zero left out).
 
     The mathematics of the torsional shaft for any wave line: sections from the top down
     with ``rigidities`` (G J [N m²] torsionally, E A [N] axially), ``lengths`` [m] and
     ``wave_speeds`` [m/s] (√(G/ρ), √(E/ρ)), and a lumped ``tip`` at the bottom (inertia
     [kg m²] or mass [kg]; 0: a free end). One uniform section with a tip mass m_b has
-    κL tan(κL) = ρ A L / m_b, κ = ω/c.
+    κL tan(κL) = ρ A L / m_b, κ = ω/c; with the top free, sin κL + r κL cos κL = 0,
+    r = m_b/(ρ A L).
 
     >>> omega = bar_frequencies([2.0e11 * 3.4e-3], [1000.0], [5047.0], 3.0e4, count=1)
     >>> x = float(omega[0]) * 1000.0 / 5047.0  # κL
@@ -239,4 +260,4 @@ def bar_frequencies(
         top += float(length)
     if not members:
         raise ConfigError("sections", "a bar needs at least one section")
-    return _frequencies(members, float(tip), count)
+    return _frequencies(members, float(tip), count, bool(free_top))

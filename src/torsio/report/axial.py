@@ -7,6 +7,11 @@ growth rate and the rpm where it crosses zero, each with the frequency and the k
 or torsional) of the mode that crosses there (:func:`torsio.axial.stability.mode_crossings`
 over :data:`CROSSING_RANGE`).
 
+A distributed pipe (:class:`~torsio.axial.wave_assembly.WaveDrillingAssembly`) has the
+exact continuum frequencies of its stepped bar with the same boundaries; its stability is
+that of its lumped twin (:attr:`torsio.config.axial.AxialConfig.lumped_twin`), and the
+data's ``stability.stability_model`` says so.
+
 Examples
 --------
 >>> from torsio.examples import rgd_two_dof_config
@@ -31,25 +36,39 @@ from rich.table import Table
 
 from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.linearization import axial_matrices
+from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.model.lumped import chain_matrix
 from torsio.report.context import ReportContext, ReportSection
 
-__all__ = ["CROSSING_RANGE", "axial_frequencies", "axial_section"]
+__all__ = ["CROSSING_RANGE", "axial_frequencies", "axial_section", "torsional_frequencies"]
 
 CROSSING_RANGE = (20.0, 300.0)
 """The rpm range [rev/min] searched for a change of sign of the growth rate (15 points)."""
+DISTRIBUTED_MODES = 10
+"""How many frequencies of a distributed pipe :func:`axial_frequencies` and
+:func:`torsional_frequencies` give by default (a chain gives all of its own)."""
 
 
-def axial_frequencies(assembly: DrillingAssembly) -> list[float]:
+def axial_frequencies(
+    assembly: DrillingAssembly | WaveDrillingAssembly, count: int = DISTRIBUTED_MODES
+) -> list[float]:
     """The axial natural frequencies [Hz] of the assembly with the bit free, undamped:
     the top free under the weight hook (its rigid-body zero left out) or held by k_a,0
-    under the speed hook; none for an axially rigid assembly.
+    (the distributed pipe: held) under the speed hook; none for an axially rigid
+    assembly. A chain gives all of its own; a distributed pipe the first ``count``.
 
     >>> from torsio.axial.assembly import pipe_assembly
     >>> chain = pipe_assembly(4, 1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5, 3.0e4, 230.0)
     >>> [round(f, 3) for f in axial_frequencies(chain)][:2]
     [1.596, 3.867]
+    >>> from torsio.axial.wave_assembly import wave_pipe_assembly
+    >>> pipe = wave_pipe_assembly(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5, 3.0e4, 230.0)
+    >>> [round(f, 3) for f in axial_frequencies(pipe, 2)]  # the continuum of the same pipe
+    [1.599, 3.93]
     """
+    if isinstance(assembly, WaveDrillingAssembly):
+        omega = assembly.axial_frequencies(count, free_top=assembly.hook == "weight")
+        return [float(w) / (2 * math.pi) for w in omega]
     if not assembly.axial_stiffnesses.size:
         return []
     mass, _, stiffness = axial_matrices(assembly)
@@ -59,7 +78,14 @@ def axial_frequencies(assembly: DrillingAssembly) -> list[float]:
     return [math.sqrt(max(v, 0.0)) / (2 * math.pi) for v in values]
 
 
-def _torsional_frequencies(assembly: DrillingAssembly) -> list[float]:
+def torsional_frequencies(
+    assembly: DrillingAssembly | WaveDrillingAssembly, count: int = DISTRIBUTED_MODES
+) -> list[float]:
+    """The torsional natural frequencies [Hz], the top drive held and the bit free,
+    undamped (a chain: all of its own; a distributed pipe: the first ``count`` of its
+    exact continuum)."""
+    if isinstance(assembly, WaveDrillingAssembly):
+        return [float(w) / (2 * math.pi) for w in assembly.torsional_frequencies(count)]
     values = scipy.linalg.eigh(
         chain_matrix(assembly.stiffnesses), np.diag(assembly.inertias), eigvals_only=True
     )
@@ -69,9 +95,11 @@ def _torsional_frequencies(assembly: DrillingAssembly) -> list[float]:
 def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
     from torsio.axial.stability import drilling_stability, mode_crossings
 
-    result = drilling_stability(axial.assembly, axial.bit, wob, rpm, count=1)
-    crossings = mode_crossings(axial.assembly, axial.bit, wob, CROSSING_RANGE, points=15)
+    chain = axial.stability_assembly  # a distributed pipe's lumped twin
+    result = drilling_stability(chain, axial.bit, wob, rpm, count=1)
+    crossings = mode_crossings(chain, axial.bit, wob, CROSSING_RANGE, points=15)
     return {
+        "stability_model": axial.stability_model,
         "growth_rate": result.growth_rate,
         "stable": result.stable,
         "crossing_rpm": [c.rpm for c in crossings],
@@ -89,11 +117,12 @@ def axial_section(ctx: ReportContext) -> ReportSection | None:
         return None
     op = ctx.config.operation
     assembly = axial.assembly
+    count = ctx.requested_modes
     data: dict[str, Any] = {
         "model": assembly.describe(),
         "bit": axial.bit.describe(),
-        "torsional_frequencies_hz": _torsional_frequencies(assembly)[: ctx.requested_modes],
-        "axial_frequencies_hz": axial_frequencies(assembly)[: ctx.requested_modes],
+        "torsional_frequencies_hz": torsional_frequencies(assembly, count)[:count],
+        "axial_frequencies_hz": axial_frequencies(assembly, count)[:count],
         "wob_n": op.wob,
         "rpm": op.rpm,
         "steady_state": None,
@@ -114,8 +143,28 @@ def axial_section(ctx: ReportContext) -> ReportSection | None:
     return ReportSection("axial", "Axial dynamics (RGD bit)", data, _body(data))
 
 
-def _hz(values: list[float]) -> str:
-    return ", ".join(f"{f:.4g}" for f in values) + " Hz" if values else "none (axially rigid)"
+def assembly_summary(model: dict[str, Any]) -> str:
+    """One line on an assembly from its ``describe()``: a chain's nodes, or a distributed
+    pipe's sections, with the hook and the total mass."""
+    if model.get("kind") == "distributed":
+        sections = model["sections"]
+        length = sum(s["length"] for s in sections)
+        pipe_mass = sum(s["density"] * s["area"] * s["length"] for s in sections)
+        return (
+            f"distributed pipe, {len(sections)} section(s), {length:.6g} m, hook "
+            f"{model['hook']}, total mass {(pipe_mass + model['bha_mass']) / 1e3:.4g} t "
+            f"(BHA {model['bha_mass'] / 1e3:.4g} t, rigid)"
+        )
+    return (
+        f"{model['nodes']} node(s), {model['axial_dofs']} axial DOF, hook {model['hook']}, "
+        f"total mass {sum(model['masses']) / 1e3:.4g} t"
+    )
+
+
+def _hz(values: list[float], boundaries: str) -> str:
+    if not values:
+        return "none (axially rigid)"
+    return ", ".join(f"{f:.4g}" for f in values) + f" Hz ({boundaries})"
 
 
 def _body(data: dict[str, Any]) -> Table:
@@ -123,12 +172,12 @@ def _body(data: dict[str, Any]) -> Table:
     table = Table.grid(padding=(0, 2))
     table.add_column(style="dim")
     table.add_column()
+    top = "top free" if model["hook"] == "weight" else "top held"
     rows = [
-        ("assembly", f"{model['nodes']} node(s), {model['axial_dofs']} axial DOF, hook "
-         f"{model['hook']}, total mass {sum(model['masses']) / 1e3:.4g} t"),
-        ("torsional frequencies", _hz(data["torsional_frequencies_hz"])),
-        ("axial frequencies", _hz(data["axial_frequencies_hz"])),
-    ]  # fmt: skip
+        ("assembly", assembly_summary(model)),
+        ("torsional frequencies", _hz(data["torsional_frequencies_hz"], "top held")),
+        ("axial frequencies", _hz(data["axial_frequencies_hz"], f"bit free, {top}")),
+    ]
     steady = data["steady_state"]
     if steady is not None:
         rows += [
@@ -144,6 +193,7 @@ def _body(data: dict[str, Any]) -> Table:
         crossings = stability["crossings"]
         low, high = stability["crossing_range_rpm"]
         rows += [
+            ("stability computed on", stability["stability_model"]),
             ("growth rate", f"{rate:.4g} 1/s ({'stable' if rate < 0 else 'unstable'})"),
             (
                 "crossing rpm",
