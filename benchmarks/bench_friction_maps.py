@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import resource
 import statistics
 import subprocess
 import sys
@@ -28,6 +27,8 @@ import tempfile
 import time
 from importlib import resources
 from pathlib import Path
+
+from machine_load import children_cpu, load_average
 
 GRID = ["--wob", "0:80e3:21", "--rpm", "40:120:21"]
 QUICK = ["--wob", "0:80e3:5", "--rpm", "40:120:5"]
@@ -47,16 +48,6 @@ def without_well(text: str) -> str:
     return "".join(kept)
 
 
-def _children_cpu() -> float:
-    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return usage.ru_utime + usage.ru_stime
-
-
-def _load() -> str:
-    one, five, fifteen = os.getloadavg()
-    return f"load average {one:.2f}, {five:.2f}, {fifteen:.2f} (1, 5, 15 min)"
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="5 x 5 grid, one pair")
@@ -65,7 +56,9 @@ def main() -> None:
     args = parser.parse_args()
     grid, repeat = (QUICK, 1) if args.quick else (GRID, args.repeat or 2)
     models = args.model or list(MODELS)
-    print(f"grid {' '.join(grid)}; {repeat} pair(s); {os.cpu_count()} cores; before: {_load()}")
+    print(
+        f"grid {' '.join(grid)}; {repeat} pair(s); {os.cpu_count()} cores; before: {load_average()}"
+    )
     text = resources.files("torsio").joinpath("data/deviated_well.toml").read_text("utf-8")
     with tempfile.TemporaryDirectory() as folder:
         files = {"friction": Path(folder, "friction.toml"), "none": Path(folder, "none.toml")}
@@ -80,10 +73,10 @@ def main() -> None:
             for k in range(repeat):
                 for name, path in files.items():
                     command = [sys.executable, "-m", "torsio", "map", str(path), *MODELS[model]]
-                    start, children = time.perf_counter(), _children_cpu()
+                    start, children = time.perf_counter(), children_cpu()
                     subprocess.run([*command, *grid, "--json"], check=True, capture_output=True)
                     wall[name].append(time.perf_counter() - start)
-                    cpu[name].append(_children_cpu() - children)
+                    cpu[name].append(children_cpu() - children)
                     print(f"{model:>4} pair {k + 1}: {name:>8} {wall[name][-1]:.1f} s "
                           f"(CPU {cpu[name][-1]:.1f} s)", flush=True)  # fmt: skip
             w = {name: statistics.median(values) for name, values in wall.items()}
@@ -91,7 +84,7 @@ def main() -> None:
             print(f"{model:>4}: friction {w['friction']:.1f} s, without {w['none']:.1f} s: "
                   f"{w['friction'] / w['none']:.2f}x wall (target <= 2), "
                   f"{c['friction'] / c['none']:.2f}x CPU", flush=True)  # fmt: skip
-    print(f"after: {_load()}")
+    print(f"after: {load_average()}")
 
 
 if __name__ == "__main__":

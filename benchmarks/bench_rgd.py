@@ -26,7 +26,7 @@ import numpy as np
 from torsio.axial.assembly import rgd_two_dof_example
 from torsio.axial.maps import axial_map
 from torsio.axial.rgd import rgd_example
-from torsio.axial.run_setup import run_setup
+from torsio.axial.run_setup import RunOptions, run_setup
 from torsio.axial.transient import simulate_axial
 from torsio.solvers.compiled import njit
 
@@ -132,7 +132,7 @@ def main() -> None:
     parser.add_argument("--skip-map", action="store_true")
     args = parser.parse_args()
     assembly, bit = rgd_two_dof_example(), rgd_example()
-    setup = run_setup(assembly, bit, WOB, RPM, DURATION, WINDOW)
+    setup = run_setup(assembly, bit, WOB, RPM, RunOptions(DURATION, WINDOW))
     p = np.array(
         [
             455.65,

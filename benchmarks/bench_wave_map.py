@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import resource
 import statistics
 import subprocess
 import sys
@@ -31,6 +30,8 @@ import tempfile
 import time
 from importlib import resources
 from pathlib import Path
+
+from machine_load import children_cpu, load_average
 
 COMPILE = ["--wob", "100kN:100kN:1", "--rpm", "60:60:1", "--duration", "1", "--window", "0.5"]
 
@@ -56,17 +57,6 @@ def config(
     return path
 
 
-def _children_cpu() -> float:
-    """User plus system CPU time of the finished child processes [s]."""
-    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return usage.ru_utime + usage.ru_stime
-
-
-def _load() -> str:
-    one, five, fifteen = os.getloadavg()
-    return f"load average {one:.2f}, {five:.2f}, {fifteen:.2f} (1, 5, 15 min)"
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="5 x 5 grid, one repetition")
@@ -87,7 +77,7 @@ def main() -> None:
         f"wave travel-time tolerance {args.travel_time_tolerance or 'default (3e-4)'}, "
         f"drag spacing {args.drag_spacing or 'default (4)'}; "
         f"{os.cpu_count()} cores, numba threads {numba.config.NUMBA_NUM_THREADS}; "
-        f"before: {_load()}",
+        f"before: {load_average()}",
         flush=True,
     )
     times: dict[str, list[float]] = {"C": [], "wave": []}
@@ -102,10 +92,10 @@ def main() -> None:
         for k in range(repeat):
             for strategy, path in paths.items():
                 command = [sys.executable, "-m", "torsio", "map", str(path), *grid, "--json"]
-                start, children = time.perf_counter(), _children_cpu()
+                start, children = time.perf_counter(), children_cpu()
                 subprocess.run(command, check=True, capture_output=True)
                 times[strategy].append(time.perf_counter() - start)
-                cpu[strategy].append(_children_cpu() - children)
+                cpu[strategy].append(children_cpu() - children)
                 print(
                     f"pair {k + 1}: {strategy:>4} {times[strategy][-1]:.1f} s "
                     f"(CPU {cpu[strategy][-1]:.1f} s)",
@@ -113,7 +103,7 @@ def main() -> None:
                 )
     medians = {strategy: statistics.median(values) for strategy, values in times.items()}
     cpu_medians = {strategy: statistics.median(values) for strategy, values in cpu.items()}
-    print(f"after: {_load()}")
+    print(f"after: {load_average()}")
     print(f"medians: C {medians['C']:.1f} s, wave {medians['wave']:.1f} s (wall)")
     print(f"         C {cpu_medians['C']:.1f} s, wave {cpu_medians['wave']:.1f} s (CPU)")
     print(f"wave / C = {medians['wave'] / medians['C']:.2f} wall (target <= 10), ", end="")

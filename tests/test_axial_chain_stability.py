@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 import pytest
-from test_axial_transient import _envelope_rate
+from axial_growth import envelope_rate, perturbed_run
 
 from torsio.axial.assembly import DrillingAssembly, pipe_assembly, two_dof_assembly
 from torsio.axial.linearization import delayed_matrix, drilling_linearization
@@ -157,18 +157,8 @@ def test_a_small_perturbation_of_a_chain_grows_at_the_rightmost_root(hook):
     chain = pipe_assembly(*PIPE, hook=hook)
     rpm = 80.0
     root = drilling_stability(chain, BIT, WOB, rpm).roots[0]
-    run = simulate_axial(
-        chain,
-        BIT,
-        WOB,
-        rpm,
-        duration=4.0,
-        window=1.0,
-        start="steady",
-        perturbation=1e-12,
-        samples=10**9,
-    )
-    rate = _envelope_rate(run, "bit_velocity", run.steady.rop, root.imag, 1.0, 4.0)
+    run = perturbed_run(chain, BIT, WOB, rpm, 4.0, 1e-12)
+    rate = envelope_rate(run, "bit_velocity", run.steady.rop, root.imag, 1.0, 4.0)
     assert root.real > 0
     assert rate == pytest.approx(root.real, rel=5e-3)
     assert run.growth_rate == root.real

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 import scipy.interpolate
 import scipy.optimize
+from axial_growth import envelope_rate, perturbed_run
 
 from torsio.axial.assembly import DrillingAssembly, pipe_assembly, rgd_two_dof_example
 from torsio.axial.delay_roots import rightmost_roots
@@ -129,15 +130,6 @@ def test_halving_the_step_moves_a_stick_slip_run_by_less_than_one_percent():
 
 
 # --- the growth of a small perturbation -----------------------------------------------------------
-def _envelope_rate(run, signal: str, reference: float, omega: float, t0: float, t1: float):
-    """Slope of log max |x − reference| over successive periods 2π/ω in [t0, t1]."""
-    t, x = run.signal("time"), run.signal(signal) - reference
-    period = 2 * math.pi / omega
-    edges = np.arange(t0, t1 - 0.999 * period, period)
-    peaks = [np.abs(x[(t >= e) & (t < e + period)]).max() for e in edges]
-    return float(np.polyfit(edges + period / 2, np.log(peaks), 1)[0])
-
-
 @pytest.mark.parametrize(
     ("rpm", "perturbation", "signal", "span", "tolerance"),
     [
@@ -151,19 +143,9 @@ def test_a_small_perturbation_grows_at_the_rightmost_root(
 ):
     # the crossing of the 2-DOF model with this damper is 153.25 rpm (docs/axial.md)
     root = drilling_stability(ASSEMBLY, BIT, WOB, rpm).roots[0]
-    run = simulate_axial(
-        ASSEMBLY,
-        BIT,
-        WOB,
-        rpm,
-        duration=span[1],
-        window=1.0,
-        start="steady",
-        perturbation=perturbation,
-        samples=10**9,
-    )
+    run = perturbed_run(ASSEMBLY, BIT, WOB, rpm, span[1], perturbation)
     reference = run.steady.rop if signal == "bit_velocity" else run.steady.bit_speed
-    rate = _envelope_rate(run, signal, reference, abs(root.imag), *span)
+    rate = envelope_rate(run, signal, reference, abs(root.imag), *span)
     assert np.sign(rate) == np.sign(root.real) == (1 if rpm < 153.25 else -1)
     assert rate == pytest.approx(root.real, rel=tolerance)
     assert run.growth_rate == pytest.approx(root.real, rel=1e-12)
@@ -173,19 +155,8 @@ def test_a_small_perturbation_grows_at_the_rightmost_root(
 def test_the_axial_model_grows_at_the_root_of_the_axial_equation(rpm, perturbation):
     # the bit turning at exactly Ω₀ (k -> infinity): M λ² + n ζ ε a (1 − e^{−λ t_n0}) = 0
     root = rightmost_roots(axial_linearization(BIT, MASS, WOB, rpm), 1, deflate=(0.0,)).roots[0]
-    run = simulate_axial(
-        ASSEMBLY,
-        BIT,
-        WOB,
-        rpm,
-        duration=4.0,
-        window=1.0,
-        start="steady",
-        perturbation=perturbation,
-        samples=10**9,
-        bit_rotation=BitRotation(),
-    )
-    rate = _envelope_rate(run, "bit_velocity", run.steady.rop, root.imag, 1.0, 4.0)
+    run = perturbed_run(ASSEMBLY, BIT, WOB, rpm, 4.0, perturbation, bit_rotation=BitRotation())
+    rate = envelope_rate(run, "bit_velocity", run.steady.rop, root.imag, 1.0, 4.0)
     assert rate == pytest.approx(root.real, rel=0.01)
 
 

@@ -18,11 +18,11 @@ import pytest
 import scipy.linalg
 import scipy.optimize
 
-from torsio.axial import bit_step, wave_kernel
+from torsio.axial import bit_step, layouts
 from torsio.axial.assembly import pipe_assembly
-from torsio.axial.kernel import SAMPLE_COLUMNS, STATS
+from torsio.axial.layouts import SAMPLE_COLUMNS, STATS
 from torsio.axial.rgd import rgd_example
-from torsio.axial.run_setup import BitRotation
+from torsio.axial.run_setup import BitRotation, RunOptions
 from torsio.axial.transient import simulate_axial
 from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly, wave_pipe_assembly
 from torsio.axial.wave_pipe import (
@@ -99,7 +99,7 @@ def test_the_free_step_is_the_kernels_step_with_the_bit_off_bottom():
     # itself, its rock surface put 10 m below the bit (off bottom throughout: d < 0), gives
     # the same bit velocity and speed at every step, to the last bit
     assembly = _stepped("speed")
-    setup = wave_run_setup(assembly, BIT, WOB, 180.0, 0.5, 0.25, start="steady")
+    setup = wave_run_setup(assembly, BIT, WOB, 180.0, RunOptions(0.5, 0.25, start="steady"))
     setup.history[3, : int(setup.cursor[1])] += 10.0
     lines = {name: _line(assembly, setup.grid, name) for name in ("axial", "torsional")}
     states = {
@@ -272,24 +272,24 @@ def test_one_section_and_two_equal_sections_give_the_same_run():
     assert runs[0].stick_fraction > 0  # the comparison covers the bit's stuck phases
 
 
-def test_the_bit_step_indices_name_the_kernels_stats():
-    # torsio.axial.bit_step and torsio.axial.wave_kernel write STATS by index
+def test_the_layout_indices_name_the_kernels_stats():
+    # torsio.axial.bit_step and both kernels write STATS by the indices of layouts.py
     names = {
-        "bit_speed_max": bit_step.SPEED_MAX,
-        "bit_speed_min": bit_step.SPEED_MIN,
-        "axial_speed_max": bit_step.VELOCITY_MAX,
-        "axial_speed_min": bit_step.VELOCITY_MIN,
-        "stuck_steps": bit_step.STUCK,
-        "off_bottom_steps": bit_step.OFF_BOTTOM,
-        "window_steps": bit_step.COUNT,
-        "work": bit_step.WORK,
-        "torque_integral": bit_step.TORQUE_INTEGRAL,
-        "weight_integral": bit_step.WEIGHT_INTEGRAL,
-        "depth_of_cut_max": bit_step.DEPTH_MAX,
-        "position_start": wave_kernel.POSITION_START,
-        "position_end": wave_kernel.POSITION_END,
-        "failed": wave_kernel.FAILED,
-        "steps_done": wave_kernel.STEPS_DONE,
+        "bit_speed_max": layouts.SPEED_MAX,
+        "bit_speed_min": layouts.SPEED_MIN,
+        "axial_speed_max": layouts.VELOCITY_MAX,
+        "axial_speed_min": layouts.VELOCITY_MIN,
+        "stuck_steps": layouts.STUCK,
+        "off_bottom_steps": layouts.OFF_BOTTOM,
+        "window_steps": layouts.COUNT,
+        "position_start": layouts.POSITION_START,
+        "position_end": layouts.POSITION_END,
+        "work": layouts.WORK,
+        "torque_integral": layouts.TORQUE_INTEGRAL,
+        "weight_integral": layouts.WEIGHT_INTEGRAL,
+        "failed": layouts.FAILED,
+        "steps_done": layouts.STEPS_DONE,
+        "depth_of_cut_max": layouts.DEPTH_MAX,
     }
     assert {name: STATS.index(name) for name in names} == names
 

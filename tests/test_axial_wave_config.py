@@ -28,6 +28,7 @@ import pytest
 import scipy.optimize
 
 from torsio.axial.assembly import DrillingAssembly, pipe_assembly
+from torsio.axial.run_setup import RunOptions
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_setup import wave_run_setup
 from torsio.cli import main
@@ -198,7 +199,7 @@ def test_the_runs_grid_is_within_the_travel_time_rounding_of_the_report(line):
     # cells (189, 21) exact
     config = rgd_wave_pipe_config()
     pipe, bit = config.axial.assembly, config.axial.bit
-    grid = wave_run_setup(pipe, bit, WOB, 60.0, 1.0, 0.5).grid
+    grid = wave_run_setup(pipe, bit, WOB, 60.0, RunOptions(1.0, 0.5)).grid
     rigidity, speeds, tip = _lines(pipe)[line]
     cells = np.array(getattr(grid, f"{line}_cells"))
     free_top = line == "axial"

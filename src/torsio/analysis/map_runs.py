@@ -229,19 +229,6 @@ def _default_chunk_size(points: int, workers: int, serial: bool, dofs: int) -> i
     return max(1, min(largest, math.ceil(points / (4 * workers))))
 
 
-def _rich_progress() -> tuple[Callable[[int, int], None], Callable[[], None]]:
-    from torsio.solvers.run_chunks import progress_bar
-
-    bar = progress_bar("severity map", "runs")
-    task = bar.add_task("map", total=None)
-    bar.start()
-
-    def update(done: int, total: int) -> None:
-        bar.update(task, completed=done, total=total)
-
-    return update, bar.stop
-
-
 def _failure_lines(wob: np.ndarray, rpm: np.ndarray, status: np.ndarray) -> list[str]:
     return [
         f"wob={wob[j]:g} N, rpm={rpm[i]:g}: "

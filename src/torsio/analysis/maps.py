@@ -72,7 +72,6 @@ from torsio.analysis.map_runs import (
     _axis,
     _default_chunk_size,
     _failure_lines,
-    _rich_progress,
     check_grid_size,
 )
 from torsio.analysis.sweep import (
@@ -243,7 +242,9 @@ def _build_map(
     stop: Callable[[], None] | None = None
     callback: Callable[[int, int], None] | None
     if progress is True:
-        callback, stop = _rich_progress()
+        from torsio.solvers.run_chunks import map_progress
+
+        callback, stop = map_progress("severity map")
     elif callable(progress):
         callback = progress
     else:

@@ -11,7 +11,10 @@ scheme"), written once and called from the step loops of :mod:`torsio.axial.kern
   W_f ∈ [0, σ a l] consistent with it (drilling down, at rest, moving up);
 - :func:`forward_rotation`: the bit's new speed, never backwards, and the bit torque (the
   reaction while stuck);
-- :func:`add_to_window`: the window's statistics (:data:`torsio.axial.kernel.STATS`).
+- :func:`add_to_window`: the window's statistics (:data:`torsio.axial.layouts.STATS`);
+- :func:`sample_motion`, :func:`record_step`: a row of the bit's signals
+  (:data:`torsio.axial.layouts.SAMPLE_COLUMNS`), its motion at the step's start, then what
+  acted over the step with the step's part of the window's statistics.
 
 A step's smooth forces enter through ``force`` (or ``torque``) and the inverse mass (or
 inertia) the step sees: the lumped kernel passes the spring forces and 1/m, the
@@ -19,7 +22,7 @@ distributed one the force of the arriving wave and 1/(m + h Z/2) (docs/axial.md,
 distributed pipe").
 
 ``bit``, the law's row: [ζ ε a (N/m), ε a²/2 (N m/m), σ a l (N), μ γ a/2 (m), 2π/n (rad),
-n].
+n] (:data:`torsio.axial.layouts.BIT_ROW`).
 
 Examples
 --------
@@ -39,6 +42,33 @@ import math
 import numpy as np
 
 from torsio.axial.history import delayed_state, keep_surface
+from torsio.axial.layouts import (
+    ANGLE_PER_BLADE,
+    BIT_ANGLE,
+    BIT_POSITION,
+    BIT_SPEED,
+    BIT_TORQUE,
+    BIT_VELOCITY,
+    BIT_WEIGHT,
+    BLADES,
+    COUNT,
+    CUTTING_TORQUE_PER_DEPTH,
+    CUTTING_WEIGHT_PER_DEPTH,
+    DELAY,
+    DEPTH_MAX,
+    DEPTH_OF_CUT,
+    OFF_BOTTOM,
+    SPEED_MAX,
+    SPEED_MIN,
+    STUCK,
+    TIME,
+    TOP_TORQUE,
+    TORQUE_INTEGRAL,
+    VELOCITY_MAX,
+    VELOCITY_MIN,
+    WEIGHT_INTEGRAL,
+    WORK,
+)
 from torsio.solvers.compiled import njit
 
 __all__ = [
@@ -46,17 +76,11 @@ __all__ = [
     "cutting_forces",
     "depth_of_cut",
     "forward_rotation",
+    "record_step",
+    "sample_motion",
     "start_window",
     "wear_flat_contact",
 ]
-
-# the bit law's row (:func:`torsio.axial.run_setup.bit_law_row`)
-CUTTING_WEIGHT_PER_DEPTH, CUTTING_TORQUE_PER_DEPTH, FRICTION_WEIGHT = 0, 1, 2
-FRICTION_TORQUE_PER_WEIGHT, ANGLE_PER_BLADE, BLADES = 3, 4, 5
-
-# the window's statistics, in the order of :data:`torsio.axial.kernel.STATS`
-SPEED_MAX, SPEED_MIN, VELOCITY_MAX, VELOCITY_MIN, STUCK, OFF_BOTTOM, COUNT = range(7)
-WORK, TORQUE_INTEGRAL, WEIGHT_INTEGRAL, DEPTH_MAX = 9, 10, 11, 14
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
@@ -144,3 +168,48 @@ def start_window(stats) -> None:  # pragma: no cover - compiled
         stats[q] = 0.0
     stats[SPEED_MAX], stats[SPEED_MIN] = -np.inf, np.inf
     stats[VELOCITY_MAX], stats[VELOCITY_MIN] = -np.inf, np.inf
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def sample_motion(
+    samples, row, time, angle, speed, position, velocity
+) -> None:  # pragma: no cover - compiled
+    """Row ``row`` of ``samples`` gets the bit's motion at the step's start: t [s], Φ_b
+    [rad], Ω_b [rad/s], U_b [m] and V_b [m/s]."""
+    samples[row, TIME] = time
+    samples[row, BIT_ANGLE] = angle
+    samples[row, BIT_SPEED] = speed
+    samples[row, BIT_POSITION] = position
+    samples[row, BIT_VELOCITY] = velocity
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def record_step(
+    stats,
+    samples,
+    row,
+    in_window,
+    sampled,
+    speed,
+    velocity,
+    depth,
+    step,
+    weight,
+    torque,
+    delay,
+    top_torque,
+) -> int:  # pragma: no cover - compiled
+    """What one step of ``step`` [s] leaves: its part of the window's statistics
+    (:func:`add_to_window`, when ``in_window``) and, when ``sampled``, the rest of row
+    ``row`` of ``samples``: d [m per rev], the bit's weight [N] and torque [N m], the delay
+    t − t_n [s], the top torque [N m]. Returns the next row to sample."""
+    if in_window:
+        add_to_window(stats, speed, velocity, depth, step, weight, torque)
+    if not sampled:
+        return row
+    samples[row, DEPTH_OF_CUT] = depth
+    samples[row, BIT_WEIGHT] = weight
+    samples[row, BIT_TORQUE] = torque
+    samples[row, DELAY] = delay
+    samples[row, TOP_TORQUE] = top_torque
+    return row + 1

@@ -195,19 +195,6 @@ def _check_threads(threads: Any, executor: Any) -> int | None:
     return int(threads)
 
 
-def _progress_bar() -> tuple[Callable[[int, int], None], Callable[[], None]]:
-    from torsio.solvers.run_chunks import progress_bar
-
-    bar = progress_bar("axial map", "runs")
-    task = bar.add_task("map", total=None)
-    bar.start()
-
-    def update(done: int, total: int) -> None:
-        bar.update(task, completed=done, total=total)
-
-    return update, bar.stop
-
-
 def axial_map(
     assembly: DrillingAssembly | WaveDrillingAssembly,
     bit: RGDBit,
@@ -272,7 +259,9 @@ def axial_map(
     stop: Callable[[], None] | None = None
     callback = progress if callable(progress) else None
     if progress is True:
-        callback, stop = _progress_bar()
+        from torsio.solvers.run_chunks import map_progress
+
+        callback, stop = map_progress("axial map")
     try:
         rows, ran_on = _run_grid(
             assembly, bit, points, run_options, growth_rate, threads, executor, callback,

@@ -21,7 +21,7 @@ Examples
 --------
 >>> from torsio.axial.assembly import rgd_two_dof_example
 >>> from torsio.axial.rgd import rgd_example
->>> setup = run_setup(rgd_two_dof_example(), rgd_example(), 100e3, 60.0, 10.0, 5.0)
+>>> setup = run_setup(rgd_two_dof_example(), rgd_example(), 100e3, 60.0, RunOptions(10.0, 5.0))
 >>> round(setup.step * 1e3, 6), setup.steps  # ms; 0.25 s / 129 steps
 (1.937984, 5160)
 """
@@ -29,33 +29,31 @@ Examples
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import attrs
 import numpy as np
 from numpy.typing import NDArray
 
+from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
-from torsio.axial.kernel import STATS
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 from torsio.axial.top_drive import TopDriveArrays, steady_controller_state, top_drive_rates
 from torsio.errors import ConfigError
 from torsio.physics.top_drive_boundary import TopDriveBoundary
 
-if TYPE_CHECKING:
-    from torsio.axial.wave_setup import WaveRunSetup
-
 __all__ = [
     "DEFAULT_STEPS_PER_PERIOD",
     "BitRotation",
+    "KernelSetup",
+    "RunOptions",
     "RunSetup",
     "WindowSummary",
     "bit_law_row",
-    "check_run",
     "contact_frequency",
-    "largest_step",
     "past_times",
+    "run_settings",
     "run_setup",
     "start_history",
     "summarize",
@@ -100,24 +98,81 @@ class BitRotation:
         return speed * (1.0 + self.amplitude * np.sin(self.frequency * t))
 
 
+@attrs.frozen
+class RunOptions:
+    """How a run is set up, lumped (:func:`run_setup`) or distributed
+    (:func:`torsio.axial.wave_setup.wave_run_setup`): its length ``duration`` and the
+    ``window`` at its end [s], its ``start`` (:data:`STARTS`; on the steady start the bit's
+    speed raised by ``perturbation``, relative) and its step rule (``steps_per_period``, a
+    given ``step`` [s] capping h; see the module docstring). :meth:`check` validates them.
+    """
+
+    duration: float
+    window: float
+    start: str = "rest"
+    perturbation: float = 1e-3
+    step: float | None = None
+    steps_per_period: int = DEFAULT_STEPS_PER_PERIOD
+
+    def check(self) -> None:
+        """A ConfigError unless ``start`` is one of :data:`STARTS` and 0 < window <= duration."""
+        if self.start not in STARTS:
+            raise ConfigError(
+                "simulation.start", f"{self.start!r} is not one of {', '.join(STARTS)}"
+            )
+        if not (0 < self.window <= self.duration and math.isfinite(self.duration)):
+            raise ConfigError(
+                "simulation.steady_window",
+                f"expected 0 < window <= duration, got {self.window!r} and {self.duration!r}",
+            )
+
+    def largest_step(self, bit: RGDBit, mass: float, fastest: float) -> float:
+        """h_max = 2π/(ω_fast × ``steps_per_period``) [s], ω_fast the larger of the bit's
+        contact frequency on the ``mass`` [kg] (:func:`contact_frequency`) and ``fastest``
+        [rad/s], capped by a given ``step``."""
+        fastest = max(contact_frequency(bit, mass), fastest)
+        h_max = 2 * math.pi / (fastest * self.steps_per_period)
+        if self.step is not None:
+            if not (math.isfinite(self.step) and self.step > 0):
+                raise ConfigError("step", f"{self.step!r} must be a positive time step in s")
+            h_max = min(h_max, self.step)
+        return h_max
+
+    def step_counts(self, step: float) -> tuple[int, int]:
+        """(steps of the run, steps of its window) on the step h = ``step`` [s]."""
+        steps = int(math.ceil(self.duration / step - 1e-9))
+        return steps, min(steps, int(round(self.window / step)))
+
+
 @attrs.frozen(eq=False)
-class RunSetup:
-    """The kernel's arrays for one run (:func:`torsio.axial.kernel.march`)."""
+class KernelSetup:
+    """What a run of either axial kernel starts from (:class:`RunSetup` of the lumped chain,
+    :class:`~torsio.axial.wave_setup.WaveRunSetup` of the distributed pipe): the steady
+    state, the step h [s], the steps of the run and of its window, the bit law's row
+    (:func:`bit_law_row`), the ``settings`` and the bit's history with its cursor
+    (:func:`start_history`)."""
 
     steady: SteadyDrilling
     step: float
     steps: int
     window_steps: int
     bit: NDArray[np.float64]
+    settings: NDArray[np.float64]
+    history: NDArray[np.float64]
+    cursor: NDArray[np.float64]
+
+
+@attrs.frozen(eq=False)
+class RunSetup(KernelSetup):
+    """The lumped kernel's arrays for one run (:func:`torsio.axial.kernel.march`): those of
+    every run (:class:`KernelSetup`), the chain's rows and its state."""
+
     torsional: NDArray[np.float64]
     axial: NDArray[np.float64]
-    settings: NDArray[np.float64]
     theta: NDArray[np.float64]
     omega: NDArray[np.float64]
     u: NDArray[np.float64]
     v: NDArray[np.float64]
-    history: NDArray[np.float64]
-    cursor: NDArray[np.float64]
     top: TopDriveArrays = attrs.field(factory=lambda: TopDriveArrays.from_boundary(None))
     top_state: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(2))
     controller_state: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(0))
@@ -126,54 +181,6 @@ class RunSetup:
 def contact_frequency(bit: RGDBit, mass: float) -> float:
     """√(2 n ζ ε a / m_b) [rad/s]: where the bit's axial roots cross (docs/axial.md)."""
     return math.sqrt(2 * bit.blades * bit.cutting_weight_per_depth / mass)
-
-
-def largest_step(fastest: float, steps_per_period: int, step: float | None) -> float:
-    """h_max = 2π/(``fastest`` × ``steps_per_period``) [s], capped by a given ``step``."""
-    h_max = 2 * math.pi / (fastest * steps_per_period)
-    if step is not None:
-        if not (math.isfinite(step) and step > 0):
-            raise ConfigError("step", f"{step!r} must be a positive time step in s")
-        h_max = min(h_max, step)
-    return h_max
-
-
-def _step(
-    assembly: DrillingAssembly,
-    bit: RGDBit,
-    delay: float,
-    steps_per_period: int,
-    step: float | None,
-    top_drive: TopDriveBoundary | None = None,
-) -> float:
-    fastest = max(contact_frequency(bit, assembly.bit_mass), assembly.fastest_frequency())
-    top_rate = 0.0
-    if top_drive is not None and not top_drive.held:
-        rates = top_drive_rates(top_drive, assembly.stiffnesses[0], assembly.damping[0])
-        top_rate = float(np.abs(rates).max())
-        fastest = max(fastest, top_rate)
-    h_max = largest_step(fastest, steps_per_period, step)
-    h = delay / math.ceil(delay / h_max - 1e-9)
-    if top_rate * h > TOP_DRIVE_STEP_LIMIT:
-        raise ConfigError(
-            "simulation.step",
-            f"a step of {h:.6g} s does not resolve the top drive: its fastest rate "
-            f"|λ| = {top_rate:.6g} 1/s (the top node and its controller) needs |λ| h <= "
-            f"{TOP_DRIVE_STEP_LIMIT:g}, a step of at most {TOP_DRIVE_STEP_LIMIT / top_rate:.6g} s "
-            "(or more steps per period)",
-        )
-    return h
-
-
-def check_run(start: str, duration: float, window: float) -> None:
-    """A ConfigError unless ``start`` is one of :data:`STARTS` and 0 < window <= duration."""
-    if start not in STARTS:
-        raise ConfigError("simulation.start", f"{start!r} is not one of {', '.join(STARTS)}")
-    if not (0 < window <= duration and math.isfinite(duration)):
-        raise ConfigError(
-            "simulation.steady_window",
-            f"expected 0 < window <= duration, got {window!r} and {duration!r}",
-        )
 
 
 def past_times(step: float, delay: float) -> NDArray[np.float64]:
@@ -208,17 +215,32 @@ def start_history(
 
 def bit_law_row(bit: RGDBit) -> NDArray[np.float64]:
     """The kernels' bit row [ζ ε a, ε a²/2, σ a l, μ γ a/2, 2π/n, n]
-    (:mod:`torsio.axial.bit_step`)."""
-    return np.array(
-        [
-            bit.cutting_weight_per_depth,
-            bit.cutting_torque_per_depth,
-            bit.friction_weight,
-            bit.contact_friction * bit.bit_geometry * bit.radius / 2,
-            2 * math.pi / bit.blades,
-            float(bit.blades),
-        ]
-    )
+    (:data:`torsio.axial.layouts.BIT_ROW`)."""
+    row = np.zeros(len(slot.BIT_ROW))
+    row[slot.CUTTING_WEIGHT_PER_DEPTH] = bit.cutting_weight_per_depth
+    row[slot.CUTTING_TORQUE_PER_DEPTH] = bit.cutting_torque_per_depth
+    row[slot.FRICTION_WEIGHT] = bit.friction_weight
+    row[slot.FRICTION_TORQUE_PER_WEIGHT] = bit.contact_friction * bit.bit_geometry * bit.radius / 2
+    row[slot.ANGLE_PER_BLADE] = 2 * math.pi / bit.blades
+    row[slot.BLADES] = float(bit.blades)
+    return row
+
+
+def run_settings(
+    size: int, steady: SteadyDrilling, step: float, steps: int, window_steps: int, hook: str
+) -> NDArray[np.float64]:
+    """A kernel's ``settings`` of ``size`` entries with the head both kernels share filled in
+    (:data:`torsio.axial.layouts.RUN_SETTINGS`: the step h [s], the steps, Ω₀ and W₀ of
+    ``steady``, the ``hook`` and its speed V₀ when it is ``"speed"``, the window of the last
+    ``window_steps``), the rest 0."""
+    settings = np.zeros(size)
+    settings[slot.STEP], settings[slot.STEPS] = step, steps
+    settings[slot.TOP_SPEED], settings[slot.HOOK_WEIGHT] = steady.bit_speed, steady.wob
+    speed_hook = hook == "speed"
+    settings[slot.SPEED_HOOK] = 1.0 if speed_hook else 0.0
+    settings[slot.HOOK_SPEED] = steady.rop if speed_hook else 0.0
+    settings[slot.WINDOW_START] = steps - window_steps
+    return settings
 
 
 def run_setup(
@@ -226,49 +248,58 @@ def run_setup(
     bit: RGDBit,
     wob: float,
     rpm: float,
-    duration: float,
-    window: float,
-    *,
-    start: str = "rest",
-    perturbation: float = 1e-3,
-    step: float | None = None,
-    steps_per_period: int = DEFAULT_STEPS_PER_PERIOD,
+    options: RunOptions,
     bit_rotation: BitRotation | None = None,
     top_drive: TopDriveBoundary | None = None,
 ) -> RunSetup:
-    """The step, the initial state and the history of a run (see the module docstring).
-
-    ``wob`` [N], ``rpm`` [rev/min], ``duration`` and ``window`` [s] (the window at the end);
-    ``top_drive`` the top's boundary (:func:`torsio.axial.top_drive.top_boundary`; None:
-    held at Ω₀). A top drive that is not held starts with the string: from rest (angle,
-    speed and controller states zero) or on the steady state (at Ω₀, the controller state
-    of :func:`torsio.axial.top_drive.steady_controller_state`).
+    """The step, the initial state and the history of a run (see the module docstring) at
+    ``wob`` [N] and ``rpm`` [rev/min], set up as ``options`` say, the bit turning as
+    ``bit_rotation`` prescribes when given; ``top_drive`` the top's boundary
+    (:func:`torsio.axial.top_drive.top_boundary`; None: held at Ω₀). A top drive that is not
+    held starts with the string: from rest (angle, speed and controller states zero) or on
+    the steady state (at Ω₀, the controller state of
+    :func:`torsio.axial.top_drive.steady_controller_state`).
     """
     steady = steady_drilling(bit, wob, rpm)
-    check_run(start, duration, window)
-    if top_drive is not None and not top_drive.held and bit_rotation is not None:
+    options.check()
+    delay = steady.delay
+    driven = top_drive is not None and not top_drive.held
+    if driven and bit_rotation is not None:
         raise ConfigError(
             "top_drive",
             "a prescribed bit_rotation does not integrate the torsional chain, so it takes no "
             "top drive (expected top_drive=None or a held top)",
         )
-    h = _step(assembly, bit, steady.delay, steps_per_period, step, top_drive)
-    steps = int(math.ceil(duration / h - 1e-9))
-    window_steps = min(steps, int(round(window / h)))
+    top_rate = 0.0
+    if top_drive is not None and driven:
+        rates = top_drive_rates(top_drive, assembly.stiffnesses[0], assembly.damping[0])
+        top_rate = float(np.abs(rates).max())
+    fastest = max(assembly.fastest_frequency(), top_rate)
+    h_max = options.largest_step(bit, assembly.bit_mass, fastest)
+    h = delay / math.ceil(delay / h_max - 1e-9)
+    if top_rate * h > TOP_DRIVE_STEP_LIMIT:
+        raise ConfigError(
+            "simulation.step",
+            f"a step of {h:.6g} s does not resolve the top drive: its fastest rate "
+            f"|λ| = {top_rate:.6g} 1/s (the top node and its controller) needs |λ| h <= "
+            f"{TOP_DRIVE_STEP_LIMIT:g}, a step of at most {TOP_DRIVE_STEP_LIMIT / top_rate:.6g} s "
+            "(or more steps per period)",
+        )
+    steps, window_steps = options.step_counts(h)
     omega0, v0 = steady.bit_speed, steady.rop
     angles, positions = assembly.steady_offsets(steady.bit_torque, wob)
-    on_steady = start == "steady"
+    on_steady = options.start == "steady"
     if bit_rotation is not None:
         theta, omega = np.zeros(1), np.array([omega0])
     elif on_steady:
         theta, omega = angles.copy(), np.full(assembly.nodes, omega0)
-        omega[-1] *= 1.0 + perturbation
+        omega[-1] *= 1.0 + options.perturbation
     else:
         theta, omega = np.zeros(assembly.nodes), np.zeros(assembly.nodes)
     u = positions.copy()
     v = np.full(u.size, v0 if on_steady else 0.0)
     if bit_rotation is not None and on_steady:
-        v[-1] *= 1.0 + perturbation
+        v[-1] *= 1.0 + options.perturbation
     hook_start = (u[0] + wob / assembly.axial_stiffnesses[0]) if assembly.hook == "speed" else 0.0
     # the history before t = 0: the steady motion (or a flat bottom) over one delay and more
     times = past_times(h, steady.delay)
@@ -283,46 +314,33 @@ def run_setup(
     )
     rotation = bit_rotation or BitRotation()
     top_state, controller_state = np.zeros(2), np.zeros(0)
-    if top_drive is not None and not top_drive.held:
+    if top_drive is not None and driven:
         controller_state = np.zeros(top_drive.states)
         if on_steady:
             top_state[1] = omega0
             controller_state = steady_controller_state(top_drive, steady.bit_torque, omega0)
-    settings = np.array(
-        [
-            h,
-            steps,
-            omega0,
-            wob,
-            1.0 if assembly.hook == "speed" else 0.0,
-            v0 if assembly.hook == "speed" else 0.0,
-            hook_start,
-            steps - window_steps,
-            0,
-            1.0 if bit_rotation is not None else 0.0,
-            rotation.amplitude,
-            rotation.frequency,
-            0.0,
-        ]
-    )
+    settings = run_settings(len(slot.CHAIN_SETTINGS), steady, h, steps, window_steps, assembly.hook)
+    settings[slot.HOOK_START] = hook_start
+    settings[slot.PRESCRIBED] = 1.0 if bit_rotation is not None else 0.0
+    settings[slot.AMPLITUDE], settings[slot.FREQUENCY] = rotation.amplitude, rotation.frequency
     return RunSetup(
-        steady,
-        h,
-        steps,
-        window_steps,
-        bit_law_row(bit),
-        assembly.torsional_rows(),
-        assembly.axial_rows(),
-        settings,
-        theta,
-        omega,
-        u,
-        v,
-        history,
-        cursor,
-        TopDriveArrays.from_boundary(top_drive),
-        top_state,
-        controller_state,
+        steady=steady,
+        step=h,
+        steps=steps,
+        window_steps=window_steps,
+        bit=bit_law_row(bit),
+        settings=settings,
+        history=history,
+        cursor=cursor,
+        torsional=assembly.torsional_rows(),
+        axial=assembly.axial_rows(),
+        theta=theta,
+        omega=omega,
+        u=u,
+        v=v,
+        top=TopDriveArrays.from_boundary(top_drive),
+        top_state=top_state,
+        controller_state=controller_state,
     )
 
 
@@ -351,10 +369,10 @@ class WindowSummary:
     depth_of_cut_max: float
 
 
-def summarize(stats: NDArray, setup: RunSetup | WaveRunSetup, bit: RGDBit) -> WindowSummary:
-    """The window summary of a kernel's ``stats`` (:data:`torsio.axial.kernel.STATS`), the
+def summarize(stats: NDArray, setup: KernelSetup, bit: RGDBit) -> WindowSummary:
+    """The window summary of a kernel's ``stats`` (:data:`torsio.axial.layouts.STATS`), the
     lumped or the distributed one (``setup.step`` and ``setup.steady`` are read)."""
-    s = dict(zip(STATS, stats, strict=True))
+    s = dict(zip(slot.STATS, stats, strict=True))
     count = s["window_steps"]
     length = count * setup.step
     advance = s["position_end"] - s["position_start"]

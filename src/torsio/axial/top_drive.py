@@ -33,7 +33,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from torsio.axial.assembly import DrillingAssembly
-from torsio.axial.kernel import TOP_SLOTS
+from torsio.axial.layouts import TOP_DRIVE as TOP_SLOTS
 from torsio.errors import ConfigError
 from torsio.physics.top_drive_boundary import TopDriveBoundary
 from torsio.units import RPM_TO_RAD_S
@@ -109,7 +109,7 @@ def top_boundary(
 
 @attrs.frozen(eq=False)
 class TopDriveArrays:
-    """The compiled loop's top drive: ``top`` (slots :data:`torsio.axial.kernel.TOP_SLOTS`)
+    """The compiled loop's top drive: ``top`` (slots :data:`torsio.axial.layouts.TOP_DRIVE`)
     and the controller matrices a (m, m), b (m, 2), c (m,), d (2,), w (m,)."""
 
     top: NDArray[np.float64]

@@ -35,12 +35,14 @@ import scipy.linalg
 from numpy.typing import NDArray
 
 from torsio.analysis.severity import default_times
+from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
-from torsio.axial.kernel import SAMPLE_COLUMNS, STATS, march
+from torsio.axial.kernel import march
 from torsio.axial.rgd import RGDBit
 from torsio.axial.run_setup import (
     DEFAULT_STEPS_PER_PERIOD,
     BitRotation,
+    RunOptions,
     RunSetup,
     WindowSummary,
     run_setup,
@@ -90,14 +92,13 @@ def run_kernel(
     if isinstance(setup, WaveRunSetup):
         stats = run_wave(setup, samples, sample_every)
         state = [setup.axial_p, setup.torsional_p, setup.bha]
-        top_torque = samples[:, SAMPLE_COLUMNS.index("top_torque")]
-        samples[:, SAMPLE_COLUMNS.index("top_speed")] = setup.steady.bit_speed  # held at Ω₀
-        samples[:, SAMPLE_COLUMNS.index("motor_torque")] = top_torque
-        samples[:, SAMPLE_COLUMNS.index("surface_torque")] = top_torque
+        samples[:, slot.TOP_DRIVE_SPEED] = setup.steady.bit_speed  # held at Ω₀
+        samples[:, slot.MOTOR_TORQUE] = samples[:, slot.TOP_TORQUE]
+        samples[:, slot.SURFACE_TORQUE] = samples[:, slot.TOP_TORQUE]
     else:
         settings = setup.settings.copy()
-        settings[8] = sample_every
-        stats = np.zeros(len(STATS))
+        settings[slot.SAMPLE_EVERY] = sample_every
+        stats = np.zeros(len(slot.STATS))
         march(
             setup.bit,
             setup.torsional,
@@ -121,10 +122,11 @@ def run_kernel(
             setup.top.w,
         )
         state = [setup.u, setup.theta, setup.top_state]
-    if stats[STATS.index("failed")]:
+    if stats[slot.FAILED]:
+        done = stats[slot.STEPS_DONE]
         raise SolverError(
-            f"the bit's history did not hold the delay at step {int(stats[-1])} "
-            f"(t = {stats[-1] * setup.step:.6g} s): non-finite state or a stalled bit"
+            f"the bit's history did not hold the delay at step {int(done)} "
+            f"(t = {done * setup.step:.6g} s): non-finite state or a stalled bit"
         )
     if not all(np.isfinite(values).all() for values in state):
         raise SolverError("the run produced non-finite values; try a smaller step")
@@ -155,7 +157,7 @@ class AxialTransient:
         ``"rest"`` or ``"steady"``.
     samples : ndarray (k, 13)
         The bit's and the top drive's signals, columns
-        :data:`torsio.axial.kernel.SAMPLE_COLUMNS`.
+        :data:`torsio.axial.layouts.SAMPLE_COLUMNS`.
     top_drive : str
         The top drive's kind (``"constant-speed"``: the top held at Ω₀).
     stability_of_held_top : bool
@@ -183,7 +185,7 @@ class AxialTransient:
 
     def signal(self, name: str) -> NDArray[np.float64]:
         """One column of :attr:`samples` by name (e.g. ``"bit_speed"``)."""
-        return self.samples[:, SAMPLE_COLUMNS.index(name)]
+        return self.samples[:, slot.SAMPLE_COLUMNS.index(name)]
 
     def window_rows(self) -> NDArray[np.bool_]:
         """The sample rows inside the steady window."""
@@ -290,6 +292,7 @@ def simulate_axial(
         impedance (``soft-torque``, ``z-torque`` defaults).
     """
     duration, window = run_times(assembly, duration, window)
+    options = RunOptions(duration, window, start, perturbation, step, steps_per_period)
     setup: RunSetup | WaveRunSetup
     kind = getattr(top_drive, "name", "constant-speed") if top_drive is not None else None
     boundary = None
@@ -311,36 +314,12 @@ def simulate_axial(
                 f"{bit_rotation!r} given; a prescribed rotation applies to lumped assemblies "
                 "only (expected None with a WaveDrillingAssembly)",
             )
-        setup = wave_run_setup(
-            assembly,
-            bit,
-            wob,
-            rpm,
-            duration,
-            window,
-            start=start,
-            perturbation=perturbation,
-            step=step,
-            steps_per_period=steps_per_period,
-        )
+        setup = wave_run_setup(assembly, bit, wob, rpm, options)
     else:
-        setup = run_setup(
-            assembly,
-            bit,
-            wob,
-            rpm,
-            duration,
-            window,
-            start=start,
-            perturbation=perturbation,
-            step=step,
-            steps_per_period=steps_per_period,
-            bit_rotation=bit_rotation,
-            top_drive=boundary,
-        )
+        setup = run_setup(assembly, bit, wob, rpm, options, bit_rotation, boundary)
     every = max(1, setup.steps // samples) if samples > 0 else 0
     rows = (setup.steps - 1) // every + 1 if every else 0
-    table = np.zeros((rows, len(SAMPLE_COLUMNS)))
+    table = np.zeros((rows, len(slot.SAMPLE_COLUMNS)))
     stats = run_kernel(setup, table, every)
     rate = None
     if growth_rate and isinstance(assembly, DrillingAssembly) and bit_rotation is None:

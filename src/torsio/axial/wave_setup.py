@@ -27,10 +27,11 @@ Examples
 ((100,), (161,), 1.933599)
 >>> bool(grid.travel_time_errors.max() <= assembly.travel_time_tolerance)
 True
->>> from torsio.axial.kernel import STATS
+>>> from torsio.axial.layouts import STATS
 >>> from torsio.axial.rgd import rgd_example
->>> setup = wave_run_setup(assembly, rgd_example(), 100e3, 180.0, 1.0, 0.5, start="steady",
-...                        perturbation=0.0)
+>>> from torsio.axial.run_setup import RunOptions
+>>> options = RunOptions(1.0, 0.5, start="steady", perturbation=0.0)
+>>> setup = wave_run_setup(assembly, rgd_example(), 100e3, 180.0, options)
 >>> stats = run_wave(setup, np.zeros((0, 10)), 0)
 >>> advance = stats[STATS.index("position_end")] - stats[STATS.index("position_start")]
 >>> round(float(advance) / (setup.window_steps * setup.step) / setup.steady.rop, 12)  # V₀
@@ -39,25 +40,22 @@ True
 
 from __future__ import annotations
 
-import math
-
 import attrs
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.axial import wave_kernel as slot
-from torsio.axial.kernel import STATS
+from torsio.axial import layouts as slot
+from torsio.axial import wave_kernel
 from torsio.axial.rgd import RGDBit
 from torsio.axial.run_setup import (
-    DEFAULT_STEPS_PER_PERIOD,
+    KernelSetup,
+    RunOptions,
     bit_law_row,
-    check_run,
-    contact_frequency,
-    largest_step,
     past_times,
+    run_settings,
     start_history,
 )
-from torsio.axial.steady import SteadyDrilling, steady_drilling
+from torsio.axial.steady import steady_drilling
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_pipe import junction_rows
 from torsio.model.wave_grid import choose_time_step
@@ -128,57 +126,40 @@ def _line_state(
 
 
 @attrs.frozen(eq=False)
-class WaveRunSetup:
-    """The distributed kernel's arrays for one run (:func:`torsio.axial.wave_kernel.march`)."""
+class WaveRunSetup(KernelSetup):
+    """The distributed kernel's arrays for one run (:func:`torsio.axial.wave_kernel.march`):
+    those of every run (:class:`~torsio.axial.run_setup.KernelSetup`), the grid and the
+    state of its lines and of the BHA."""
 
-    steady: SteadyDrilling
-    step: float
-    steps: int
-    window_steps: int
     grid: PipeGrid
-    bit: NDArray[np.float64]
-    settings: NDArray[np.float64]
     axial_p: NDArray[np.float64]
     axial_m: NDArray[np.float64]
     torsional_p: NDArray[np.float64]
     torsional_m: NDArray[np.float64]
     bha: NDArray[np.float64]
-    history: NDArray[np.float64]
-    cursor: NDArray[np.float64]
 
 
 def wave_run_setup(
-    assembly: WaveDrillingAssembly,
-    bit: RGDBit,
-    wob: float,
-    rpm: float,
-    duration: float,
-    window: float,
-    *,
-    start: str = "rest",
-    perturbation: float = 1e-3,
-    step: float | None = None,
-    steps_per_period: int = DEFAULT_STEPS_PER_PERIOD,
+    assembly: WaveDrillingAssembly, bit: RGDBit, wob: float, rpm: float, options: RunOptions
 ) -> WaveRunSetup:
-    """The grid, the initial state and the history of a run (see the module docstring).
-
-    ``wob`` [N], ``rpm`` [rev/min], ``duration`` and ``window`` [s] (the window at the end).
+    """The grid, the initial state and the history of a run (see the module docstring) at
+    ``wob`` [N] and ``rpm`` [rev/min], set up as ``options`` say.
     """
     steady = steady_drilling(bit, wob, rpm)
-    check_run(start, duration, window)
-    fastest = max(contact_frequency(bit, assembly.bha_mass), assembly.fastest_rate())
-    grid = pipe_grid(assembly, largest_step(fastest, steps_per_period, step))
+    options.check()
+    grid = pipe_grid(
+        assembly, options.largest_step(bit, assembly.bha_mass, assembly.fastest_rate())
+    )
     h = grid.step
-    steps = int(math.ceil(duration / h - 1e-9))
-    window_steps = min(steps, int(round(window / h)))
+    steps, window_steps = options.step_counts(h)
     omega0, v0 = steady.bit_speed, steady.rop
-    on_steady = start == "steady"
+    on_steady = options.start == "steady"
     axial_z, torsional_z = assembly.axial_impedances, assembly.torsional_impedances
     speed, velocity = (omega0, v0) if on_steady else (0.0, 0.0)
     torque = steady.bit_torque if on_steady else 0.0
     axial_p, axial_m = _line_state(grid.axial_offsets, axial_z, wob, velocity)
     torsional_p, torsional_m = _line_state(grid.torsional_offsets, torsional_z, torque, speed)
-    bit_speed = speed * (1.0 + perturbation) if on_steady else 0.0
+    bit_speed = speed * (1.0 + options.perturbation) if on_steady else 0.0
     torsional_m[-1] = torsional_p[-1] - 2.0 * torsional_z[-1] * bit_speed  # the bit's end
     bha = np.array([0.0, velocity, 0.0, bit_speed])
     times = past_times(h, steady.delay)
@@ -192,14 +173,11 @@ def wave_run_setup(
         velocity,
         steps,
     )
-    settings = np.zeros(len(slot.SETTINGS))
-    settings[slot.STEP], settings[slot.STEPS] = h, steps
-    settings[slot.TOP_SPEED], settings[slot.HOOK_WEIGHT] = omega0, wob
-    speed_hook = assembly.hook == "speed"
-    settings[slot.SPEED_HOOK] = 1.0 if speed_hook else 0.0
-    settings[slot.HOOK_SPEED] = v0 if speed_hook else 0.0
-    settings[slot.WINDOW_START] = steps - window_steps
-    settings[slot.BHA_MASS], settings[slot.BHA_INERTIA] = assembly.bha_mass, assembly.bha_inertia
+    settings = run_settings(len(slot.WAVE_SETTINGS), steady, h, steps, window_steps, assembly.hook)
+    settings[slot.BHA_MASS], settings[slot.BHA_INERTIA] = (
+        assembly.bha_mass,
+        assembly.bha_inertia,
+    )
     settings[slot.AXIAL_TOP_IMPEDANCE] = axial_z[0]
     settings[slot.AXIAL_BOTTOM_IMPEDANCE] = axial_z[-1]
     settings[slot.TORSIONAL_TOP_IMPEDANCE] = torsional_z[0]
@@ -224,12 +202,12 @@ def wave_run_setup(
 
 def run_wave(setup: WaveRunSetup, samples: NDArray[np.float64], sample_every: int) -> NDArray:
     """Run the compiled loop on ``setup`` (its state arrays change); the stats vector
-    (:data:`torsio.axial.kernel.STATS`)."""
+    (:data:`torsio.axial.layouts.STATS`)."""
     settings = setup.settings.copy()
     settings[slot.SAMPLE_EVERY] = sample_every
-    stats = np.zeros(len(STATS))
+    stats = np.zeros(len(slot.STATS))
     grid = setup.grid
-    slot.march(
+    wave_kernel.march(
         setup.bit,
         settings,
         grid.axial_offsets,

@@ -36,6 +36,7 @@ __all__ = [
     "CHUNK_SECONDS",
     "LINE_SECONDS",
     "QUIET_SECONDS",
+    "map_progress",
     "progress_bar",
     "run_in_chunks",
     "stderr_progress",
@@ -170,6 +171,19 @@ def progress_bar(label: str, unit: str, output: TextIO | None = None) -> Any:
         transient=True,
         console=Console(stderr=True) if output is None else Console(file=output),
     )
+
+
+def map_progress(label: str) -> tuple[Progress, Callable[[], None]]:
+    """A started :func:`progress_bar` of a map's runs on stderr, as the map's
+    ``progress(done, total)`` callback and the function that stops the bar."""
+    bar = progress_bar(label, "runs")
+    task = bar.add_task("map", total=None)
+    bar.start()
+
+    def update(done: int, total: int) -> None:
+        bar.update(task, completed=done, total=total)
+
+    return update, bar.stop
 
 
 def stderr_progress(

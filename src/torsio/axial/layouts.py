@@ -1,0 +1,225 @@
+"""Where each value sits in the arrays the axial kernels take and return.
+
+The compiled step loops of the lumped chain (:mod:`torsio.axial.kernel`) and of the
+distributed pipe (:mod:`torsio.axial.wave_kernel`) exchange index-packed float arrays with
+the Python side (:mod:`torsio.axial.run_setup`, :mod:`torsio.axial.wave_setup`,
+:mod:`torsio.axial.transient`). Each array's entries are named here, once, in order, and
+each index is a module-level int unpacked from the names (numba compiles it as a
+constant): the kernels, their shared bit step (:mod:`torsio.axial.bit_step`) and the
+encoders index with these names only.
+
+- ``stats``, what a run returns: :data:`STATS` (the same for both kernels);
+- ``samples``, the bit's signals: :data:`SAMPLE_COLUMNS` (the same for both kernels);
+- ``settings``, a run's scalars: :data:`CHAIN_SETTINGS` (the lumped chain's) and
+  :data:`WAVE_SETTINGS` (the distributed pipe's), both beginning with the entries of
+  :data:`RUN_SETTINGS`;
+- ``bha``, the distributed pipe's lumped BHA: :data:`BHA_STATE`;
+- ``top``, the lumped chain's top drive: :data:`TOP_DRIVE`;
+- ``bit``, the law's row (:func:`torsio.axial.run_setup.bit_law_row`): :data:`BIT_ROW`.
+
+Adding an entry: insert its name where it belongs and its index in the unpacking beside
+it; write it in the encoder and read it in the kernel by name.
+
+Examples
+--------
+>>> STATS[POSITION_END], SAMPLE_COLUMNS[BIT_TORQUE], WAVE_SETTINGS[SAMPLE_EVERY]
+('position_end', 'bit_torque', 'sample_every')
+>>> CHAIN_SETTINGS[FREQUENCY], WAVE_SETTINGS[BHA_MASS], BHA_STATE[BHA_SPEED]
+('frequency', 'bha_mass', 'speed')
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "BHA_STATE",
+    "BIT_ROW",
+    "CHAIN_SETTINGS",
+    "RUN_SETTINGS",
+    "SAMPLE_COLUMNS",
+    "STATS",
+    "TOP_DRIVE",
+    "WAVE_SETTINGS",
+]
+
+STATS = (
+    "bit_speed_max",
+    "bit_speed_min",
+    "axial_speed_max",
+    "axial_speed_min",
+    "stuck_steps",
+    "off_bottom_steps",
+    "window_steps",
+    "position_start",
+    "position_end",
+    "work",
+    "torque_integral",
+    "weight_integral",
+    "failed",
+    "steps_done",
+    "depth_of_cut_max",
+)
+"""The entries of ``stats`` after a run, in order: the window's extremes of Ω_b and V_b,
+its stuck and off-bottom steps and its steps, the bit's position at its start and end [m],
+the work on the bit [J], the integrals of the bit torque [N m s] and weight [N s]; 1 in
+``failed`` when the history was too short for the delay, and the steps done; the largest
+depth of cut [m per rev]."""
+
+(
+    SPEED_MAX,
+    SPEED_MIN,
+    VELOCITY_MAX,
+    VELOCITY_MIN,
+    STUCK,
+    OFF_BOTTOM,
+    COUNT,
+    POSITION_START,
+    POSITION_END,
+    WORK,
+    TORQUE_INTEGRAL,
+    WEIGHT_INTEGRAL,
+    FAILED,
+    STEPS_DONE,
+    DEPTH_MAX,
+) = range(len(STATS))
+
+SAMPLE_COLUMNS = (
+    "time",
+    "bit_angle",
+    "bit_speed",
+    "bit_position",
+    "bit_velocity",
+    "depth_of_cut",
+    "bit_weight",
+    "bit_torque",
+    "delay",
+    "top_torque",
+    "top_speed",
+    "motor_torque",
+    "surface_torque",
+)
+"""The columns of ``samples``: s, rad, rad/s, m (down), m/s, m per rev, N, N m, s, N m, then
+the top drive's speed [rad/s], its motor torque [N m] and the surface torque [N m] (the
+torque in the string at the top: ``top_torque`` again, under the name the torsional runs
+use; with the top held the motor torque is the surface torque)."""
+
+(
+    TIME,
+    BIT_ANGLE,
+    BIT_SPEED,
+    BIT_POSITION,
+    BIT_VELOCITY,
+    DEPTH_OF_CUT,
+    BIT_WEIGHT,
+    BIT_TORQUE,
+    DELAY,
+    TOP_TORQUE,
+    TOP_DRIVE_SPEED,
+    MOTOR_TORQUE,
+    SURFACE_TORQUE,
+) = range(len(SAMPLE_COLUMNS))
+
+TOP_DRIVE = (
+    "held",
+    "inverse_inertia",
+    "drag",
+    "motor_torque_constant",
+    "max_torque",
+    "set_speed",
+    "ramp",
+)
+"""The entries of the lumped kernel's ``top`` (:mod:`torsio.axial.kernel`): 1 when the top
+is held at Ω₀ (no node), 1/J [1/(kg m²)], drag [N m s/rad], u0 [N m], max_torque [N m]
+(inf: none), Ω_set [rad/s] (NaN: none, the speed error is then 0), the set-speed ramp [s]
+(0: a step)."""
+
+(
+    TOP_HELD,
+    TOP_INVERSE_INERTIA,
+    TOP_DRAG,
+    TOP_U0,
+    TOP_MAX_TORQUE,
+    TOP_SET_SPEED,
+    TOP_RAMP,
+) = range(len(TOP_DRIVE))
+
+RUN_SETTINGS = (
+    "step",
+    "steps",
+    "top_speed",
+    "hook_weight",
+    "speed_hook",
+    "hook_speed",
+    "window_start",
+    "sample_every",
+    "start_time",
+)
+"""The head of both kernels' ``settings``: h [s], steps, Ω₀ [rad/s], W₀ [N], the hook (0
+weight, 1 speed), V_h [m/s], the window's first step, sample every (0: never), t at step 0
+[s]."""
+
+(
+    STEP,
+    STEPS,
+    TOP_SPEED,
+    HOOK_WEIGHT,
+    SPEED_HOOK,
+    HOOK_SPEED,
+    WINDOW_START,
+    SAMPLE_EVERY,
+    START_TIME,
+) = range(len(RUN_SETTINGS))
+
+CHAIN_SETTINGS = (*RUN_SETTINGS, "hook_start", "prescribed", "amplitude", "frequency")
+"""The entries of the lumped chain's ``settings`` (:mod:`torsio.axial.kernel`): those of
+:data:`RUN_SETTINGS`, then U_h0 [m] (the hook's position at step 0), a prescribed bit
+rotation (0/1), its amplitude A and frequency f [rad/s]."""
+
+HOOK_START, PRESCRIBED, AMPLITUDE, FREQUENCY = range(len(RUN_SETTINGS), len(CHAIN_SETTINGS))
+
+WAVE_SETTINGS = (
+    *RUN_SETTINGS,
+    "bha_mass",
+    "bha_inertia",
+    "axial_top_impedance",
+    "axial_bottom_impedance",
+    "torsional_top_impedance",
+    "torsional_bottom_impedance",
+)
+"""The entries of the distributed pipe's ``settings`` (:mod:`torsio.axial.wave_kernel`):
+those of :data:`RUN_SETTINGS`, then m_b [kg], I_b [kg m²], Z of the top and bottom sections
+axially [N s/m] and torsionally [N m s/rad]."""
+
+(
+    BHA_MASS,
+    BHA_INERTIA,
+    AXIAL_TOP_IMPEDANCE,
+    AXIAL_BOTTOM_IMPEDANCE,
+    TORSIONAL_TOP_IMPEDANCE,
+    TORSIONAL_BOTTOM_IMPEDANCE,
+) = range(len(RUN_SETTINGS), len(WAVE_SETTINGS))
+
+BHA_STATE = ("position", "velocity", "angle", "speed")
+"""The entries of the distributed pipe's ``bha``: U_b [m, down], V_b [m/s], Φ_b [rad],
+Ω_b [rad/s]."""
+
+BHA_POSITION, BHA_VELOCITY, BHA_ANGLE, BHA_SPEED = range(len(BHA_STATE))
+
+BIT_ROW = (
+    "cutting_weight_per_depth",
+    "cutting_torque_per_depth",
+    "friction_weight",
+    "friction_torque_per_weight",
+    "angle_per_blade",
+    "blades",
+)
+"""The entries of ``bit``: ζ ε a [N/m], ε a²/2 [N m/m], σ a l [N], μ γ a/2 [m], 2π/n [rad],
+n."""
+
+(
+    CUTTING_WEIGHT_PER_DEPTH,
+    CUTTING_TORQUE_PER_DEPTH,
+    FRICTION_WEIGHT,
+    FRICTION_TORQUE_PER_WEIGHT,
+    ANGLE_PER_BLADE,
+    BLADES,
+) = range(len(BIT_ROW))
