@@ -194,3 +194,17 @@ def test_map_threads_option(capsys) -> None:
     assert "--threads" in capsys.readouterr().err
     assert main([*args, "--threads", "2", "--workers", "2"]) == 2
     assert "--threads" in capsys.readouterr().err
+
+
+def test_the_cache_key_covers_every_compiled_module() -> None:
+    # numba checks a cached kernel against its own file only: every module that defines a
+    # compiled function, or a constant one reads, must be in the key of the cache folder
+    import torsio
+
+    package = Path(torsio.__file__).resolve().parent
+    compiled = {
+        path
+        for path in package.rglob("*.py")
+        if "@njit" in path.read_text(encoding="utf-8") or path.name == "layouts.py"
+    }
+    assert compiled and compiled <= set(kernel_cache.kernel_sources())

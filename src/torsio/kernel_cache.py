@@ -9,7 +9,8 @@ cache to the user's cache folder, never into the installed package (a cache insi
   cache folder: ``~/.cache/torsio/numba`` (Linux), ``~/Library/Caches/torsio/numba``
   (macOS), ``%LOCALAPPDATA%\\torsio\\Cache\\numba`` (Windows); in it, one folder per
   state of the kernel sources (``kernels-<key>``, the key a hash of torsio's and numba's
-  versions and of every kernel source file's size and time).
+  versions and of every kernel source file's size and time: ``solvers/``, ``axial/`` and
+  ``physics/laws.py``).
 
 numba checks a cached function against its own source file only, not against the files
 of the functions it calls and compiles in (the kernel's cycle tracker, the chain's
@@ -120,6 +121,20 @@ def _kernels_folder() -> Path:
     return numba_cache_dir() / f"kernels-{_sources_key()}"
 
 
+def kernel_sources() -> list[Path]:
+    """The files numba compiles torsio's kernels from (and the constants they read):
+    ``solvers/``, ``axial/`` and ``physics/laws.py``."""
+    import torsio
+
+    package = Path(torsio.__file__).resolve().parent
+    sources = [
+        *sorted((package / "solvers").glob("*.py")),
+        *sorted((package / "axial").glob("*.py")),
+    ]
+    sources.append(package / "physics" / "laws.py")
+    return sources
+
+
 def _sources_key() -> str:
     """A hash of torsio's, Python's and numba's versions and the kernel sources' stamps."""
     import torsio
@@ -132,9 +147,7 @@ def _sources_key() -> str:
         key.update(numba.__version__.encode())
     except ImportError:  # pragma: no cover
         pass
-    package = Path(torsio.__file__).resolve().parent
-    sources = sorted((package / "solvers").glob("*.py")) + [package / "physics" / "laws.py"]
-    for source in sources:
+    for source in kernel_sources():
         try:
             stat = source.stat()
         except OSError:
