@@ -68,6 +68,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -167,8 +168,26 @@ def _block_diagonal(first: np.ndarray, second: np.ndarray) -> np.ndarray:
     return matrix
 
 
+def speed_loop(boundary: Any, torque: float, speed: float) -> tuple[float, float, float] | None:
+    """(J [kg m²], kp + drag [N m s/rad], ki [N m/rad]) of a top drive whose small motions
+    about steady drilling are a node of its own: a PI speed loop (``pi``, ``soft-torque``:
+    one state z = ∫e dt, so δz = −φ_top and J φ_top'' = −(kp + drag) φ_top' − ki φ_top −
+    δT_pipe) with ki > 0, unsaturated at the steady motor torque ``torque`` + drag ``speed``
+    [N m]. None for a held top (no node) and for any other controller (its states are not
+    of this second-order form: the linearization then holds the top)."""
+    if boundary is None or boundary.held or boundary.states != 1:
+        return None
+    a, b = np.asarray(boundary.a, float).ravel(), np.asarray(boundary.b, float).ravel()
+    d, ki = np.asarray(boundary.d, float).ravel(), float(np.asarray(boundary.c).ravel()[0])
+    pi_form = a[0] == 0.0 and b[0] == 1.0 and b[1] == 0.0 and d[1] == 0.0 and ki > 0.0
+    unsaturated = abs(torque + boundary.drag * speed) < boundary.max_torque
+    if not (pi_form and unsaturated):
+        return None
+    return float(boundary.inertia), float(d[0] + boundary.drag), ki
+
+
 def drilling_linearization(
-    assembly: DrillingAssembly, bit: RGDBit, wob: float, rpm: float
+    assembly: DrillingAssembly, bit: RGDBit, wob: float, rpm: float, top_drive: Any = None
 ) -> LinearDelaySystem:
     """Steady drilling of ``assembly`` linearized about its steady state (module docstring).
 
@@ -187,6 +206,10 @@ def drilling_linearization(
         speed V₀ gives).
     rpm : float
         Ω₀ [rev/min], the speed of the top drive and, steadily, of every node.
+    top_drive : TopDriveBoundary, optional
+        The top's boundary (:func:`torsio.axial.top_drive.top_boundary`): a PI speed loop
+        (:func:`speed_loop`) adds the top node φ_top first among the angles, x = (u ..,
+        φ_top, φ_0 ..); any other (or None) holds the top at Ω₀.
 
     Raises
     ------
@@ -195,6 +218,17 @@ def drilling_linearization(
     """
     steady = steady_drilling(bit, wob, rpm)
     mass, damping, stiffness = chain_matrices(assembly)
+    loop = speed_loop(top_drive, steady.bit_torque, steady.bit_speed)
+    if loop is not None:  # the top node φ_top first among the angles
+        inertia, loop_damping, loop_stiffness = loop
+        axial_mass, axial_damping, axial_stiffness = axial_matrices(assembly)
+        mass = _block_diagonal(axial_mass, np.diag([inertia, *assembly.inertias]))
+        damping = _block_diagonal(
+            axial_damping, chain_matrix(np.array([loop_damping, *assembly.damping]))
+        )
+        stiffness = _block_diagonal(
+            axial_stiffness, chain_matrix(np.array([loop_stiffness, *assembly.stiffnesses]))
+        )
     bit_dofs = [assembly.axial_dofs - 1, mass.shape[0] - 1]
     delayed = np.zeros_like(mass)
     delayed[np.ix_(bit_dofs, bit_dofs)] = delayed_matrix(bit, steady)

@@ -112,6 +112,7 @@ def drilling_stability(
     *,
     count: int = 6,
     order: int | None = None,
+    top_drive: Any = None,
 ) -> DrillingStability:
     """Stability of steady drilling of ``assembly`` (the arguments as in
     :func:`~torsio.axial.linearization.drilling_linearization`: any lumped assembly,
@@ -120,9 +121,11 @@ def drilling_stability(
     ``count`` rightmost roots are reported; ``order`` is the collocation order N (default
     :meth:`~torsio.axial.delay_roots.LinearDelaySystem.default_order`). The cost grows
     with the DOFs and N (a dense eigenvalue problem of 2m + N rows, then Newton on an
-    m × m determinant from each candidate).
+    m × m determinant from each candidate). ``top_drive``: the top's boundary; a PI speed
+    loop is linearized with the chain
+    (:func:`~torsio.axial.linearization.speed_loop`), any other holds the top.
     """
-    system = drilling_linearization(assembly, bit, wob, rpm)
+    system = drilling_linearization(assembly, bit, wob, rpm, top_drive)
     if order is None:
         order = system.default_order()
     found = rightmost_roots(system, count, order=order)
@@ -211,6 +214,7 @@ def mode_crossings(
     *,
     points: int = 41,
     order: int | None = None,
+    top_drive: Any = None,
 ) -> list[ModeCrossing]:
     """Where in ``rpm_range`` [rev/min] the growth rate of steady drilling crosses 0
     (:func:`growth_rate_crossings`), each with the root that crosses: the rightmost root
@@ -234,7 +238,9 @@ def mode_crossings(
     """
 
     def stability(rpm: float) -> DrillingStability:
-        return drilling_stability(assembly, bit, wob, rpm, count=1, order=order)
+        return drilling_stability(
+            assembly, bit, wob, rpm, count=1, order=order, top_drive=top_drive
+        )
 
     low, high = rpm_range
     found = []

@@ -242,6 +242,16 @@ class AxialTransient:
         )
 
 
+def _top_held_in_stability(boundary: Any, steady: SteadyDrilling) -> bool:
+    """Whether the linearization holds a top that the run does not hold (a controller other
+    than a PI speed loop: :func:`torsio.axial.linearization.speed_loop`)."""
+    if boundary is None or boundary.held:
+        return False
+    from torsio.axial.linearization import speed_loop
+
+    return speed_loop(boundary, steady.bit_torque, steady.bit_speed) is None
+
+
 def simulate_axial(
     assembly: DrillingAssembly | WaveDrillingAssembly,
     bit: RGDBit,
@@ -325,7 +335,7 @@ def simulate_axial(
     if growth_rate and isinstance(assembly, DrillingAssembly) and bit_rotation is None:
         from torsio.axial.stability import drilling_stability
 
-        rate = drilling_stability(assembly, bit, wob, rpm, count=1).growth_rate
+        rate = drilling_stability(assembly, bit, wob, rpm, count=1, top_drive=boundary).growth_rate
     return AxialTransient(
         wob=float(wob),
         rpm=float(rpm),
@@ -338,5 +348,5 @@ def simulate_axial(
         start=start,
         samples=table,
         top_drive=kind or "constant-speed",
-        stability_of_held_top=rate is not None and boundary is not None and not boundary.held,
+        stability_of_held_top=rate is not None and _top_held_in_stability(boundary, setup.steady),
     )

@@ -93,12 +93,22 @@ def torsional_frequencies(
 
 
 def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
+    from torsio.axial.linearization import speed_loop
     from torsio.axial.stability import drilling_stability, mode_crossings
+    from torsio.axial.steady import steady_drilling
+    from torsio.axial.top_drive import top_boundary
 
     chain = axial.stability_assembly  # a distributed pipe's lumped twin
-    result = drilling_stability(chain, axial.bit, wob, rpm, count=1)
-    crossings = mode_crossings(chain, axial.bit, wob, CROSSING_RANGE, points=15)
+    top = None
+    if axial.top_drive is not None:
+        top = top_boundary(axial.top_drive, chain, rpm, axial.string)
+    result = drilling_stability(chain, axial.bit, wob, rpm, count=1, top_drive=top)
+    crossings = mode_crossings(chain, axial.bit, wob, CROSSING_RANGE, points=15, top_drive=top)
+    steady = steady_drilling(axial.bit, wob, rpm)
+    held = top is not None and not top.held
+    held = held and speed_loop(top, steady.bit_torque, steady.bit_speed) is None
     return {
+        "held_top": held,
         "stability_model": axial.stability_model,
         "growth_rate": result.growth_rate,
         "stable": result.stable,
@@ -142,7 +152,7 @@ def axial_section(ctx: ReportContext) -> ReportSection | None:
         steady = steady_drilling(axial.bit, op.wob, op.rpm)
         data["steady_state"] = steady.to_dict()
         data["stability"] = _stability(axial, op.wob, op.rpm)
-        data["stability_of_held_top"] = data["top_drive"] != "constant-speed"
+        data["stability_of_held_top"] = data["stability"]["held_top"]
     return ReportSection("axial", "Axial dynamics (RGD bit)", data, _body(data))
 
 
