@@ -162,7 +162,8 @@ class AxialTransient:
         The top drive's kind (``"constant-speed"``: the top held at Ω₀).
     stability_of_held_top : bool
         Whether ``growth_rate`` is that of the top held at Ω₀ while the run's top drive is
-        not held (the linearization holds the top; :mod:`torsio.axial.stability`).
+        not held: a controller other than a PI speed loop, which the linearization does not
+        take (:func:`torsio.axial.linearization.speed_loop`).
     """
 
     wob: float
@@ -290,8 +291,9 @@ def simulate_axial(
         A prescribed bit rotation instead of the torsional chain (lumped assemblies only).
     growth_rate : bool
         Compute the linear growth rate (any assembly; not with ``bit_rotation``, whose
-        torsional chain is not integrated). It is the growth rate with the top held at Ω₀
-        (``stability_of_held_top`` says so when the run's top drive is not held).
+        torsional chain is not integrated). With a PI speed loop its top node is in the
+        linearization; with another controller the top is held there
+        (``stability_of_held_top`` says so).
     top_drive : top drive, optional
         Any registered top drive (:mod:`torsio.physics.top_drives`, plugins; e.g.
         ``PITopDrive(inertia=2900.0, kp=5000.0, ki=1800.0)``) turning the top as a node with
