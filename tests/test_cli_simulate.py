@@ -199,6 +199,16 @@ def test_laws_json(capsys):
     assert names == ["a0", "a1", "a2", "a3"]
     stribeck = {p["name"]: p for p in laws["coulomb-stribeck"]["parameters"]}
     assert stribeck["mu_static"]["default"] == 0.8
+    # the RGD bit of the axial engine, with the [bit_rock] keys of DESIGN.md's axial example
+    rgd = laws["rgd"]
+    assert rgd["engine"] == "axial" and laws["tucker-wang"]["engine"] == "torsional"
+    keys = {p["name"]: p for p in rgd["parameters"]}
+    assert set(keys) == {
+        "radius", "blades", "intrinsic_specific_energy", "cutting_force_ratio",
+        "contact_stress", "wear_flat_length", "contact_friction", "bit_geometry",
+    }  # fmt: skip
+    assert keys["bit_geometry"]["default"] == 1.0 and keys["radius"]["default"] is None
+    assert keys["contact_stress"]["unit"] == "Pa"
 
 
 def test_laws_human(capsys):

@@ -13,35 +13,61 @@ maps over (weight, rpm) (:mod:`torsio.axial.maps`). The equations are in docs/ax
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from torsio.axial.assembly import (
-    DrillingAssembly,
-    pipe_assembly,
-    rgd_two_dof_example,
-    two_dof_assembly,
-)
-from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
-from torsio.axial.linearization import axial_linearization, drilling_linearization
-from torsio.axial.rgd import RGDBit, rgd_example, rgd_from_table
-from torsio.axial.stability import (
-    DrillingStability,
-    ModeCrossing,
-    crossing_rpm,
-    drilling_stability,
-    mode_crossings,
-)
-from torsio.axial.steady import SteadyDrilling, steady_drilling
-from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly, wave_pipe_assembly
+if TYPE_CHECKING:
+    from torsio.axial.assembly import (
+        DrillingAssembly,
+        pipe_assembly,
+        rgd_two_dof_example,
+        two_dof_assembly,
+    )
+    from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
+    from torsio.axial.linearization import axial_linearization, drilling_linearization
+    from torsio.axial.maps import AxialMap, axial_map
+    from torsio.axial.rgd import RGDBit, rgd_example, rgd_from_table
+    from torsio.axial.run_setup import BitRotation
+    from torsio.axial.stability import (
+        DrillingStability,
+        ModeCrossing,
+        crossing_rpm,
+        drilling_stability,
+        mode_crossings,
+    )
+    from torsio.axial.steady import SteadyDrilling, steady_drilling
+    from torsio.axial.transient import AxialTransient, simulate_axial
+    from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly, wave_pipe_assembly
 
-# The transient and the maps load numba: their names are imported on first use (PEP 562),
-# so that reading an RGD bit from a configuration stays cheap.
+# Every name is imported on first use (PEP 562): the stability analysis loads scipy.linalg,
+# the transient and the maps numba, so that reading an RGD bit (``torsio laws``, a
+# configuration) stays cheap.
 _LAZY = {
+    "DrillingAssembly": "torsio.axial.assembly",
+    "pipe_assembly": "torsio.axial.assembly",
+    "rgd_two_dof_example": "torsio.axial.assembly",
+    "two_dof_assembly": "torsio.axial.assembly",
+    "LinearDelaySystem": "torsio.axial.delay_roots",
+    "rightmost_roots": "torsio.axial.delay_roots",
+    "axial_linearization": "torsio.axial.linearization",
+    "drilling_linearization": "torsio.axial.linearization",
     "AxialMap": "torsio.axial.maps",
     "axial_map": "torsio.axial.maps",
+    "RGDBit": "torsio.axial.rgd",
+    "rgd_example": "torsio.axial.rgd",
+    "rgd_from_table": "torsio.axial.rgd",
+    "BitRotation": "torsio.axial.run_setup",
+    "DrillingStability": "torsio.axial.stability",
+    "ModeCrossing": "torsio.axial.stability",
+    "crossing_rpm": "torsio.axial.stability",
+    "drilling_stability": "torsio.axial.stability",
+    "mode_crossings": "torsio.axial.stability",
+    "SteadyDrilling": "torsio.axial.steady",
+    "steady_drilling": "torsio.axial.steady",
     "AxialTransient": "torsio.axial.transient",
     "simulate_axial": "torsio.axial.transient",
-    "BitRotation": "torsio.axial.run_setup",
+    "PipeSection": "torsio.axial.wave_assembly",
+    "WaveDrillingAssembly": "torsio.axial.wave_assembly",
+    "wave_pipe_assembly": "torsio.axial.wave_assembly",
 }
 
 __all__ = [

@@ -201,6 +201,36 @@ class RGDBit:
         return {"law": self.name, **attrs.asdict(self)}
 
 
+def law_description() -> dict[str, Any]:
+    """The RGD bit as ``torsio laws`` lists it: name, description, the ``[bit_rock]`` keys
+    with their SI units and defaults (None: required), and the engine that runs it.
+
+    >>> names = [p["name"] for p in law_description()["parameters"]]
+    >>> names[0], names[1], len(names)
+    ('radius', 'blades', 8)
+    """
+    from torsio.units import SI_UNITS
+
+    return {
+        "name": RGDBit.name,
+        "description": (
+            "W = zeta eps a d + sigma a l, T = eps a^2 d / 2 + mu gamma a sigma a l / 2, "
+            "d = n (U(t) - U(t - t_n)) (Richard, Germay and Detournay 2007; a law with "
+            "memory, axial dynamics only)"
+        ),
+        "parameters": [
+            {
+                "name": key,
+                "unit": SI_UNITS[dimension],
+                "default": 1.0 if key == "bit_geometry" else None,
+                "description": _DESCRIPTIONS[key],
+            }
+            for key, (dimension, _, _) in RGD_KEYS.items()
+        ],
+        "engine": "axial",
+    }
+
+
 def rgd_from_table(table: Mapping[str, Any], *, prefix: str = "bit_rock.") -> RGDBit:
     """Build an :class:`RGDBit` from a ``[bit_rock]`` table with ``law = "rgd"``.
 

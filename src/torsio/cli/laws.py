@@ -1,4 +1,5 @@
-"""``torsio laws``: the registered bit-rock laws and their parameters (plugins included)."""
+"""``torsio laws``: the registered bit-rock laws and their parameters (plugins included),
+and the RGD bit of the axial engine (a law with memory, :mod:`torsio.axial.rgd`)."""
 
 from __future__ import annotations
 
@@ -36,7 +37,10 @@ def run(args: argparse.Namespace) -> int:
     """Run ``torsio laws`` with parsed arguments; return the exit status."""
     from torsio.plugins import bit_laws
 
-    laws = [describe(cls) for _, cls in sorted(bit_laws().items())]
+    from torsio.axial.rgd import law_description
+
+    laws = [{**describe(cls), "engine": "torsional"} for _, cls in sorted(bit_laws().items())]
+    laws.append(law_description())
     if args.json:
         common.print_json({"laws": laws})
         return 0
@@ -45,6 +49,7 @@ def run(args: argparse.Namespace) -> int:
     from rich.table import Table
 
     table = Table(title="Bit-rock laws (parameters in the rad/s reading; speed_unit='rpm' also)")
+    table.caption = "rgd: the axial engine's law (axial dynamics only; docs/axial.md)"
     table.add_column("name")
     table.add_column("parameters")
     table.add_column("law")
