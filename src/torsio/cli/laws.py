@@ -35,9 +35,8 @@ def describe(cls: type[Any]) -> dict[str, Any]:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``torsio laws`` with parsed arguments; return the exit status."""
-    from torsio.plugins import bit_laws
-
     from torsio.axial.rgd import law_description
+    from torsio.plugins import bit_laws
 
     laws = [{**describe(cls), "engine": "torsional"} for _, cls in sorted(bit_laws().items())]
     laws.append(law_description())
