@@ -290,3 +290,20 @@ def test_pi_top_drive_in_the_linearization_against_the_transient():
     stiff = top_boundary(PITopDrive(inertia=2900.0, kp=1e7, ki=1e8), assembly, 170.0)
     limit = drilling_stability(assembly, BIT, 100e3, 170.0, count=1, top_drive=stiff).roots[0]
     assert limit.real == pytest.approx(held.real, rel=1e-4)
+
+
+def test_a_top_drive_short_of_its_torque_says_so():
+    # reference: the steady bit torque T0 = eps a^2 d0 / 2 + mu gamma a^2 l sigma / 2
+    # (torsio.axial.steady, RGD 2007): a motor limited to half of it cannot hold 180 rpm, so
+    # the run says what the torsional runs say (torsio.analysis.limits.saturated_motor); a
+    # PI without a limit holds it and says nothing
+    from torsio.axial.steady import steady_drilling
+
+    torque = steady_drilling(BIT, 100e3, 180.0).bit_torque
+    weak = PITopDrive(inertia=2900.0, kp=5000.0, ki=2067.6, max_torque=0.5 * torque)
+    run = {"duration": 10.0, "window": 5.0, "start": "steady", "growth_rate": False}
+    limited = simulate_axial(rgd_two_dof_example(), BIT, 100e3, 180.0, top_drive=weak, **run)
+    held = simulate_axial(rgd_two_dof_example(), BIT, 100e3, 180.0, top_drive=PI, **run)
+    assert any("torque limit" in text for text in limited.warnings), limited.warnings
+    assert limited.to_dict()["warnings"] == list(limited.warnings)
+    assert held.warnings == ()

@@ -288,3 +288,19 @@ def test_chunks_do_not_change_a_step_with_contacts() -> None:
         whole.switches,
     )
     assert tiny.friction_work == whole.friction_work > 0.0 and whole.contacts
+
+
+def test_weights_in_pieces_on_two_threads_give_the_serial_batch() -> None:
+    # reference: every point runs alone from rest, so the pieces a weight's points are cut
+    # into for two threads (and their order, heaviest weight first) change nothing, bit for
+    # bit; each point with its own weight's contacts
+    system = _deviated(alpha=0.35, wob=0.0, rpm=60.0)
+    wob = np.repeat([0.0, 40e3, 80e3], 3)
+    rpm = np.tile([60.0, 90.0, 120.0], 3)
+    run = {"duration": 3.0, "steady_window": 1.5}
+    serial = simulate_batch(system, wob, rpm, threads=1, **run)
+    threaded = simulate_batch(system, wob, rpm, threads=2, **run)
+    assert np.array_equal(serial.severity, threaded.severity, equal_nan=True)
+    assert np.array_equal(serial.steps, threaded.steps)
+    alone = simulate_batch(system.at(wob=80e3), [80e3], [90.0], threads=1, **run)
+    assert threaded.severity[7] == alone.severity[0]

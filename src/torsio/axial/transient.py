@@ -164,6 +164,10 @@ class AxialTransient:
         Whether ``growth_rate`` is that of the top held at Ω₀ while the run's top drive is
         not held: a controller other than a PI speed loop, which the linearization does not
         take (:func:`torsio.axial.linearization.speed_loop`).
+    warnings : tuple of str
+        What limits the meaning of the run, as the torsional runs say it: a top drive at its
+        torque limit or short of its set speed over the window
+        (:func:`torsio.analysis.limits.saturated_motor`).
     """
 
     wob: float
@@ -178,6 +182,7 @@ class AxialTransient:
     samples: NDArray[np.float64]
     top_drive: str = "constant-speed"
     stability_of_held_top: bool = False
+    warnings: tuple[str, ...] = ()
 
     def __getattr__(self, name: str) -> Any:
         if name in _SUMMARY_NAMES:
@@ -232,6 +237,7 @@ class AxialTransient:
             start=self.start,
             top_drive=self.top_drive,
             stability_of_held_top=self.stability_of_held_top,
+            warnings=list(self.warnings),
         )
         return data
 
@@ -338,7 +344,7 @@ def simulate_axial(
         from torsio.axial.stability import drilling_stability
 
         rate = drilling_stability(assembly, bit, wob, rpm, count=1, top_drive=boundary).growth_rate
-    return AxialTransient(
+    result = AxialTransient(
         wob=float(wob),
         rpm=float(rpm),
         steady=setup.steady,
@@ -352,3 +358,15 @@ def simulate_axial(
         top_drive=kind or "constant-speed",
         stability_of_held_top=rate is not None and _top_held_in_stability(boundary, setup.steady),
     )
+    if boundary is None or boundary.held or not result.window_rows().any():
+        return result
+    from torsio.analysis.limits import saturated_motor, warning_list
+
+    in_window = result.window_rows()
+    motor = saturated_motor(
+        result.signal("motor_torque")[in_window],
+        boundary.max_torque,
+        float(result.signal("top_speed")[in_window].mean()),
+        boundary.set_speed,
+    )
+    return attrs.evolve(result, warnings=warning_list(motor))

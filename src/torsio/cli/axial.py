@@ -8,6 +8,7 @@ engines that have no meaning there are refused by name.
 from __future__ import annotations
 
 import argparse
+import sys
 from typing import Any
 
 from torsio.axial.assembly import DrillingAssembly
@@ -86,6 +87,8 @@ def simulate(args: argparse.Namespace, config: Any) -> int:
         **_times(args, config),
         **axial.run_options(),
     )
+    for text in run.warnings:
+        print(f"torsio {args.command}: warning: {text}", file=sys.stderr)
     data = run.to_dict()
     data["solver"] = solver_info(run)
     data["model"] = axial.assembly.describe()
@@ -149,7 +152,6 @@ def run_map(args: argparse.Namespace, config: Any, wob: Any, rpm: Any) -> int:
     """``torsio map`` on an axial configuration over the grids ``wob`` [N] and ``rpm``:
     in this process on ``--threads`` threads (default all cores), or on ``--workers``
     processes or a Dask ``--scheduler`` (the flags of the torsional maps)."""
-    import sys
     import time
 
     from torsio.axial.maps import axial_map

@@ -361,24 +361,40 @@ def simulate_lumped_batch(
 def _weight_by_weight(
     system: System, points: Any, weights: np.ndarray, options: BatchOptions
 ) -> BatchResults:
-    """The points of each weight with that weight's contacts, the weights side by side
-    (the compiled runs release the GIL; one thread each, so numba's pool is not shared)."""
+    """The points of each weight with that weight's contacts, side by side on threads
+    (the compiled runs release the GIL; one thread each, so numba's pool is not shared).
+
+    With several threads a weight's points run in pieces of at most a quarter of a
+    thread's share, the heaviest weights first, so that no thread is left with a long
+    column at the end; each weight's contacts are built once."""
+    import threading
     from concurrent.futures import ThreadPoolExecutor
 
     one_thread = attrs.evolve(options, threads=1)
     start = time.perf_counter()
+    workers = batch_threads(options.threads, points.size)
+    piece = max(1, math.ceil(points.size / (4 * workers))) if workers > 1 else points.size
+    tasks = [
+        (float(weight), rows[k : k + piece])
+        for weight in weights[::-1]
+        for rows in [np.flatnonzero(points.wob == weight)]
+        for k in range(0, rows.size, piece)
+    ]
+    systems: dict[float, System] = {}
+    building = threading.Lock()
 
-    def run(weight: float) -> tuple[np.ndarray, BatchResults]:
-        rows = np.flatnonzero(points.wob == weight)
-        weighted = system.at(wob=float(weight))
-        return rows, simulate_lumped_batch(weighted, points[rows], None, one_thread)
+    def run(task: tuple[float, np.ndarray]) -> tuple[np.ndarray, BatchResults]:
+        weight, rows = task
+        with building:
+            if weight not in systems:
+                systems[weight] = system.at(wob=weight)
+        return rows, simulate_lumped_batch(systems[weight], points[rows], None, one_thread)
 
-    workers = batch_threads(options.threads, weights.size)
     if workers == 1:
-        parts = [run(float(weight)) for weight in weights]
+        parts = [run(task) for task in tasks]
     else:
         with ThreadPoolExecutor(max_workers=workers) as pool:
-            parts = list(pool.map(run, weights.tolist()))
+            parts = list(pool.map(run, tasks))
     gathered = BatchResults.gather(parts, points.size)
     return attrs.evolve(gathered, elapsed=time.perf_counter() - start)
 
