@@ -11,31 +11,15 @@ from __future__ import annotations
 
 import copy
 import math
-import tomllib
-from importlib import resources
 
 import numpy as np
 import pytest
+from axial_files import BASE, STRING
 
 from torsio.axial import rgd_example, rgd_two_dof_example
 from torsio.config.reading import parse_config
 from torsio.errors import ConfigError
 from torsio.examples import builtin_config, rgd_two_dof_config
-
-TEXT = resources.files("torsio").joinpath("data/rgd_2dof.toml").read_text(encoding="utf-8")
-BASE = tomllib.loads(TEXT)
-
-STRING = {
-    "material": {"shear_modulus": "79.3 GPa", "density": 7850, "youngs_modulus": "207 GPa"},
-    "section": [
-        {"kind": "drill_pipe", "od": "5 in", "id": "4.276 in", "length": "1000 m"},
-        {"kind": "drill_collar", "od": "6.75 in", "id": "2.8125 in", "length": "150 m"},
-        {"kind": "bit", "od": "8.5 in", "id": 0.0, "length": 0.3},
-    ],
-    "damping": {"beta": 0.06},
-    "bit_rock": dict(BASE["bit_rock"]),
-    "operation": {"wob": "100 kN", "rpm": 60},
-}
 
 
 def _with(data, path, value):

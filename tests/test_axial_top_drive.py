@@ -15,6 +15,7 @@ from importlib import resources
 import numpy as np
 import pytest
 import scipy.linalg
+from axial_files import STRING
 from axial_growth import envelope_rate, perturbed_run
 
 from torsio.axial import (
@@ -210,27 +211,7 @@ def test_section_string_gives_the_soft_torque_defaults():
     from torsio.config.reading import parse_config
     from torsio.physics.top_drive_boundary import top_pipe_impedance
 
-    data = {
-        "material": {"shear_modulus": "79.3 GPa", "density": 7850, "youngs_modulus": "207 GPa"},
-        "section": [
-            {"kind": "drill_pipe", "od": "5 in", "id": "4.276 in", "length": "1000 m"},
-            {"kind": "drill_collar", "od": "6.75 in", "id": "2.8125 in", "length": "150 m"},
-            {"kind": "bit", "od": "8.5 in", "id": 0.0, "length": 0.3},
-        ],
-        "damping": {"beta": 0.06},
-        "bit_rock": {
-            "law": "rgd",
-            "radius": 0.108,
-            "blades": 4,
-            "intrinsic_specific_energy": 60e6,
-            "cutting_force_ratio": 0.6,
-            "contact_stress": 60e6,
-            "wear_flat_length": 0.011,
-            "contact_friction": 0.6,
-        },  # fmt: skip
-        "operation": {"wob": "100 kN", "rpm": 60},
-        "top_drive": {"kind": "soft-torque", "inertia": 2900.0},
-    }
+    data = {**STRING, "top_drive": {"kind": "soft-torque", "inertia": 2900.0}}
     axial = parse_config(data).axial
     boundary = top_boundary(axial.top_drive, axial.assembly, 60.0, axial.string)
     zeta = top_pipe_impedance(axial)
