@@ -135,14 +135,9 @@ def _hole(raw: Any) -> tuple[HoleSection, ...]:
 
 
 def parse_well(raw: Any, source: str = "") -> Wellbore:
-    """The :class:`~torsio.well.wellbore.Wellbore` of a ``[well]`` table.
-
-    Parameters
-    ----------
-    raw : mapping
-        The table as read from TOML.
-    source : str
-        The configuration file (relative survey paths are read from its folder).
+    """The :class:`~torsio.well.wellbore.Wellbore` of a ``[well]`` table ``raw`` as read
+    from TOML; relative survey paths are read from the folder of ``source``, the
+    configuration file.
 
     Raises
     ------
