@@ -22,10 +22,8 @@ integration of N, so one column serves every weight on bit).
 
 Examples
 --------
->>> from torsio.model.components import Bit, DrillPipe
->>> from torsio.model.drillstring import DrillString
->>> from torsio.well.survey import Survey
->>> from torsio.well.wellbore import Wellbore
+>>> from torsio import Bit, DrillPipe, DrillString
+>>> from torsio.well import Survey, Wellbore
 >>> string = DrillString([DrillPipe(od=0.127, id=0.1086, length=1999.7),
 ...                       Bit(od=0.2159, id=0.05, length=0.3)])
 >>> well = Wellbore(Survey([0.0, 2000.0], [0.0, 0.0], [0.0, 0.0]), mud_density=1200.0)
