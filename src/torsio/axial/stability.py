@@ -266,9 +266,7 @@ def crossing_rpm(
 
     Examples
     --------
-    With the damper β k = 0.06 s × 324.857 N m/rad of the built-in string's Rayleigh β
-    (:func:`~torsio.axial.assembly.rgd_two_dof_example`), steady drilling turns stable
-    above about 153 rpm, where the axial mode crosses:
+    The crossing of :func:`mode_crossings`' example:
 
     >>> from torsio.axial.assembly import rgd_two_dof_example
     >>> from torsio.axial.rgd import rgd_example
