@@ -371,8 +371,11 @@ def advance(
                 v[i] = av[i] + kv[5, i]
             for i in range(m):
                 z[i] = az[i] + kz[5, i]
-            contact.restart(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, f0v,
-                            f0z, mpiv, mlow, acc, state, contacts)  # fmt: skip
+            if contacts:  # the forces at the step's end are check_step's
+                contact.restart_at_end(chain, fv, fz, f0v, f0z, mpiv, mlow, acc, state)
+            else:
+                contact.restart(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z,
+                                f0v, f0z, mpiv, mlow, acc, state, contacts)  # fmt: skip
             t_new = t + h
             while next_sample < grid.size and grid[next_sample] <= t_new:
                 position = (grid[next_sample] - t) / h
