@@ -33,7 +33,7 @@ import numpy as np
 
 from torsio.examples import builtin_config
 from torsio.physics.laws import tucker_wang_slope, tucker_wang_torque
-from torsio.solvers import batch, rodas
+from torsio.solvers import batch, rodas, rodas_kernels
 from torsio.solvers.compiled import njit
 from torsio.solvers.layouts import OUT_BIT_SPEED_MAX, OUT_BIT_SPEED_MIN, OUT_COLUMNS, OUT_STEPS
 from torsio.solvers.lumped_inputs import run_settings, step_limits
@@ -94,7 +94,7 @@ TW_SLOPE = njit(cache=True)(tucker_wang_slope)
 @njit(cache=True)
 def _serial_tucker_wang_constant(chain, top, p, settings, wob, omega, omega_set, out) -> None:
     for k in range(wob.size):  # the shipped per-point entry, the law compiled in
-        rodas._point(chain, top, TW_TORQUE, TW_SLOPE, p, settings, wob, omega, omega_set, out, k)
+        rodas.point(chain, top, TW_TORQUE, TW_SLOPE, p, settings, wob, omega, omega_set, out, k)
 
 
 def part_kernel(points: int, repeat: int) -> None:
@@ -110,7 +110,7 @@ def part_kernel(points: int, repeat: int) -> None:
     settings = run_settings(duration, window, 1e-5, 1e-6, steps, 2_000_000, 0.108, 0.0, 0.0)
     outputs = {}
     runs = {
-        "FunctionType (shipped)": lambda out: rodas.integrate_serial(
+        "FunctionType (shipped)": lambda out: rodas_kernels.integrate_serial(
             model.chain, model.top, torque, slope, parameters, settings, wob, omega, omega, out
         ),
         "Tucker-Wang constant": lambda out: _serial_tucker_wang_constant(

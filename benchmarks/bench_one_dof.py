@@ -30,7 +30,7 @@ import time
 import numpy as np
 
 from torsio.examples import builtin_config
-from torsio.solvers import batch, layouts, rodas
+from torsio.solvers import batch, layouts, rodas, rodas_kernels
 from torsio.solvers.compiled import njit
 from torsio.solvers.cycles import extremes_of_cubic
 from torsio.solvers.law_kernels import law_type
@@ -160,7 +160,7 @@ def part_kernel(repeat: int) -> float:
     m, k = chain[layouts.CHAIN_MASS], chain[layouts.CHAIN_STIFFNESS]
     c, drag = chain[layouts.CHAIN_DAMPING], chain[layouts.CHAIN_DRAG]
     runs = {
-        "generic kernel, n = 1": lambda out: rodas.integrate_serial(
+        "generic kernel, n = 1": lambda out: rodas_kernels.integrate_serial(
             model.chain, model.top, torque, slope, parameters, settings, wob, omega, omega, out
         ),
         "1-DOF candidate": lambda out: one_dof_serial(

@@ -304,3 +304,46 @@ def test_weights_in_pieces_on_two_threads_give_the_serial_batch() -> None:
     assert np.array_equal(serial.steps, threaded.steps)
     alone = simulate_batch(system.at(wob=80e3), [80e3], [90.0], threads=1, **run)
     assert threaded.severity[7] == alone.severity[0]
+
+
+def test_the_holding_torque_rate_is_the_chain_force_law_differentiated() -> None:
+    # reference: the model's dense [K] and [C] (Dynamics.stiffness_matrix, damping_matrix):
+    # a node's force without friction is applied - drag Omega - ([K] phi + [C] v)_i, so its
+    # rate is -([K] v + [C] a)_i (contact_kernel.holding_rate, which locates the release of a
+    # stuck node on the step's cubic)
+    from torsio.solvers.contact_kernel import holding_rate
+    from torsio.solvers.lumped_inputs import pack_chain
+
+    dynamics = _deviated(alpha=0.35, wob=40e3, rpm=60.0).dynamics()
+    chain = pack_chain(dynamics)
+    rng = np.random.default_rng(7)
+    speeds, accelerations = rng.normal(size=(2, chain.shape[1]))
+    expected = -(dynamics.stiffness_matrix @ speeds + dynamics.damping_matrix @ accelerations)
+    padded = np.concatenate([[0.0], accelerations, [0.0]])
+    rates = [
+        holding_rate(chain, speeds, i, padded[i], padded[i + 1], padded[i + 2])
+        for i in range(chain.shape[1])
+    ]
+    np.testing.assert_allclose(rates, expected, rtol=1e-12, atol=1e-12 * np.abs(expected).max())
+
+
+def test_a_switch_is_located_on_the_cubic_of_the_speed() -> None:
+    # reference: a node whose speed is exactly a cubic over the step (the cubic Hermite
+    # interpolant of its end values and slopes is that cubic): w(x) = 1 - 3x + x^3, whose
+    # root in (0, 1) is 2 cos(4 pi / 9) = 0.347296...; contact_kernel.cubic_crossing aims at
+    # half the tolerance below 0 and stops within a quarter of it
+    from torsio.solvers.contact_kernel import TOLERANCE, cubic_crossing
+    from torsio.solvers.layouts import CHAIN_CONTACT_STATIC, CHAIN_CONTACT_THRESHOLD, CHAIN_ROWS
+
+    chain = np.zeros((CHAIN_ROWS, 1))
+    chain[CHAIN_CONTACT_STATIC], chain[CHAIN_CONTACT_THRESHOLD] = 100.0, 0.0
+    state = np.array([2.0])  # fast, turning forward: margin 0 is the speed itself
+    tolerance = TOLERANCE * 2.0
+    speed0, speed1, slope0, slope1 = 1.0, -1.0, -3.0, 0.0  # w, w' at x = 0 and 1
+    x = cubic_crossing(
+        chain, state, 0.0, 0, 0, speed0, speed1, slope0, slope1, speed0, speed1, tolerance
+    )
+    root = 2.0 * math.cos(4.0 * math.pi / 9.0)
+    speed = 1.0 - 3.0 * x + x**3
+    assert abs(speed + 0.5 * tolerance) <= 0.25 * tolerance
+    assert x == pytest.approx(root, abs=2.0 * tolerance)

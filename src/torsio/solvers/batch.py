@@ -419,7 +419,7 @@ def _groups(model: BatchModel, rpm: np.ndarray) -> list[tuple[np.ndarray, np.nda
 def _run_compiled(arguments: tuple[Any, ...], threads: int | None) -> None:
     import threading
 
-    from torsio.solvers.rodas import integrate_parallel, integrate_serial
+    from torsio.solvers.rodas_kernels import integrate_parallel, integrate_serial
 
     assert numba is not None
     # numba's thread pool must not be entered from several threads at once (a thread pool

@@ -18,12 +18,19 @@ After a step that passes the error test, :func:`check_step` evaluates each conta
 margins at the step's end (a moving node's speed sign w, or a stuck node's C_s - |H|;
 and a moving node's distance to w_th). One falling through minus its tolerance
 (:data:`TOLERANCE` of its scale) rejects the step, which is retried shortened to the
-crossing, linearly interpolated between the step's ends (regula falsi from the step's
-start); a step is accepted when every margin at its end is above minus its tolerance,
+crossing, aimed at half the tolerance below 0 on the step's cubic Hermite interpolant of
+the margin's quantity (:func:`cubic_crossing`: a moving node's speed, from its
+accelerations at both ends; a stuck node's holding torque, from its rate at both ends,
+:func:`holding_rate`), so that the retry mostly lands within the tolerance at once (the
+chord of the margin falls short or overshoots where the margin curves, and costs more
+retries: docs/performance.md); a step is accepted when every margin at its end is above
+minus its tolerance,
 and the contacts whose margin is then within it and falling switch (:func:`switch`). A
 node that sticks gets v_i = -Omega_ref exactly. A margin already below its tolerance at
 the step's start switches there (the run starts, or a node just set moving turns back).
 The friction's work over a step is exact: its torque is constant, so C |delta theta|.
+An accepted step's end forces are those :func:`check_step` computed there
+(:func:`restart_at_end`).
 """
 
 from __future__ import annotations
@@ -32,20 +39,30 @@ import math
 
 from torsio.solvers.chain_kernel import accelerations, forces
 from torsio.solvers.compiled import njit
+from torsio.solvers.cycles import hermite
 from torsio.solvers.layouts import (
     CHAIN_CONTACT_DYNAMIC,
     CHAIN_CONTACT_STATIC,
     CHAIN_CONTACT_THRESHOLD,
+    CHAIN_DAMPING,
+    CHAIN_DAMPING_UPPER,
+    CHAIN_MASS,
+    CHAIN_STIFFNESS,
+    CHAIN_STIFFNESS_UPPER,
+    TOP_HAS_NODE,
 )
 
 __all__ = [
     "TOLERANCE",
     "add_friction",
     "check_step",
+    "cubic_crossing",
     "decouple",
     "friction_work",
+    "holding_rate",
     "is_stuck",
     "restart",
+    "restart_at_end",
     "start_contacts",
     "switch",
     "zero_stuck",
@@ -126,6 +143,20 @@ def restart(
         zero_stuck(chain, state, acc)
 
 
+@njit(cache=True, error_model="numpy", _nrt=False)
+def restart_at_end(chain, f1, fz1, f0v, f0z, mpiv, mlow, acc, state) -> None:
+    """:func:`restart` at the end of a step :func:`check_step` accepted, from the forces
+    without friction it computed there (``f1``, ``fz1``): the same numbers, one force
+    evaluation fewer."""
+    for i in range(f1.size):
+        f0v[i] = f1[i]
+    for i in range(fz1.size):
+        f0z[i] = fz1[i]
+    add_friction(chain, state, f0v)
+    accelerations(chain, mpiv, mlow, f0v, acc)
+    zero_stuck(chain, state, acc)
+
+
 @njit(cache=True, error_model="numpy", _nrt=False, inline="always")
 def _margin(chain, state, omega, speed, holding, i, k) -> float:
     """Margin k of node i (0: speed or holding torque, 1: threshold), falling through 0 at
@@ -158,6 +189,61 @@ def _tolerance(chain, state, omega, i, k) -> float:
     if k == 0 and state[i] == 0.0:
         return TOLERANCE * chain[CHAIN_CONTACT_STATIC, i]
     return TOLERANCE * (1.0 + abs(omega) + chain[CHAIN_CONTACT_THRESHOLD, i])
+
+
+@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+def _acceleration(chain, state, f, i) -> float:
+    """Node i's acceleration from its force without friction f_i [rad/s^2] (lumped mass; 0
+    where stuck, or beyond the chain's ends)."""
+    if i < 0 or i >= f.size or is_stuck(chain, state, i):
+        return 0.0
+    return (f[i] - _friction(chain, state, i)) / chain[CHAIN_MASS, i]
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def holding_rate(chain, v, i, below, own, above) -> float:
+    """d/dt of node i's force without friction [N m/s], at speeds ``v`` and the
+    accelerations of nodes i - 1, i and i + 1 (``below``, ``own``, ``above``): the chain's
+    springs and dampers (:func:`torsio.solvers.chain_kernel.forces`). For a stuck node, its
+    holding torque's rate; the bit's torque is constant while it is stuck, and a top-drive
+    node's motor torque is left out (the caller does not use it there)."""
+    rate = -chain[CHAIN_STIFFNESS, i] * v[i] - chain[CHAIN_DAMPING, i] * own
+    if i > 0:
+        rate -= chain[CHAIN_STIFFNESS_UPPER, i - 1] * v[i - 1]
+        rate -= chain[CHAIN_DAMPING_UPPER, i - 1] * below
+    if i < v.size - 1:
+        rate -= chain[CHAIN_STIFFNESS_UPPER, i] * v[i + 1]
+        rate -= chain[CHAIN_DAMPING_UPPER, i] * above
+    return rate
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def cubic_crossing(chain, state, omega, i, k, u0, u1, d0, d1, start, end, tolerance) -> float:
+    """Where in [0, 1] margin k of node i (:func:`_margin`, from ``start`` > 0 to ``end`` <
+    0 over the step) reaches half its ``tolerance`` below 0 on the cubic Hermite interpolant
+    of its quantity: values ``u0``, ``u1`` and derivatives times the step ``d0``, ``d1`` of
+    the node's speed (moving) or holding torque (stuck). Illinois regula falsi on the cubic,
+    to a quarter of the tolerance."""
+    target = -0.5 * tolerance
+    lo, hi, below_lo, below_hi = 0.0, 1.0, start - target, end - target
+    x, side = 1.0, 0
+    for _ in range(60):
+        x = (lo * below_hi - hi * below_lo) / (below_hi - below_lo)
+        u = hermite(u0, u1, d0, d1, x)
+        gap = _margin(chain, state, omega, u, u, i, k) - target
+        if abs(gap) <= 0.25 * tolerance:
+            break
+        if gap > 0.0:
+            lo, below_lo = x, gap
+            if side == 1:
+                below_hi *= 0.5
+            side = 1
+        else:
+            hi, below_hi = x, gap
+            if side == -1:
+                below_lo *= 0.5
+            side = -1
+    return x
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
@@ -197,7 +283,26 @@ def check_step(
                     if end <= tolerance and end < start and pending[i] == 0.0:
                         pending[i] = k + 1.0
                     continue
-                fraction = start / (start - end)
+                if state[i] != 0.0:  # a speed margin: the speed's cubic
+                    d1 = h * _acceleration(chain, state, f1, i)
+                    fraction = cubic_crossing(
+                        chain, state, omega, i, k, v[i], v1[i], h * acc[i], d1, start, end,
+                        tolerance,
+                    )  # fmt: skip
+                elif i > 0 or top[TOP_HAS_NODE] == 0.0:  # the holding torque's cubic
+                    d0 = h * holding_rate(chain, v, i, acc[i - 1] if i > 0 else 0.0, acc[i],
+                                          acc[i + 1] if i < n - 1 else 0.0)  # fmt: skip
+                    d1 = h * holding_rate(
+                        chain, v1, i, _acceleration(chain, state, f1, i - 1),
+                        _acceleration(chain, state, f1, i),
+                        _acceleration(chain, state, f1, i + 1),
+                    )  # fmt: skip
+                    fraction = cubic_crossing(
+                        chain, state, omega, i, k, holding, f1[i], d0, d1, start, end,
+                        tolerance,
+                    )  # fmt: skip
+                else:  # a top-drive node: the chord of its margin
+                    fraction = start / (start - end)
                 if fraction * h >= h_min:
                     theta = min(theta, fraction)
                     continue  # else too close to resolve: at the start

@@ -1,8 +1,9 @@
 """The compiled kernel: RODAS4 on the chain of :mod:`torsio.physics.dynamics`.
 
 One kernel for every chain length, bit-rock law and top drive, for batches of points
-(:func:`integrate_serial`, :func:`integrate_parallel`) and single runs sampled on an output
-grid (:func:`run_start`, :func:`run_chunk`; :mod:`torsio.solvers.single_run`).
+(:func:`point`) and single runs sampled on an output grid (:func:`start`, :func:`advance`;
+:mod:`torsio.solvers.single_run`); the entry points that numba compiles with explicit
+signatures are in :mod:`torsio.solvers.rodas_kernels`.
 The chain (n nodes, node n-1 the bit) in twist coordinates about Omega_ref, with
 [C] = [C_rel] + diag(drag)::
 
@@ -49,18 +50,10 @@ from torsio.solvers.chain_kernel import (
     sample_state,
     saturated,
 )
-from torsio.solvers.compiled import kernel_signature, njit, prange, run_signatures
+from torsio.solvers.compiled import njit
 from torsio.solvers.cycles import extremes_of_cubic, hermite, integral_of_cubic, track_cycle
 
-__all__ = [
-    "GAMMA",
-    "RODAS_A",
-    "RODAS_C",
-    "integrate_parallel",
-    "integrate_serial",
-    "run_chunk",
-    "run_start",
-]
+__all__ = ["GAMMA", "RODAS_A", "RODAS_C", "advance", "point", "start"]
 
 # --- RODAS4 (Hairer and Wanner, Solving ODEs II, Sec. IV.7; rodas.f, METH = 1) --------------
 GAMMA = 0.25
@@ -86,7 +79,7 @@ RODAS_C[5, :5] = (
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
-def _start(chain, top, torque, p, settings, wob, omega, omega_set, vectors, small) -> None:
+def start(chain, top, torque, p, settings, wob, omega, omega_set, vectors, small) -> None:
     """Prepare a run from the state (phi, v, z) already in the work space, at t = 0.
 
     ``vectors`` and ``small``: the work space (:mod:`torsio.solvers.layouts`), zero but for
@@ -126,7 +119,7 @@ def _start(chain, top, torque, p, settings, wob, omega, omega_set, vectors, smal
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
-def _advance(
+def advance(
     chain, top, torque, slope, p, settings, wob, omega, omega_set, vectors, small, grid,
     samples, stop,
 ) -> None:  # fmt: skip
@@ -378,8 +371,11 @@ def _advance(
                 v[i] = av[i] + kv[5, i]
             for i in range(m):
                 z[i] = az[i] + kz[5, i]
-            contact.restart(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, f0v,
-                            f0z, mpiv, mlow, acc, state, contacts)  # fmt: skip
+            if contacts:  # the forces at the step's end are check_step's
+                contact.restart_at_end(chain, fv, fz, f0v, f0z, mpiv, mlow, acc, state)
+            else:
+                contact.restart(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z,
+                                f0v, f0z, mpiv, mlow, acc, state, contacts)  # fmt: skip
             t_new = t + h
             while next_sample < grid.size and grid[next_sample] <= t_new:
                 position = (grid[next_sample] - t) / h
@@ -446,43 +442,13 @@ def _advance(
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def _point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k) -> None:
+def point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k) -> None:
     """Point k from rest, with its own zeroed work space (allocated outside the step loop)."""
     vectors = np.zeros((slot.VECTOR_ROWS, chain.shape[1]))
     small = np.zeros((slot.SMALL_ROWS, slot.SMALL_COLUMNS))
     for i in range(chain.shape[1]):
         vectors[slot.VEC_V, i] = -omega[k]  # start-up from rest: theta' = 0, controller states 0
-    _start(chain, top, torque, p, settings, wob[k], omega[k], omega_set[k], vectors, small)
-    _advance(chain, top, torque, slope, p, settings, wob[k], omega[k], omega_set[k], vectors,
+    start(chain, top, torque, p, settings, wob[k], omega[k], omega_set[k], vectors, small)
+    advance(chain, top, torque, slope, p, settings, wob[k], omega[k], omega_set[k], vectors,
              small, np.zeros(0), np.zeros((0, 1)), 0)  # fmt: skip
     finish_run(settings, omega[k], top[slot.TOP_HAS_NODE] != 0.0, small, out[k])
-
-
-@njit(kernel_signature(), cache=True, nogil=True, error_model="numpy")
-def integrate_serial(chain, top, torque, slope, p, settings, wob, omega, omega_set, out) -> None:
-    """Every point in turn, without the GIL (arguments: :func:`kernel_signature`)."""
-    for k in range(wob.size):
-        _point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k)
-
-
-@njit(kernel_signature(), cache=True, parallel=True, error_model="numpy")
-def integrate_parallel(chain, top, torque, slope, p, settings, wob, omega, omega_set, out) -> None:
-    """Every point on numba's thread pool (dynamic sharing: set the chunk size to 1)."""
-    for k in prange(wob.size):
-        _point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k)
-
-
-@njit(run_signatures()[0], cache=True, nogil=True, error_model="numpy")
-def run_start(chain, top, torque, p, settings, wob, omega, omega_set, vectors, small) -> None:
-    """A single run: prepare it from the state in the work space (:func:`_start`)."""
-    _start(chain, top, torque, p, settings, wob, omega, omega_set, vectors, small)
-
-
-@njit(run_signatures()[1], cache=True, nogil=True, error_model="numpy")
-def run_chunk(
-    chain, top, torque, slope, p, settings, wob, omega, omega_set, vectors, small, grid,
-    samples, stop,
-) -> None:  # fmt: skip
-    """A single run: advance it until the output sample ``stop`` is written (:func:`_advance`)."""
-    _advance(chain, top, torque, slope, p, settings, wob, omega, omega_set, vectors, small,
-             grid, samples, stop)  # fmt: skip

@@ -145,7 +145,7 @@ def integrate_compiled(
     """
     from torsio.solvers.batch import BatchModel
     from torsio.solvers.batch_options import DEFAULT_MAX_STEPS
-    from torsio.solvers.rodas import run_chunk, run_start
+    from torsio.solvers.rodas_kernels import run_chunk, run_start
 
     model = BatchModel.from_system(system)
     top = model.top  # packed at the system's own operating point
