@@ -150,7 +150,9 @@ class AxialTransient:
         The window's outputs (also as attributes: ``severity``, ``rop_mean`` ...).
     growth_rate : float or None
         The rightmost root's real part [1/s] of the linearization about the steady state
-        (None with a prescribed bit rotation or when not asked).
+        (a distributed pipe's from its exact characteristic equation,
+        :func:`torsio.axial.wave_stability.distributed_stability`; None with a prescribed
+        bit rotation or when not asked).
     step, duration, window : float
         The step h, the run's length and its window [s].
     start : str
@@ -340,10 +342,8 @@ def simulate_axial(
     table = np.zeros((rows, len(slot.SAMPLE_COLUMNS)))
     stats = run_kernel(setup, table, every)
     rate = None
-    if growth_rate and isinstance(assembly, DrillingAssembly) and bit_rotation is None:
-        from torsio.axial.stability import drilling_stability
-
-        rate = drilling_stability(assembly, bit, wob, rpm, count=1, top_drive=boundary).growth_rate
+    if growth_rate and bit_rotation is None:
+        rate = _growth_rate(assembly, bit, wob, rpm, boundary)
     result = AxialTransient(
         wob=float(wob),
         rpm=float(rpm),
@@ -370,3 +370,16 @@ def simulate_axial(
         boundary.set_speed,
     )
     return attrs.evolve(result, warnings=warning_list(motor))
+
+
+def _growth_rate(assembly: Any, bit: RGDBit, wob: float, rpm: float, boundary: Any) -> float:
+    """The growth rate of steady drilling: a chain's linearization, or a distributed
+    pipe's characteristic equation from its lumped twin's roots (its top held)."""
+    if isinstance(assembly, DrillingAssembly):
+        from torsio.axial.stability import drilling_stability
+
+        return drilling_stability(assembly, bit, wob, rpm, count=1, top_drive=boundary).growth_rate
+    from torsio.axial.wave_stability import distributed_stability
+
+    twin = assembly.lumped_twin()
+    return distributed_stability(assembly, bit, wob, rpm, twin=twin).growth_rate
