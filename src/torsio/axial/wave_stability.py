@@ -26,13 +26,21 @@ approach the continuum's like Δx² as its elements shrink. In the static limit 
 
 Examples
 --------
->>> from torsio.axial.rgd import rgd_example
->>> from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly
->>> pipe = PipeSection(1000.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 3.0e-5)
->>> assembly = WaveDrillingAssembly([pipe], bha_mass=3.0e4, bha_inertia=455.65, hook="speed")
->>> z = end_stiffness(1e-6j, 2.1e11 * 3.4e-3, [1000.0], [5172.2], free_top=False)
->>> round(z.real / (2.1e11 * 3.4e-3 / 1000.0), 9)  # the static spring E A / L
+At a slow motion the pipe held at the top is the static spring E A / L:
+
+>>> z = end_stiffness(1e-6j, [2.1e11 * 3.4e-3], [1000.0], [5172.2], free_top=False)
+>>> round(z.real / (2.1e11 * 3.4e-3 / 1000.0), 9)
 1.0
+
+The built-in distributed pipe at 100 kN and 60 rpm grows at 3.218 1/s (its 10-node twin:
+3.223 1/s):
+
+>>> from torsio.examples import rgd_wave_pipe_config
+>>> axial = rgd_wave_pipe_config().axial
+>>> result = distributed_stability(axial.assembly, axial.bit, 100e3, 60.0,
+...                                twin=axial.stability_assembly)
+>>> round(result.growth_rate, 3), round(float(result.twin_roots[0].real), 3)
+(3.218, 3.223)
 """
 
 from __future__ import annotations
