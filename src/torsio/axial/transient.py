@@ -37,6 +37,7 @@ from numpy.typing import NDArray
 from torsio.analysis.severity import default_times
 from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
+from torsio.axial.energy_balance import EnergyBalance, chain_energy, energy_balance
 from torsio.axial.kernel import march
 from torsio.axial.rgd import RGDBit
 from torsio.axial.run_setup import (
@@ -120,6 +121,8 @@ def run_kernel(
             setup.top.c,
             setup.top.d,
             setup.top.w,
+            setup.contacts,
+            setup.contact_stuck,
         )
         state = [setup.u, setup.theta, setup.top_state]
     if stats[slot.FAILED]:
@@ -183,6 +186,14 @@ class AxialTransient:
     top_drive: str = "constant-speed"
     stability_of_held_top: bool = False
     warnings: tuple[str, ...] = ()
+    energy: EnergyBalance | None = None
+    contact_switches: int = 0
+    string_contacts: dict[str, Any] | None = None
+
+    @property
+    def string_friction_work(self) -> float:
+        """The work of the friction along the string over the run [J] (0 without it)."""
+        return self.energy.string_friction_work if self.energy is not None else 0.0
 
     def __getattr__(self, name: str) -> Any:
         if name in _SUMMARY_NAMES:
@@ -238,6 +249,10 @@ class AxialTransient:
             top_drive=self.top_drive,
             stability_of_held_top=self.stability_of_held_top,
             warnings=list(self.warnings),
+            string_friction_work=self.string_friction_work,
+            contact_switches=self.contact_switches,
+            string_contacts=self.string_contacts,
+            energy_balance=self.energy.to_dict() if self.energy is not None else None,
         )
         return data
 
@@ -259,6 +274,22 @@ def _top_held_in_stability(boundary: Any, steady: SteadyDrilling) -> bool:
     return speed_loop(boundary, steady.bit_torque, steady.bit_speed) is None
 
 
+def _stored_energy(setup: RunSetup | WaveRunSetup, time: float) -> float | None:
+    """The lumped chain's kinetic and spring energy [J] at ``time`` [s] of its state (None:
+    the distributed pipe, or a prescribed bit rotation)."""
+    if not isinstance(setup, RunSetup) or setup.settings[slot.PRESCRIBED]:
+        return None
+    settings = setup.settings
+    held = setup.top.top[slot.TOP_HELD] != 0.0
+    top_angle = settings[slot.TOP_SPEED] * time if held else float(setup.top_state[0])
+    hook = None
+    if settings[slot.SPEED_HOOK]:
+        hook = settings[slot.HOOK_START] + settings[slot.HOOK_SPEED] * time
+    return chain_energy(
+        setup.torsional, setup.axial, setup.theta, setup.omega, setup.u, setup.v, top_angle, hook
+    )
+
+
 def simulate_axial(
     assembly: DrillingAssembly | WaveDrillingAssembly,
     bit: RGDBit,
@@ -276,6 +307,7 @@ def simulate_axial(
     growth_rate: bool = True,
     top_drive: Any = None,
     string: Any = None,
+    contacts: Any = None,
 ) -> AxialTransient:
     """Run the assembly drilling at ``wob`` [N] and ``rpm`` [rev/min].
 
@@ -308,6 +340,11 @@ def simulate_axial(
     string : DrillString, optional
         The drill string the assembly was built from, for tunings that read the top pipe's
         impedance (``soft-torque``, ``z-torque`` defaults).
+    contacts : AxialContacts, optional
+        Coulomb friction along the string at the chain's nodes
+        (:mod:`torsio.axial.string_friction`; lumped assemblies only), its normal force
+        rebuilt at ``wob``. The growth rate is then that of the linearization with the
+        contacts' damping (:mod:`torsio.axial.steady_friction`).
     """
     duration, window = run_times(assembly, duration, window)
     options = RunOptions(duration, window, start, perturbation, step, steps_per_period)
@@ -332,13 +369,24 @@ def simulate_axial(
                 f"{bit_rotation!r} given; a prescribed rotation applies to lumped assemblies "
                 "only (expected None with a WaveDrillingAssembly)",
             )
+        if contacts is not None:
+            raise ConfigError(
+                "well",
+                "friction along the string is built for the lumped chain only: the "
+                "distributed axial pipe carries no contacts (expected contacts=None with a "
+                "WaveDrillingAssembly)",
+            )
         setup = wave_run_setup(assembly, bit, wob, rpm, options)
     else:
-        setup = run_setup(assembly, bit, wob, rpm, options, bit_rotation, boundary)
+        setup = run_setup(assembly, bit, wob, rpm, options, bit_rotation, boundary, contacts)
     every = max(1, setup.steps // samples) if samples > 0 else 0
     rows = (setup.steps - 1) // every + 1 if every else 0
     table = np.zeros((rows, len(slot.SAMPLE_COLUMNS)))
+    start_energy = _stored_energy(setup, 0.0)
     stats = run_kernel(setup, table, every)
+    energy = None
+    if start_energy is not None:
+        energy = energy_balance(stats, start_energy, _stored_energy(setup, setup.steps * setup.step))
     rate = None
     if growth_rate and isinstance(assembly, DrillingAssembly) and bit_rotation is None:
         from torsio.axial.stability import drilling_stability
@@ -357,6 +405,9 @@ def simulate_axial(
         samples=table,
         top_drive=kind or "constant-speed",
         stability_of_held_top=rate is not None and _top_held_in_stability(boundary, setup.steady),
+        energy=energy,
+        contact_switches=int(stats[slot.CONTACT_SWITCHES]),
+        string_contacts=contacts.at_wob(wob).describe() if contacts is not None else None,
     )
     if boundary is None or boundary.held or not result.window_rows().any():
         return result

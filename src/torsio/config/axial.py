@@ -94,6 +94,10 @@ class AxialConfig:
         With the distributed pipe: the lumped chain of the same sections in elements of at
         most :data:`DEFAULT_ELEMENT_LENGTH`, on which its linear stability is computed
         (the distributed pipe has no linearization yet); None with a lumped assembly.
+    sections, element_length : AxialSections or None, float or None
+        What a ``[[section]]`` string's lumped chain was built from (None otherwise).
+    contacts : AxialContacts or None
+        The string's contacts with the ``[well]`` (:mod:`torsio.config.axial_well`).
     """
 
     assembly: DrillingAssembly | WaveDrillingAssembly
@@ -105,6 +109,9 @@ class AxialConfig:
     lumped_twin: DrillingAssembly | None = None
     top_drive: Any = None
     string: Any = None
+    sections: Any = None
+    element_length: float | None = None
+    contacts: Any = None
 
     def run_options(self) -> dict[str, Any]:
         """Keywords of :func:`~torsio.axial.transient.simulate_axial` from the file."""
@@ -115,6 +122,7 @@ class AxialConfig:
             "steps_per_period": self.steps_per_period,
             "top_drive": self.top_drive,
             "string": self.string,
+            **({"contacts": self.contacts} if self.contacts is not None else {}),
         }
 
     @property
@@ -343,6 +351,11 @@ def axial_sections(table: Mapping[str, Any], string: DrillString) -> AxialSectio
     return AxialSections(tuple(pipe), bha_mass, bha_inertia)
 
 
+def element_count(length: float, element_length: float) -> int:
+    """Elements of at most ``element_length`` [m] in a section of ``length`` [m]."""
+    return math.ceil(length / element_length - 1e-9)
+
+
 def lumped_chain(
     sections: AxialSections,
     element_length: float,
@@ -363,7 +376,7 @@ def lumped_chain(
     carry_i = carry_m = 0.0  # the lower half of the element above
     free_top_mass = 0.0
     for section in sections.pipe:
-        count = math.ceil(section.length / element_length - 1e-9)
+        count = element_count(section.length, element_length)
         spacing = section.length / count
         element_i = section.density * section.polar_moment * spacing
         element_m = section.density * section.area * spacing
@@ -470,5 +483,6 @@ def string_axial(table: Mapping[str, Any], string: DrillString) -> AxialConfig |
         twin = lumped_chain(sections, DEFAULT_ELEMENT_LENGTH, options["hook"])
         return AxialConfig(pipe, bit, lumped_twin=twin, string=string, **run)
     beta = _damping_beta(table)
-    chain = lumped_chain(sections, options["element_length"], options["hook"], beta)
-    return AxialConfig(chain, bit, string=string, **run)
+    length = options["element_length"]
+    chain = lumped_chain(sections, length, options["hook"], beta)
+    return AxialConfig(chain, bit, string=string, sections=sections, element_length=length, **run)

@@ -1,0 +1,269 @@
+"""Coulomb friction along the string at the nodes of the lumped axial-torsional chain.
+
+Node i presses on the borehole with the normal force N_i of its share of the string; its
+contact has a static and a sliding capacity F_s = ∫ μ_s N dx, F_d = ∫ μ_d N dx [N] over
+that share and a radius r_i [m], the outer radius the torque capacities see
+(r = ∫ μ_s N r_o dx / F_s, so Σ F_s r is the break-off torque of
+:func:`torsio.well.break_off.break_off` exactly). The friction is one Coulomb force on the
+contact's sliding velocity s = (V, r ω) (axial and tangential, m/s): sliding it is μ_d N
+opposite to s (force −F_d V/|s|, torque −F_d r² ω/|s|); stuck it is anything in the disc of
+radius F_s.
+
+Over one step h it is solved at the velocity level, as the bit's contact is (Moreau): from
+the free velocities s* = (V*, r Ω*) of the step, the impulse that stops the node is
+P = M s*, M = diag(m, I/r²) (the node's mass and its inertia seen at the radius). The node
+sticks (s = 0) when |P| <= h F_c, the cone's radius F_c being F_s while the node's speed
+|s|/r at the step's start is below the well's threshold speed and F_d above it. Otherwise
+it slides with the new velocity solving s = s* − h F_d M⁻¹ s/|s|: each component shrinks,
+s_k = s*_k M_k ρ/(M_k ρ + h F_d) with ρ = |s| the root of
+
+    φ(ρ) = Σ_k (M_k s*_k / (M_k ρ + h F_d))² − 1 = 0,
+
+decreasing and convex on ρ >= 0 (:func:`sliding_speed`; where m = I/r² it is
+ρ = |s*| − h F_d/m, so s = s*(1 − h F_d/(m |s*|))).
+
+:func:`node_friction` is the compiled step of one contact, called by
+:mod:`torsio.axial.kernel`; :func:`axial_contacts` builds the capacities of a string in a
+well at the nodes of a chain.
+
+Examples
+--------
+>>> inertia = 500.0 * 0.0635**2  # I/r² = m = 500 kg: s = s*(1 − h F_d/(m |s*|))
+>>> velocity, speed, stuck = node_friction(0.01, 2.0, 0.0635, 1 / 500.0, 1 / inertia,
+...                                        4000.0, 3000.0, 1e-3, False)
+>>> stuck, round(velocity, 9), round(speed, 9)
+(False, 0.009529017, 1.90580337)
+>>> node_friction(0.001, 0.01, 0.0635, 1 / 500.0, 1 / 2.0, 4000.0, 3000.0, 1e-3, True)
+(0.0, 0.0, True)
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+import attrs
+import numpy as np
+from numpy.typing import NDArray
+
+from torsio.axial import layouts as slot
+from torsio.errors import ConfigError
+from torsio.model.arrays import read_only
+from torsio.solvers.compiled import njit
+from torsio.well.rotating_column import RotatingColumn
+from torsio.well.wellbore import Wellbore
+
+__all__ = [
+    "AxialContacts",
+    "axial_contacts",
+    "contact_rows",
+    "node_friction",
+    "sliding_speed",
+]
+
+CONTACT_CELL_LENGTH = 10.0
+"""Cell of the soft-string integrals the capacities are taken from [m] (as the torsional
+contacts: :data:`torsio.well.string_contacts.CONTACT_CELL_LENGTH`)."""
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def sliding_speed(
+    axial, tangential, mass, tangential_mass, impulse
+) -> float:  # pragma: no cover - compiled
+    """ρ = |s| [m/s], the root of φ(ρ) = (m V*/(m ρ + p))² + (J v*/(J ρ + p))² − 1 for the
+    free velocities ``axial`` V* and ``tangential`` v* = r Ω* [m/s], ``mass`` m [kg],
+    ``tangential_mass`` J = I/r² [kg] and the sliding impulse ``impulse`` p = h F_d [N s];
+    the node slides (|M s*| > p). Newton's steps from the lower bound |s*| − p/min(m, J)
+    rise monotonically to the root (φ convex and decreasing), to round-off."""
+    free = math.hypot(axial, tangential)
+    rho = max(0.0, free - impulse / min(mass, tangential_mass))
+    upper = free - impulse / max(mass, tangential_mass)
+    for _ in range(200):
+        qa = mass * axial / (mass * rho + impulse)
+        qt = tangential_mass * tangential / (tangential_mass * rho + impulse)
+        value = qa * qa + qt * qt - 1.0
+        slope = -2.0 * (
+            mass * qa * qa / (mass * rho + impulse)
+            + tangential_mass * qt * qt / (tangential_mass * rho + impulse)
+        )
+        if value <= 0.0 or slope == 0.0:
+            break
+        new = min(rho - value / slope, upper)
+        if not new > rho:
+            break
+        rho = new
+    return rho
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def node_friction(
+    velocity, speed, radius, inverse_mass, inverse_inertia, static_force, sliding_force,
+    step, sticky,
+) -> tuple[float, float, bool]:  # pragma: no cover - compiled  # fmt: skip
+    """(V [m/s], ω [rad/s], stuck) of a contact after the step ``step`` [s] from its free
+    ``velocity`` V* and ``speed`` Ω*: at rest when the impulse that stops it is within
+    h F_c (F_c = ``static_force`` when ``sticky``, the node slow at the step's start, else
+    ``sliding_force`` [N]), else sliding under h F_d (:func:`sliding_speed`).
+    ``radius`` r [m], ``inverse_mass`` 1/m [1/kg], ``inverse_inertia`` 1/I [1/(kg m²)]."""
+    mass = 1.0 / inverse_mass
+    tangential_mass = 1.0 / (inverse_inertia * radius * radius)
+    tangential = radius * speed
+    stop = math.hypot(mass * velocity, tangential_mass * tangential)
+    cone = static_force if sticky else sliding_force
+    if stop <= step * cone:
+        return 0.0, 0.0, True
+    impulse = step * sliding_force
+    if impulse == 0.0:
+        return velocity, speed, False
+    rho = sliding_speed(velocity, tangential, mass, tangential_mass, impulse)
+    new_velocity = velocity * mass * rho / (mass * rho + impulse)
+    new_tangential = tangential * tangential_mass * rho / (tangential_mass * rho + impulse)
+    return new_velocity, new_tangential / radius, False
+
+
+@attrs.frozen(eq=False, repr=False)
+class AxialContacts:
+    """The Coulomb contacts of a lumped chain's nodes with the borehole.
+
+    Attributes
+    ----------
+    static_force, sliding_force : ndarray
+        F_s >= F_d >= 0 [N] of every node, from the surface down (0: no contact).
+    radius : ndarray
+        r [m] of every node: the torque capacities are F r.
+    threshold_speed : float
+        |s|/r below which a contact is on its static branch [rad/s] (the well's).
+    wob : float
+        Weight on bit [N] of the normal force (0: off bottom).
+    details : dict
+        Where the capacities came from (for reports): normal-force model, totals.
+    rebuild : callable or None
+        ``rebuild(wob)``: the contacts at another weight on bit (None: they do not depend
+        on it, the gravity model); :meth:`at_wob` calls it.
+    """
+
+    static_force: NDArray[np.float64] = attrs.field(converter=read_only)
+    sliding_force: NDArray[np.float64] = attrs.field(converter=read_only)
+    radius: NDArray[np.float64] = attrs.field(converter=read_only)
+    threshold_speed: float = 0.5
+    wob: float = 0.0
+    details: dict[str, Any] = attrs.field(factory=dict)
+    rebuild: Callable[[float], AxialContacts] | None = attrs.field(default=None)
+
+    def __attrs_post_init__(self) -> None:
+        sizes = {self.static_force.size, self.sliding_force.size, self.radius.size}
+        if len(sizes) != 1:
+            raise ConfigError("well", f"expected one capacity and radius per node, got {sizes}")
+        if np.any(self.sliding_force > self.static_force * (1 + 1e-12) + 1e-12):
+            raise ConfigError("well.friction_dynamic", "expected F_d <= F_s at every node")
+        if np.any(self.sliding_force < 0.0) or np.any(self.radius < 0.0):
+            raise ConfigError("well", "expected non-negative capacities and radii")
+
+    def at_wob(self, wob: float) -> AxialContacts:
+        """The contacts with the normal force at ``wob`` [N]."""
+        if self.rebuild is None or wob == self.wob:
+            return self
+        return self.rebuild(wob)
+
+    @property
+    def count(self) -> int:
+        """Nodes with a contact (F_s > 0)."""
+        return int(np.count_nonzero(self.static_force > 0.0))
+
+    @property
+    def static_torque(self) -> float:
+        """Σ F_s r [N m]: the break-off torque of the string (torsional closed form)."""
+        return float(np.sum(self.static_force * self.radius))
+
+    @property
+    def sliding_torque(self) -> float:
+        """Σ F_d r [N m]: the torque of every contact sliding tangentially."""
+        return float(np.sum(self.sliding_force * self.radius))
+
+    def describe(self) -> dict[str, Any]:
+        """Plain data for JSON: ``count``, ``static_force``, ``sliding_force`` [N] and
+        ``static_torque``, ``sliding_torque`` [N m] sums, ``threshold_speed``, ``wob``."""
+        return {
+            "count": self.count,
+            "static_force": float(np.sum(self.static_force)),
+            "sliding_force": float(np.sum(self.sliding_force)),
+            "static_torque": self.static_torque,
+            "sliding_torque": self.sliding_torque,
+            "threshold_speed": self.threshold_speed,
+            "wob": self.wob,
+            "normal_force": self.details.get("normal_force"),
+        }
+
+    def __repr__(self) -> str:
+        return (
+            f"AxialContacts({self.count} nodes, F_s {np.sum(self.static_force):.6g} N, "
+            f"break-off {self.static_torque:.6g} N m)"
+        )
+
+
+def contact_rows(contacts: AxialContacts | None, nodes: int) -> NDArray[np.float64]:
+    """The kernel's ``contacts`` (:data:`torsio.axial.layouts.CONTACT_ROW` by ``nodes``):
+    zeros without contacts."""
+    rows = np.zeros((len(slot.CONTACT_ROW), nodes))
+    if contacts is None:
+        return rows
+    if contacts.static_force.size != nodes:
+        raise ConfigError(
+            "well",
+            f"{contacts.static_force.size} contacts given for a chain of {nodes} nodes "
+            "(expected one per node)",
+        )
+    rows[slot.STATIC_FORCE] = contacts.static_force
+    rows[slot.SLIDING_FORCE] = contacts.sliding_force
+    rows[slot.CONTACT_RADIUS] = contacts.radius
+    return rows
+
+
+def axial_contacts(
+    well: Wellbore,
+    string: Any,
+    node_depths: NDArray[np.float64],
+    wob: float = 0.0,
+    column: RotatingColumn | None = None,
+) -> AxialContacts:
+    """Capacities F_s, F_d [N] and radii [m] of the nodes at ``node_depths`` [m below the
+    string's top] of ``string`` in ``well`` with ``wob`` [N] on bit.
+
+    Node i stands for the string from half-way to the node above (the top, for the first)
+    to half-way to the node below (the bottom of the string, for the last), as
+    :func:`torsio.well.string_contacts.node_contacts`; the normal force per cell is the
+    rotating soft-string state's (or gravity's) of :class:`RotatingColumn`.
+    """
+    column = column or RotatingColumn(well, string, CONTACT_CELL_LENGTH)
+    md = column.md
+    mid = 0.5 * (md[:-1] + md[1:])
+    per_cell_torque = column.friction_per_cell(wob)  # ∫ N r_o over each cell
+    per_cell_force = per_cell_torque / column.radii  # ∫ N over each cell
+    depths = float(md[0]) + np.asarray(node_depths, dtype=float)
+    edges = np.concatenate([[md[0]], 0.5 * (depths[:-1] + depths[1:]), [md[-1]]])
+
+    def shares(per_cell: NDArray[np.float64], friction: NDArray[np.float64]) -> NDArray:
+        below = np.concatenate([np.cumsum((friction * per_cell)[::-1])[::-1], [0.0]])
+        levels = np.interp(edges, md, below)
+        return levels[:-1] - levels[1:]
+
+    mu_s, mu_d = well.friction_static_at(mid), well.friction_dynamic_at(mid)
+    static, sliding = shares(per_cell_force, mu_s), shares(per_cell_force, mu_d)
+    torque = shares(per_cell_torque, mu_s)
+    radius = np.divide(torque, static, out=np.zeros_like(static), where=static > 0.0)
+    rebuild = None
+    if well.normal_force != "gravity":
+
+        def rebuild(at: float) -> AxialContacts:
+            return axial_contacts(well, string, node_depths, at, column)
+
+    return AxialContacts(
+        static_force=static,
+        sliding_force=np.minimum(sliding, static),
+        radius=radius,
+        threshold_speed=well.threshold_speed,
+        wob=float(wob),
+        details={"normal_force": well.normal_force},
+        rebuild=rebuild,
+    )

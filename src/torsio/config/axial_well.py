@@ -1,0 +1,75 @@
+"""``[well]`` with axial dynamics: the contacts of the lumped chain's nodes with the borehole.
+
+A ``[[section]]`` string with ``law = "rgd"`` is a lumped axial-torsional chain
+(:func:`torsio.config.axial.lumped_chain`); with ``[well]`` each of its nodes gets the
+Coulomb contact of its share of the string (:func:`torsio.axial.string_friction.axial_contacts`,
+the normal force of the well's model at the run's weight on bit). The distributed axial pipe
+(``[discretization] strategy = "wave"``) carries no contacts and refuses ``[well]``; a
+``[chain]`` has no diameters to press on the borehole with (refused by
+:func:`torsio.config.well.well_table`).
+
+Examples
+--------
+>>> from torsio.examples import rgd_deviated_well_config
+>>> contacts = rgd_deviated_well_config().axial.contacts
+>>> contacts.radius.size, contacts.count, round(contacts.static_torque)  # vertical top: no N
+(26, 26, 13096)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import attrs
+import numpy as np
+from numpy.typing import NDArray
+
+from torsio.axial.string_friction import axial_contacts
+from torsio.axial.wave_assembly import WaveDrillingAssembly
+from torsio.config.axial import AxialConfig, AxialSections, element_count
+from torsio.errors import ConfigError
+from torsio.well.wellbore import Wellbore
+
+__all__ = ["chain_node_depths", "with_well"]
+
+WAVE_WELL_REFUSAL = (
+    "[well] with [discretization] strategy = 'wave': the distributed axial pipe carries no "
+    "contacts along the string (its lines have no friction yet); remove [well], or choose "
+    "the lumped chain (another strategy), whose nodes take the well's Coulomb friction"
+)
+"""Why the distributed axial pipe refuses ``[well]`` (the message of ``well``)."""
+
+
+def chain_node_depths(sections: AxialSections, element_length: float) -> NDArray[np.float64]:
+    """Depths [m below the string's top] of the nodes of
+    :func:`torsio.config.axial.lumped_chain`: the bottom of each pipe element (the last
+    node carries the rigid BHA)."""
+    depths: list[float] = []
+    top = 0.0
+    for section in sections.pipe:
+        count = element_count(section.length, element_length)
+        depths.extend(top + section.length * np.arange(1, count + 1) / count)
+        top += section.length
+    return np.array(depths)
+
+
+def with_well(
+    axial: AxialConfig, table: Mapping[str, Any], well: Wellbore | None
+) -> AxialConfig:
+    """``axial`` with the contacts of its lumped chain in ``well`` (the parsed ``[well]``
+    of ``table``; None: absent, ``axial`` unchanged)."""
+    if "well" not in table:
+        return axial
+    if isinstance(axial.assembly, WaveDrillingAssembly):
+        raise ConfigError("well", WAVE_WELL_REFUSAL)
+    if well is None or axial.sections is None or axial.element_length is None:
+        raise ConfigError("well", "[well] needs a drill-string ([[section]]), not a [chain]")
+    depths = chain_node_depths(axial.sections, axial.element_length)
+    if depths.size != axial.assembly.nodes:
+        raise ConfigError(
+            "axial.element_length",
+            f"{depths.size} node depths for a chain of {axial.assembly.nodes} nodes",
+        )
+    contacts = axial_contacts(well, axial.string, depths)
+    return attrs.evolve(axial, contacts=contacts)
