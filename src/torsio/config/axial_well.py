@@ -13,7 +13,7 @@ Examples
 >>> from torsio.examples import rgd_deviated_well_config
 >>> contacts = rgd_deviated_well_config().axial.contacts
 >>> contacts.radius.size, contacts.count, round(contacts.static_torque)  # vertical top: no N
-(26, 26, 13096)
+(24, 20, 11623)
 """
 
 from __future__ import annotations
