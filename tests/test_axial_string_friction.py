@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 import scipy.optimize
 
+from torsio.axial.run_setup import BitRotation
 from torsio.axial.steady_friction import friction_damping, friction_split, steady_with_friction
 from torsio.axial.string_friction import node_friction, sliding_speed
 from torsio.axial.transient import simulate_axial
@@ -27,9 +28,7 @@ from torsio.config.reading import parse_config_text
 from torsio.errors import ConfigError
 from torsio.examples import rgd_deviated_well_config
 
-TEXT = (
-    resources.files("torsio").joinpath("data/rgd_deviated_well.toml").read_text(encoding="utf-8")
-)
+TEXT = resources.files("torsio").joinpath("data/rgd_deviated_well.toml").read_text(encoding="utf-8")
 
 
 def _config(text: str = TEXT):
@@ -166,3 +165,98 @@ def test_energy_residual_halves_with_the_step():
     orders = [math.log2(ratios[k] / ratios[k + 1]) for k in range(2)]
     assert ratios[0] < 1e-4
     assert all(0.6 < order < 1.3 for order in orders), (ratios, orders)
+
+
+def test_perturbed_steady_start_settles_on_the_bit_torque_plus_the_sliding_torque():
+    # closed form: surface torque T₀ + Σ F_d r² Ω₀/|s₀| at a linearly stable point (80 kN,
+    # 200 rpm, growth rates −0.0097 1/s speed hook, −0.0065 weight hook); the bit speed
+    # raised 1 %: measured window mean − closed form 2.5e-4 (speed), 1.5e-4 (weight)
+    for hook in ("speed", "weight"):
+        axial = _config(TEXT.replace('hook = "weight"', f'hook = "{hook}"')).axial
+        steady, friction = steady_with_friction(
+            axial.bit, 80e3, 200.0, axial.contacts.at_wob(80e3), hook
+        )
+        run = _run(axial, wob=80e3, rpm=200.0, start="steady", perturbation=1e-2,
+                   duration=30.0, window=10.0)  # fmt: skip
+        top = run.top_drive_summary()
+        sliding = float(np.sum(friction_split(axial.contacts.at_wob(80e3), steady.rop,
+                                              steady.bit_speed)[1]))  # fmt: skip
+        assert friction.surface_torque == pytest.approx(steady.bit_torque + sliding, rel=1e-15)
+        assert top["mean_surface_torque"] == pytest.approx(friction.surface_torque, rel=1e-3)
+        assert run.torque_mean == pytest.approx(steady.bit_torque, rel=1e-4)
+        assert run.contact_switches == 0
+
+
+@pytest.mark.parametrize("hook", ["speed", "weight"])
+def test_slow_start_up_breaks_free_once_the_static_capacities_are_overcome(hook):
+    # reference: torsio.well.break_off at the run's 100 kN (Σ C_s = Σ F_s r = 9.931 kN m,
+    # twist 16.11 rad); the top held at 1 rpm twists the string from rest. Measured: the
+    # surface torque at the bit's first motion, less the bit law's own torque T_c + T_f,
+    # is Σ C_s of every node but the BHA's to 1e-4, i.e. Σ C_s − 21.4 % with both hooks:
+    # at rest the BHA node's contact carries the weight the bit does not take (its cone is
+    # full axially, F_s = 25.6 kN, and it creeps down), so it holds no torque when the bit
+    # turns. The twist at first motion is +6.5 % (weight) and +15.7 % (speed) of break_off's.
+    from torsio.well.break_off import break_off
+
+    config = _config(TEXT.replace('hook = "weight"', f'hook = "{hook}"'))
+    axial, bit = config.axial, config.axial.bit
+    reference = break_off(config.well, config.string, 10.0, 100e3)
+    contacts = axial.contacts.at_wob(100e3)
+    assert contacts.static_torque == pytest.approx(reference.torque, rel=1e-12)
+    omega = 2 * math.pi / 60
+    duration = 1.3 * reference.twist / omega
+    run = _run(axial, rpm=1.0, duration=duration, window=0.1 * duration, samples=40000)
+    moved = int(np.flatnonzero(run.signal("bit_speed") > 0.0)[0])
+    depth = max(run.signal("depth_of_cut")[moved - 1], 0.0)
+    cutting = bit.cutting_weight_per_depth * depth
+    wear_flat = run.signal("bit_weight")[moved - 1] - cutting
+    own = bit.cutting_torque_per_depth * depth + bit.contact_friction * bit.bit_geometry * (
+        bit.radius / 2 * wear_flat
+    )
+    held = run.signal("surface_torque")[moved - 1] - own
+    bha = contacts.static_force[-1] * contacts.radius[-1]
+    assert held == pytest.approx(reference.torque - bha, rel=5e-3)
+    assert held / reference.torque - 1 == pytest.approx(-0.214, abs=0.005)
+
+
+def test_cli_simulate_and_map_give_the_string_friction(tmp_path):
+    # the built-in file through the command line; a map point is the single run
+    path = str(resources.files("torsio").joinpath("data/rgd_deviated_well.toml"))
+    common = ["--duration", "6", "--window", "3"]
+
+    def cli(*args):
+        out = subprocess.run([sys.executable, "-m", "torsio", *args, "--json"],
+                             capture_output=True, text=True, check=True)  # fmt: skip
+        return json.loads(out.stdout)
+
+    run = cli("simulate", path, "--wob", "100kN", "--rpm", "60", *common)
+    assert run["string_friction_work"] > 0.0 and run["contact_switches"] >= 0
+    assert run["string_contacts"]["count"] == 20
+    assert run["growth_rate"] is not None
+    grid = cli("map", path, "--wob", "90kN:100kN:2", "--rpm", "60:60:1", *common)
+    assert grid["string_friction_work"][0][1] == run["string_friction_work"]
+    assert grid["severity"][0][1] == run["severity"]
+
+
+def test_refusals_name_the_key():
+    wave = TEXT.replace(
+        '[axial]\nhook = "weight"',
+        '[discretization]\nstrategy = "wave"\n\n[axial]\nhook = "weight"',
+    )
+    wave = wave.replace(
+        'element_length = "100 m"       # the lumped chain\'s longest element\n', ""
+    )
+    wave = wave.replace("[damping]\nbeta = 0.01", "[damping]\nbeta = 0.0")
+    with pytest.raises(ConfigError, match=r"well: .*distributed axial pipe carries no contacts"):
+        _config(wave)
+    with pytest.raises(ConfigError, match=r"well\.friction_dynamic"):
+        _config(TEXT.replace("friction_dynamic = 0.3\n", "friction_dynamic = 0.5\n"))
+    with pytest.raises(ConfigError, match=r"well\.threshold_speed"):
+        _config(TEXT.replace("threshold_speed = 0.5", "threshold_speed = -1.0"))
+    with pytest.raises(ConfigError, match=r"well.*grip"):
+        _config(TEXT.replace("threshold_speed = 0.5", "threshold_speed = 0.5\ngrip = 1"))
+    axial = rgd_deviated_well_config().axial
+    with pytest.raises(ConfigError, match="well"):  # the bit turning as prescribed
+        simulate_axial(axial.assembly, axial.bit, 100e3, 60.0, duration=1.0, window=0.5,
+                       bit_rotation=BitRotation(), contacts=axial.contacts,
+                       growth_rate=False)  # fmt: skip

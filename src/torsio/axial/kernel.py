@@ -189,9 +189,8 @@ def march(
                     if stuck != (contact_stuck[i] != 0.0):
                         switches += 1.0
                     contact_stuck[i] = 1.0 if stuck else 0.0
-                    friction_work += (
-                        h * contacts[slot.SLIDING_FORCE, i] * math.hypot(v[i], radius * omega[i])
-                    )
+                    applied = contacts[slot.STATIC_FORCE if sticky else slot.SLIDING_FORCE, i]
+                    friction_work += h * applied * math.hypot(v[i], radius * omega[i])
             for i in range(nt):
                 theta[i] += h * omega[i]
         if not held:

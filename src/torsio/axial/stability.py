@@ -113,6 +113,7 @@ def drilling_stability(
     count: int = 6,
     order: int | None = None,
     top_drive: Any = None,
+    contacts: Any = None,
 ) -> DrillingStability:
     """Stability of steady drilling of ``assembly`` (the arguments as in
     :func:`~torsio.axial.linearization.drilling_linearization`: any lumped assembly,
@@ -124,15 +125,17 @@ def drilling_stability(
     m × m determinant from each candidate). ``top_drive``: the top's boundary; a PI speed
     loop is linearized with the chain
     (:func:`~torsio.axial.linearization.speed_loop`), any other holds the top.
+    ``contacts``: friction along the string, linearized with its damping (the steady state
+    then that of the weight the friction leaves at the bit).
     """
-    system = drilling_linearization(assembly, bit, wob, rpm, top_drive)
+    system = drilling_linearization(assembly, bit, wob, rpm, top_drive, contacts)
     if order is None:
         order = system.default_order()
     found = rightmost_roots(system, count, order=order)
     growth = float(found.roots[0].real)
     shares = [axial_share(system, root, assembly.axial_dofs) for root in found.roots]
     return DrillingStability(
-        steady=steady_drilling(bit, wob, rpm),
+        steady=_steady(bit, wob, rpm, contacts, assembly.hook),
         roots=found.roots,
         axial_shares=np.array(shares),
         growth_rate=growth,
@@ -140,6 +143,15 @@ def drilling_stability(
         neutral_root=found.dropped[0] if found.dropped else None,
         details=found,
     )
+
+
+def _steady(bit: RGDBit, wob: float, rpm: float, contacts: Any, hook: str) -> SteadyDrilling:
+    """The steady state at the bit, with the string's friction when ``contacts`` are given."""
+    if contacts is None:
+        return steady_drilling(bit, wob, rpm)
+    from torsio.axial.steady_friction import steady_with_friction
+
+    return steady_with_friction(bit, wob, rpm, contacts.at_wob(wob), hook)[0]
 
 
 @attrs.frozen

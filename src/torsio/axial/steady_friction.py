@@ -151,9 +151,7 @@ def steady_loads(
     return torque, force
 
 
-def friction_damping(
-    contacts: AxialContacts, rop: float, speed: float
-) -> NDArray[np.float64]:
+def friction_damping(contacts: AxialContacts, rop: float, speed: float) -> NDArray[np.float64]:
     """The damping matrices D_i = F_d/|s₀| (I − ŝ₀ŝ₀ᵀ) of every contact, shape (nodes, 2, 2)
     [N s/m], in the (V, r ω) metric, at V₀ = ``rop`` [m/s] and Ω₀ = ``speed`` [rad/s]
     (zero where |s₀| = 0 or there is no contact)."""

@@ -14,13 +14,15 @@ the free velocities s* = (V*, r Ω*) of the step, the impulse that stops the nod
 P = M s*, M = diag(m, I/r²) (the node's mass and its inertia seen at the radius). The node
 sticks (s = 0) when |P| <= h F_c, the cone's radius F_c being F_s while the node's speed
 |s|/r at the step's start is below the well's threshold speed and F_d above it. Otherwise
-it slides with the new velocity solving s = s* − h F_d M⁻¹ s/|s|: each component shrinks,
-s_k = s*_k M_k ρ/(M_k ρ + h F_d) with ρ = |s| the root of
+it slides with the new velocity solving s = s* − h F_c M⁻¹ s/|s|: each component shrinks,
+s_k = s*_k M_k ρ/(M_k ρ + h F_c) with ρ = |s| the root of
 
-    φ(ρ) = Σ_k (M_k s*_k / (M_k ρ + h F_d))² − 1 = 0,
+    φ(ρ) = Σ_k (M_k s*_k / (M_k ρ + h F_c))² − 1 = 0,
 
 decreasing and convex on ρ >= 0 (:func:`sliding_speed`; where m = I/r² it is
-ρ = |s*| − h F_d/m, so s = s*(1 − h F_d/(m |s*|))).
+ρ = |s*| − h F_c/m, so s = s*(1 − h F_c/(m |s*|))). Below the threshold speed a node
+that creeps thus carries its static capacity, as a stuck one may (Karnopp's model, as the
+torsional contacts: a slowly twisted string breaks free at Σ F_s r); above it, F_d.
 
 :func:`node_friction` is the compiled step of one contact, called by
 :mod:`torsio.axial.kernel`; :func:`axial_contacts` builds the capacities of a string in a
@@ -104,7 +106,7 @@ def node_friction(
     """(V [m/s], ω [rad/s], stuck) of a contact after the step ``step`` [s] from its free
     ``velocity`` V* and ``speed`` Ω*: at rest when the impulse that stops it is within
     h F_c (F_c = ``static_force`` when ``sticky``, the node slow at the step's start, else
-    ``sliding_force`` [N]), else sliding under h F_d (:func:`sliding_speed`).
+    ``sliding_force`` [N]), else sliding under h F_c (:func:`sliding_speed`).
     ``radius`` r [m], ``inverse_mass`` 1/m [1/kg], ``inverse_inertia`` 1/I [1/(kg m²)]."""
     mass = 1.0 / inverse_mass
     tangential_mass = 1.0 / (inverse_inertia * radius * radius)
@@ -113,7 +115,7 @@ def node_friction(
     cone = static_force if sticky else sliding_force
     if stop <= step * cone:
         return 0.0, 0.0, True
-    impulse = step * sliding_force
+    impulse = step * cone
     if impulse == 0.0:
         return velocity, speed, False
     rho = sliding_speed(velocity, tangential, mass, tangential_mass, impulse)
@@ -220,6 +222,28 @@ def contact_rows(contacts: AxialContacts | None, nodes: int) -> NDArray[np.float
     return rows
 
 
+class ContactsAtWob:
+    """The contacts of a chain's nodes at any weight on bit (:func:`axial_contacts`;
+    picklable, so runs with them go to worker processes; the rotating state ``column`` is
+    shared by every weight and rebuilt after unpickling)."""
+
+    def __init__(
+        self, well: Wellbore, string: Any, node_depths: NDArray, column: RotatingColumn | None
+    ) -> None:
+        self.well, self.string, self.node_depths, self._column = well, string, node_depths, column
+
+    def __call__(self, wob: float) -> AxialContacts:
+        if self._column is None:
+            self._column = RotatingColumn(self.well, self.string, CONTACT_CELL_LENGTH)
+        return axial_contacts(self.well, self.string, self.node_depths, wob, self._column)
+
+    def __getstate__(self) -> dict[str, Any]:
+        return {"well": self.well, "string": self.string, "node_depths": self.node_depths}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__init__(state["well"], state["string"], state["node_depths"], None)  # type: ignore[misc]
+
+
 def axial_contacts(
     well: Wellbore,
     string: Any,
@@ -254,10 +278,7 @@ def axial_contacts(
     radius = np.divide(torque, static, out=np.zeros_like(static), where=static > 0.0)
     rebuild = None
     if well.normal_force != "gravity":
-
-        def rebuild(at: float) -> AxialContacts:
-            return axial_contacts(well, string, node_depths, at, column)
-
+        rebuild = ContactsAtWob(well, string, node_depths, column)
     return AxialContacts(
         static_force=static,
         sliding_force=np.minimum(sliding, static),

@@ -386,12 +386,16 @@ def simulate_axial(
     stats = run_kernel(setup, table, every)
     energy = None
     if start_energy is not None:
-        energy = energy_balance(stats, start_energy, _stored_energy(setup, setup.steps * setup.step))
+        energy = energy_balance(
+            stats, start_energy, _stored_energy(setup, setup.steps * setup.step)
+        )
     rate = None
     if growth_rate and isinstance(assembly, DrillingAssembly) and bit_rotation is None:
         from torsio.axial.stability import drilling_stability
 
-        rate = drilling_stability(assembly, bit, wob, rpm, count=1, top_drive=boundary).growth_rate
+        rate = drilling_stability(
+            assembly, bit, wob, rpm, count=1, top_drive=boundary, contacts=contacts
+        ).growth_rate
     result = AxialTransient(
         wob=float(wob),
         rpm=float(rpm),

@@ -54,9 +54,7 @@ def chain_node_depths(sections: AxialSections, element_length: float) -> NDArray
     return np.array(depths)
 
 
-def with_well(
-    axial: AxialConfig, table: Mapping[str, Any], well: Wellbore | None
-) -> AxialConfig:
+def with_well(axial: AxialConfig, table: Mapping[str, Any], well: Wellbore | None) -> AxialConfig:
     """``axial`` with the contacts of its lumped chain in ``well`` (the parsed ``[well]``
     of ``table``; None: absent, ``axial`` unchanged)."""
     if "well" not in table:
