@@ -20,8 +20,10 @@ Examples
 ...                      window=1.0, start="steady", perturbation=0.0)
 >>> round(run.rop_mean / run.steady.rop, 12), run.stick_fraction
 (1.0, 0.0)
->>> sorted(run.to_dict())[:4]
-['axial_severity', 'bit_speed_max', 'bit_speed_min', 'depth_of_cut_max']
+>>> sorted(run.to_dict())[:3]
+['axial_severity', 'bit_speed_max', 'bit_speed_min']
+>>> run.string_friction_work, run.contact_switches  # no [well]: no contact along the string
+(0.0, 0)
 """
 
 from __future__ import annotations
