@@ -227,13 +227,15 @@ def mode_crossings(
     points: int = 41,
     order: int | None = None,
     top_drive: Any = None,
+    contacts: Any = None,
 ) -> list[ModeCrossing]:
     """Where in ``rpm_range`` [rev/min] the growth rate of steady drilling crosses 0
     (:func:`growth_rate_crossings`), each with the root that crosses: the rightmost root
     there, whose real part is then 0.
 
     The modes are told apart at the crossings only (by Im λ and the axial share), not
-    followed over rpm.
+    followed over rpm. ``contacts``: friction along the string, as for
+    :func:`drilling_stability`.
 
     Examples
     --------
@@ -251,7 +253,7 @@ def mode_crossings(
 
     def stability(rpm: float) -> DrillingStability:
         return drilling_stability(
-            assembly, bit, wob, rpm, count=1, order=order, top_drive=top_drive
+            assembly, bit, wob, rpm, count=1, order=order, top_drive=top_drive, contacts=contacts
         )
 
     low, high = rpm_range
