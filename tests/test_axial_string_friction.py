@@ -236,8 +236,12 @@ def test_cli_simulate_and_map_give_the_string_friction(tmp_path):
     grid = cli("map", path, "--wob", "90kN:100kN:2", "--rpm", "60:60:1", *common)
     assert grid["string_friction_work"][0][1] == run["string_friction_work"]
     assert grid["severity"][0][1] == run["severity"]
-    report = cli("report", path)["axial"]
-    assert report["string_contacts"] == run["string_contacts"]
+    small = tmp_path / "small.toml"  # 5 nodes: the report follows every mode over rpm
+    small.write_text(TEXT.replace('element_length = "100 m"', 'element_length = "600 m"'))
+    report = cli("report", str(small))["axial"]
+    assert report["string_contacts"]["static_torque"] == pytest.approx(
+        run["string_contacts"]["static_torque"], rel=1e-12
+    )
     assert report["steady_friction"]["bit_weight"] < 100e3  # the axial friction's share
     assert report["stability"]["contacts"].startswith("each sliding contact's damping")
 

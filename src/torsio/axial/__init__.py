@@ -26,12 +26,15 @@ if TYPE_CHECKING:
     from torsio.axial.linearization import axial_linearization, drilling_linearization
     from torsio.axial.maps import AxialMap, axial_map
     from torsio.axial.rgd import RGDBit, rgd_example, rgd_from_table
+    from torsio.axial.root_branches import follow_roots
     from torsio.axial.run_setup import BitRotation
     from torsio.axial.stability import (
         DrillingStability,
         ModeCrossing,
+        ModeCrossings,
         crossing_rpm,
         drilling_stability,
+        each_mode_crossing,
         mode_crossings,
     )
     from torsio.axial.steady import SteadyDrilling, steady_drilling
@@ -58,8 +61,11 @@ _LAZY = {
     "BitRotation": "torsio.axial.run_setup",
     "DrillingStability": "torsio.axial.stability",
     "ModeCrossing": "torsio.axial.stability",
+    "ModeCrossings": "torsio.axial.stability",
     "crossing_rpm": "torsio.axial.stability",
     "drilling_stability": "torsio.axial.stability",
+    "each_mode_crossing": "torsio.axial.stability",
+    "follow_roots": "torsio.axial.root_branches",
     "mode_crossings": "torsio.axial.stability",
     "SteadyDrilling": "torsio.axial.steady",
     "steady_drilling": "torsio.axial.steady",
@@ -78,6 +84,7 @@ __all__ = [
     "DrillingStability",
     "LinearDelaySystem",
     "ModeCrossing",
+    "ModeCrossings",
     "PipeSection",
     "RGDBit",
     "SteadyDrilling",
@@ -87,6 +94,8 @@ __all__ = [
     "crossing_rpm",
     "drilling_linearization",
     "drilling_stability",
+    "each_mode_crossing",
+    "follow_roots",
     "mode_crossings",
     "pipe_assembly",
     "rgd_example",

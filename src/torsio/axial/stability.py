@@ -167,11 +167,15 @@ class ModeCrossing:
         Im λ of the crossing root [rad/s].
     axial_share : float
         :func:`axial_share` of its mode (above :data:`AXIAL_MODE_SHARE`: axial).
+    destabilizing : bool
+        Whether the root's real part rises through 0 as the rpm grows (the mode is
+        unstable above the crossing).
     """
 
     rpm: float
     frequency: float
     axial_share: float
+    destabilizing: bool
 
     @property
     def mode(self) -> str:
@@ -179,7 +183,8 @@ class ModeCrossing:
         return "axial" if self.axial_share > AXIAL_MODE_SHARE else "torsional"
 
     def to_dict(self) -> dict[str, Any]:
-        """Plain data for JSON: ``rpm``, ``frequency`` [rad/s], ``axial_share``, ``mode``."""
+        """Plain data for JSON: ``rpm``, ``frequency`` [rad/s], ``axial_share``,
+        ``destabilizing``, ``mode``."""
         return {**attrs.asdict(self), "mode": self.mode}
 
 
@@ -262,8 +267,122 @@ def mode_crossings(
         lambda r: stability(r).growth_rate, float(low), float(high), points
     ):
         at = stability(rpm)
-        found.append(ModeCrossing(rpm, float(at.roots[0].imag), float(at.axial_shares[0])))
+        root = at.roots[0]
+        system = drilling_linearization(assembly, bit, wob, rpm * (1 + 1e-6), top_drive)
+        rising = system.refine(root, system.neutral_roots).real > 0
+        found.append(ModeCrossing(rpm, float(root.imag), float(at.axial_shares[0]), bool(rising)))
     return found
+
+
+@attrs.frozen
+class ModeCrossings:
+    """Every mode's crossings over a range of rpm, and the check they pass.
+
+    Attributes
+    ----------
+    crossings : tuple of ModeCrossing
+        Sorted by rpm.
+    rpm_range : tuple of float
+        (low, high) [rev/min].
+    unstable_at_low, unstable_at_high : int
+        The unstable roots counted afresh at the two ends.
+    """
+
+    crossings: tuple[ModeCrossing, ...]
+    rpm_range: tuple[float, float]
+    unstable_at_low: int
+    unstable_at_high: int
+
+    @property
+    def complete(self) -> bool:
+        """Whether the unstable roots at ``low`` and the signed crossings (+1 for a mode
+        that turns unstable) give those at ``high``; False if a grid too coarse lost a
+        crossing."""
+        signed = sum(1 if c.destabilizing else -1 for c in self.crossings)
+        return self.unstable_at_low + signed == self.unstable_at_high
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data for JSON."""
+        return {
+            "crossings": [c.to_dict() for c in self.crossings],
+            "rpm_range": list(self.rpm_range),
+            "unstable_at_low": self.unstable_at_low,
+            "unstable_at_high": self.unstable_at_high,
+            "complete": self.complete,
+        }
+
+
+def each_mode_crossing(
+    assembly: DrillingAssembly,
+    bit: RGDBit,
+    wob: float,
+    rpm_range: tuple[float, float],
+    *,
+    points: int = 41,
+    count: int = 4,
+    order: int | None = None,
+    top_drive: Any = None,
+    contacts: Any = None,
+) -> ModeCrossings:
+    """Every crossing of the imaginary axis in ``rpm_range`` [rev/min] by each of the
+    unstable roots and at least the ``count`` rightmost of steady drilling, followed over
+    rpm (:func:`torsio.axial.root_branches.follow_roots` on ``points`` rpm uniform in the
+    delay t_n0 = 2π/(n Ω₀), the phase the roots turn with; the roots that join them on the
+    way included).
+
+    The growth rate (:func:`mode_crossings`) changes sign at some of them; the others are
+    modes crossing while another is unstable (they set how many modes grow). A root that
+    crosses twice between two grid points while it is left of all followed ones at both
+    can hide: :attr:`ModeCrossings.complete` checks the count at the ends; give more
+    ``points`` where it fails (an undamped chain, whose modes hover at Re λ ≈ 0, needs
+    many). ``contacts``: friction along the string, as for :func:`drilling_stability`.
+
+    Examples
+    --------
+    The 2-DOF example's axial modes cross where the axial equation's do
+    (ω t_n0 = (2j + 1) π, docs/axial.md), the lowest-rpm crossing a mode above the first:
+
+    >>> from torsio.axial.assembly import rgd_two_dof_example
+    >>> from torsio.axial.rgd import rgd_example
+    >>> found = each_mode_crossing(rgd_two_dof_example(), rgd_example(), 100e3,
+    ...                            (40.0, 170.0), points=14)
+    >>> [(round(c.rpm, 1), c.mode, c.destabilizing) for c in found.crossings]
+    [(51.1, 'axial', False), (153.3, 'axial', False)]
+    >>> found.unstable_at_low, found.unstable_at_high, found.complete
+    (2, 0, True)
+    """
+    from torsio.axial.root_branches import branch_crossings, follow_roots, unstable_roots
+
+    def system_at(rpm: float) -> LinearDelaySystem:
+        return drilling_linearization(assembly, bit, wob, rpm, top_drive, contacts)
+
+    low, high = rpm_range
+    if not (0 < low < high):
+        raise ConfigError("rpm", f"range {low!r}..{high!r} must be increasing and positive")
+    grid = 1.0 / np.linspace(1.0 / low, 1.0 / high, points)  # uniform in the delay t_n0
+    found: list[ModeCrossing] = []
+    for branch in follow_roots(system_at, grid, count, order=order):
+        for crossing in branch_crossings(system_at, branch):
+            root = 1j * crossing.frequency
+            share = axial_share(system_at(crossing.parameter), root, assembly.axial_dofs)
+            mode = ModeCrossing(
+                crossing.parameter, crossing.frequency, share, crossing.destabilizing
+            )
+            if not any(_same_crossing(mode, other) for other in found):
+                found.append(mode)
+    return ModeCrossings(
+        crossings=tuple(sorted(found, key=lambda c: c.rpm)),
+        rpm_range=(float(low), float(high)),
+        unstable_at_low=unstable_roots(system_at(float(low)), order),
+        unstable_at_high=unstable_roots(system_at(float(high)), order),
+    )
+
+
+def _same_crossing(a: ModeCrossing, b: ModeCrossing) -> bool:
+    """One root's crossing found on two branches (they met before it)."""
+    return abs(a.rpm - b.rpm) <= 1e-9 * a.rpm and abs(a.frequency - b.frequency) <= 1e-6 * max(
+        1.0, a.frequency
+    )
 
 
 def crossing_rpm(

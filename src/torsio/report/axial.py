@@ -44,6 +44,8 @@ __all__ = ["CROSSING_RANGE", "axial_frequencies", "axial_section", "torsional_fr
 
 CROSSING_RANGE = (20.0, 300.0)
 """The rpm range [rev/min] searched for a change of sign of the growth rate (15 points)."""
+MODE_CROSSINGS_SHOWN = 6
+"""How many of every mode's crossings the table lists (the data has them all)."""
 DISTRIBUTED_MODES = 10
 """How many frequencies of a distributed pipe :func:`axial_frequencies` and
 :func:`torsional_frequencies` give by default (a chain gives all of its own)."""
@@ -93,8 +95,9 @@ def torsional_frequencies(
 
 
 def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
-    from torsio.axial.linearization import speed_loop
-    from torsio.axial.stability import drilling_stability, mode_crossings
+    from torsio.axial.linearization import drilling_linearization, speed_loop
+    from torsio.axial.root_branches import unstable_roots
+    from torsio.axial.stability import drilling_stability, each_mode_crossing, mode_crossings
     from torsio.axial.steady import steady_drilling
     from torsio.axial.top_drive import top_boundary
 
@@ -107,6 +110,9 @@ def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
         chain, axial.bit, wob, rpm, count=1, top_drive=top, contacts=contacts
     )
     crossings = mode_crossings(
+        chain, axial.bit, wob, CROSSING_RANGE, points=15, top_drive=top, contacts=contacts
+    )
+    each = each_mode_crossing(
         chain, axial.bit, wob, CROSSING_RANGE, points=15, top_drive=top, contacts=contacts
     )
     steady = steady_drilling(axial.bit, wob, rpm)
@@ -123,6 +129,8 @@ def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
         "stable": result.stable,
         "crossing_rpm": [c.rpm for c in crossings],
         "crossings": [c.to_dict() for c in crossings],
+        "unstable_modes": unstable_roots(drilling_linearization(chain, axial.bit, wob, rpm, top)),
+        "mode_crossings": each.to_dict(),
         "crossing_range_rpm": list(CROSSING_RANGE),
     }
 
@@ -141,6 +149,31 @@ def _friction(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
         "string_contacts": axial.contacts.at_wob(wob).describe(),
         "steady_friction": {**friction.to_dict(), "bit_weight": steady.wob},
     }
+
+
+def _modes_crossing(stability: dict[str, Any]) -> str:
+    """The row of every mode's crossings: how many turn unstable and stable, the first few."""
+    each = stability["mode_crossings"]
+    crossings = each["crossings"]
+    low, high = each["rpm_range"]
+    rising = sum(c["destabilizing"] for c in crossings)
+    shown = ", ".join(
+        f"{c['rpm']:.4g} ({c['mode']}, {'unstable' if c['destabilizing'] else 'stable'} above)"
+        for c in crossings[:MODE_CROSSINGS_SHOWN]
+    )
+    if len(crossings) > MODE_CROSSINGS_SHOWN:
+        shown += f", {len(crossings) - MODE_CROSSINGS_SHOWN} more"
+    text = (
+        f"{len(crossings)} in {low:g}..{high:g} rpm ({rising} turn unstable, "
+        f"{len(crossings) - rising} stable as the rpm rises){': ' + shown if crossings else ''}; "
+        f"{stability['unstable_modes']} unstable at the operating point"
+    )
+    if not each["complete"]:
+        text += (
+            f" (some crossings are missed: {each['unstable_at_low']} unstable at {low:g} "
+            f"rpm and the crossings do not give the {each['unstable_at_high']} at {high:g})"
+        )
+    return text
 
 
 def axial_section(ctx: ReportContext) -> ReportSection | None:
@@ -270,6 +303,7 @@ def _body(data: dict[str, Any]) -> Table:
                 if crossings
                 else f"none in {low:g}..{high:g} rpm",
             ),
+            ("modes crossing", _modes_crossing(stability)),
         ]
     if data["note"]:
         rows.append(("note", data["note"]))
