@@ -16,8 +16,15 @@ at the velocity level over each step (Moreau's time stepping):
    T_f = μ γ a W_f / 2, and Ω_b = max(Ω*, 0): the bit does not turn backwards and sticks
    while the string's torque is at most T_c + T_f (the bit torque is then the reaction
    T_b + I_b Ω_b/h). With a prescribed rotation Φ_b, Ω_b are set instead.
+   3b. A node with a contact along the string (``contacts``, rows
+   :data:`torsio.axial.layouts.CONTACT_ROW`, F_s > 0) takes its Coulomb friction on its free
+   (V_i, ω_i) (:func:`torsio.axial.string_friction.node_friction`; static branch while
+   |s|/r at the step's start is below ``settings[THRESHOLD_SPEED]``), at the bit after the
+   bit's contacts; ``contact_stuck`` keeps each contact's state to count its switches. With
+   contacts the axial dampers read the node below at the step's start.
 4. Positions from the new velocities: U ← U + h V, θ ← θ + h ω; the top angle Ω₀ t, the
-   hook position U_h0 + V_h t. The new bit state is appended to the history.
+   hook position U_h0 + V_h t. The new bit state is appended to the history. The works of
+   the energy balance (:mod:`torsio.axial.energy_balance`) are summed on the new velocities.
 
 With a top drive that is not held (``top[TOP_HELD]`` 0), the top is a node (J, drag) with
 a linear controller (:class:`torsio.physics.top_drive_boundary.TopDriveBoundary`), advanced

@@ -409,8 +409,8 @@ WAVE_REFUSED_DISCRETIZATION = {
     "time_step": "the axial engine's largest step is simulation.step (the distributed "
     "pipe's step rule: axial.steps_per_period and discretization.travel_time_tolerance); "
     "give it there",
-    "drag_spacing": "the distributed axial pipe carries no distributed drag (the axial "
-    "engine takes no [well] and no damping); remove it",
+    "drag_spacing": "the distributed axial pipe carries no distributed drag (no contacts "
+    "along it and no damping); remove it",
 }
 """``[discretization]`` keys of the torsional wave strategy that the distributed axial pipe
 refuses, and why."""
