@@ -268,3 +268,24 @@ def test_refusals_name_the_key():
         simulate_axial(axial.assembly, axial.bit, 100e3, 60.0, duration=1.0, window=0.5,
                        bit_rotation=BitRotation(), contacts=axial.contacts,
                        growth_rate=False)  # fmt: skip
+
+
+def test_growth_of_a_small_perturbation_is_the_linearization_with_the_contacts_damping():
+    # reference: the rightmost root of drilling_linearization with the contacts (2.535 1/s at
+    # 100 kN, 60 rpm; 2.828 without them). The envelope of |V_b − V₀| from a steady start
+    # raised 1e-7 grows at 2.540 1/s (log of its peaks over 0.8..2.8 s), within 0.2 %
+    from torsio.axial.stability import drilling_stability
+
+    axial = rgd_deviated_well_config().axial
+    run = _run(axial, start="steady", perturbation=1e-7, duration=3.0, window=1.0,
+               samples=10**6)  # fmt: skip
+    with_contacts = drilling_stability(
+        axial.assembly, axial.bit, 100e3, 60.0, count=1, contacts=axial.contacts
+    ).growth_rate
+    without = drilling_stability(axial.assembly, axial.bit, 100e3, 60.0, count=1).growth_rate
+    time, deviation = run.signal("time"), np.abs(run.signal("bit_velocity") - run.steady.rop)
+    peaks = np.flatnonzero((deviation[1:-1] >= deviation[:-2]) & (deviation[1:-1] > deviation[2:]))
+    peaks = peaks[(time[peaks + 1] > 0.8) & (time[peaks + 1] < 2.8)] + 1
+    fitted = np.polyfit(time[peaks], np.log(deviation[peaks]), 1)[0]
+    assert fitted == pytest.approx(with_contacts, rel=1e-2)
+    assert abs(fitted / without - 1) > 0.08
