@@ -206,7 +206,7 @@ HOOK_START, PRESCRIBED, AMPLITUDE, FREQUENCY, THRESHOLD_SPEED = range(
 
 CONTACT_ROW = ("static_force", "sliding_force", "radius")
 """The rows of the lumped kernel's ``contacts`` (one column per node,
-:mod:`torsio.axial.string_friction`): F_s, F_d [N] and r [m]; all 0: no contact."""
+:mod:`torsio.axial.string_contacts`): F_s, F_d [N] and r [m]; all 0: no contact."""
 
 STATIC_FORCE, SLIDING_FORCE, CONTACT_RADIUS = range(len(CONTACT_ROW))
 

@@ -40,7 +40,7 @@ from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 from torsio.axial.steady_friction import steady_loads, steady_with_friction
-from torsio.axial.string_friction import AxialContacts, contact_rows
+from torsio.axial.string_contacts import AxialContacts, contact_rows
 from torsio.axial.top_drive import TopDriveArrays, steady_controller_state, top_drive_rates
 from torsio.errors import ConfigError
 from torsio.physics.top_drive_boundary import TopDriveBoundary
@@ -264,7 +264,7 @@ def run_setup(
     held starts with the string: from rest (angle, speed and controller states zero) or on
     the steady state (at Ω₀, the controller state of
     :func:`torsio.axial.top_drive.steady_controller_state`). ``contacts``: the string's
-    contacts with the borehole (:mod:`torsio.axial.string_friction`; their normal force at
+    contacts with the borehole (:mod:`torsio.axial.string_contacts`; their normal force at
     ``wob``), the steady state then that of :mod:`torsio.axial.steady_friction` (``wob`` the
     hook's weight under the weight hook).
     """

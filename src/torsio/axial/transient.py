@@ -344,7 +344,7 @@ def simulate_axial(
         impedance (``soft-torque``, ``z-torque`` defaults).
     contacts : AxialContacts, optional
         Coulomb friction along the string at the chain's nodes
-        (:mod:`torsio.axial.string_friction`; lumped assemblies only), its normal force
+        (:mod:`torsio.axial.string_contacts`; lumped assemblies only), its normal force
         rebuilt at ``wob``. The growth rate is then that of the linearization with the
         contacts' damping (:mod:`torsio.axial.steady_friction`).
     """

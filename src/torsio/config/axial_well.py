@@ -2,7 +2,7 @@
 
 A ``[[section]]`` string with ``law = "rgd"`` is a lumped axial-torsional chain
 (:func:`torsio.config.axial.lumped_chain`); with ``[well]`` each of its nodes gets the
-Coulomb contact of its share of the string (:func:`torsio.axial.string_friction.axial_contacts`,
+Coulomb contact of its share of the string (:func:`torsio.axial.string_contacts.axial_contacts`,
 the normal force of the well's model at the run's weight on bit). The distributed axial pipe
 (``[discretization] strategy = "wave"``) carries no contacts and refuses ``[well]``; a
 ``[chain]`` has no diameters to press on the borehole with (refused by
@@ -25,7 +25,7 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.axial.string_friction import axial_contacts
+from torsio.axial.string_contacts import axial_contacts
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.config.axial import AxialConfig, AxialSections, element_count
 from torsio.errors import ConfigError
