@@ -263,6 +263,10 @@ def test_refusals_name_the_key():
         _config(TEXT.replace("threshold_speed = 0.5", "threshold_speed = -1.0"))
     with pytest.raises(ConfigError, match=r"well.*grip"):
         _config(TEXT.replace("threshold_speed = 0.5", "threshold_speed = 0.5\ngrip = 1"))
+    chain = resources.files("torsio").joinpath("data/rgd_2dof.toml").read_text(encoding="utf-8")
+    well = TEXT[TEXT.index("[well]") : TEXT.index("[bit_rock]")]
+    with pytest.raises(ConfigError, match=r"well: .*not a \[chain\]"):  # no diameters
+        _config(chain + "\n" + well)
     axial = rgd_deviated_well_config().axial
     with pytest.raises(ConfigError, match="well"):  # the bit turning as prescribed
         simulate_axial(axial.assembly, axial.bit, 100e3, 60.0, duration=1.0, window=0.5,
