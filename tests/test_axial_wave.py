@@ -34,6 +34,7 @@ from torsio.axial.wave_pipe import (
     smooth_end_terms,
 )
 from torsio.axial.wave_setup import pipe_grid, run_wave, wave_run_setup
+from torsio.axial.wave_stability import distributed_stability
 from torsio.errors import ConfigError
 from torsio.model.continuum import bar_frequencies
 from torsio.model.lumped import chain_matrix
@@ -253,7 +254,10 @@ def test_steady_drilling_is_a_fixed_point_of_the_wave_model(hook):
     assert run.mse_mean == pytest.approx(steady.mse, rel=1e-12)
     assert run.severity < 1e-12 and run.axial_severity < 1e-12
     assert run.stick_fraction == 0.0 and run.off_bottom_fraction == 0.0
-    assert run.growth_rate is None
+    # the growth rate of the pipe's own characteristic equation (test_axial_wave_stability)
+    twin = _stepped(hook).lumped_twin()
+    exact = distributed_stability(_stepped(hook), BIT, WOB, 180.0, twin=twin)
+    assert run.growth_rate == exact.growth_rate
 
 
 def test_one_section_and_two_equal_sections_give_the_same_run():

@@ -171,7 +171,13 @@ def kernels_cached() -> bool:
 
 
 def _mark_cached() -> None:
-    engines = ("torsio.solvers.batch", "torsio.solvers.single_run", "torsio.solvers.wave_march")
+    engines = (
+        "torsio.solvers.batch",
+        "torsio.solvers.single_run",
+        "torsio.solvers.wave_march",
+        "torsio.axial.kernel",
+        "torsio.axial.wave_kernel",
+    )
     if "numba" not in sys.modules or not any(name in sys.modules for name in engines):
         return  # nothing was compiled (e.g. the process stopped on an error before a run)
     try:

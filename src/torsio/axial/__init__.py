@@ -25,6 +25,7 @@ if TYPE_CHECKING:
         two_dof_assembly,
     )
     from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
+    from torsio.axial.energy_balance import EnergyBalance
     from torsio.axial.linearization import axial_linearization, drilling_linearization
     from torsio.axial.maps import AxialMap, axial_map
     from torsio.axial.rgd import RGDBit, rgd_example, rgd_from_table
@@ -39,7 +40,6 @@ if TYPE_CHECKING:
         each_mode_crossing,
         mode_crossings,
     )
-    from torsio.axial.energy_balance import EnergyBalance
     from torsio.axial.steady import SteadyDrilling, steady_drilling
     from torsio.axial.steady_friction import SteadyFriction, steady_with_friction
     from torsio.axial.string_contacts import AxialContacts, axial_contacts

@@ -249,12 +249,6 @@ def axial_map(
     duration, window = run_times(
         assembly, options.pop("duration", None), options.pop("window", None)
     )
-    if growth_rate and not isinstance(assembly, DrillingAssembly):
-        raise ConfigError(
-            "growth_rate",
-            "the linear growth rate is of lumped assemblies; a WaveDrillingAssembly has none "
-            "(expected growth_rate=False)",
-        )
     if growth_rate and options.get("bit_rotation") is not None:
         raise ConfigError(
             "growth_rate",

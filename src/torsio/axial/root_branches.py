@@ -119,34 +119,28 @@ def _continued(system: LinearDelaySystem, starts: Sequence[complex]) -> list[com
     return found
 
 
-def _predicted(
+def _continued_to(
     system_at: SystemAt,
     position: float,
     target: float,
     roots: list[complex],
     slopes: list[complex],
+    confirm: bool = True,
 ) -> list[complex] | None:
-    """Newton at ``target`` from the linear prediction; None if one fails."""
+    """The roots at ``target`` by Newton from the linear prediction, or None.
+
+    With ``confirm``, only if one step and two half steps reach the same distinct roots
+    (a root that jumped to another one in the long step does not)."""
     guesses = [r + s * (target - position) for r, s in zip(roots, slopes, strict=True)]
-    return _continued(system_at(target), guesses)
-
-
-def _confirmed(
-    system_at: SystemAt,
-    position: float,
-    target: float,
-    roots: list[complex],
-    slopes: list[complex],
-) -> list[complex] | None:
-    """The roots at ``target`` if one step and two half steps reach the same distinct
-    roots (a root that jumped to another one in the long step does not), else None."""
-    whole = _predicted(system_at, position, target, roots, slopes)
+    whole = _continued(system_at(target), guesses)
+    if not confirm or whole is None:
+        return whole
     middle = 0.5 * (position + target)
-    half = _predicted(system_at, position, middle, roots, slopes)
-    if whole is None or half is None:
+    half = _continued_to(system_at, position, middle, roots, slopes, confirm=False)
+    if half is None:
         return None
     half_slopes = [(b - a) / (middle - position) for a, b in zip(roots, half, strict=True)]
-    halves = _predicted(system_at, middle, target, half, half_slopes)
+    halves = _continued_to(system_at, middle, target, half, half_slopes, confirm=False)
     if halves is None or not all(_same(a, b) for a, b in zip(whole, halves, strict=True)):
         return None
     if any(_same(b, c) for i, b in enumerate(halves) for c in halves[i + 1 :]):
@@ -164,9 +158,9 @@ def _step(
     while position != end:
         width = (end - start) / 2**level
         target = end if abs(end - position) <= abs(width) else position + width
-        found = _confirmed(system_at, position, target, current, slopes)
+        found = _continued_to(system_at, position, target, current, slopes)
         if found is None and level == MAX_HALVINGS:
-            found = _predicted(system_at, position, target, current, slopes)
+            found = _continued_to(system_at, position, target, current, slopes, confirm=False)
         if found is not None:
             slopes = [(b - a) / (target - position) for a, b in zip(current, found, strict=True)]
             position, current, level = target, found, max(0, level - 1)

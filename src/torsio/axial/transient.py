@@ -155,7 +155,9 @@ class AxialTransient:
         The window's outputs (also as attributes: ``severity``, ``rop_mean`` ...).
     growth_rate : float or None
         The rightmost root's real part [1/s] of the linearization about the steady state
-        (None with a prescribed bit rotation or when not asked).
+        (a distributed pipe's from its exact characteristic equation,
+        :func:`torsio.axial.wave_stability.distributed_stability`; None with a prescribed
+        bit rotation or when not asked).
     step, duration, window : float
         The step h, the run's length and its window [s].
     start : str
@@ -392,12 +394,8 @@ def simulate_axial(
             stats, start_energy, _stored_energy(setup, setup.steps * setup.step)
         )
     rate = None
-    if growth_rate and isinstance(assembly, DrillingAssembly) and bit_rotation is None:
-        from torsio.axial.stability import drilling_stability
-
-        rate = drilling_stability(
-            assembly, bit, wob, rpm, count=1, top_drive=boundary, contacts=contacts
-        ).growth_rate
+    if growth_rate and bit_rotation is None:
+        rate = _growth_rate(assembly, bit, wob, rpm, boundary, contacts)
     result = AxialTransient(
         wob=float(wob),
         rpm=float(rpm),
@@ -427,3 +425,21 @@ def simulate_axial(
         boundary.set_speed,
     )
     return attrs.evolve(result, warnings=warning_list(motor))
+
+
+def _growth_rate(
+    assembly: Any, bit: RGDBit, wob: float, rpm: float, boundary: Any, contacts: Any
+) -> float:
+    """The growth rate of steady drilling: a chain's linearization (with its ``contacts``'
+    damping), or a distributed pipe's characteristic equation from its lumped twin's roots
+    (its top held)."""
+    if isinstance(assembly, DrillingAssembly):
+        from torsio.axial.stability import drilling_stability
+
+        return drilling_stability(
+            assembly, bit, wob, rpm, count=1, top_drive=boundary, contacts=contacts
+        ).growth_rate
+    from torsio.axial.wave_stability import distributed_stability
+
+    twin = assembly.lumped_twin()
+    return distributed_stability(assembly, bit, wob, rpm, twin=twin).growth_rate

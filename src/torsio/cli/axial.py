@@ -11,7 +11,6 @@ import argparse
 import sys
 from typing import Any
 
-from torsio.axial.assembly import DrillingAssembly
 from torsio.cli import common
 from torsio.errors import ConfigError
 
@@ -177,7 +176,7 @@ def run_map(args: argparse.Namespace, config: Any, wob: Any, rpm: Any) -> int:
         rpm,
         **_times(args, config),
         **axial.run_options(),
-        growth_rate=isinstance(axial.assembly, DrillingAssembly),  # none for a wave pipe
+        growth_rate=True,
         threads=args.threads,
         executor=args.workers if args.workers is not None else args.scheduler,
         timeout=args.timeout,

@@ -32,7 +32,12 @@ import numpy as np
 
 from torsio.axial.assembly import HOOKS, DrillingAssembly
 from torsio.axial.rgd import RGDBit, rgd_from_table
-from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly
+from torsio.axial.wave_assembly import (
+    DEFAULT_ELEMENT_LENGTH,
+    PipeSection,
+    WaveDrillingAssembly,
+    lumped_pipe,
+)
 from torsio.config.chain import ChainConfig, _values
 from torsio.config.tables import _positive_number, _string, _table
 from torsio.errors import ConfigError
@@ -56,9 +61,6 @@ AXIAL_SIMULATION_KEYS = {"start", "perturbation", "step"}
 """``[simulation]`` keys of the axial engine only."""
 TORSIONAL_ONLY_SIMULATION_KEYS = ("method", "rtol", "atol", "output_step", "stick_threshold")
 """``[simulation]`` keys the fixed-step axial engine has no use for (refused)."""
-DEFAULT_ELEMENT_LENGTH = 100.0
-"""Longest element [m] of a ``[[section]]`` string's pipe in its axial-torsional chain."""
-
 RGD_REFUSAL = (
     "the rgd law needs axial dynamics: give [chain] masses (or, for a [[section]] string, "
     "[material] youngs_modulus); the torsional engines take a law with "
@@ -351,58 +353,22 @@ def axial_sections(table: Mapping[str, Any], string: DrillString) -> AxialSectio
     return AxialSections(tuple(pipe), bha_mass, bha_inertia)
 
 
-def element_count(length: float, element_length: float) -> int:
-    """Elements of at most ``element_length`` [m] in a section of ``length`` [m]."""
-    return math.ceil(length / element_length - 1e-9)
-
-
 def lumped_chain(
     sections: AxialSections,
     element_length: float,
     hook: str,
     beta: float = 0.0,
 ) -> DrillingAssembly:
-    """The lumped chain of ``sections``: each pipe section split into elements of at most
-    ``element_length`` [m], with springs E A / Δ [N/m] and G J / Δ [N m/rad] and dampers
-    β k; each element's mass ρ A Δ and inertia ρ J Δ shared by its two end nodes, the BHA
-    rigid on the last node. The top element's upper half of inertia is at the top drive;
-    its upper half of mass at the hook under the speed hook, on node 0 under the weight
-    hook (the top of the pipe is free there), as :func:`torsio.axial.assembly.pipe_assembly`.
-    """
-    inertias: list[float] = []
-    stiffnesses: list[float] = []
-    masses: list[float] = []
-    springs: list[float] = []
-    carry_i = carry_m = 0.0  # the lower half of the element above
-    free_top_mass = 0.0
-    for section in sections.pipe:
-        count = element_count(section.length, element_length)
-        spacing = section.length / count
-        element_i = section.density * section.polar_moment * spacing
-        element_m = section.density * section.area * spacing
-        for _ in range(count):
-            if stiffnesses:  # the node between this element and the one above
-                inertias.append(carry_i + element_i / 2)
-                masses.append(carry_m + element_m / 2)
-            elif hook == "weight":  # the free top's half element rides on node 0
-                free_top_mass = element_m / 2
-            stiffnesses.append(section.shear_modulus * section.polar_moment / spacing)
-            springs.append(section.youngs_modulus * section.area / spacing)
-            carry_i, carry_m = element_i / 2, element_m / 2
-    inertias.append(carry_i + sections.bha_inertia)
-    masses.append(carry_m + sections.bha_mass)
-    masses[0] += free_top_mass
-    torsional = np.array(stiffnesses)
-    axial = np.array(springs)
-    return _assembly(
-        inertias=inertias,
-        stiffnesses=torsional,
-        masses=masses,
-        axial_stiffnesses=axial,
-        damping=beta * torsional,
-        axial_damping=beta * axial,
-        hook=hook,
-    )
+    """The lumped chain of ``sections`` (:func:`torsio.axial.wave_assembly.lumped_pipe`:
+    elements of at most ``element_length`` [m], dampers β k), errors named by the file's
+    keys."""
+    try:
+        return lumped_pipe(
+            sections.pipe, sections.bha_mass, sections.bha_inertia, element_length, hook, beta
+        )
+    except ConfigError as exc:  # the assembly names its arrays; the file's key is plural
+        key = exc.key.replace("chain.axial_damping", "chain.axial_dampings")
+        raise ConfigError(key, exc.message) from None
 
 
 WAVE_REFUSED_DISCRETIZATION = {
@@ -480,8 +446,7 @@ def string_axial(table: Mapping[str, Any], string: DrillString) -> AxialConfig |
     run = {"steps_per_period": options["steps_per_period"], **_simulation_options(table)}
     if isinstance(discretization, Mapping) and discretization.get("strategy") == "wave":
         pipe = _wave_pipe(table, sections, options["hook"])
-        twin = lumped_chain(sections, DEFAULT_ELEMENT_LENGTH, options["hook"])
-        return AxialConfig(pipe, bit, lumped_twin=twin, string=string, **run)
+        return AxialConfig(pipe, bit, lumped_twin=pipe.lumped_twin(), string=string, **run)
     beta = _damping_beta(table)
     length = options["element_length"]
     chain = lumped_chain(sections, length, options["hook"], beta)

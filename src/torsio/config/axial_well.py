@@ -22,16 +22,14 @@ from collections.abc import Mapping
 from typing import Any
 
 import attrs
-import numpy as np
-from numpy.typing import NDArray
 
 from torsio.axial.string_contacts import axial_contacts
-from torsio.axial.wave_assembly import WaveDrillingAssembly
-from torsio.config.axial import AxialConfig, AxialSections, element_count
+from torsio.axial.wave_assembly import WaveDrillingAssembly, lumped_node_depths
+from torsio.config.axial import AxialConfig
 from torsio.errors import ConfigError
 from torsio.well.wellbore import Wellbore
 
-__all__ = ["chain_node_depths", "with_well"]
+__all__ = ["with_well"]
 
 WAVE_WELL_REFUSAL = (
     "[well] with [discretization] strategy = 'wave': the distributed axial pipe carries no "
@@ -39,19 +37,6 @@ WAVE_WELL_REFUSAL = (
     "the lumped chain (another strategy), whose nodes take the well's Coulomb friction"
 )
 """Why the distributed axial pipe refuses ``[well]`` (the message of ``well``)."""
-
-
-def chain_node_depths(sections: AxialSections, element_length: float) -> NDArray[np.float64]:
-    """Depths [m below the string's top] of the nodes of
-    :func:`torsio.config.axial.lumped_chain`: the bottom of each pipe element (the last
-    node carries the rigid BHA)."""
-    depths: list[float] = []
-    top = 0.0
-    for section in sections.pipe:
-        count = element_count(section.length, element_length)
-        depths.extend(top + section.length * np.arange(1, count + 1) / count)
-        top += section.length
-    return np.array(depths)
 
 
 def with_well(axial: AxialConfig, table: Mapping[str, Any], well: Wellbore | None) -> AxialConfig:
@@ -63,7 +48,7 @@ def with_well(axial: AxialConfig, table: Mapping[str, Any], well: Wellbore | Non
         raise ConfigError("well", WAVE_WELL_REFUSAL)
     if well is None or axial.sections is None or axial.element_length is None:
         raise ConfigError("well", "[well] needs a drill-string ([[section]]), not a [chain]")
-    depths = chain_node_depths(axial.sections, axial.element_length)
+    depths = lumped_node_depths(axial.sections.pipe, axial.element_length)
     if depths.size != axial.assembly.nodes:
         raise ConfigError(
             "axial.element_length",

@@ -118,6 +118,15 @@ def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
     steady = steady_drilling(axial.bit, wob, rpm)
     held = top is not None and not top.held
     held = held and speed_loop(top, steady.bit_torque, steady.bit_speed) is None
+    growth = {"growth_rate": result.growth_rate, "stable": result.stable, "twin_growth_rate": None}
+    model = axial.stability_model
+    if isinstance(axial.assembly, WaveDrillingAssembly):  # its own characteristic equation
+        from torsio.axial.wave_stability import distributed_stability
+
+        exact = distributed_stability(axial.assembly, axial.bit, wob, rpm, twin=chain)
+        growth = {"growth_rate": exact.growth_rate, "stable": exact.stable,
+                  "twin_growth_rate": result.growth_rate}  # fmt: skip
+        model = "the distributed pipe's exact characteristic equation, from the twin's roots"
     return {
         "contacts": None
         if contacts is None
@@ -125,8 +134,8 @@ def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
         "friction (every node sliding at V0, Omega0)",
         "held_top": held,
         "stability_model": axial.stability_model,
-        "growth_rate": result.growth_rate,
-        "stable": result.stable,
+        "growth_rate_model": model,
+        **growth,
         "crossing_rpm": [c.rpm for c in crossings],
         "crossings": [c.to_dict() for c in crossings],
         "unstable_modes": unstable_roots(drilling_linearization(chain, axial.bit, wob, rpm, top)),
@@ -284,7 +293,12 @@ def _body(data: dict[str, Any]) -> Table:
         crossings = stability["crossings"]
         low, high = stability["crossing_range_rpm"]
         rows += [
-            ("stability computed on", stability["stability_model"]),
+            (
+                "stability computed on"
+                if stability["twin_growth_rate"] is None
+                else "crossings computed on",
+                stability["stability_model"],
+            ),
             (
                 "growth rate",
                 f"{rate:.4g} 1/s ({'stable' if rate < 0 else 'unstable'})"
@@ -294,6 +308,13 @@ def _body(data: dict[str, Any]) -> Table:
                     else ""
                 ),
             ),
+        ]
+        if stability["twin_growth_rate"] is not None:
+            rows += [
+                ("growth rate from", stability["growth_rate_model"]),
+                ("growth rate of the twin", f"{stability['twin_growth_rate']:.4g} 1/s"),
+            ]
+        rows += [
             (
                 "crossing rpm",
                 ", ".join(
