@@ -233,6 +233,7 @@ def test_cli_simulate_and_map_give_the_string_friction(tmp_path):
     assert run["string_friction_work"] > 0.0 and run["contact_switches"] >= 0
     assert run["string_contacts"]["count"] == 20
     assert run["growth_rate"] is not None
+    assert run["steady_friction"]["surface_torque"] > run["steady_state"]["bit_torque"]
     grid = cli("map", path, "--wob", "90kN:100kN:2", "--rpm", "60:60:1", *common)
     assert grid["string_friction_work"][0][1] == run["string_friction_work"]
     assert grid["severity"][0][1] == run["severity"]

@@ -167,7 +167,9 @@ class KernelSetup:
 @attrs.frozen(eq=False)
 class RunSetup(KernelSetup):
     """The lumped kernel's arrays for one run (:func:`torsio.axial.kernel.march`): those of
-    every run (:class:`KernelSetup`), the chain's rows and its state."""
+    every run (:class:`KernelSetup`), the chain's rows and its state, the string contacts'
+    rows and states, and ``friction`` their steady part
+    (:class:`~torsio.axial.steady_friction.SteadyFriction`; None without contacts)."""
 
     torsional: NDArray[np.float64]
     axial: NDArray[np.float64]
@@ -180,6 +182,7 @@ class RunSetup(KernelSetup):
     controller_state: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(0))
     contacts: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros((3, 0)))
     contact_stuck: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(0))
+    friction: Any = None
 
 
 def contact_frequency(bit: RGDBit, mass: float) -> float:
@@ -374,6 +377,7 @@ def run_setup(
         controller_state=controller_state,
         contacts=rows,
         contact_stuck=np.full(assembly.nodes, 0.0 if on_steady else 1.0),
+        friction=friction if contacts is not None else None,
     )
 
 

@@ -175,6 +175,16 @@ class AxialTransient:
         What limits the meaning of the run, as the torsional runs say it: a top drive at its
         torque limit or short of its set speed over the window
         (:func:`torsio.analysis.limits.saturated_motor`).
+    energy : EnergyBalance or None
+        The lumped chain's energy balance over the run
+        (:mod:`torsio.axial.energy_balance`; None for the distributed pipe and a prescribed
+        rotation).
+    contact_switches : int
+        Stick ↔ slip switches of the string's contacts over the run (0 without them).
+    string_contacts, steady_friction : dict or None
+        The contacts' totals (:meth:`~torsio.axial.string_contacts.AxialContacts.describe`)
+        and what they take in steady drilling
+        (:meth:`~torsio.axial.steady_friction.SteadyFriction.to_dict`); None without them.
     """
 
     wob: float
@@ -193,6 +203,7 @@ class AxialTransient:
     energy: EnergyBalance | None = None
     contact_switches: int = 0
     string_contacts: dict[str, Any] | None = None
+    steady_friction: dict[str, Any] | None = None
 
     @property
     def string_friction_work(self) -> float:
@@ -256,6 +267,7 @@ class AxialTransient:
             string_friction_work=self.string_friction_work,
             contact_switches=self.contact_switches,
             string_contacts=self.string_contacts,
+            steady_friction=self.steady_friction,
             energy_balance=self.energy.to_dict() if self.energy is not None else None,
         )
         return data
@@ -276,6 +288,12 @@ def _top_held_in_stability(boundary: Any, steady: SteadyDrilling) -> bool:
     from torsio.axial.linearization import speed_loop
 
     return speed_loop(boundary, steady.bit_torque, steady.bit_speed) is None
+
+
+def _steady_friction(setup: RunSetup | WaveRunSetup) -> dict[str, Any] | None:
+    """What the string's friction takes in the run's steady state (None without it)."""
+    friction = getattr(setup, "friction", None)
+    return friction.to_dict() if friction is not None else None
 
 
 def _stored_energy(setup: RunSetup | WaveRunSetup, time: float) -> float | None:
@@ -412,6 +430,7 @@ def simulate_axial(
         energy=energy,
         contact_switches=int(stats[slot.CONTACT_SWITCHES]),
         string_contacts=contacts.at_wob(wob).describe() if contacts is not None else None,
+        steady_friction=_steady_friction(setup),
     )
     if boundary is None or boundary.held or not result.window_rows().any():
         return result
