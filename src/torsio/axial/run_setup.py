@@ -311,11 +311,10 @@ def run_setup(
         )
     steps, window_steps = options.step_counts(h)
     omega0, v0 = steady.bit_speed, steady.rop
-    angles, positions = assembly.steady_offsets(steady.bit_torque, wob)
-    if contacts is not None:
-        angles = -np.cumsum(torques / assembly.stiffnesses)
-        deflections = forces / assembly.axial_stiffnesses
-        positions = np.concatenate([np.cumsum(deflections[:0:-1])[::-1], [0.0]])
+    if contacts is not None:  # each spring carries the bit's load and the friction below it
+        angles, positions = assembly.steady_offsets(torques, forces)
+    else:
+        angles, positions = assembly.steady_offsets(steady.bit_torque, wob)
     on_steady = options.start == "steady"
     if bit_rotation is not None:
         theta, omega = np.zeros(1), np.array([omega0])
