@@ -145,6 +145,7 @@ def test_steady_start_stays_on_the_closed_form(hook):
     assert run.torque_mean == pytest.approx(steady.bit_torque, rel=1e-9)
     surface = run.signal("surface_torque")
     assert np.max(np.abs(surface / friction.surface_torque - 1.0)) < 1e-9
+    assert abs(run.energy.residual) < 1e-9 * run.energy.top_work  # measured 2.4e-13
     if hook == "weight":
         assert steady.wob == pytest.approx(100e3 - friction.axial_friction, rel=1e-12)
     else:
