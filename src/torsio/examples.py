@@ -12,6 +12,8 @@
 [29981.3]
 >>> rgd_wave_pipe_config().axial.assembly.lengths.tolist()
 [900.0, 100.0]
+>>> rgd_deviated_well_config().axial.contacts.count
+20
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ from torsio.model.drillstring import DrillString
 __all__ = [
     "builtin_config",
     "deviated_well_config",
+    "rgd_deviated_well_config",
     "rgd_two_dof_config",
     "rgd_wave_pipe_config",
     "ritto2017_string",
@@ -67,3 +70,10 @@ def rgd_wave_pipe_config() -> Config:
     axial-torsional model above a rigid BHA with the RGD bit (``data/rgd_wave_pipe.toml``,
     ``[discretization] strategy = "wave"``), 100 kN at 60 rpm."""
     return _data("rgd_wave_pipe.toml")
+
+
+def rgd_deviated_well_config() -> Config:
+    """The stepped RGD string of ``rgd_wave_pipe.toml`` (its drill pipe reaching the
+    surface) as the lumped axial-torsional chain in the survey of ``deviated_well.toml``,
+    with Coulomb friction at every node (``data/rgd_deviated_well.toml``), 100 kN at 60 rpm."""
+    return _data("rgd_deviated_well.toml")

@@ -8,7 +8,9 @@ drilling over rpm (:mod:`torsio.axial.stability`), lumped assemblies that move a
 torsionally (:mod:`torsio.axial.assembly`) and distributed ones, a stepped pipe of axial and
 torsional wave lines above a lumped BHA (:mod:`torsio.axial.wave_assembly`), their transients
 on compiled fixed-step engines with the bit's own history (:mod:`torsio.axial.transient`) and
-maps over (weight, rpm) (:mod:`torsio.axial.maps`). The equations are in docs/axial.md.
+maps over (weight, rpm) (:mod:`torsio.axial.maps`), with Coulomb friction along a lumped
+chain's string (:mod:`torsio.axial.string_contacts`, :mod:`torsio.axial.steady_friction`).
+The equations are in docs/axial.md.
 """
 
 from __future__ import annotations
@@ -23,6 +25,7 @@ if TYPE_CHECKING:
         two_dof_assembly,
     )
     from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
+    from torsio.axial.energy_balance import EnergyBalance
     from torsio.axial.linearization import axial_linearization, drilling_linearization
     from torsio.axial.maps import AxialMap, axial_map
     from torsio.axial.rgd import RGDBit, rgd_example, rgd_from_table
@@ -38,6 +41,8 @@ if TYPE_CHECKING:
         mode_crossings,
     )
     from torsio.axial.steady import SteadyDrilling, steady_drilling
+    from torsio.axial.steady_friction import SteadyFriction, steady_with_friction
+    from torsio.axial.string_contacts import AxialContacts, axial_contacts
     from torsio.axial.transient import AxialTransient, simulate_axial
     from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly, wave_pipe_assembly
 
@@ -69,6 +74,11 @@ _LAZY = {
     "mode_crossings": "torsio.axial.stability",
     "SteadyDrilling": "torsio.axial.steady",
     "steady_drilling": "torsio.axial.steady",
+    "SteadyFriction": "torsio.axial.steady_friction",
+    "steady_with_friction": "torsio.axial.steady_friction",
+    "AxialContacts": "torsio.axial.string_contacts",
+    "axial_contacts": "torsio.axial.string_contacts",
+    "EnergyBalance": "torsio.axial.energy_balance",
     "AxialTransient": "torsio.axial.transient",
     "simulate_axial": "torsio.axial.transient",
     "PipeSection": "torsio.axial.wave_assembly",
@@ -77,18 +87,22 @@ _LAZY = {
 }
 
 __all__ = [
+    "AxialContacts",
     "AxialMap",
     "AxialTransient",
     "BitRotation",
     "DrillingAssembly",
     "DrillingStability",
+    "EnergyBalance",
     "LinearDelaySystem",
     "ModeCrossing",
     "ModeCrossings",
     "PipeSection",
     "RGDBit",
     "SteadyDrilling",
+    "SteadyFriction",
     "WaveDrillingAssembly",
+    "axial_contacts",
     "axial_linearization",
     "axial_map",
     "crossing_rpm",
@@ -104,6 +118,7 @@ __all__ = [
     "rightmost_roots",
     "simulate_axial",
     "steady_drilling",
+    "steady_with_friction",
     "two_dof_assembly",
     "wave_pipe_assembly",
 ]

@@ -162,10 +162,12 @@ class DrillingAssembly:
             frequencies.append(_node_frequencies(self.axial_stiffnesses, self.masses))
         return float(max(f.max() for f in frequencies))
 
-    def steady_offsets(self, torque: float, weight: float) -> tuple[NDArray, NDArray]:
+    def steady_offsets(self, torque: Any, weight: Any) -> tuple[NDArray, NDArray]:
         """Node angles [rad] relative to the top and positions [m] relative to the bit in
         steady drilling: each torsional spring carries the bit torque, each axial spring
-        the weight. Angles −Σ_j≤i T/k_j; positions Σ_j>i W/k_a,j (0 at the bit)."""
+        the weight (or, as arrays, spring j its own: with friction along the string,
+        :func:`torsio.axial.steady_friction.steady_loads`). Angles −Σ_j≤i T_j/k_j;
+        positions Σ_j>i W_j/k_a,j (0 at the bit)."""
         angles = -np.cumsum(torque / self.stiffnesses)
         if not self.axial_stiffnesses.size:
             return angles, np.zeros(1)

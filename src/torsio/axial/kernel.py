@@ -16,8 +16,15 @@ at the velocity level over each step (Moreau's time stepping):
    T_f = μ γ a W_f / 2, and Ω_b = max(Ω*, 0): the bit does not turn backwards and sticks
    while the string's torque is at most T_c + T_f (the bit torque is then the reaction
    T_b + I_b Ω_b/h). With a prescribed rotation Φ_b, Ω_b are set instead.
+   3b. A node with a contact along the string (``contacts``, rows
+   :data:`torsio.axial.layouts.CONTACT_ROW`, F_s > 0) takes its Coulomb friction on its free
+   (V_i, ω_i) (:func:`torsio.axial.string_friction.node_friction`; static branch while
+   |s|/r at the step's start is below ``settings[THRESHOLD_SPEED]``), at the bit after the
+   bit's contacts; ``contact_stuck`` keeps each contact's state to count its switches. With
+   contacts the axial dampers read the node below at the step's start.
 4. Positions from the new velocities: U ← U + h V, θ ← θ + h ω; the top angle Ω₀ t, the
-   hook position U_h0 + V_h t. The new bit state is appended to the history.
+   hook position U_h0 + V_h t. The new bit state is appended to the history. The works of
+   the energy balance (:mod:`torsio.axial.energy_balance`) are summed on the new velocities.
 
 With a top drive that is not held (``top[TOP_HELD]`` 0), the top is a node (J, drag) with
 a linear controller (:class:`torsio.physics.top_drive_boundary.TopDriveBoundary`), advanced
@@ -50,6 +57,7 @@ import numpy as np
 from torsio.axial import bit_step
 from torsio.axial import layouts as slot
 from torsio.axial.history import append
+from torsio.axial.string_friction import node_friction
 from torsio.solvers.compiled import njit
 
 __all__ = ["march"]
@@ -77,6 +85,8 @@ def march(
     ctrl_c,
     ctrl_d,
     ctrl_w,
+    contacts,
+    contact_stuck,
 ) -> None:  # pragma: no cover - compiled
     """Advance the run ``settings[slot.STEPS]`` steps from the state (θ, ω, U, V) and the
     top drive's (``top_state``, ``controller_state``) in place."""
@@ -94,7 +104,14 @@ def march(
     held = top[slot.TOP_HELD] != 0.0
     states = controller_state.size
     rate = np.zeros(states)
+    threshold = settings[slot.THRESHOLD_SPEED]
+    has_contacts = False
+    for i in range(contacts.shape[1]):
+        if contacts[slot.STATIC_FORCE, i] > 0.0:
+            has_contacts = True
+    v_start = np.zeros(na)
     bit_step.start_window(stats)
+    friction_work = switches = top_work = hook_work = damper_work = bit_work = 0.0
     row = 0
     for step in range(steps):
         t = t_start + step * h
@@ -111,18 +128,25 @@ def march(
             return
         on_bottom = depth > 0.0
         wc, tc = bit_step.cutting_forces(bit, depth)
+        if has_contacts:
+            for i in range(na):
+                v_start[i] = v[i]
         # 2. axial
         hook_position = hook_start + hook_speed * (t - t_start)
+        hook_force = weight
         for i in range(na - 1, -1, -1):
             if i == 0:
                 if speed_hook:
                     force = axial[1, 0] * (hook_position - u[0]) + axial[2, 0] * (hook_speed - v[0])
+                    hook_force = force
                 else:
                     force = weight
             else:
                 force = axial[1, i] * (u[i - 1] - u[i]) + axial[2, i] * (v[i - 1] - v[i])
             if i + 1 < na:
-                force -= axial[1, i + 1] * (u[i] - u[i + 1]) + axial[2, i + 1] * (v[i] - v[i + 1])
+                # the node below at the step's start where contacts change its velocity later
+                below = v_start[i + 1] if has_contacts else v[i + 1]
+                force -= axial[1, i + 1] * (u[i] - u[i + 1]) + axial[2, i + 1] * (v[i] - below)
             if i == ba:
                 v[i], wf = bit_step.wear_flat_contact(
                     v[i], force, wc, axial[0, i], h, wf_max, on_bottom
@@ -146,6 +170,7 @@ def march(
             theta[bt] = top_speed * (tt + amplitude * (1.0 - math.cos(frequency * tt)) / frequency)
         else:
             for i in range(nt - 1, -1, -1):
+                speed_start = omega[i]
                 if i == 0:
                     torque = top_torque
                 else:
@@ -160,6 +185,19 @@ def march(
                     )
                 else:
                     omega[i] += h * torque * torsional[0, i]
+                if has_contacts and contacts[slot.STATIC_FORCE, i] > 0.0:
+                    # 3b. the node's contact with the borehole, on its free (V, ω)
+                    radius = contacts[slot.CONTACT_RADIUS, i]
+                    sticky = math.hypot(v_start[i], radius * speed_start) < radius * threshold
+                    v[i], omega[i], stuck = node_friction(
+                        v[i], omega[i], radius, axial[0, i], torsional[0, i],
+                        contacts[slot.STATIC_FORCE, i], contacts[slot.SLIDING_FORCE, i], h, sticky,
+                    )  # fmt: skip
+                    if stuck != (contact_stuck[i] != 0.0):
+                        switches += 1.0
+                    contact_stuck[i] = 1.0 if stuck else 0.0
+                    applied = contacts[slot.STATIC_FORCE if sticky else slot.SLIDING_FORCE, i]
+                    friction_work += h * applied * math.hypot(v[i], radius * omega[i])
             for i in range(nt):
                 theta[i] += h * omega[i]
         if not held:
@@ -186,6 +224,18 @@ def march(
                 * top[slot.TOP_INVERSE_INERTIA]
             )
             top_state[0] += h * top_state[1]
+        # the energy balance's works over the step, on the new velocities
+        top_work += h * top_torque * top_rate
+        hook_work += h * hook_force * (hook_speed if speed_hook else v[0])
+        bit_work += h * ((wc + wf) * v[ba] + bit_torque * omega[bt])
+        if speed_hook:
+            damper_work += h * axial[2, 0] * (hook_speed - v[0]) ** 2
+        for i in range(1, na):
+            damper_work += h * axial[2, i] * (v[i - 1] - v[i]) ** 2
+        if not prescribed:
+            damper_work += h * torsional[2, 0] * (top_rate - omega[0]) ** 2
+            for i in range(1, nt):
+                damper_work += h * torsional[2, i] * (omega[i - 1] - omega[i]) ** 2
         # 4. positions and history
         for i in range(na):
             u[i] += h * v[i]
@@ -200,3 +250,6 @@ def march(
         )  # fmt: skip
     stats[slot.POSITION_END] = u[ba]
     stats[slot.STEPS_DONE] = steps
+    stats[slot.FRICTION_WORK], stats[slot.CONTACT_SWITCHES] = friction_work, switches
+    stats[slot.TOP_WORK], stats[slot.HOOK_WORK] = top_work, hook_work
+    stats[slot.DAMPER_WORK], stats[slot.BIT_WORK] = damper_work, bit_work

@@ -15,6 +15,7 @@ encoders index with these names only.
   :data:`RUN_SETTINGS`;
 - ``bha``, the distributed pipe's lumped BHA: :data:`BHA_STATE`;
 - ``top``, the lumped chain's top drive: :data:`TOP_DRIVE`;
+- ``contacts``, the lumped chain's string contacts: :data:`CONTACT_ROW`;
 - ``bit``, the law's row (:func:`torsio.axial.run_setup.bit_law_row`): :data:`BIT_ROW`.
 
 Adding an entry: insert its name where it belongs and its index in the unpacking beside
@@ -34,6 +35,7 @@ __all__ = [
     "BHA_STATE",
     "BIT_ROW",
     "CHAIN_SETTINGS",
+    "CONTACT_ROW",
     "RUN_SETTINGS",
     "SAMPLE_COLUMNS",
     "STATS",
@@ -57,12 +59,22 @@ STATS = (
     "failed",
     "steps_done",
     "depth_of_cut_max",
+    "string_friction_work",
+    "contact_switches",
+    "top_work",
+    "hook_work",
+    "damper_work",
+    "bit_work",
 )
 """The entries of ``stats`` after a run, in order: the window's extremes of Ω_b and V_b,
 its stuck and off-bottom steps and its steps, the bit's position at its start and end [m],
 the work on the bit [J], the integrals of the bit torque [N m s] and weight [N s]; 1 in
 ``failed`` when the history was too short for the delay, and the steps done; the largest
-depth of cut [m per rev]."""
+depth of cut [m per rev]; then over the whole run (the lumped chain's energy balance,
+docs/axial.md "Friction along the string"): the work of the friction along the string [J,
+dissipated, >= 0], the contacts' stick-slip switches, the work into the string at the top
+(surface torque × top speed) and at the hook [J], the dampers' dissipation [J] and the work
+on the bit [J]."""
 
 (
     SPEED_MAX,
@@ -80,6 +92,12 @@ depth of cut [m per rev]."""
     FAILED,
     STEPS_DONE,
     DEPTH_MAX,
+    FRICTION_WORK,
+    CONTACT_SWITCHES,
+    TOP_WORK,
+    HOOK_WORK,
+    DAMPER_WORK,
+    BIT_WORK,
 ) = range(len(STATS))
 
 SAMPLE_COLUMNS = (
@@ -169,12 +187,28 @@ weight, 1 speed), V_h [m/s], the window's first step, sample every (0: never), t
     START_TIME,
 ) = range(len(RUN_SETTINGS))
 
-CHAIN_SETTINGS = (*RUN_SETTINGS, "hook_start", "prescribed", "amplitude", "frequency")
+CHAIN_SETTINGS = (
+    *RUN_SETTINGS,
+    "hook_start",
+    "prescribed",
+    "amplitude",
+    "frequency",
+    "threshold_speed",
+)
 """The entries of the lumped chain's ``settings`` (:mod:`torsio.axial.kernel`): those of
 :data:`RUN_SETTINGS`, then U_h0 [m] (the hook's position at step 0), a prescribed bit
-rotation (0/1), its amplitude A and frequency f [rad/s]."""
+rotation (0/1), its amplitude A and frequency f [rad/s], the string contacts' threshold
+speed [rad/s]."""
 
-HOOK_START, PRESCRIBED, AMPLITUDE, FREQUENCY = range(len(RUN_SETTINGS), len(CHAIN_SETTINGS))
+HOOK_START, PRESCRIBED, AMPLITUDE, FREQUENCY, THRESHOLD_SPEED = range(
+    len(RUN_SETTINGS), len(CHAIN_SETTINGS)
+)
+
+CONTACT_ROW = ("static_force", "sliding_force", "radius")
+"""The rows of the lumped kernel's ``contacts`` (one column per node,
+:mod:`torsio.axial.string_contacts`): F_s, F_d [N] and r [m]; all 0: no contact."""
+
+STATIC_FORCE, SLIDING_FORCE, CONTACT_RADIUS = range(len(CONTACT_ROW))
 
 WAVE_SETTINGS = (
     *RUN_SETTINGS,

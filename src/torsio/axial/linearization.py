@@ -34,6 +34,13 @@ carrying T₀ and W₀): x = (u_0 .. u_m−1, φ_0 .. φ_n−1), M = diag(m_i, I
 diagonal with the chain's tridiagonal matrices (:func:`chain_matrices`), and D the 2 × 2
 block above on the bit's entries (u_m−1, φ_n−1). The 2-DOF model is the chain of one node.
 
+**Friction along the string** (:mod:`torsio.axial.steady_friction`): about the steady
+state with contacts, each contact's sliding friction adds its damping matrix
+F_d/|s₀| (I − ŝ₀ŝ₀ᵀ) in the (V, r ω) metric to C on its node's (u_i, φ_i), as
+[[D₁₁, r D₁₂], [r D₂₁, r² D₂₂]] in (u, φ); the steady state is that of the bit's weight
+left by the friction (:func:`~torsio.axial.steady_friction.steady_with_friction`). A
+contact stuck in steady drilling does not occur (every node slides at V₀, Ω₀ > 0).
+
 **The neutral root.** Under the hook weight, λ = 0 is a root for every parameter
 (E(0) = 0 and K has no axial spring to the ground): a shift of the whole string's axial
 position, u_i = const, is a steady motion too, since the depth of cut reads only
@@ -76,6 +83,7 @@ from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.delay_roots import LinearDelaySystem
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
+from torsio.axial.steady_friction import friction_damping, steady_with_friction
 from torsio.errors import ConfigError
 from torsio.model.lumped import chain_matrix
 
@@ -186,8 +194,30 @@ def speed_loop(boundary: Any, torque: float, speed: float) -> tuple[float, float
     return float(boundary.inertia), float(d[0] + boundary.drag), ki
 
 
+def friction_damping_matrix(
+    assembly: DrillingAssembly, contacts: Any, rop: float, speed: float, angles_from: int
+) -> np.ndarray:
+    """The contacts' damping in x = (u .., φ ..) [SI of the DOFs]: each node's
+    :func:`~torsio.axial.steady_friction.friction_damping` at V₀ = ``rop`` [m/s] and
+    Ω₀ = ``speed`` [rad/s] on (u_i, φ_i), φ_i at ``angles_from`` + i."""
+    size = angles_from + assembly.nodes
+    matrix = np.zeros((size, size))
+    blocks = friction_damping(contacts, rop, speed)
+    for i in range(assembly.nodes):
+        r = contacts.radius[i]
+        dofs = [i, angles_from + i]
+        scale = np.array([1.0, r])
+        matrix[np.ix_(dofs, dofs)] += blocks[i] * np.outer(scale, scale)
+    return matrix
+
+
 def drilling_linearization(
-    assembly: DrillingAssembly, bit: RGDBit, wob: float, rpm: float, top_drive: Any = None
+    assembly: DrillingAssembly,
+    bit: RGDBit,
+    wob: float,
+    rpm: float,
+    top_drive: Any = None,
+    contacts: Any = None,
 ) -> LinearDelaySystem:
     """Steady drilling of ``assembly`` linearized about its steady state (module docstring).
 
@@ -216,9 +246,15 @@ def drilling_linearization(
     ConfigError
         A weight on bit at which the bit does not cut.
     """
-    steady = steady_drilling(bit, wob, rpm)
+    surface = None
+    if contacts is not None:
+        contacts = contacts.at_wob(wob)
+        steady, friction = steady_with_friction(bit, wob, rpm, contacts, assembly.hook)
+        surface = friction.surface_torque
+    else:
+        steady = steady_drilling(bit, wob, rpm)
     mass, damping, stiffness = chain_matrices(assembly)
-    loop = speed_loop(top_drive, steady.bit_torque, steady.bit_speed)
+    loop = speed_loop(top_drive, surface or steady.bit_torque, steady.bit_speed)
     if loop is not None:  # the top node φ_top first among the angles
         inertia, loop_damping, loop_stiffness = loop
         axial_mass, axial_damping, axial_stiffness = axial_matrices(assembly)
@@ -228,6 +264,11 @@ def drilling_linearization(
         )
         stiffness = _block_diagonal(
             axial_stiffness, chain_matrix(np.array([loop_stiffness, *assembly.stiffnesses]))
+        )
+    if contacts is not None:
+        angles_from = mass.shape[0] - assembly.nodes
+        damping = damping + friction_damping_matrix(
+            assembly, contacts, steady.rop, steady.bit_speed, angles_from
         )
     bit_dofs = [assembly.axial_dofs - 1, mass.shape[0] - 1]
     delayed = np.zeros_like(mass)

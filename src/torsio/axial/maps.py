@@ -77,6 +77,8 @@ class AxialMap:
         Run length and window [s].
     executor : str
         What ran the points: ``"threads(N)"``, ``"processes(N)"``, ``"dask(address)"``.
+    string_friction_work : ndarray or None
+        The work of the friction along the string over each run [J] (0 without contacts).
     """
 
     wob: NDArray[np.float64]
@@ -91,6 +93,7 @@ class AxialMap:
     duration: float
     window: float
     executor: str = "threads(1)"
+    string_friction_work: NDArray[np.float64] | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """DESIGN.md's keys for ``torsio map --json`` with axial dynamics: ``wob``, ``rpm``,
@@ -111,13 +114,15 @@ class AxialMap:
             "rop": plain(self.rop),
             "mse": plain(self.mse),
             "growth_rate": plain(self.growth_rate),
+            "string_friction_work": plain(self.string_friction_work),
             "duration": self.duration,
             "steady_window": self.window,
         }
 
 
-_OUTPUTS = len(_FIELDS) + 1
-"""Values of one point: the window's fields, then the growth rate (NaN when not asked)."""
+_OUTPUTS = len(_FIELDS) + 2
+"""Values of one point: the window's fields, the work of the friction along the string
+[J], then the growth rate (NaN when not asked)."""
 
 
 def _run_point(
@@ -130,7 +135,10 @@ def _run_point(
 ) -> list[float]:
     run = simulate_axial(assembly, bit, wob, rpm, samples=0, growth_rate=growth_rate, **options)
     rate = math.nan if run.growth_rate is None else run.growth_rate
-    return [float(getattr(run.summary, name)) for name in _FIELDS] + [rate]
+    return [float(getattr(run.summary, name)) for name in _FIELDS] + [
+        run.string_friction_work,
+        rate,
+    ]
 
 
 def _thread_count(threads: int | None, points: int) -> int:
@@ -233,7 +241,7 @@ def axial_map(
         :data:`torsio.analysis.sweep.CONNECT_TIMEOUT`).
     **options
         The run options of ``simulate_axial`` (``duration``, ``window``, ``start``,
-        ``perturbation``, ``step``, ``steps_per_period``, ``bit_rotation``).
+        ``perturbation``, ``step``, ``steps_per_period``, ``bit_rotation``, ``contacts``).
     """
     wob_grid = np.asarray(wobs, dtype=float).reshape(-1)
     rpm_grid = np.asarray(rpms, dtype=float).reshape(-1)
@@ -278,6 +286,7 @@ def axial_map(
         duration=duration,
         window=window,
         executor=ran_on,
+        string_friction_work=rows[:, -2].reshape(shape),
     )
 
 

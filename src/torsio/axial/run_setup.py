@@ -39,6 +39,8 @@ from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
+from torsio.axial.steady_friction import steady_loads, steady_with_friction
+from torsio.axial.string_contacts import AxialContacts, contact_rows
 from torsio.axial.top_drive import TopDriveArrays, steady_controller_state, top_drive_rates
 from torsio.errors import ConfigError
 from torsio.physics.top_drive_boundary import TopDriveBoundary
@@ -165,7 +167,9 @@ class KernelSetup:
 @attrs.frozen(eq=False)
 class RunSetup(KernelSetup):
     """The lumped kernel's arrays for one run (:func:`torsio.axial.kernel.march`): those of
-    every run (:class:`KernelSetup`), the chain's rows and its state."""
+    every run (:class:`KernelSetup`), the chain's rows and its state, the string contacts'
+    rows and states, and ``friction`` their steady part
+    (:class:`~torsio.axial.steady_friction.SteadyFriction`; None without contacts)."""
 
     torsional: NDArray[np.float64]
     axial: NDArray[np.float64]
@@ -176,6 +180,9 @@ class RunSetup(KernelSetup):
     top: TopDriveArrays = attrs.field(factory=lambda: TopDriveArrays.from_boundary(None))
     top_state: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(2))
     controller_state: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(0))
+    contacts: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros((3, 0)))
+    contact_stuck: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(0))
+    friction: Any = None
 
 
 def contact_frequency(bit: RGDBit, mass: float) -> float:
@@ -251,6 +258,7 @@ def run_setup(
     options: RunOptions,
     bit_rotation: BitRotation | None = None,
     top_drive: TopDriveBoundary | None = None,
+    contacts: AxialContacts | None = None,
 ) -> RunSetup:
     """The step, the initial state and the history of a run (see the module docstring) at
     ``wob`` [N] and ``rpm`` [rev/min], set up as ``options`` say, the bit turning as
@@ -258,10 +266,26 @@ def run_setup(
     (:func:`torsio.axial.top_drive.top_boundary`; None: held at Ω₀). A top drive that is not
     held starts with the string: from rest (angle, speed and controller states zero) or on
     the steady state (at Ω₀, the controller state of
-    :func:`torsio.axial.top_drive.steady_controller_state`).
+    :func:`torsio.axial.top_drive.steady_controller_state`). ``contacts``: the string's
+    contacts with the borehole (:mod:`torsio.axial.string_contacts`; their normal force at
+    ``wob``), the steady state then that of :mod:`torsio.axial.steady_friction` (``wob`` the
+    hook's weight under the weight hook).
     """
-    steady = steady_drilling(bit, wob, rpm)
     options.check()
+    hook_force = float(wob)
+    if contacts is not None:
+        if bit_rotation is not None or assembly.axial_dofs != assembly.nodes:
+            raise ConfigError(
+                "well",
+                "friction along the string needs every node to turn and move axially "
+                "(expected axial springs between the nodes and no prescribed bit_rotation)",
+            )
+        contacts = contacts.at_wob(wob)
+        steady, friction = steady_with_friction(bit, wob, rpm, contacts, assembly.hook)
+        hook_force = friction.hook_force
+        torques, forces = steady_loads(steady, friction)
+    else:
+        steady = steady_drilling(bit, wob, rpm)
     delay = steady.delay
     driven = top_drive is not None and not top_drive.held
     if driven and bit_rotation is not None:
@@ -287,7 +311,10 @@ def run_setup(
         )
     steps, window_steps = options.step_counts(h)
     omega0, v0 = steady.bit_speed, steady.rop
-    angles, positions = assembly.steady_offsets(steady.bit_torque, wob)
+    if contacts is not None:  # each spring carries the bit's load and the friction below it
+        angles, positions = assembly.steady_offsets(torques, forces)
+    else:
+        angles, positions = assembly.steady_offsets(steady.bit_torque, wob)
     on_steady = options.start == "steady"
     if bit_rotation is not None:
         theta, omega = np.zeros(1), np.array([omega0])
@@ -300,7 +327,9 @@ def run_setup(
     v = np.full(u.size, v0 if on_steady else 0.0)
     if bit_rotation is not None and on_steady:
         v[-1] *= 1.0 + options.perturbation
-    hook_start = (u[0] + wob / assembly.axial_stiffnesses[0]) if assembly.hook == "speed" else 0.0
+    hook_start = 0.0
+    if assembly.hook == "speed":
+        hook_start = u[0] + hook_force / assembly.axial_stiffnesses[0]
     # the history before t = 0: the steady motion (or a flat bottom) over one delay and more
     times = past_times(h, steady.delay)
     if bit_rotation is not None:
@@ -318,9 +347,13 @@ def run_setup(
         controller_state = np.zeros(top_drive.states)
         if on_steady:
             top_state[1] = omega0
-            controller_state = steady_controller_state(top_drive, steady.bit_torque, omega0)
+            surface = steady.bit_torque if contacts is None else friction.surface_torque
+            controller_state = steady_controller_state(top_drive, surface, omega0)
     settings = run_settings(len(slot.CHAIN_SETTINGS), steady, h, steps, window_steps, assembly.hook)
     settings[slot.HOOK_START] = hook_start
+    settings[slot.HOOK_WEIGHT] = hook_force
+    rows = contact_rows(contacts, assembly.nodes)
+    settings[slot.THRESHOLD_SPEED] = contacts.threshold_speed if contacts is not None else 0.0
     settings[slot.PRESCRIBED] = 1.0 if bit_rotation is not None else 0.0
     settings[slot.AMPLITUDE], settings[slot.FREQUENCY] = rotation.amplitude, rotation.frequency
     return RunSetup(
@@ -341,6 +374,9 @@ def run_setup(
         top=TopDriveArrays.from_boundary(top_drive),
         top_state=top_state,
         controller_state=controller_state,
+        contacts=rows,
+        contact_stuck=np.full(assembly.nodes, 0.0 if on_steady else 1.0),
+        friction=friction if contacts is not None else None,
     )
 
 

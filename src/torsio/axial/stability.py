@@ -113,6 +113,7 @@ def drilling_stability(
     count: int = 6,
     order: int | None = None,
     top_drive: Any = None,
+    contacts: Any = None,
 ) -> DrillingStability:
     """Stability of steady drilling of ``assembly`` (the arguments as in
     :func:`~torsio.axial.linearization.drilling_linearization`: any lumped assembly,
@@ -124,15 +125,17 @@ def drilling_stability(
     m × m determinant from each candidate). ``top_drive``: the top's boundary; a PI speed
     loop is linearized with the chain
     (:func:`~torsio.axial.linearization.speed_loop`), any other holds the top.
+    ``contacts``: friction along the string, linearized with its damping (the steady state
+    then that of the weight the friction leaves at the bit).
     """
-    system = drilling_linearization(assembly, bit, wob, rpm, top_drive)
+    system = drilling_linearization(assembly, bit, wob, rpm, top_drive, contacts)
     if order is None:
         order = system.default_order()
     found = rightmost_roots(system, count, order=order)
     growth = float(found.roots[0].real)
     shares = [axial_share(system, root, assembly.axial_dofs) for root in found.roots]
     return DrillingStability(
-        steady=steady_drilling(bit, wob, rpm),
+        steady=_steady(bit, wob, rpm, contacts, assembly.hook),
         roots=found.roots,
         axial_shares=np.array(shares),
         growth_rate=growth,
@@ -140,6 +143,15 @@ def drilling_stability(
         neutral_root=found.dropped[0] if found.dropped else None,
         details=found,
     )
+
+
+def _steady(bit: RGDBit, wob: float, rpm: float, contacts: Any, hook: str) -> SteadyDrilling:
+    """The steady state at the bit, with the string's friction when ``contacts`` are given."""
+    if contacts is None:
+        return steady_drilling(bit, wob, rpm)
+    from torsio.axial.steady_friction import steady_with_friction
+
+    return steady_with_friction(bit, wob, rpm, contacts.at_wob(wob), hook)[0]
 
 
 @attrs.frozen
@@ -220,13 +232,15 @@ def mode_crossings(
     points: int = 41,
     order: int | None = None,
     top_drive: Any = None,
+    contacts: Any = None,
 ) -> list[ModeCrossing]:
     """Where in ``rpm_range`` [rev/min] the growth rate of steady drilling crosses 0
     (:func:`growth_rate_crossings`), each with the root that crosses: the rightmost root
     there, whose real part is then 0.
 
     The modes are told apart at the crossings only (by Im λ and the axial share), not
-    followed over rpm.
+    followed over rpm. ``contacts``: friction along the string, as for
+    :func:`drilling_stability`.
 
     Examples
     --------
@@ -244,7 +258,7 @@ def mode_crossings(
 
     def stability(rpm: float) -> DrillingStability:
         return drilling_stability(
-            assembly, bit, wob, rpm, count=1, order=order, top_drive=top_drive
+            assembly, bit, wob, rpm, count=1, order=order, top_drive=top_drive, contacts=contacts
         )
 
     low, high = rpm_range
@@ -308,6 +322,7 @@ def each_mode_crossing(
     count: int = 4,
     order: int | None = None,
     top_drive: Any = None,
+    contacts: Any = None,
 ) -> ModeCrossings:
     """Every crossing of the imaginary axis in ``rpm_range`` [rev/min] by each of the
     unstable roots and at least the ``count`` rightmost of steady drilling, followed over
@@ -320,7 +335,7 @@ def each_mode_crossing(
     crosses twice between two grid points while it is left of all followed ones at both
     can hide: :attr:`ModeCrossings.complete` checks the count at the ends; give more
     ``points`` where it fails (an undamped chain, whose modes hover at Re λ ≈ 0, needs
-    many).
+    many). ``contacts``: friction along the string, as for :func:`drilling_stability`.
 
     Examples
     --------
@@ -339,7 +354,7 @@ def each_mode_crossing(
     from torsio.axial.root_branches import branch_crossings, follow_roots, unstable_roots
 
     def system_at(rpm: float) -> LinearDelaySystem:
-        return drilling_linearization(assembly, bit, wob, rpm, top_drive)
+        return drilling_linearization(assembly, bit, wob, rpm, top_drive, contacts)
 
     low, high = rpm_range
     if not (0 < low < high):

@@ -20,8 +20,10 @@ Examples
 ...                      window=1.0, start="steady", perturbation=0.0)
 >>> round(run.rop_mean / run.steady.rop, 12), run.stick_fraction
 (1.0, 0.0)
->>> sorted(run.to_dict())[:4]
-['axial_severity', 'bit_speed_max', 'bit_speed_min', 'depth_of_cut_max']
+>>> sorted(run.to_dict())[:3]
+['axial_severity', 'bit_speed_max', 'bit_speed_min']
+>>> run.string_friction_work, run.contact_switches  # no [well]: no contact along the string
+(0.0, 0)
 """
 
 from __future__ import annotations
@@ -37,6 +39,7 @@ from numpy.typing import NDArray
 from torsio.analysis.severity import default_times
 from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
+from torsio.axial.energy_balance import EnergyBalance, chain_energy, energy_balance
 from torsio.axial.kernel import march
 from torsio.axial.rgd import RGDBit
 from torsio.axial.run_setup import (
@@ -120,6 +123,8 @@ def run_kernel(
             setup.top.c,
             setup.top.d,
             setup.top.w,
+            setup.contacts,
+            setup.contact_stuck,
         )
         state = [setup.u, setup.theta, setup.top_state]
     if stats[slot.FAILED]:
@@ -170,6 +175,16 @@ class AxialTransient:
         What limits the meaning of the run, as the torsional runs say it: a top drive at its
         torque limit or short of its set speed over the window
         (:func:`torsio.analysis.limits.saturated_motor`).
+    energy : EnergyBalance or None
+        The lumped chain's energy balance over the run
+        (:mod:`torsio.axial.energy_balance`; None for the distributed pipe and a prescribed
+        rotation).
+    contact_switches : int
+        Stick ↔ slip switches of the string's contacts over the run (0 without them).
+    string_contacts, steady_friction : dict or None
+        The contacts' totals (:meth:`~torsio.axial.string_contacts.AxialContacts.describe`)
+        and what they take in steady drilling
+        (:meth:`~torsio.axial.steady_friction.SteadyFriction.to_dict`); None without them.
     """
 
     wob: float
@@ -185,6 +200,15 @@ class AxialTransient:
     top_drive: str = "constant-speed"
     stability_of_held_top: bool = False
     warnings: tuple[str, ...] = ()
+    energy: EnergyBalance | None = None
+    contact_switches: int = 0
+    string_contacts: dict[str, Any] | None = None
+    steady_friction: dict[str, Any] | None = None
+
+    @property
+    def string_friction_work(self) -> float:
+        """The work of the friction along the string over the run [J] (0 without it)."""
+        return self.energy.string_friction_work if self.energy is not None else 0.0
 
     def __getattr__(self, name: str) -> Any:
         if name in _SUMMARY_NAMES:
@@ -240,6 +264,11 @@ class AxialTransient:
             top_drive=self.top_drive,
             stability_of_held_top=self.stability_of_held_top,
             warnings=list(self.warnings),
+            string_friction_work=self.string_friction_work,
+            contact_switches=self.contact_switches,
+            string_contacts=self.string_contacts,
+            steady_friction=self.steady_friction,
+            energy_balance=self.energy.to_dict() if self.energy is not None else None,
         )
         return data
 
@@ -261,6 +290,28 @@ def _top_held_in_stability(boundary: Any, steady: SteadyDrilling) -> bool:
     return speed_loop(boundary, steady.bit_torque, steady.bit_speed) is None
 
 
+def _steady_friction(setup: RunSetup | WaveRunSetup) -> dict[str, Any] | None:
+    """What the string's friction takes in the run's steady state (None without it)."""
+    friction = getattr(setup, "friction", None)
+    return friction.to_dict() if friction is not None else None
+
+
+def _stored_energy(setup: RunSetup | WaveRunSetup, time: float) -> float | None:
+    """The lumped chain's kinetic and spring energy [J] at ``time`` [s] of its state (None:
+    the distributed pipe, or a prescribed bit rotation)."""
+    if not isinstance(setup, RunSetup) or setup.settings[slot.PRESCRIBED]:
+        return None
+    settings = setup.settings
+    held = setup.top.top[slot.TOP_HELD] != 0.0
+    top_angle = settings[slot.TOP_SPEED] * time if held else float(setup.top_state[0])
+    hook = None
+    if settings[slot.SPEED_HOOK]:
+        hook = settings[slot.HOOK_START] + settings[slot.HOOK_SPEED] * time
+    return chain_energy(
+        setup.torsional, setup.axial, setup.theta, setup.omega, setup.u, setup.v, top_angle, hook
+    )
+
+
 def simulate_axial(
     assembly: DrillingAssembly | WaveDrillingAssembly,
     bit: RGDBit,
@@ -278,6 +329,7 @@ def simulate_axial(
     growth_rate: bool = True,
     top_drive: Any = None,
     string: Any = None,
+    contacts: Any = None,
 ) -> AxialTransient:
     """Run the assembly drilling at ``wob`` [N] and ``rpm`` [rev/min].
 
@@ -310,6 +362,11 @@ def simulate_axial(
     string : DrillString, optional
         The drill string the assembly was built from, for tunings that read the top pipe's
         impedance (``soft-torque``, ``z-torque`` defaults).
+    contacts : AxialContacts, optional
+        Coulomb friction along the string at the chain's nodes
+        (:mod:`torsio.axial.string_contacts`; lumped assemblies only), its normal force
+        rebuilt at ``wob``. The growth rate is then that of the linearization with the
+        contacts' damping (:mod:`torsio.axial.steady_friction`).
     """
     duration, window = run_times(assembly, duration, window)
     options = RunOptions(duration, window, start, perturbation, step, steps_per_period)
@@ -334,16 +391,29 @@ def simulate_axial(
                 f"{bit_rotation!r} given; a prescribed rotation applies to lumped assemblies "
                 "only (expected None with a WaveDrillingAssembly)",
             )
+        if contacts is not None:
+            raise ConfigError(
+                "well",
+                "friction along the string is built for the lumped chain only: the "
+                "distributed axial pipe carries no contacts (expected contacts=None with a "
+                "WaveDrillingAssembly)",
+            )
         setup = wave_run_setup(assembly, bit, wob, rpm, options)
     else:
-        setup = run_setup(assembly, bit, wob, rpm, options, bit_rotation, boundary)
+        setup = run_setup(assembly, bit, wob, rpm, options, bit_rotation, boundary, contacts)
     every = max(1, setup.steps // samples) if samples > 0 else 0
     rows = (setup.steps - 1) // every + 1 if every else 0
     table = np.zeros((rows, len(slot.SAMPLE_COLUMNS)))
+    start_energy = _stored_energy(setup, 0.0)
     stats = run_kernel(setup, table, every)
+    energy = None
+    if start_energy is not None:
+        energy = energy_balance(
+            stats, start_energy, _stored_energy(setup, setup.steps * setup.step)
+        )
     rate = None
     if growth_rate and bit_rotation is None:
-        rate = _growth_rate(assembly, bit, wob, rpm, boundary)
+        rate = _growth_rate(assembly, bit, wob, rpm, boundary, contacts)
     result = AxialTransient(
         wob=float(wob),
         rpm=float(rpm),
@@ -357,6 +427,10 @@ def simulate_axial(
         samples=table,
         top_drive=kind or "constant-speed",
         stability_of_held_top=rate is not None and _top_held_in_stability(boundary, setup.steady),
+        energy=energy,
+        contact_switches=int(stats[slot.CONTACT_SWITCHES]),
+        string_contacts=contacts.at_wob(wob).describe() if contacts is not None else None,
+        steady_friction=_steady_friction(setup),
     )
     if boundary is None or boundary.held or not result.window_rows().any():
         return result
@@ -372,13 +446,18 @@ def simulate_axial(
     return attrs.evolve(result, warnings=warning_list(motor))
 
 
-def _growth_rate(assembly: Any, bit: RGDBit, wob: float, rpm: float, boundary: Any) -> float:
-    """The growth rate of steady drilling: a chain's linearization, or a distributed
-    pipe's characteristic equation from its lumped twin's roots (its top held)."""
+def _growth_rate(
+    assembly: Any, bit: RGDBit, wob: float, rpm: float, boundary: Any, contacts: Any
+) -> float:
+    """The growth rate of steady drilling: a chain's linearization (with its ``contacts``'
+    damping), or a distributed pipe's characteristic equation from its lumped twin's roots
+    (its top held)."""
     if isinstance(assembly, DrillingAssembly):
         from torsio.axial.stability import drilling_stability
 
-        return drilling_stability(assembly, bit, wob, rpm, count=1, top_drive=boundary).growth_rate
+        return drilling_stability(
+            assembly, bit, wob, rpm, count=1, top_drive=boundary, contacts=contacts
+        ).growth_rate
     from torsio.axial.wave_stability import distributed_stability
 
     twin = assembly.lumped_twin()

@@ -263,6 +263,25 @@ def wave_pipe_assembly(
     )
 
 
+def element_count(length: float, element_length: float) -> int:
+    """Elements of at most ``element_length`` [m] in a section of ``length`` [m]."""
+    return math.ceil(length / element_length - 1e-9)
+
+
+def lumped_node_depths(
+    sections: Sequence[PipeSection], element_length: float
+) -> NDArray[np.float64]:
+    """Depths [m below the pipe's top] of the nodes of :func:`lumped_pipe`: the bottom of
+    each element (the last node carries the rigid BHA)."""
+    depths: list[float] = []
+    top = 0.0
+    for section in sections:
+        count = element_count(section.length, element_length)
+        depths.extend(top + section.length * np.arange(1, count + 1) / count)
+        top += section.length
+    return np.array(depths)
+
+
 def lumped_pipe(
     sections: Sequence[PipeSection],
     bha_mass: float,
@@ -286,7 +305,7 @@ def lumped_pipe(
     carry_i = carry_m = 0.0  # the lower half of the element above
     free_top_mass = 0.0
     for section in sections:
-        count = math.ceil(section.length / element_length - 1e-9)
+        count = element_count(section.length, element_length)
         spacing = section.length / count
         element_i = section.density * section.polar_moment * spacing
         element_m = section.density * section.area * spacing

@@ -136,6 +136,15 @@ def _print_run(data: dict[str, Any]) -> None:
     ]
     if data["stability_of_held_top"]:
         rows.append(("growth rate is of", "the top held at the set speed"))
+    contacts = data.get("string_contacts")
+    if contacts is not None:
+        rows += [
+            ("string contacts", f"{contacts['count']} nodes, break-off "
+             f"{contacts['static_torque'] / 1e3:.4g} kN m, sliding "
+             f"{contacts['sliding_torque'] / 1e3:.4g} kN m"),
+            ("string friction work", f"{data['string_friction_work'] / 1e6:.4g} MJ "
+             f"({data['contact_switches']} stick-slip switches)"),
+        ]  # fmt: skip
     if data["top_speed_mean"] is not None:
         rows += [
             ("mean top speed", f"{data['top_speed_mean'] * 60 / (2 * 3.141592653589793):.4g} rpm"),

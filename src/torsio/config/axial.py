@@ -96,6 +96,10 @@ class AxialConfig:
         With the distributed pipe: the lumped chain of the same sections in elements of at
         most :data:`DEFAULT_ELEMENT_LENGTH`, on which its linear stability is computed
         (the distributed pipe has no linearization yet); None with a lumped assembly.
+    sections, element_length : AxialSections or None, float or None
+        What a ``[[section]]`` string's lumped chain was built from (None otherwise).
+    contacts : AxialContacts or None
+        The string's contacts with the ``[well]`` (:mod:`torsio.config.axial_well`).
     """
 
     assembly: DrillingAssembly | WaveDrillingAssembly
@@ -107,6 +111,9 @@ class AxialConfig:
     lumped_twin: DrillingAssembly | None = None
     top_drive: Any = None
     string: Any = None
+    sections: Any = None
+    element_length: float | None = None
+    contacts: Any = None
 
     def run_options(self) -> dict[str, Any]:
         """Keywords of :func:`~torsio.axial.transient.simulate_axial` from the file."""
@@ -117,6 +124,7 @@ class AxialConfig:
             "steps_per_period": self.steps_per_period,
             "top_drive": self.top_drive,
             "string": self.string,
+            **({"contacts": self.contacts} if self.contacts is not None else {}),
         }
 
     @property
@@ -367,8 +375,8 @@ WAVE_REFUSED_DISCRETIZATION = {
     "time_step": "the axial engine's largest step is simulation.step (the distributed "
     "pipe's step rule: axial.steps_per_period and discretization.travel_time_tolerance); "
     "give it there",
-    "drag_spacing": "the distributed axial pipe carries no distributed drag (the axial "
-    "engine takes no [well] and no damping); remove it",
+    "drag_spacing": "the distributed axial pipe carries no distributed drag (no contacts "
+    "along it and no damping); remove it",
 }
 """``[discretization]`` keys of the torsional wave strategy that the distributed axial pipe
 refuses, and why."""
@@ -440,5 +448,6 @@ def string_axial(table: Mapping[str, Any], string: DrillString) -> AxialConfig |
         pipe = _wave_pipe(table, sections, options["hook"])
         return AxialConfig(pipe, bit, lumped_twin=pipe.lumped_twin(), string=string, **run)
     beta = _damping_beta(table)
-    chain = lumped_chain(sections, options["element_length"], options["hook"], beta)
-    return AxialConfig(chain, bit, string=string, **run)
+    length = options["element_length"]
+    chain = lumped_chain(sections, length, options["hook"], beta)
+    return AxialConfig(chain, bit, string=string, sections=sections, element_length=length, **run)

@@ -44,6 +44,7 @@ import attrs
 from torsio.axial.rgd import rgd_from_table
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.config.axial import AXIAL_SIMULATION_KEYS, chain_axial, string_axial
+from torsio.config.axial_well import with_well
 from torsio.config.chain import parse_chain
 from torsio.config.configuration import (
     BitRockConfig,
@@ -146,8 +147,6 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
         if "chain" in table
         else _string_config(table, name, source)
     )
-    if config.axial is not None and "well" in table:
-        raise ConfigError("well", "[well] is not in the axial engine (no contact along the string)")
     if config.axial is not None and "top_drive" in table:
         config = attrs.evolve(config, axial=_axial_top_drive(config.axial, top_drive))
     if not top_drive.has_set_speed and config.operation.rpm is not None:
@@ -157,6 +156,8 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
             "so no rotary speed may be set; remove operation.rpm",
         )
     well = well_table(table, config.string, source)
+    if config.axial is not None:
+        config = attrs.evolve(config, axial=with_well(config.axial, table, well))
     return attrs.evolve(config, top_drive=top_drive, well=well)
 
 

@@ -105,9 +105,16 @@ def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
     top = None
     if axial.top_drive is not None:
         top = top_boundary(axial.top_drive, chain, rpm, axial.string)
-    result = drilling_stability(chain, axial.bit, wob, rpm, count=1, top_drive=top)
-    crossings = mode_crossings(chain, axial.bit, wob, CROSSING_RANGE, points=15, top_drive=top)
-    each = each_mode_crossing(chain, axial.bit, wob, CROSSING_RANGE, points=15, top_drive=top)
+    contacts = axial.contacts
+    result = drilling_stability(
+        chain, axial.bit, wob, rpm, count=1, top_drive=top, contacts=contacts
+    )
+    crossings = mode_crossings(
+        chain, axial.bit, wob, CROSSING_RANGE, points=15, top_drive=top, contacts=contacts
+    )
+    each = each_mode_crossing(
+        chain, axial.bit, wob, CROSSING_RANGE, points=15, top_drive=top, contacts=contacts
+    )
     steady = steady_drilling(axial.bit, wob, rpm)
     held = top is not None and not top.held
     held = held and speed_loop(top, steady.bit_torque, steady.bit_speed) is None
@@ -121,6 +128,10 @@ def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
                   "twin_growth_rate": result.growth_rate}  # fmt: skip
         model = "the distributed pipe's exact characteristic equation, from the twin's roots"
     return {
+        "contacts": None
+        if contacts is None
+        else "each sliding contact's damping F_d/|s0| (I - s s^T) at the steady state with "
+        "friction (every node sliding at V0, Omega0)",
         "held_top": held,
         "stability_model": axial.stability_model,
         "growth_rate_model": model,
@@ -130,6 +141,22 @@ def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
         "unstable_modes": unstable_roots(drilling_linearization(chain, axial.bit, wob, rpm, top)),
         "mode_crossings": each.to_dict(),
         "crossing_range_rpm": list(CROSSING_RANGE),
+    }
+
+
+def _steady_with_friction(axial: Any, wob: float, rpm: float) -> Any:
+    from torsio.axial.steady_friction import steady_with_friction
+
+    contacts = axial.contacts.at_wob(wob)
+    return steady_with_friction(axial.bit, wob, rpm, contacts, axial.assembly.hook)
+
+
+def _friction(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
+    """The contacts' totals at ``wob`` and what they take in steady drilling."""
+    steady, friction = _steady_with_friction(axial, wob, rpm)
+    return {
+        "string_contacts": axial.contacts.at_wob(wob).describe(),
+        "steady_friction": {**friction.to_dict(), "bit_weight": steady.wob},
     }
 
 
@@ -190,6 +217,9 @@ def axial_section(ctx: ReportContext) -> ReportSection | None:
         )
     else:
         steady = steady_drilling(axial.bit, op.wob, op.rpm)
+        if axial.contacts is not None:
+            data.update(_friction(axial, op.wob, op.rpm))
+            steady = _steady_with_friction(axial, op.wob, op.rpm)[0]
         data["steady_state"] = steady.to_dict()
         data["stability"] = _stability(axial, op.wob, op.rpm)
         data["stability_of_held_top"] = data["stability"]["held_top"]
@@ -241,8 +271,24 @@ def _body(data: dict[str, Any]) -> Table:
             ("steady bit torque", f"{steady['bit_torque'] / 1e3:.4g} kN m"),
             ("steady MSE", f"{steady['mse'] / 1e6:.4g} MPa"),
         ]
+    contacts, friction = data.get("string_contacts"), data.get("steady_friction")
+    if contacts is not None and friction is not None:
+        rows += [
+            ("string contacts", f"{contacts['count']} nodes ({contacts['normal_force']}), "
+             f"F_s {contacts['static_force'] / 1e3:.4g} kN, F_d "
+             f"{contacts['sliding_force'] / 1e3:.4g} kN, break-off "
+             f"{contacts['static_torque'] / 1e3:.4g} kN m, sliding "
+             f"{contacts['sliding_torque'] / 1e3:.4g} kN m"),
+            ("steady bit weight", f"{friction['bit_weight'] / 1e3:.5g} kN (hook "
+             f"{friction['hook_force'] / 1e3:.5g} kN, axial friction "
+             f"{friction['axial_friction'] / 1e3:.4g} kN)"),
+            ("steady surface torque", f"{friction['surface_torque'] / 1e3:.4g} kN m (friction "
+             f"{friction['friction_torque'] / 1e3:.4g} kN m)"),
+        ]  # fmt: skip
     stability = data["stability"]
     if stability is not None:
+        if stability.get("contacts"):
+            rows.append(("contacts in stability", stability["contacts"]))
         rate = stability["growth_rate"]
         crossings = stability["crossings"]
         low, high = stability["crossing_range_rpm"]

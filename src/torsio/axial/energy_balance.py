@@ -1,0 +1,93 @@
+"""The energy balance of a lumped axial-torsional run (:mod:`torsio.axial.kernel`).
+
+Over the run the work put into the string at the top (surface torque × top speed) and at the
+hook (the weight × the top node's velocity, or the speed hook's force × its speed) goes into
+the chain's kinetic and spring energy, the dampers, the bit and the friction along the
+string:
+
+    W_top + W_hook = Δ(Σ m V²/2 + Σ I ω²/2 + Σ k Δθ²/2 + Σ k_a ΔU²/2)
+                     + D_dampers + W_bit + W_friction.
+
+The kernel sums the works over the steps on each step's new velocities (the scheme's own
+power), so the residual is the scheme's O(h) (docs/axial.md, "Friction along the string").
+
+Examples
+--------
+>>> from torsio.axial.assembly import rgd_two_dof_example
+>>> from torsio.axial.rgd import rgd_example
+>>> from torsio.axial.transient import simulate_axial
+>>> run = simulate_axial(rgd_two_dof_example(), rgd_example(), 100e3, 60.0, duration=2.0,
+...                      window=1.0, growth_rate=False)
+>>> abs(run.energy.residual) < 0.01 * run.energy.input_work
+True
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import attrs
+import numpy as np
+from numpy.typing import NDArray
+
+from torsio.axial import layouts as slot
+
+__all__ = ["EnergyBalance", "chain_energy", "energy_balance"]
+
+
+def chain_energy(
+    torsional: NDArray, axial: NDArray, theta: NDArray, omega: NDArray, u: NDArray,
+    v: NDArray, top_angle: float, hook_position: float | None,
+) -> float:  # fmt: skip
+    """Kinetic and spring energy [J] of the chain (the kernel's rows 1/I, k, c and 1/m,
+    k_a, c_a; the top spring from ``top_angle`` [rad]; the hook's spring from
+    ``hook_position`` [m] under the speed hook, None under the weight hook)."""
+    kinetic = 0.5 * np.sum(omega**2 / torsional[0]) + 0.5 * np.sum(v**2 / axial[0])
+    twist = np.diff(np.concatenate([[top_angle], theta]))
+    spring = 0.5 * np.sum(torsional[1] * twist**2)
+    if u.size > 1:
+        spring += 0.5 * np.sum(axial[1, 1:] * np.diff(u) ** 2)
+    if hook_position is not None:
+        spring += 0.5 * axial[1, 0] * (hook_position - u[0]) ** 2
+    return float(kinetic + spring)
+
+
+@attrs.frozen
+class EnergyBalance:
+    """The terms of a run's energy balance [J] (see the module docstring); ``residual``
+    is what the balance leaves, input − (Δ stored + dampers + bit + friction)."""
+
+    top_work: float
+    hook_work: float
+    stored_change: float
+    damper_work: float
+    bit_work: float
+    string_friction_work: float
+
+    @property
+    def input_work(self) -> float:
+        """W_top + W_hook [J]."""
+        return self.top_work + self.hook_work
+
+    @property
+    def residual(self) -> float:
+        """input − (Δ stored + dampers + bit + friction) [J]."""
+        spent = self.stored_change + self.damper_work + self.bit_work
+        return self.input_work - spent - self.string_friction_work
+
+    def to_dict(self) -> dict[str, Any]:
+        """The terms and the ``residual`` [J]."""
+        return {**attrs.asdict(self), "residual": self.residual}
+
+
+def energy_balance(stats: NDArray, start: float, end: float) -> EnergyBalance:
+    """The balance of a lumped run's ``stats`` (:data:`torsio.axial.layouts.STATS`) with
+    the chain's energy at the ``start`` and the ``end`` [J] (:func:`chain_energy`)."""
+    return EnergyBalance(
+        top_work=float(stats[slot.TOP_WORK]),
+        hook_work=float(stats[slot.HOOK_WORK]),
+        stored_change=end - start,
+        damper_work=float(stats[slot.DAMPER_WORK]),
+        bit_work=float(stats[slot.BIT_WORK]),
+        string_friction_work=float(stats[slot.FRICTION_WORK]),
+    )
