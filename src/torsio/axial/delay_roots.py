@@ -43,7 +43,7 @@ With no delayed term, a 1-DOF oscillator has the roots of λ² + 0.2 λ + 4 = 0,
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import attrs
@@ -223,27 +223,51 @@ class LinearDelaySystem:
         return np.asarray(scipy.linalg.eigvals(self.collocation_matrix(order)), dtype=complex)
 
     def refine(self, start: complex, deflate: Sequence[complex] = ()) -> complex:
-        """Newton on Δ(λ) / Π(λ − r), r in ``deflate``, from ``start``.
+        """Newton on Δ(λ) / Π(λ − r), r in ``deflate``, from ``start`` (:func:`newton_root`).
 
         Raises
         ------
         SolverError
             If Newton does not converge in 60 steps.
         """
-        lam = complex(start)
-        for _ in range(60):
+
+        def logarithmic(lam: complex) -> complex | None:
             try:
-                logarithmic = self.logarithmic_derivative(lam)
+                return self.logarithmic_derivative(lam)
             except np.linalg.LinAlgError:  # Λ(λ) exactly singular: λ is a root
-                return lam
-            logarithmic -= sum(1.0 / (lam - r) for r in deflate)
-            if not (np.isfinite(logarithmic) and logarithmic != 0):
-                break
-            step = 1.0 / logarithmic
-            lam -= step
-            if abs(step) <= 1e-14 * max(1.0, abs(lam)):
-                return lam
-        raise SolverError(f"Newton on the characteristic equation did not converge from {start}")
+                return None
+
+        return newton_root(logarithmic, start, deflate)
+
+
+def newton_root(
+    logarithmic_derivative: Callable[[complex], complex | None],
+    start: complex,
+    deflate: Sequence[complex] = (),
+    tolerance: float = 1e-14,
+) -> complex:
+    """A root of Δ(λ) / Π(λ − r), r in ``deflate``, by Newton from ``start``, given
+    Δ'(λ)/Δ(λ) (None where Δ(λ) = 0: λ is a root); it stops when a step is at most
+    ``tolerance`` × max(1, |λ|).
+
+    Raises
+    ------
+    SolverError
+        If it does not converge in 60 steps.
+    """
+    lam = complex(start)
+    for _ in range(60):
+        logarithmic = logarithmic_derivative(lam)
+        if logarithmic is None:
+            return lam
+        logarithmic -= sum(1.0 / (lam - r) for r in deflate)
+        if not (np.isfinite(logarithmic) and logarithmic != 0):
+            break
+        step = 1.0 / logarithmic
+        lam -= step
+        if abs(step) <= tolerance * max(1.0, abs(lam)):
+            return lam
+    raise SolverError(f"Newton on the characteristic equation did not converge from {start}")
 
 
 def _adjugate(matrix: NDArray[np.complex128]) -> NDArray[np.complex128]:

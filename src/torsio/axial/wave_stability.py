@@ -53,6 +53,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from torsio.axial.assembly import DrillingAssembly
+from torsio.axial.delay_roots import newton_root
 from torsio.axial.linearization import delayed_matrix
 from torsio.axial.rgd import RGDBit
 from torsio.axial.stability import drilling_stability
@@ -146,31 +147,23 @@ class WaveCharacteristic:
         return float(abs(self.value(lam)) / np.prod(np.linalg.norm(terms, axis=1)))
 
     def refine(self, start: complex) -> complex:
-        """Newton on Δ(λ)/Π(λ − r) (r the neutral roots) from ``start``.
+        """Newton on Δ(λ)/Π(λ − r) (r the neutral roots) from ``start``
+        (:func:`~torsio.axial.delay_roots.newton_root`, Δ' by a central difference).
 
         Raises
         ------
         SolverError
             If it does not converge in 60 steps.
         """
-        lam = complex(start)
-        for _ in range(60):
-            h = 1e-6 * max(1.0, abs(lam))
+
+        def logarithmic(lam: complex) -> complex | None:
             value = self.value(lam)
             if value == 0:
-                return lam
-            slope = (self.value(lam + h) - self.value(lam - h)) / (2 * h)
-            logarithmic = slope / value - sum(1.0 / (lam - r) for r in self.neutral_roots)
-            if not (np.isfinite(logarithmic) and logarithmic != 0):
-                break
-            step = 1.0 / logarithmic
-            lam -= step
-            if abs(step) <= ROOT_TOLERANCE * max(1.0, abs(lam)):
-                return lam
-        raise SolverError(
-            f"Newton on the distributed pipe's characteristic equation did not converge "
-            f"from {start}"
-        )
+                return None
+            h = 1e-6 * max(1.0, abs(lam))
+            return (self.value(lam + h) - self.value(lam - h)) / (2 * h * value)
+
+        return newton_root(logarithmic, start, self.neutral_roots, ROOT_TOLERANCE)
 
 
 def wave_characteristic(
