@@ -407,10 +407,9 @@ def simulate_axial(
     start_energy = _stored_energy(setup, 0.0)
     stats = run_kernel(setup, table, every)
     energy = None
-    if start_energy is not None:
-        energy = energy_balance(
-            stats, start_energy, _stored_energy(setup, setup.steps * setup.step)
-        )
+    end_energy = _stored_energy(setup, setup.steps * setup.step)
+    if start_energy is not None and end_energy is not None:
+        energy = energy_balance(stats, start_energy, end_energy)
     rate = None
     if growth_rate and bit_rotation is None:
         rate = _growth_rate(assembly, bit, wob, rpm, boundary, contacts)
