@@ -1,11 +1,14 @@
-"""Configurations the axial tests share: the built-in 2-DOF file and a [[section]] string
-with its RGD bit (1000 m of 5 in drill pipe above 150 m of 6 3/4 in collars and the bit)."""
+"""Configurations the axial tests share: the built-in 2-DOF file, a [[section]] string
+with its RGD bit (1000 m of 5 in drill pipe above 150 m of 6 3/4 in collars and the bit),
+and the damped 3-node pipe of the chain stability tests."""
 
 from __future__ import annotations
 
 import tomllib
 from importlib import resources
 from typing import Any
+
+from torsio.axial.assembly import DrillingAssembly, pipe_assembly
 
 TEXT = resources.files("torsio").joinpath("data/rgd_2dof.toml").read_text(encoding="utf-8")
 BASE: dict[str, Any] = tomllib.loads(TEXT)
@@ -21,3 +24,23 @@ STRING: dict[str, Any] = {
     "bit_rock": dict(BASE["bit_rock"]),
     "operation": {"wob": "100 kN", "rpm": 60},
 }
+
+
+PIPE = (3, 900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5, 29981.3, 230.0)
+"""pipe_assembly's arguments: 3 nodes of a 900 m pipe (E = 210 GPa, G = 81 GPa, ρ = 7850
+kg/m³, A = 3.4e-3 m², J = 1.5e-5 m⁴) above the 2-DOF example's BHA (29981.3 kg, 230 kg m²)."""
+
+
+def damped_pipe(hook: str) -> DrillingAssembly:
+    """The 3-node :data:`PIPE` with dampers β k (β = 0.06 s, the built-in Rayleigh β) and
+    1e-3 s k_a."""
+    pipe = pipe_assembly(*PIPE, hook=hook)
+    return DrillingAssembly(
+        pipe.inertias,
+        pipe.stiffnesses,
+        pipe.masses,
+        axial_stiffnesses=pipe.axial_stiffnesses,
+        damping=0.06 * pipe.stiffnesses,
+        axial_damping=1e-3 * pipe.axial_stiffnesses,
+        hook=hook,
+    )

@@ -15,6 +15,7 @@ import math
 
 import numpy as np
 import pytest
+from axial_files import PIPE, damped_pipe
 from axial_growth import envelope_rate, perturbed_run
 
 from torsio.axial.assembly import DrillingAssembly, pipe_assembly, two_dof_assembly
@@ -32,7 +33,6 @@ from torsio.errors import ConfigError
 INERTIA, STIFFNESS, MASS, DAMPING = 455.65, 324.857, 29981.3, 19.49
 BIT = rgd_example()
 WOB = 100e3
-PIPE = (3, 900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5, MASS, 230.0)
 
 
 # --- one node is the 2-DOF model ---------------------------------------------------------------
@@ -167,17 +167,7 @@ def test_a_small_perturbation_of_a_chain_grows_at_the_rightmost_root(hook):
 # --- the crossings and the maps -------------------------------------------------------------------
 @pytest.mark.parametrize("hook", ["weight", "speed"])
 def test_each_crossing_names_the_root_that_crosses(hook):
-    # the 3-node pipe with dampers β k (β = 0.06 s, the built-in Rayleigh β) and 1e-3 s k_a
-    pipe = pipe_assembly(*PIPE, hook=hook)
-    chain = DrillingAssembly(
-        pipe.inertias,
-        pipe.stiffnesses,
-        pipe.masses,
-        axial_stiffnesses=pipe.axial_stiffnesses,
-        damping=0.06 * pipe.stiffnesses,
-        axial_damping=1e-3 * pipe.axial_stiffnesses,
-        hook=hook,
-    )
+    chain = damped_pipe(hook)  # dampers β k (β = 0.06 s) and 1e-3 s k_a
     crossings = mode_crossings(chain, BIT, WOB, (60.0, 250.0), points=9)
     assert len(crossings) >= 1
     for crossing in crossings:

@@ -15,8 +15,9 @@ import math
 
 import numpy as np
 import pytest
+from axial_files import damped_pipe
 
-from torsio.axial.assembly import DrillingAssembly, pipe_assembly, rgd_two_dof_example
+from torsio.axial.assembly import rgd_two_dof_example
 from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
 from torsio.axial.linearization import axial_linearization, drilling_linearization
 from torsio.axial.rgd import rgd_example
@@ -105,21 +106,6 @@ def test_the_axial_equation_crosses_at_its_closed_form_rpm_one_mode_after_anothe
     assert not any(rising for _, _, rising in found)  # each turns stable as the rpm grows
 
 
-def _damped_chain(hook):
-    # the 3-node pipe of test_axial_chain_stability with dampers 0.06 s k and 1e-3 s k_a
-    pipe = pipe_assembly(3, 900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5, MASS, 230.0,
-                         hook=hook)  # fmt: skip
-    return DrillingAssembly(
-        pipe.inertias,
-        pipe.stiffnesses,
-        pipe.masses,
-        axial_stiffnesses=pipe.axial_stiffnesses,
-        damping=0.06 * pipe.stiffnesses,
-        axial_damping=1e-3 * pipe.axial_stiffnesses,
-        hook=hook,
-    )
-
-
 def _unstable_roots(assembly, rpm):
     system = drilling_linearization(assembly, BIT, WOB, rpm, None)
     roots = rightmost_roots(system, 1 << 30, order=2 * system.default_order()).roots
@@ -131,7 +117,7 @@ CHECKED_RPM = [21, 23, 25, 27, 30, 33, 36, 40, 45, 55, 60, 80, 100, 130, 150, 20
 
 @pytest.mark.parametrize(
     "assembly",
-    [rgd_two_dof_example(), _damped_chain("weight"), _damped_chain("speed")],
+    [rgd_two_dof_example(), damped_pipe("weight"), damped_pipe("speed")],
     ids=["two-dof", "chain-weight-hook", "chain-speed-hook"],
 )
 def test_the_signed_crossings_count_the_unstable_roots_at_every_rpm(assembly):
@@ -148,7 +134,7 @@ def test_the_signed_crossings_count_the_unstable_roots_at_every_rpm(assembly):
         assert 0 <= crossing.axial_share <= 1
 
 
-@pytest.mark.parametrize("assembly", [rgd_two_dof_example(), _damped_chain("weight")])
+@pytest.mark.parametrize("assembly", [rgd_two_dof_example(), damped_pipe("weight")])
 def test_the_growth_rate_changes_sign_at_one_of_the_crossings(assembly):
     each = each_mode_crossing(assembly, BIT, WOB, (20.0, 300.0), points=15).crossings
     for crossing in mode_crossings(assembly, BIT, WOB, (20.0, 300.0), points=15):

@@ -109,6 +109,7 @@ class _StderrProgress:
         self.every = every
         self.started = time.perf_counter()
         self.last_line = -math.inf
+        self.first: tuple[float, int] | None = None  # (elapsed, done) at the first call
         self.bar: Any = None
         self.task: Any = None
 
@@ -117,6 +118,8 @@ class _StderrProgress:
 
     def __call__(self, done: int, total: int) -> None:
         elapsed = time.perf_counter() - self.started
+        if self.first is None:
+            self.first = (elapsed, done)
         if elapsed < self.quiet or done >= total:
             if self.bar is not None and done >= total:
                 self.bar.update(self.task, completed=done, total=total)
@@ -128,13 +131,20 @@ class _StderrProgress:
             self.bar.update(self.task, completed=done, total=total)
         elif elapsed - self.last_line >= self.every:
             self.last_line = elapsed
-            left = elapsed * (total - done) / done if done else math.inf
             print(
                 f"torsio: {self.label}: {done / total:.0%} ({done:,} of {total:,} steps), "
-                f"{elapsed:.0f} s, about {left:.0f} s left",
+                f"{elapsed:.0f} s, {self._time_left(elapsed, done, total)}",
                 file=output,
                 flush=True,
             )
+
+    def _time_left(self, elapsed: float, done: int, total: int) -> str:
+        """The rate since the first call (the first steps may hold numba's compile)."""
+        assert self.first is not None
+        since, done_then = self.first
+        if done <= done_then or elapsed <= since:
+            return "time left not known yet"
+        return f"about {(elapsed - since) * (total - done) / (done - done_then):.0f} s left"
 
     def _start_bar(self, output: TextIO, total: int) -> None:
         self.bar = progress_bar(self.label, "steps", output)
