@@ -21,7 +21,7 @@ from torsio.axial.assembly import rgd_two_dof_example
 from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
 from torsio.axial.linearization import axial_linearization, drilling_linearization
 from torsio.axial.rgd import rgd_example
-from torsio.axial.root_branches import branch_crossings, follow_roots
+from torsio.axial.root_branches import branch_crossings, follow_roots, unstable_roots
 from torsio.axial.stability import each_mode_crossing, mode_crossings
 from torsio.errors import ConfigError
 
@@ -150,3 +150,36 @@ def test_bad_grids_and_counts_are_refused_by_name():
         follow_roots(_oscillator, [0.5, 1.0], count=0)
     with pytest.raises(ConfigError, match="rpm"):
         each_mode_crossing(rgd_two_dof_example(), BIT, WOB, (100.0, 50.0))
+
+
+def test_with_contacts_the_crossings_and_their_directions_are_those_of_one_linearization():
+    # the friction's damping enters every linearization of the search: the growth rate's
+    # crossing (mode_crossings, its direction from the root just above) is one of every
+    # mode's crossings with the same direction, and the report's unstable modes are the
+    # linearization's with the contacts (the built-in deviated well at 60 rpm)
+    from torsio.axial.string_contacts import AxialContacts
+    from torsio.examples import rgd_deviated_well_config
+    from torsio.report.axial import axial_section
+    from torsio.report.context import ReportContext
+
+    chain = damped_pipe("weight")
+    contacts = AxialContacts(
+        np.array([2e3, 3e3, 0.0]), np.array([1.5e3, 2.5e3, 0.0]), np.full(3, 0.0635)
+    )
+    each = each_mode_crossing(chain, BIT, WOB, (60.0, 250.0), points=9, contacts=contacts)
+    assert each.complete
+    [growth] = mode_crossings(chain, BIT, WOB, (60.0, 250.0), points=9, contacts=contacts)
+    [same] = [c for c in each.crossings if abs(c.rpm - growth.rpm) < 1e-7 * growth.rpm]
+    assert same.destabilizing == growth.destabilizing
+    config = rgd_deviated_well_config()
+    axial = config.axial
+    section = axial_section(ReportContext(config))
+    system = drilling_linearization(
+        axial.stability_assembly, axial.bit, config.operation.wob, config.operation.rpm,
+        None, axial.contacts,
+    )  # fmt: skip
+    without = drilling_linearization(
+        axial.stability_assembly, axial.bit, config.operation.wob, config.operation.rpm
+    )
+    assert unstable_roots(system) != unstable_roots(without)  # the contacts make a difference
+    assert section.data["stability"]["unstable_modes"] == unstable_roots(system)

@@ -83,7 +83,7 @@ from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.delay_roots import LinearDelaySystem
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
-from torsio.axial.steady_friction import friction_damping, steady_with_friction
+from torsio.axial.steady_friction import drilling_state, friction_damping
 from torsio.errors import ConfigError
 from torsio.model.lumped import chain_matrix
 
@@ -246,15 +246,10 @@ def drilling_linearization(
     ConfigError
         A weight on bit at which the bit does not cut.
     """
-    surface = None
-    if contacts is not None:
-        contacts = contacts.at_wob(wob)
-        steady, friction = steady_with_friction(bit, wob, rpm, contacts, assembly.hook)
-        surface = friction.surface_torque
-    else:
-        steady = steady_drilling(bit, wob, rpm)
+    steady, friction = drilling_state(bit, wob, rpm, contacts, assembly.hook)
+    surface = steady.bit_torque if friction is None else friction.surface_torque
     mass, damping, stiffness = chain_matrices(assembly)
-    loop = speed_loop(top_drive, surface or steady.bit_torque, steady.bit_speed)
+    loop = speed_loop(top_drive, surface, steady.bit_speed)
     if loop is not None:  # the top node φ_top first among the angles
         inertia, loop_damping, loop_stiffness = loop
         axial_mass, axial_damping, axial_stiffness = axial_matrices(assembly)
@@ -268,7 +263,7 @@ def drilling_linearization(
     if contacts is not None:
         angles_from = mass.shape[0] - assembly.nodes
         damping = damping + friction_damping_matrix(
-            assembly, contacts, steady.rop, steady.bit_speed, angles_from
+            assembly, contacts.at_wob(wob), steady.rop, steady.bit_speed, angles_from
         )
     bit_dofs = [assembly.axial_dofs - 1, mass.shape[0] - 1]
     delayed = np.zeros_like(mass)

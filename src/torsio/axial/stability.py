@@ -35,7 +35,8 @@ from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.delay_roots import DelayRoots, LinearDelaySystem, rightmost_roots
 from torsio.axial.linearization import drilling_linearization
 from torsio.axial.rgd import RGDBit
-from torsio.axial.steady import SteadyDrilling, steady_drilling
+from torsio.axial.steady import SteadyDrilling
+from torsio.axial.steady_friction import drilling_state
 from torsio.errors import ConfigError
 
 AXIAL_MODE_SHARE = 0.5
@@ -135,7 +136,7 @@ def drilling_stability(
     growth = float(found.roots[0].real)
     shares = [axial_share(system, root, assembly.axial_dofs) for root in found.roots]
     return DrillingStability(
-        steady=_steady(bit, wob, rpm, contacts, assembly.hook),
+        steady=drilling_state(bit, wob, rpm, contacts, assembly.hook)[0],
         roots=found.roots,
         axial_shares=np.array(shares),
         growth_rate=growth,
@@ -143,15 +144,6 @@ def drilling_stability(
         neutral_root=found.dropped[0] if found.dropped else None,
         details=found,
     )
-
-
-def _steady(bit: RGDBit, wob: float, rpm: float, contacts: Any, hook: str) -> SteadyDrilling:
-    """The steady state at the bit, with the string's friction when ``contacts`` are given."""
-    if contacts is None:
-        return steady_drilling(bit, wob, rpm)
-    from torsio.axial.steady_friction import steady_with_friction
-
-    return steady_with_friction(bit, wob, rpm, contacts.at_wob(wob), hook)[0]
 
 
 @attrs.frozen
@@ -268,7 +260,7 @@ def mode_crossings(
     ):
         at = stability(rpm)
         root = at.roots[0]
-        system = drilling_linearization(assembly, bit, wob, rpm * (1 + 1e-6), top_drive)
+        system = drilling_linearization(assembly, bit, wob, rpm * (1 + 1e-6), top_drive, contacts)
         rising = system.refine(root, system.neutral_roots).real > 0
         found.append(ModeCrossing(rpm, float(root.imag), float(at.axial_shares[0]), bool(rising)))
     return found

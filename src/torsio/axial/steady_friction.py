@@ -53,6 +53,7 @@ __all__ = [
     "SteadyFriction",
     "friction_damping",
     "friction_split",
+    "drilling_state",
     "steady_loads",
     "steady_with_friction",
 ]
@@ -139,6 +140,17 @@ def steady_with_friction(
         node_torque=torque,
     )
     return steady, friction
+
+
+def drilling_state(
+    bit: RGDBit, wob: float, rpm: float, contacts: AxialContacts | None, hook: str
+) -> tuple[SteadyDrilling, SteadyFriction | None]:
+    """The steady state at the bit, and the friction's part when there are ``contacts``
+    (their normal force rebuilt at ``wob``, :func:`steady_with_friction`); without them
+    :func:`~torsio.axial.steady.steady_drilling` and None."""
+    if contacts is None:
+        return steady_drilling(bit, wob, rpm), None
+    return steady_with_friction(bit, wob, rpm, contacts.at_wob(wob), hook)
 
 
 def steady_loads(

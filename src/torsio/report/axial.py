@@ -138,24 +138,19 @@ def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
         **growth,
         "crossing_rpm": [c.rpm for c in crossings],
         "crossings": [c.to_dict() for c in crossings],
-        "unstable_modes": unstable_roots(drilling_linearization(chain, axial.bit, wob, rpm, top)),
+        "unstable_modes": unstable_roots(
+            drilling_linearization(chain, axial.bit, wob, rpm, top, contacts)
+        ),
         "mode_crossings": each.to_dict(),
         "crossing_range_rpm": list(CROSSING_RANGE),
     }
 
 
-def _steady_with_friction(axial: Any, wob: float, rpm: float) -> Any:
-    from torsio.axial.steady_friction import steady_with_friction
-
-    contacts = axial.contacts.at_wob(wob)
-    return steady_with_friction(axial.bit, wob, rpm, contacts, axial.assembly.hook)
-
-
-def _friction(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
-    """The contacts' totals at ``wob`` and what they take in steady drilling."""
-    steady, friction = _steady_with_friction(axial, wob, rpm)
+def _friction(steady: Any, friction: Any, contacts: Any) -> dict[str, Any]:
+    """The contacts' totals and what they take in steady drilling (``steady``,
+    ``friction`` of :func:`~torsio.axial.steady_friction.drilling_state`)."""
     return {
-        "string_contacts": axial.contacts.at_wob(wob).describe(),
+        "string_contacts": contacts.describe(),
         "steady_friction": {**friction.to_dict(), "bit_weight": steady.wob},
     }
 
@@ -187,7 +182,7 @@ def _modes_crossing(stability: dict[str, Any]) -> str:
 
 def axial_section(ctx: ReportContext) -> ReportSection | None:
     """The ``axial`` section: frequencies, steady drilling state, stability."""
-    from torsio.axial.steady import steady_drilling
+    from torsio.axial.steady_friction import drilling_state
 
     axial = ctx.config.axial
     if axial is None:
@@ -216,10 +211,11 @@ def axial_section(ctx: ReportContext) -> ReportSection | None:
             "the bit does not cut"
         )
     else:
-        steady = steady_drilling(axial.bit, op.wob, op.rpm)
-        if axial.contacts is not None:
-            data.update(_friction(axial, op.wob, op.rpm))
-            steady = _steady_with_friction(axial, op.wob, op.rpm)[0]
+        steady, friction = drilling_state(
+            axial.bit, op.wob, op.rpm, axial.contacts, axial.assembly.hook
+        )
+        if friction is not None:
+            data.update(_friction(steady, friction, axial.contacts.at_wob(op.wob)))
         data["steady_state"] = steady.to_dict()
         data["stability"] = _stability(axial, op.wob, op.rpm)
         data["stability_of_held_top"] = data["stability"]["held_top"]
