@@ -114,6 +114,47 @@ def test_light_commands_load_no_heavy_module(argv: list[str]) -> None:
     assert "HEAVY []" in result.stderr, result.stderr
 
 
+def test_a_map_loads_only_what_it_runs() -> None:
+    # a serial map through the CLI: the compiled engine's serial or parallel kernel (not
+    # both), and none of scipy's sparse matrices or integrators (the scipy engine's)
+    import subprocess
+
+    code = (
+        "import sys\n"
+        "from torsio.cli import main\n"
+        "main(['map', '--strategy', 'A', '--wob', '50kN:150kN:3', '--rpm', '60:120:3',"
+        " '--refine', '0', '--json'])\n"
+        "from torsio.solvers import rodas_kernels\n"
+        "loaded = [m for m in ('scipy.sparse', 'scipy.integrate', 'distributed')\n"
+        "          if m in sys.modules]\n"
+        "kernels = [k for k in ('integrate_serial', 'integrate_parallel')\n"
+        "           if k in vars(rodas_kernels)]\n"
+        "print('LOADED', loaded, 'KERNELS', len(kernels), file=sys.stderr)\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    )
+    assert "LOADED [] KERNELS 1" in result.stderr, result.stderr
+
+
+def test_console_script_returns_the_status_and_freezes_the_collector() -> None:
+    # the console script is main() then gc.freeze(): the exit does not scan numba's
+    # registries again; the status and the output are main's
+    import subprocess
+
+    code = (
+        "import gc, sys\n"
+        "import torsio.cli\n"
+        "torsio.cli.main = lambda: 3\n"
+        "status = torsio.cli.console_main()\n"
+        "print('STATUS', status, 'FROZEN', gc.get_freeze_count() > 0, file=sys.stderr)\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    )
+    assert "STATUS 3 FROZEN True" in result.stderr, result.stderr
+
+
 def test_bare_numbers_are_read_without_pint() -> None:
     import subprocess
 

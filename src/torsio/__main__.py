@@ -2,6 +2,6 @@
 
 import sys
 
-from torsio.cli import main
+from torsio.cli import console_main
 
-sys.exit(main())
+sys.exit(console_main())

@@ -35,12 +35,11 @@ Examples
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import attrs
 import numpy as np
 import scipy.linalg
-import scipy.sparse
 
 from torsio.errors import ConfigError
 from torsio.model.tridiagonal import is_tridiagonal, tridiagonal_bands, tridiagonal_matvec
@@ -48,6 +47,9 @@ from torsio.physics.law_slope import bit_slope
 from torsio.physics.top_drive_boundary import TopDriveBoundary
 
 __all__ = ["Dynamics"]
+
+if TYPE_CHECKING:
+    import scipy.sparse
 
 
 def _extend(matrix: np.ndarray, top: float, link: float) -> np.ndarray:
@@ -415,6 +417,8 @@ class Dynamics:
 
     def jacobian(self, t: float, y: np.ndarray) -> scipy.sparse.csc_matrix:
         """d(dy/dt)/dy at state y, sparse (banded for lumped mass)."""
+        import scipy.sparse  # the scipy integrators only: a map does not load it
+
         slope = float(self.bit_slope(self.reference_speed + y[-1]))
         return scipy.sparse.csc_matrix(self.jacobian_matrix(slope, self._saturated(y)))
 
@@ -429,6 +433,8 @@ class Dynamics:
 
     def jacobian_sparsity(self) -> scipy.sparse.csc_matrix:
         """Where the Jacobian can be non-zero (any slope, either saturation state)."""
+        import scipy.sparse
+
         pattern = (self.jacobian_matrix(1.0) != 0) | (self.jacobian_matrix(1.0, True) != 0)
         return scipy.sparse.csc_matrix(pattern)
 

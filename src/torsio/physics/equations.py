@@ -22,13 +22,15 @@ True
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import scipy.sparse
 
 from torsio.physics.dynamics import Dynamics
 from torsio.physics.system import System
+
+if TYPE_CHECKING:
+    import scipy.sparse
 
 
 class TwistEquations:

@@ -419,14 +419,14 @@ def _groups(model: BatchModel, rpm: np.ndarray) -> list[tuple[np.ndarray, np.nda
 def _run_compiled(arguments: tuple[Any, ...], threads: int | None) -> None:
     import threading
 
-    from torsio.solvers.rodas_kernels import integrate_parallel, integrate_serial
+    from torsio.solvers import rodas_kernels  # each entry point is loaded on first use
 
     assert numba is not None
     # numba's thread pool must not be entered from several threads at once (a thread pool
     # executor, a Dask worker with several threads): only the main thread uses it
     count = arguments[-1].shape[0]  # out: a row per point
     if threads == 1 or count == 1 or threading.current_thread() is not threading.main_thread():
-        integrate_serial(*arguments)
+        rodas_kernels.integrate_serial(*arguments)
         return
     previous_threads = numba.get_num_threads()
     previous_chunk = numba.get_parallel_chunksize()
@@ -434,7 +434,7 @@ def _run_compiled(arguments: tuple[Any, ...], threads: int | None) -> None:
         if threads is not None:
             numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
         numba.set_parallel_chunksize(1)  # points differ 100x in cost: share them dynamically
-        integrate_parallel(*arguments)
+        rodas_kernels.integrate_parallel(*arguments)
     finally:
         numba.set_parallel_chunksize(previous_chunk)
         numba.set_num_threads(previous_threads)
