@@ -35,7 +35,7 @@ from torsio.physics.system import System
 from torsio.plugins import get_bit_law, top_drive_from_parameters
 from torsio.solvers.batch import simulate_batch
 from torsio.solvers.batch_results import DEFAULT_STEADY_TOLERANCE
-from torsio.solvers.reference import reference_severity
+from torsio.solvers.reference import reference_options, reference_severity
 
 DURATION, WINDOW = 60.0, 20.0  # s: long enough for stick-slip to form from rest
 BATCH = {"rtol": 1e-6, "atol": 1e-8, "duration": DURATION, "steady_window": WINDOW}
@@ -74,7 +74,9 @@ CASES = [
 def test_same_severity_on_every_path(dofs: int, law: str, top: str) -> None:
     system = _system(dofs, law, top)
     if top == "pi":
-        reference, _ = reference_severity(system, DURATION, WINDOW, rtol=1e-8, atol=1e-10)
+        reference, _ = reference_severity(
+            system, reference_options(duration=DURATION, steady_window=WINDOW)
+        )
     else:
         reference = simulate(
             system, duration=DURATION, steady_window=WINDOW, method="LSODA", rtol=1e-8, atol=1e-10

@@ -73,7 +73,7 @@ from torsio.solvers.layouts import (
     TOP_HAS_NODE,
 )
 from torsio.solvers.lumped_inputs import pack_chain, pack_top, run_settings, step_limits
-from torsio.solvers.reference import reference_severity, run_times
+from torsio.solvers.reference import reference_options, reference_severity, run_times
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = [
@@ -302,11 +302,14 @@ def simulate_lumped_batch(
     out = np.zeros((wob_arr.size, OUT_COLUMNS))
     out[:, OUT_ENDED] = duration  # the time each run ended (the compiled kernel may end earlier)
     if name == "scipy":
+        reference_run = reference_options(
+            duration=duration, steady_window=steady_window, rtol=rtol, atol=atol
+        )
         for k in range(wob_arr.size):
             at = {} if torque_driven else {"rpm": float(rpm_arr[k])}
             point = system.at(wob=float(wob_arr[k]), **at)
             try:
-                _, info = reference_severity(point, duration, steady_window, rtol=rtol, atol=atol)
+                _, info = reference_severity(point, reference_run)
             except SolverError:  # one point's failure, reported by its status like the others'
                 out[k, [OUT_BIT_SPEED_MAX, OUT_BIT_SPEED_MIN, OUT_TOP_SPEED_MEAN]] = math.nan
                 out[k, OUT_STATUS] = STATUS_SOLVER_FAILED

@@ -5,7 +5,7 @@ Also the run length and steady window every engine uses (:func:`run_times`).
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -13,19 +13,20 @@ from torsio.analysis.severity import run_times as severity_run_times
 from torsio.errors import SolverError
 from torsio.physics.system import System
 
-__all__ = ["reference_severity", "run_times"]
+if TYPE_CHECKING:
+    from torsio.analysis.simulation_options import SimulationOptions
+
+__all__ = ["reference_options", "reference_severity", "run_times"]
 
 
 def reference_severity(
-    system: System,
-    duration: float | None = None,
-    steady_window: float | None = None,
-    method: str = "Radau",
-    rtol: float = 1e-8,
-    atol: float = 1e-10,
-    samples_per_step: int = 16,
+    system: System, options: SimulationOptions | None = None, samples_per_step: int = 16
 ) -> tuple[float, dict[str, Any]]:
     """S_SS of one operating point with :func:`scipy.integrate.solve_ivp` (the reference).
+
+    ``options``: the run length, window, integrator and tolerances, as for
+    :func:`torsio.simulate`; by default :func:`reference_options` (Radau, rtol 1e-8,
+    atol 1e-10), a scipy method in any case.
 
     Integrates :class:`torsio.physics.equations.TwistEquations` from rest (the exact
     Jacobian for implicit methods) and reads the extremes of the bit speed from
@@ -47,12 +48,13 @@ def reference_severity(
 
     from torsio.physics.equations import TwistEquations
 
+    if options is None:
+        options = reference_options()
+    method, rtol, atol = options.method, options.rtol, options.atol
     equations = TwistEquations(system)
-    duration, steady_window = run_times(system, duration, steady_window)
+    duration, steady_window = run_times(system, options.duration, options.steady_window)
     implicit = method in ("Radau", "BDF", "LSODA")
-    options: dict[str, Any] = {}
-    if implicit:
-        options["jac"] = equations.jacobian
+    jacobian: dict[str, Any] = {"jac": equations.jacobian} if implicit else {}
     try:
         solution = solve_ivp(
             equations.rhs,
@@ -62,7 +64,7 @@ def reference_severity(
             rtol=rtol,
             atol=atol,
             dense_output=True,
-            **options,
+            **jacobian,
         )
     except (ArithmeticError, ValueError, RuntimeError, np.linalg.LinAlgError) as exc:
         from torsio.plugins import describe_bit_law
@@ -102,6 +104,19 @@ def reference_severity(
     info["top_speed_mean"] = float(np.trapezoid(top_speed, times) / steady_window)
     speed = dynamics.set_speed if np.isfinite(dynamics.set_speed) else info["top_speed_mean"]
     return float((bit_speed.max() - bit_speed.min()) / (2.0 * speed)), info
+
+
+def reference_options(**overrides: Any) -> SimulationOptions:
+    """The reference run's options: Radau, rtol 1e-8, atol 1e-10, and ``overrides``.
+
+    Examples
+    --------
+    >>> reference_options(duration=20.0).method
+    'Radau'
+    """
+    from torsio.analysis.simulation_options import SimulationOptions
+
+    return SimulationOptions(**{"method": "Radau", "rtol": 1e-8, "atol": 1e-10, **overrides})
 
 
 def run_times(
