@@ -23,7 +23,7 @@ from torsio.axial.linearization import delayed_matrix, drilling_linearization
 from torsio.axial.maps import axial_map
 from torsio.axial.rgd import rgd_example
 from torsio.axial.run_setup import BitRotation
-from torsio.axial.stability import drilling_stability, mode_crossings
+from torsio.axial.stability import DrillingCase, drilling_stability, mode_crossings
 from torsio.axial.steady import steady_drilling
 from torsio.axial.transient import simulate_axial
 from torsio.errors import ConfigError
@@ -168,7 +168,7 @@ def test_a_small_perturbation_of_a_chain_grows_at_the_rightmost_root(hook):
 @pytest.mark.parametrize("hook", ["weight", "speed"])
 def test_each_crossing_names_the_root_that_crosses(hook):
     chain = damped_pipe(hook)  # dampers β k (β = 0.06 s) and 1e-3 s k_a
-    crossings = mode_crossings(chain, BIT, WOB, (60.0, 250.0), points=9)
+    crossings = mode_crossings(DrillingCase(chain, BIT, WOB), (60.0, 250.0), points=9)
     assert len(crossings) >= 1
     for crossing in crossings:
         at = drilling_stability(chain, BIT, WOB, crossing.rpm, count=1)

@@ -3,7 +3,7 @@ dynamics (the built-in ``rgd_2dof.toml``), the flags they refuse, and the torsio
 commands unchanged.
 
 Numbers checked: the JSON equals the Python API (simulate_axial, axial_map,
-drilling_stability, crossing_rpm on rgd_two_dof_example() and rgd_example()); the steady
+drilling_stability, mode_crossings on rgd_two_dof_example() and rgd_example()); the steady
 state equals the closed form d0 = (W0 - σ a l)/(ζ ε a), V0 = Ω0 d0 / 2π,
 T0 = ε a² d0 / 2 + μ γ a² σ l / 2, MSE = W0/A + Ω0 T0 / (A V0).
 """
@@ -20,9 +20,10 @@ from rich.console import Console
 
 from torsio.analysis.transient import simulate_config
 from torsio.axial import (
+    DrillingCase,
     axial_map,
-    crossing_rpm,
     drilling_stability,
+    mode_crossings,
     rgd_example,
     rgd_two_dof_example,
     simulate_axial,
@@ -153,7 +154,8 @@ def test_report_has_the_axial_section():
     ctx = ReportContext(rgd_two_dof_config())  # computed once: JSON and terminal alike
     section = report_data(ctx)["axial"]
     assert section["steady_state"]["depth_of_cut"] == pytest.approx(0.0073868312757, rel=1e-9)
-    crossings = crossing_rpm(rgd_two_dof_example(), rgd_example(), 100e3, (20.0, 300.0), points=15)
+    case = DrillingCase(rgd_two_dof_example(), rgd_example(), 100e3)
+    crossings = [c.rpm for c in mode_crossings(case, (20.0, 300.0), points=15)]
     assert section["stability"]["crossing_rpm"] == crossings
     assert section["stability"]["growth_rate"] > 0
     console = Console(width=80, record=True, file=io.StringIO())

@@ -22,7 +22,7 @@ from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
 from torsio.axial.linearization import axial_linearization, drilling_linearization
 from torsio.axial.rgd import rgd_example
 from torsio.axial.root_branches import branch_crossings, follow_roots, unstable_roots
-from torsio.axial.stability import each_mode_crossing, mode_crossings
+from torsio.axial.stability import DrillingCase, each_mode_crossing, mode_crossings
 from torsio.errors import ConfigError
 
 BIT = rgd_example()
@@ -121,7 +121,7 @@ CHECKED_RPM = [21, 23, 25, 27, 30, 33, 36, 40, 45, 55, 60, 80, 100, 130, 150, 20
     ids=["two-dof", "chain-weight-hook", "chain-speed-hook"],
 )
 def test_the_signed_crossings_count_the_unstable_roots_at_every_rpm(assembly):
-    found = each_mode_crossing(assembly, BIT, WOB, (20.0, 300.0), points=15)
+    found = each_mode_crossing(DrillingCase(assembly, BIT, WOB), (20.0, 300.0), points=15)
     assert found.complete
     crossings = found.crossings
     at_start = _unstable_roots(assembly, 20.0)
@@ -136,8 +136,9 @@ def test_the_signed_crossings_count_the_unstable_roots_at_every_rpm(assembly):
 
 @pytest.mark.parametrize("assembly", [rgd_two_dof_example(), damped_pipe("weight")])
 def test_the_growth_rate_changes_sign_at_one_of_the_crossings(assembly):
-    each = each_mode_crossing(assembly, BIT, WOB, (20.0, 300.0), points=15).crossings
-    for crossing in mode_crossings(assembly, BIT, WOB, (20.0, 300.0), points=15):
+    case = DrillingCase(assembly, BIT, WOB)
+    each = each_mode_crossing(case, (20.0, 300.0), points=15).crossings
+    for crossing in mode_crossings(case, (20.0, 300.0), points=15):
         [same] = [c for c in each if abs(c.rpm - crossing.rpm) < 1e-7 * crossing.rpm]
         assert same.frequency == pytest.approx(crossing.frequency, rel=1e-7)
         assert same.destabilizing == crossing.destabilizing
@@ -149,7 +150,7 @@ def test_bad_grids_and_counts_are_refused_by_name():
     with pytest.raises(ConfigError, match="count"):
         follow_roots(_oscillator, [0.5, 1.0], count=0)
     with pytest.raises(ConfigError, match="rpm"):
-        each_mode_crossing(rgd_two_dof_example(), BIT, WOB, (100.0, 50.0))
+        each_mode_crossing(DrillingCase(rgd_two_dof_example(), BIT, WOB), (100.0, 50.0))
 
 
 def test_with_contacts_the_crossings_and_their_directions_are_those_of_one_linearization():
@@ -166,9 +167,10 @@ def test_with_contacts_the_crossings_and_their_directions_are_those_of_one_linea
     contacts = AxialContacts(
         np.array([2e3, 3e3, 0.0]), np.array([1.5e3, 2.5e3, 0.0]), np.full(3, 0.0635)
     )
-    each = each_mode_crossing(chain, BIT, WOB, (60.0, 250.0), points=9, contacts=contacts)
+    case = DrillingCase(chain, BIT, WOB, contacts=contacts)
+    each = each_mode_crossing(case, (60.0, 250.0), points=9)
     assert each.complete
-    [growth] = mode_crossings(chain, BIT, WOB, (60.0, 250.0), points=9, contacts=contacts)
+    [growth] = mode_crossings(case, (60.0, 250.0), points=9)
     [same] = [c for c in each.crossings if abs(c.rpm - growth.rpm) < 1e-7 * growth.rpm]
     assert same.destabilizing == growth.destabilizing
     config = rgd_deviated_well_config()

@@ -24,7 +24,12 @@ from torsio.axial.linearization import (
     drilling_linearization,
 )
 from torsio.axial.rgd import rgd_example
-from torsio.axial.stability import crossing_rpm, drilling_stability, growth_rate_crossings
+from torsio.axial.stability import (
+    DrillingCase,
+    drilling_stability,
+    growth_rate_crossings,
+    mode_crossings,
+)
 from torsio.axial.steady import steady_drilling
 from torsio.errors import ConfigError
 
@@ -207,10 +212,10 @@ def test_a_stiff_string_tends_to_the_axial_equation_like_one_over_k():
 
 
 # --- crossings of the coupled model ----------------------------------------------------------
-def test_crossing_rpm_brackets_and_refines_a_change_of_sign():
-    crossings = crossing_rpm(DAMPED, BIT, WOB, (100.0, 200.0), points=11)
+def test_the_growth_rate_crossing_brackets_and_refines_a_change_of_sign():
+    crossings = mode_crossings(DrillingCase(DAMPED, BIT, WOB), (100.0, 200.0), points=11)
     assert len(crossings) == 1
-    rpm = crossings[0]
+    rpm = crossings[0].rpm
     at = drilling_stability(DAMPED, BIT, WOB, rpm)
     assert abs(at.growth_rate) < 1e-8
     below = drilling_stability(DAMPED, BIT, WOB, rpm - 1.0)

@@ -32,10 +32,10 @@ if TYPE_CHECKING:
     from torsio.axial.root_branches import follow_roots
     from torsio.axial.run_setup import BitRotation
     from torsio.axial.stability import (
+        DrillingCase,
         DrillingStability,
         ModeCrossing,
         ModeCrossings,
-        crossing_rpm,
         drilling_stability,
         each_mode_crossing,
         mode_crossings,
@@ -67,7 +67,7 @@ _LAZY = {
     "DrillingStability": "torsio.axial.stability",
     "ModeCrossing": "torsio.axial.stability",
     "ModeCrossings": "torsio.axial.stability",
-    "crossing_rpm": "torsio.axial.stability",
+    "DrillingCase": "torsio.axial.stability",
     "drilling_stability": "torsio.axial.stability",
     "each_mode_crossing": "torsio.axial.stability",
     "follow_roots": "torsio.axial.root_branches",
@@ -92,6 +92,7 @@ __all__ = [
     "AxialTransient",
     "BitRotation",
     "DrillingAssembly",
+    "DrillingCase",
     "DrillingStability",
     "EnergyBalance",
     "LinearDelaySystem",
@@ -105,7 +106,6 @@ __all__ = [
     "axial_contacts",
     "axial_linearization",
     "axial_map",
-    "crossing_rpm",
     "drilling_linearization",
     "drilling_stability",
     "each_mode_crossing",

@@ -8,8 +8,8 @@ hook deflated) and reports the growth rate, the largest real part of the others,
 axial each root's mode is (:func:`axial_share`). :func:`mode_crossings` finds where the
 growth rate changes sign over a range of rpm (on a grid first, then by Brent's method
 between the grid points that bracket a change) and the root that crosses there: its
-frequency Im λ and axial share tell the axial from a torsional mode. :func:`crossing_rpm`
-gives their rpm.
+frequency Im λ and axial share tell the axial from a torsional mode. A
+:class:`DrillingCase` holds what these take but the rpm.
 
 Examples
 --------
@@ -41,6 +41,51 @@ from torsio.errors import ConfigError
 
 AXIAL_MODE_SHARE = 0.5
 """A mode whose axial share (:func:`axial_share`) is above this is called axial."""
+
+
+@attrs.frozen(eq=False)
+class DrillingCase:
+    """Steady drilling of one assembly at every rpm: what its linearization takes but the
+    rotary speed.
+
+    ``wob`` [N]; ``top_drive`` and ``contacts`` as for :func:`drilling_stability`.
+    :func:`mode_crossings` and :func:`each_mode_crossing` follow it over rpm.
+
+    Examples
+    --------
+    >>> from torsio.axial.assembly import rgd_two_dof_example
+    >>> from torsio.axial.rgd import rgd_example
+    >>> case = DrillingCase(rgd_two_dof_example(), rgd_example(), 100e3)
+    >>> case.stability(60.0).stable
+    False
+    """
+
+    assembly: DrillingAssembly
+    bit: RGDBit
+    wob: float
+    top_drive: Any = None
+    contacts: Any = None
+
+    def linearization(self, rpm: float) -> LinearDelaySystem:
+        """:func:`~torsio.axial.linearization.drilling_linearization` at ``rpm`` [rev/min]."""
+        return drilling_linearization(
+            self.assembly, self.bit, self.wob, rpm, self.top_drive, self.contacts
+        )
+
+    def stability(
+        self, rpm: float, *, count: int = 6, order: int | None = None
+    ) -> DrillingStability:
+        """:func:`drilling_stability` at ``rpm`` [rev/min]."""
+        return drilling_stability(
+            self.assembly,
+            self.bit,
+            self.wob,
+            rpm,
+            count=count,
+            order=order,
+            top_drive=self.top_drive,
+            contacts=self.contacts,
+        )
 
 
 @attrs.frozen(eq=False)
@@ -216,23 +261,18 @@ def growth_rate_crossings(
 
 
 def mode_crossings(
-    assembly: DrillingAssembly,
-    bit: RGDBit,
-    wob: float,
+    case: DrillingCase,
     rpm_range: tuple[float, float],
     *,
     points: int = 41,
     order: int | None = None,
-    top_drive: Any = None,
-    contacts: Any = None,
 ) -> list[ModeCrossing]:
-    """Where in ``rpm_range`` [rev/min] the growth rate of steady drilling crosses 0
-    (:func:`growth_rate_crossings`), each with the root that crosses: the rightmost root
-    there, whose real part is then 0.
+    """Where in ``rpm_range`` [rev/min] the growth rate of the steady drilling ``case``
+    crosses 0 (:func:`growth_rate_crossings`), each with the root that crosses: the
+    rightmost root there, whose real part is then 0.
 
     The modes are told apart at the crossings only (by Im λ and the axial share), not
-    followed over rpm. ``contacts``: friction along the string, as for
-    :func:`drilling_stability`.
+    followed over rpm.
 
     Examples
     --------
@@ -242,16 +282,14 @@ def mode_crossings(
 
     >>> from torsio.axial.assembly import rgd_two_dof_example
     >>> from torsio.axial.rgd import rgd_example
-    >>> [crossing] = mode_crossings(rgd_two_dof_example(), rgd_example(), 100e3,
-    ...                             (140.0, 170.0), points=7)
+    >>> case = DrillingCase(rgd_two_dof_example(), rgd_example(), 100e3)
+    >>> [crossing] = mode_crossings(case, (140.0, 170.0), points=7)
     >>> round(crossing.rpm, 1), round(crossing.frequency, 1), crossing.mode
     (153.3, 32.1, 'axial')
     """
 
     def stability(rpm: float) -> DrillingStability:
-        return drilling_stability(
-            assembly, bit, wob, rpm, count=1, order=order, top_drive=top_drive, contacts=contacts
-        )
+        return case.stability(rpm, count=1, order=order)
 
     low, high = rpm_range
     found = []
@@ -260,7 +298,7 @@ def mode_crossings(
     ):
         at = stability(rpm)
         root = at.roots[0]
-        system = drilling_linearization(assembly, bit, wob, rpm * (1 + 1e-6), top_drive, contacts)
+        system = case.linearization(rpm * (1 + 1e-6))
         rising = system.refine(root, system.neutral_roots).real > 0
         found.append(ModeCrossing(rpm, float(root.imag), float(at.axial_shares[0]), bool(rising)))
     return found
@@ -305,29 +343,25 @@ class ModeCrossings:
 
 
 def each_mode_crossing(
-    assembly: DrillingAssembly,
-    bit: RGDBit,
-    wob: float,
+    case: DrillingCase,
     rpm_range: tuple[float, float],
     *,
     points: int = 41,
     count: int = 4,
     order: int | None = None,
-    top_drive: Any = None,
-    contacts: Any = None,
 ) -> ModeCrossings:
     """Every crossing of the imaginary axis in ``rpm_range`` [rev/min] by each of the
-    unstable roots and at least the ``count`` rightmost of steady drilling, followed over
-    rpm (:func:`torsio.axial.root_branches.follow_roots` on ``points`` rpm uniform in the
-    delay t_n0 = 2π/(n Ω₀), the phase the roots turn with; the roots that join them on the
-    way included).
+    unstable roots and at least the ``count`` rightmost of the steady drilling ``case``,
+    followed over rpm (:func:`torsio.axial.root_branches.follow_roots` on ``points`` rpm
+    uniform in the delay t_n0 = 2π/(n Ω₀), the phase the roots turn with; the roots that
+    join them on the way included).
 
     The growth rate (:func:`mode_crossings`) changes sign at some of them; the others are
     modes crossing while another is unstable (they set how many modes grow). A root that
     crosses twice between two grid points while it is left of all followed ones at both
     can hide: :attr:`ModeCrossings.complete` checks the count at the ends; give more
     ``points`` where it fails (an undamped chain, whose modes hover at Re λ ≈ 0, needs
-    many). ``contacts``: friction along the string, as for :func:`drilling_stability`.
+    many).
 
     Examples
     --------
@@ -336,8 +370,8 @@ def each_mode_crossing(
 
     >>> from torsio.axial.assembly import rgd_two_dof_example
     >>> from torsio.axial.rgd import rgd_example
-    >>> found = each_mode_crossing(rgd_two_dof_example(), rgd_example(), 100e3,
-    ...                            (40.0, 170.0), points=14)
+    >>> case = DrillingCase(rgd_two_dof_example(), rgd_example(), 100e3)
+    >>> found = each_mode_crossing(case, (40.0, 170.0), points=14)
     >>> [(round(c.rpm, 1), c.mode, c.destabilizing) for c in found.crossings]
     [(51.1, 'axial', False), (153.3, 'axial', False)]
     >>> found.unstable_at_low, found.unstable_at_high, found.complete
@@ -345,9 +379,7 @@ def each_mode_crossing(
     """
     from torsio.axial.root_branches import branch_crossings, follow_roots, unstable_roots
 
-    def system_at(rpm: float) -> LinearDelaySystem:
-        return drilling_linearization(assembly, bit, wob, rpm, top_drive, contacts)
-
+    system_at = case.linearization
     low, high = rpm_range
     if not (0 < low < high):
         raise ConfigError("rpm", f"range {low!r}..{high!r} must be increasing and positive")
@@ -356,7 +388,7 @@ def each_mode_crossing(
     for branch in follow_roots(system_at, grid, count, order=order):
         for crossing in branch_crossings(system_at, branch):
             root = 1j * crossing.frequency
-            share = axial_share(system_at(crossing.parameter), root, assembly.axial_dofs)
+            share = axial_share(system_at(crossing.parameter), root, case.assembly.axial_dofs)
             mode = ModeCrossing(
                 crossing.parameter, crossing.frequency, share, crossing.destabilizing
             )
@@ -375,30 +407,3 @@ def _same_crossing(a: ModeCrossing, b: ModeCrossing) -> bool:
     return abs(a.rpm - b.rpm) <= 1e-9 * a.rpm and abs(a.frequency - b.frequency) <= 1e-6 * max(
         1.0, a.frequency
     )
-
-
-def crossing_rpm(
-    assembly: DrillingAssembly,
-    bit: RGDBit,
-    wob: float,
-    rpm_range: tuple[float, float],
-    *,
-    points: int = 41,
-    order: int | None = None,
-) -> list[float]:
-    """The rpm [rev/min] in ``rpm_range`` where the growth rate of steady drilling crosses 0
-    (:func:`mode_crossings` without the modes).
-
-    Examples
-    --------
-    The crossing of :func:`mode_crossings`' example:
-
-    >>> from torsio.axial.assembly import rgd_two_dof_example
-    >>> from torsio.axial.rgd import rgd_example
-    >>> crossings = crossing_rpm(rgd_two_dof_example(), rgd_example(), 100e3, (140.0, 170.0),
-    ...                          points=7)
-    >>> [round(r, 1) for r in crossings]
-    [153.3]
-    """
-    found = mode_crossings(assembly, bit, wob, rpm_range, points=points, order=order)
-    return [crossing.rpm for crossing in found]

@@ -97,7 +97,12 @@ def torsional_frequencies(
 def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
     from torsio.axial.linearization import drilling_linearization, speed_loop
     from torsio.axial.root_branches import unstable_roots
-    from torsio.axial.stability import drilling_stability, each_mode_crossing, mode_crossings
+    from torsio.axial.stability import (
+        DrillingCase,
+        drilling_stability,
+        each_mode_crossing,
+        mode_crossings,
+    )
     from torsio.axial.steady import steady_drilling
     from torsio.axial.top_drive import top_boundary
 
@@ -109,12 +114,9 @@ def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
     result = drilling_stability(
         chain, axial.bit, wob, rpm, count=1, top_drive=top, contacts=contacts
     )
-    crossings = mode_crossings(
-        chain, axial.bit, wob, CROSSING_RANGE, points=15, top_drive=top, contacts=contacts
-    )
-    each = each_mode_crossing(
-        chain, axial.bit, wob, CROSSING_RANGE, points=15, top_drive=top, contacts=contacts
-    )
+    case = DrillingCase(chain, axial.bit, wob, top, contacts)
+    crossings = mode_crossings(case, CROSSING_RANGE, points=15)
+    each = each_mode_crossing(case, CROSSING_RANGE, points=15)
     steady = steady_drilling(axial.bit, wob, rpm)
     held = top is not None and not top.held
     held = held and speed_loop(top, steady.bit_torque, steady.bit_speed) is None
