@@ -125,20 +125,35 @@ _OUTPUTS = len(_FIELDS) + 2
 [J], then the growth rate (NaN when not asked)."""
 
 
-def _run_point(
-    assembly: DrillingAssembly | WaveDrillingAssembly,
-    bit: RGDBit,
-    wob: float,
-    rpm: float,
-    options: dict[str, Any],
-    growth_rate: bool,
-) -> list[float]:
-    run = simulate_axial(assembly, bit, wob, rpm, samples=0, growth_rate=growth_rate, **options)
-    rate = math.nan if run.growth_rate is None else run.growth_rate
-    return [float(getattr(run.summary, name)) for name in _FIELDS] + [
-        run.string_friction_work,
-        rate,
-    ]
+@attrs.frozen(eq=False)
+class PointRun:
+    """What every point of an axial map runs: ``simulate_axial`` of one assembly and bit
+    with one set of run ``options`` (no signals kept), and the growth rate if asked.
+
+    Module-level and frozen, so it pickles to the workers with the points.
+    """
+
+    assembly: DrillingAssembly | WaveDrillingAssembly
+    bit: RGDBit
+    options: dict[str, Any]
+    growth_rate: bool
+
+    def __call__(self, wob: float, rpm: float) -> list[float]:
+        """The point's values at ``wob`` [N] and ``rpm`` [rev/min] (:data:`_OUTPUTS`)."""
+        run = simulate_axial(
+            self.assembly,
+            self.bit,
+            wob,
+            rpm,
+            samples=0,
+            growth_rate=self.growth_rate,
+            **self.options,
+        )
+        rate = math.nan if run.growth_rate is None else run.growth_rate
+        return [float(getattr(run.summary, name)) for name in _FIELDS] + [
+            run.string_friction_work,
+            rate,
+        ]
 
 
 def _thread_count(threads: int | None, points: int) -> int:
@@ -156,16 +171,13 @@ def _thread_count(threads: int | None, points: int) -> int:
 
 
 def run_points(
-    assembly: DrillingAssembly | WaveDrillingAssembly,
-    bit: RGDBit,
+    run: PointRun,
     points: Sequence[tuple[float, float]],
-    options: dict[str, Any],
-    growth_rate: bool,
     threads: int | None = 1,
     progress: Callable[[int, int], None] | None = None,
 ) -> NDArray[np.float64]:
-    """The (wob [N], rpm) ``points`` on ``threads`` threads: rows of the window's fields
-    and the growth rate (a task of :func:`axial_map`; module-level, so it pickles)."""
+    """``run`` at the (wob [N], rpm) ``points`` on ``threads`` threads: rows of the window's
+    fields and the growth rate (a task of :func:`axial_map`; module-level, so it pickles)."""
     total = len(points)
     rows = np.empty((total, _OUTPUTS))
     done = [0]
@@ -173,7 +185,7 @@ def run_points(
 
     def one(k: int) -> None:
         wob, rpm = points[k]
-        rows[k] = _run_point(assembly, bit, wob, rpm, options, growth_rate)
+        rows[k] = run(wob, rpm)
         if progress is not None:
             with lock:
                 done[0] += 1
@@ -255,7 +267,7 @@ def axial_map(
             "the linear growth rate is of the assembly's turning chain; a prescribed "
             "bit_rotation does not integrate it",
         )
-    run_options = {"duration": duration, "window": window, **options}
+    run = PointRun(assembly, bit, {"duration": duration, "window": window, **options}, growth_rate)
     shape = (rpm_grid.size, wob_grid.size)
     points = [(float(w), float(r)) for r in rpm_grid for w in wob_grid]  # row-major: (rpm, wob)
     stop: Callable[[], None] | None = None
@@ -265,10 +277,7 @@ def axial_map(
 
         callback, stop = map_progress("axial map")
     try:
-        rows, ran_on = _run_grid(
-            assembly, bit, points, run_options, growth_rate, threads, executor, callback,
-            timeout, chunk_size,
-        )  # fmt: skip
+        rows, ran_on = _run_grid(run, points, threads, executor, callback, timeout, chunk_size)
     finally:
         if stop is not None:
             stop()
@@ -291,11 +300,8 @@ def axial_map(
 
 
 def _run_grid(
-    assembly: DrillingAssembly | WaveDrillingAssembly,
-    bit: RGDBit,
+    run: PointRun,
     points: list[tuple[float, float]],
-    options: dict[str, Any],
-    growth_rate: bool,
     threads: int | None,
     executor: ExecutorSpec,
     progress: Callable[[int, int], None] | None,
@@ -305,7 +311,7 @@ def _run_grid(
     """The rows of every point, in order, and what ran them."""
     if executor is None or executor == "serial":
         workers = _thread_count(threads, len(points))
-        rows = run_points(assembly, bit, points, options, growth_rate, workers, progress)
+        rows = run_points(run, points, workers, progress)
         return rows, f"threads({workers})"
     from torsio.analysis.sweep import CONNECT_TIMEOUT, run_tasks, worker_count
 
@@ -315,7 +321,7 @@ def _run_grid(
         raise ConfigError("chunk_size", f"expected a whole number >= 1, got {chunk_size!r}")
     size = chunk_size or max(1, math.ceil(len(points) / (4 * worker_count(executor))))
     bounds = [(k, min(k + size, len(points))) for k in range(0, len(points), size)]
-    tasks = [(assembly, bit, points[a:b], options, growth_rate) for a, b in bounds]
+    tasks = [(run, points[a:b]) for a, b in bounds]
 
     def report(done: int, total: int) -> None:
         if progress is not None:
