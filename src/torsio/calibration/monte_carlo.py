@@ -19,13 +19,18 @@ Examples
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import attrs
 import numpy as np
 
 from torsio.analysis.maps import severity_map
 from torsio.calibration.parameters import SystemFamily
+
+if TYPE_CHECKING:
+    from torsio.analysis.map_options import MapOptions
+    from torsio.calibration.fit_results import FitResults
+    from torsio.config.configuration import Config
 
 __all__ = ["SeverityProbability", "parameter_draws", "severe_fraction", "severity_probability"]
 
@@ -106,15 +111,16 @@ def parameter_draws(fit: Any, family: Any, count: int, seed: int) -> list[dict[s
 
 
 def severity_probability(
-    config: Any,
-    fit: Any,
+    config: Config,
+    fit: FitResults,
     wob: Any,
     rpm: Any,
+    options: MapOptions | None = None,
     *,
     samples: int = 16,
     seed: int = 0,
     executor: Any = None,
-    **map_options: Any,
+    **values: Any,
 ) -> SeverityProbability:
     """The probability of severe stick-slip over ``rpm`` x ``wob`` from ``fit``.
 
@@ -126,22 +132,23 @@ def severity_probability(
         Fitted values and their one-sigma uncertainties.
     wob, rpm : array_like
         The map's axes [N], [rpm] (as :func:`~torsio.analysis.maps.severity_map`).
+    options : MapOptions, optional
+        How every map runs (:class:`~torsio.analysis.map_options.MapOptions`), as for
+        :func:`~torsio.analysis.maps.severity_map`; ``**values`` change its fields.
     samples : int
         Number of Monte Carlo samples (each one map).
     seed : int
         Seed of the draws (the result is reproducible).
     executor
         Any executor :func:`~torsio.analysis.maps.severity_map` takes.
-    **map_options
-        Options of every map (:class:`~torsio.analysis.map_options.MapOptions` fields).
     """
     family = SystemFamily(config)
     draws = parameter_draws(fit, family, int(samples), seed)
     maps = [
         severity_map(
-            family.system(values), wob, rpm, executor=executor, progress=False, **map_options
+            family.system(draw), wob, rpm, options, executor=executor, progress=False, **values
         )
-        for values in draws
+        for draw in draws
     ]
     severity = np.stack([m.severity for m in maps])
     threshold = float(maps[0].threshold)
