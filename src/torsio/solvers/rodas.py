@@ -53,7 +53,16 @@ from torsio.solvers.chain_kernel import (
 from torsio.solvers.compiled import njit
 from torsio.solvers.cycles import extremes_of_cubic, hermite, integral_of_cubic, track_cycle
 
-__all__ = ["GAMMA", "RODAS_A", "RODAS_C", "advance", "point", "start"]
+__all__ = [
+    "GAMMA",
+    "RODAS_A",
+    "RODAS_C",
+    "advance",
+    "point",
+    "start",
+    "store_carry",
+    "store_window",
+]
 
 # --- RODAS4 (Hairer and Wanner, Solving ODEs II, Sec. IV.7; rodas.f, METH = 1) --------------
 GAMMA = 0.25
@@ -104,18 +113,38 @@ def start(chain, top, torque, p, settings, wob, omega, omega_set, vectors, small
     cycle_settings[slot.CYCLE_SET_T_END] = t_end
     cycle_settings[slot.CYCLE_SET_WINDOW] = t_end - settings[slot.RUN_WINDOW_START]
     cycle_settings[slot.CYCLE_SET_TOLERANCE] = settings[slot.RUN_STEADY_TOLERANCE]
-    carry, window = small[slot.SMALL_CARRY], small[slot.SMALL_WINDOW]
     h = min(settings[slot.RUN_FIRST_STEP], settings[slot.RUN_MAX_STEP], t_end)
-    for j in range(slot.CARRY_SIZE):
-        carry[j] = 0.0
+    store_carry(small[slot.SMALL_CARRY], 0.0, h, h, 1.0, False, 0, 0, 0)
+    store_window(small[slot.SMALL_WINDOW], -np.inf, np.inf, 0.0, 0, n == 0)
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def store_carry(
+    carry, t, h, h_accepted, err_accepted, last_rejected, steps, rejected, status
+) -> None:
+    """The stepper's state between two :func:`advance` calls into its row ``carry``:
+    time [s], next step [s], last accepted step [s] and its error norm, whether the last
+    step was rejected, the accepted and rejected step counts and the run's status."""
+    carry[slot.CARRY_T] = t
     carry[slot.CARRY_H] = h
-    carry[slot.CARRY_H_ACCEPTED] = h
-    carry[slot.CARRY_ERR_ACCEPTED] = 1.0
-    window[slot.WINDOW_BIT_MAX] = -np.inf
-    window[slot.WINDOW_BIT_MIN] = np.inf
-    window[slot.WINDOW_TOP_INTEGRAL] = 0.0
-    window[slot.WINDOW_NEXT_SAMPLE] = 0.0
-    window[slot.WINDOW_DONE] = 0.0 if n > 0 else 1.0
+    carry[slot.CARRY_H_ACCEPTED] = h_accepted
+    carry[slot.CARRY_ERR_ACCEPTED] = err_accepted
+    carry[slot.CARRY_LAST_REJECTED] = 1.0 if last_rejected else 0.0
+    carry[slot.CARRY_STEPS] = steps
+    carry[slot.CARRY_REJECTED] = rejected
+    carry[slot.CARRY_STATUS] = status
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def store_window(window, bit_max, bit_min, top_integral, next_sample, done) -> None:
+    """What the steady window has read so far into its row ``window``: the bit speed's
+    extremes [rad/s], the integral of the top speed [rad], the next output sample, and
+    whether the window is done."""
+    window[slot.WINDOW_BIT_MAX] = bit_max
+    window[slot.WINDOW_BIT_MIN] = bit_min
+    window[slot.WINDOW_TOP_INTEGRAL] = top_integral
+    window[slot.WINDOW_NEXT_SAMPLE] = next_sample
+    window[slot.WINDOW_DONE] = 1.0 if done else 0.0
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
@@ -424,19 +453,8 @@ def advance(
             rejected += 1
             last_rejected = True
             h = h_new
-    carry[slot.CARRY_T] = t
-    carry[slot.CARRY_H] = h
-    carry[slot.CARRY_H_ACCEPTED] = h_accepted
-    carry[slot.CARRY_ERR_ACCEPTED] = err_accepted
-    carry[slot.CARRY_LAST_REJECTED] = 1.0 if last_rejected else 0.0
-    carry[slot.CARRY_STEPS] = steps
-    carry[slot.CARRY_REJECTED] = rejected
-    carry[slot.CARRY_STATUS] = status
-    window[slot.WINDOW_BIT_MAX] = vmax
-    window[slot.WINDOW_BIT_MIN] = vmin
-    window[slot.WINDOW_TOP_INTEGRAL] = top_integral
-    window[slot.WINDOW_NEXT_SAMPLE] = next_sample
-    window[slot.WINDOW_DONE] = 1.0 if done else 0.0
+    store_carry(carry, t, h, h_accepted, err_accepted, last_rejected, steps, rejected, status)
+    store_window(window, vmax, vmin, top_integral, next_sample, done)
     friction[slot.FRICTION_WORK] = work
     friction[slot.FRICTION_SWITCHES] = switches
 
