@@ -95,12 +95,21 @@ def test_first_compile_is_announced_once(monkeypatch: pytest.MonkeyPatch, tmp_pa
     assert not kernel_cache.announce_first_compile(stream)
 
 
+def _stderr_of(code: str) -> str:
+    """What ``code`` run in a fresh interpreter prints on stderr (it must exit 0)."""
+    import subprocess
+
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=False
+    )
+    assert result.returncode == 0, result.stderr
+    return result.stderr
+
+
 @pytest.mark.parametrize("argv", [["laws"], ["laws", "--json"], ["--help"]])
 def test_light_commands_load_no_heavy_module(argv: list[str]) -> None:
     # start-up: `torsio laws` and `torsio --help` must not pay for scipy, numba or pint
     # (seconds of imports; benchmarks/bench_startup.py times them against `import numpy`)
-    import subprocess
-
     code = (
         "import sys\n"
         "from torsio.cli import main\n"
@@ -108,17 +117,12 @@ def test_light_commands_load_no_heavy_module(argv: list[str]) -> None:
         "heavy = [m for m in ('scipy', 'numba', 'pint', 'matplotlib') if m in sys.modules]\n"
         "print('HEAVY', heavy, file=sys.stderr)\n"
     )
-    result = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, check=True
-    )
-    assert "HEAVY []" in result.stderr, result.stderr
+    assert "HEAVY []" in _stderr_of(code)
 
 
 def test_a_map_loads_only_what_it_runs() -> None:
     # a serial map through the CLI: the compiled engine's serial or parallel kernel (not
     # both), and none of scipy's sparse matrices or integrators (the scipy engine's)
-    import subprocess
-
     code = (
         "import sys\n"
         "from torsio.cli import main\n"
@@ -131,17 +135,12 @@ def test_a_map_loads_only_what_it_runs() -> None:
         "           if k in vars(rodas_kernels)]\n"
         "print('LOADED', loaded, 'KERNELS', len(kernels), file=sys.stderr)\n"
     )
-    result = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, check=True
-    )
-    assert "LOADED [] KERNELS 1" in result.stderr, result.stderr
+    assert "LOADED [] KERNELS 1" in _stderr_of(code)
 
 
 def test_console_script_returns_the_status_and_freezes_the_collector() -> None:
     # the console script is main() then gc.freeze(): the exit does not scan numba's
     # registries again; the status and the output are main's
-    import subprocess
-
     code = (
         "import gc, sys\n"
         "import torsio.cli\n"
@@ -149,10 +148,7 @@ def test_console_script_returns_the_status_and_freezes_the_collector() -> None:
         "status = torsio.cli.console_main()\n"
         "print('STATUS', status, 'FROZEN', gc.get_freeze_count() > 0, file=sys.stderr)\n"
     )
-    result = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, check=True
-    )
-    assert "STATUS 3 FROZEN True" in result.stderr, result.stderr
+    assert "STATUS 3 FROZEN True" in _stderr_of(code)
 
 
 def test_bare_numbers_are_read_without_pint() -> None:
