@@ -48,12 +48,14 @@ from torsio.physics.top_drive_boundary import TopDriveBoundary
 __all__ = [
     "DEFAULT_STEPS_PER_PERIOD",
     "BitRotation",
+    "BitStart",
     "KernelSetup",
     "RunOptions",
     "RunSetup",
     "WindowSummary",
     "bit_law_row",
     "contact_frequency",
+    "kernel_setup",
     "past_times",
     "run_settings",
     "run_setup",
@@ -98,6 +100,21 @@ class BitRotation:
     def speed(self, speed: float, t: NDArray | float) -> Any:
         """Ω(t) [rad/s] for the mean speed Ω₀ [rad/s]."""
         return speed * (1.0 + self.amplitude * np.sin(self.frequency * t))
+
+
+@attrs.frozen
+class BitStart:
+    """The bit's state at t = 0, where the history before it ends (:func:`kernel_setup`):
+    its angle Φ_b [rad] and position U_b [m] (the state's own: positions relative to the
+    bit), its own speed Ω_b [rad/s] and axial velocity V_b [m/s] (raised by the
+    perturbation on the steady start), and the prescribed ``rotation`` the angle and speed
+    before t = 0 follow (None: turning steadily at Ω₀)."""
+
+    angle: float
+    position: float
+    speed: float
+    velocity: float
+    rotation: BitRotation | None = None
 
 
 @attrs.frozen
@@ -152,7 +169,7 @@ class KernelSetup:
     :class:`~torsio.axial.wave_setup.WaveRunSetup` of the distributed pipe): the steady
     state, the step h [s], the steps of the run and of its window, the bit law's row
     (:func:`bit_law_row`), the ``settings`` and the bit's history with its cursor
-    (:func:`start_history`)."""
+    (:func:`start_history`); both setups build it with :func:`kernel_setup`."""
 
     steady: SteadyDrilling
     step: float
@@ -250,6 +267,51 @@ def run_settings(
     return settings
 
 
+def kernel_setup(
+    steady: SteadyDrilling,
+    bit: RGDBit,
+    step: float,
+    options: RunOptions,
+    settings_size: int,
+    hook: str,
+    bit_start: BitStart,
+) -> KernelSetup:
+    """What every run starts from (:class:`KernelSetup`) on the step h = ``step`` [s]: the
+    step counts of ``options``, the bit law's row, the head of the ``settings_size``
+    settings (:func:`run_settings`), and the history of the bit's motion before t = 0 that
+    ends at ``bit_start``: turning at Ω₀ (or as its prescribed rotation) and moving at V₀ on
+    the steady start, at rest axially on the rest start (the hole's bottom flat)."""
+    steps, window_steps = options.step_counts(step)
+    omega0 = steady.bit_speed
+    velocity = steady.rop if options.start == "steady" else 0.0
+    times = past_times(step, steady.delay)
+    rotation = bit_start.rotation
+    if rotation is not None:
+        angle, speed = rotation.angle(omega0, times), rotation.speed(omega0, times)
+    else:
+        angle, speed = bit_start.angle + omega0 * times, np.full(times.size, omega0)
+    history, cursor = start_history(
+        times,
+        angle,
+        speed,
+        bit_start.position + velocity * times,
+        velocity,
+        bit_start.speed,
+        bit_start.velocity,
+        steps,
+    )
+    return KernelSetup(
+        steady=steady,
+        step=step,
+        steps=steps,
+        window_steps=window_steps,
+        bit=bit_law_row(bit),
+        settings=run_settings(settings_size, steady, step, steps, window_steps, hook),
+        history=history,
+        cursor=cursor,
+    )
+
+
 def run_setup(
     assembly: DrillingAssembly,
     bit: RGDBit,
@@ -309,7 +371,6 @@ def run_setup(
             f"{TOP_DRIVE_STEP_LIMIT:g}, a step of at most {TOP_DRIVE_STEP_LIMIT / top_rate:.6g} s "
             "(or more steps per period)",
         )
-    steps, window_steps = options.step_counts(h)
     omega0, v0 = steady.bit_speed, steady.rop
     if contacts is not None:  # each spring carries the bit's load and the friction below it
         angles, positions = assembly.steady_offsets(torques, forces)
@@ -330,17 +391,9 @@ def run_setup(
     hook_start = 0.0
     if assembly.hook == "speed":
         hook_start = u[0] + hook_force / assembly.axial_stiffnesses[0]
-    # the history before t = 0: the steady motion (or a flat bottom) over one delay and more
-    times = past_times(h, steady.delay)
-    if bit_rotation is not None:
-        angle = bit_rotation.angle(omega0, times)
-        speed = bit_rotation.speed(omega0, times)
-    else:
-        angle, speed = theta[-1] + omega0 * times, np.full(times.size, omega0)
-    velocity = v0 if on_steady else 0.0
-    history, cursor = start_history(
-        times, angle, speed, u[-1] + velocity * times, velocity, omega[-1], v[-1], steps
-    )
+    bit_start = BitStart(theta[-1], u[-1], omega[-1], v[-1], bit_rotation)
+    size = len(slot.CHAIN_SETTINGS)
+    kernel = kernel_setup(steady, bit, h, options, size, assembly.hook, bit_start)
     rotation = bit_rotation or BitRotation()
     top_state, controller_state = np.zeros(2), np.zeros(0)
     if top_drive is not None and driven:
@@ -349,7 +402,7 @@ def run_setup(
             top_state[1] = omega0
             surface = steady.bit_torque if contacts is None else friction.surface_torque
             controller_state = steady_controller_state(top_drive, surface, omega0)
-    settings = run_settings(len(slot.CHAIN_SETTINGS), steady, h, steps, window_steps, assembly.hook)
+    settings = kernel.settings
     settings[slot.HOOK_START] = hook_start
     settings[slot.HOOK_WEIGHT] = hook_force
     rows = contact_rows(contacts, assembly.nodes)
@@ -357,14 +410,7 @@ def run_setup(
     settings[slot.PRESCRIBED] = 1.0 if bit_rotation is not None else 0.0
     settings[slot.AMPLITUDE], settings[slot.FREQUENCY] = rotation.amplitude, rotation.frequency
     return RunSetup(
-        steady=steady,
-        step=h,
-        steps=steps,
-        window_steps=window_steps,
-        bit=bit_law_row(bit),
-        settings=settings,
-        history=history,
-        cursor=cursor,
+        **attrs.asdict(kernel, recurse=False),
         torsional=assembly.torsional_rows(),
         axial=assembly.axial_rows(),
         theta=theta,

@@ -47,14 +47,7 @@ from numpy.typing import NDArray
 from torsio.axial import layouts as slot
 from torsio.axial import wave_kernel
 from torsio.axial.rgd import RGDBit
-from torsio.axial.run_setup import (
-    KernelSetup,
-    RunOptions,
-    bit_law_row,
-    past_times,
-    run_settings,
-    start_history,
-)
+from torsio.axial.run_setup import BitStart, KernelSetup, RunOptions, kernel_setup
 from torsio.axial.steady import steady_drilling
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_pipe import junction_rows
@@ -151,7 +144,6 @@ def wave_run_setup(
         assembly, options.largest_step(bit, assembly.bha_mass, assembly.fastest_rate())
     )
     h = grid.step
-    steps, window_steps = options.step_counts(h)
     omega0, v0 = steady.bit_speed, steady.rop
     on_steady = options.start == "steady"
     axial_z, torsional_z = assembly.axial_impedances, assembly.torsional_impedances
@@ -162,18 +154,11 @@ def wave_run_setup(
     bit_speed = speed * (1.0 + options.perturbation) if on_steady else 0.0
     torsional_m[-1] = torsional_p[-1] - 2.0 * torsional_z[-1] * bit_speed  # the bit's end
     bha = np.array([0.0, velocity, 0.0, bit_speed])
-    times = past_times(h, steady.delay)
-    history, cursor = start_history(
-        times,
-        omega0 * times,
-        np.full(times.size, omega0),
-        velocity * times,
-        velocity,
-        bit_speed,
-        velocity,
-        steps,
-    )
-    settings = run_settings(len(slot.WAVE_SETTINGS), steady, h, steps, window_steps, assembly.hook)
+    angle, position = bha[slot.BHA_ANGLE], bha[slot.BHA_POSITION]
+    bit_start = BitStart(angle, position, bha[slot.BHA_SPEED], bha[slot.BHA_VELOCITY])
+    size = len(slot.WAVE_SETTINGS)
+    kernel = kernel_setup(steady, bit, h, options, size, assembly.hook, bit_start)
+    settings = kernel.settings
     settings[slot.BHA_MASS], settings[slot.BHA_INERTIA] = (
         assembly.bha_mass,
         assembly.bha_inertia,
@@ -183,20 +168,13 @@ def wave_run_setup(
     settings[slot.TORSIONAL_TOP_IMPEDANCE] = torsional_z[0]
     settings[slot.TORSIONAL_BOTTOM_IMPEDANCE] = torsional_z[-1]
     return WaveRunSetup(
-        steady=steady,
-        step=h,
-        steps=steps,
-        window_steps=window_steps,
+        **attrs.asdict(kernel, recurse=False),
         grid=grid,
-        bit=bit_law_row(bit),
-        settings=settings,
         axial_p=axial_p,
         axial_m=axial_m,
         torsional_p=torsional_p,
         torsional_m=torsional_m,
         bha=bha,
-        history=history,
-        cursor=cursor,
     )
 
 
