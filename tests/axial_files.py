@@ -9,6 +9,7 @@ from importlib import resources
 from typing import Any
 
 from torsio.axial.assembly import DrillingAssembly, pipe_assembly
+from torsio.axial.wave_assembly import PipeSection
 
 TEXT = resources.files("torsio").joinpath("data/rgd_2dof.toml").read_text(encoding="utf-8")
 BASE: dict[str, Any] = tomllib.loads(TEXT)
@@ -26,7 +27,7 @@ STRING: dict[str, Any] = {
 }
 
 
-PIPE = (3, 900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5, 29981.3, 230.0)
+PIPE = (3, PipeSection(900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5), 29981.3, 230.0)
 """pipe_assembly's arguments: 3 nodes of a 900 m pipe (E = 210 GPa, G = 81 GPa, ρ = 7850
 kg/m³, A = 3.4e-3 m², J = 1.5e-5 m⁴) above the 2-DOF example's BHA (29981.3 kg, 230 kg m²)."""
 

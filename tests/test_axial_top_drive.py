@@ -41,7 +41,7 @@ from torsio.physics.top_drives import (
 
 BIT = rgd_example()
 PI = PITopDrive(inertia=2900.0, kp=5000.0, ki=2067.6)  # ki ≈ ω₁² J, ω₁ = 0.8444 rad/s
-CHAIN = pipe_assembly(4, 1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5, 3.0e4, 230.0)
+CHAIN = pipe_assembly(4, PipeSection(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5), 3.0e4, 230.0)
 
 
 def test_held_top_is_the_engine_before_the_top_drive():

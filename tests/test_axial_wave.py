@@ -48,6 +48,7 @@ MASS, INERTIA = 29981.3, 455.65
 E, G, RHO = 2.1e11, 8.1e10, 7850.0
 STEPPED = [PipeSection(600.0, E, G, RHO, 3.4e-3, 3.0e-5), PipeSection(400.0, E, G, RHO, 6e-3, 5e-5)]
 MODES = 6
+UNIFORM = PipeSection(1000.0, E, G, RHO, 3.4e-3, 3e-5)
 
 
 def _stepped(hook: str) -> WaveDrillingAssembly:
@@ -181,7 +182,7 @@ def test_the_grid_frequencies_with_the_weight_hook_are_those_of_a_free_top():
     # cells tends to 4 (3.76-3.92 at 50, 100, 200 nodes)
     errors = []
     for nodes in (50, 100, 200):
-        chain = pipe_assembly(nodes, section.length, E, G, RHO, section.area, 3e-5, MASS, INERTIA)
+        chain = pipe_assembly(nodes, section, MASS, INERTIA)
         hz = np.array(axial_frequencies(chain)[:3])
         errors.append(np.abs(2 * math.pi * hz / exact[:3] - 1))
     for coarse, fine in zip(errors, errors[1:], strict=False):
@@ -189,7 +190,7 @@ def test_the_grid_frequencies_with_the_weight_hook_are_those_of_a_free_top():
 
 
 def _lumped_frequencies(nodes: int, line: str) -> np.ndarray:
-    chain = pipe_assembly(nodes, 1000.0, E, G, RHO, 3.4e-3, 3e-5, MASS, INERTIA, hook="speed")
+    chain = pipe_assembly(nodes, UNIFORM, MASS, INERTIA, hook="speed")
     springs = chain.axial_stiffnesses if line == "axial" else chain.stiffnesses
     masses = chain.masses if line == "axial" else chain.inertias
     values = scipy.linalg.eigh(chain_matrix(springs), np.diag(masses), eigvals_only=True)
@@ -201,7 +202,7 @@ def test_a_fine_lumped_pipe_converges_to_the_same_continuum_as_the_grid(line):
     # one uniform section: the wave grid and pipe_assembly of 50, 100, 200 nodes against the
     # exact continuum; the lumped error falls like 1/nodes² (second-order chain), the grid's
     # is bounded by its travel-time tolerance (here 3e-5: 1.03e-5 reached, h = 1.64 ms)
-    pipe = wave_pipe_assembly(1000.0, E, G, RHO, 3.4e-3, 3e-5, MASS, INERTIA, hook="speed")
+    pipe = wave_pipe_assembly(UNIFORM, MASS, INERTIA, hook="speed")
     assembly = attrs.evolve(pipe, travel_time_tolerance=3e-5)
     exact = getattr(assembly, f"{line}_frequencies")(3)
     errors = [np.abs(_lumped_frequencies(n, line) / exact - 1) for n in (50, 100, 200)]
@@ -267,9 +268,8 @@ def test_one_section_and_two_equal_sections_give_the_same_run():
     e, g, rho = 2.0e11, 7.8125e10, 8000.0
     runs = []
     for sections in (1, 2):
-        assembly = wave_pipe_assembly(
-            1000.0, e, g, rho, 3.4e-3, 3e-5, MASS, INERTIA, sections=sections
-        )
+        pipe = PipeSection(1000.0, e, g, rho, 3.4e-3, 3e-5)
+        assembly = wave_pipe_assembly(pipe, MASS, INERTIA, sections=sections)
         assert pipe_grid(assembly, 1e-3).axial_cells == ((200,) if sections == 1 else (100, 100))
         runs.append(simulate_axial(assembly, BIT, WOB, 60.0, duration=20.0, window=10.0, step=1e-3))
     np.testing.assert_array_equal(runs[0].samples, runs[1].samples)
@@ -326,7 +326,7 @@ def test_the_layout_indices_name_the_kernels_stats():
             "discretization.travel_time_tolerance",
         ),
         (
-            lambda: wave_pipe_assembly(1e3, E, G, RHO, 3.4e-3, 3e-5, MASS, INERTIA, sections=0),
+            lambda: wave_pipe_assembly(UNIFORM, MASS, INERTIA, sections=0),
             "sections",
         ),
         (

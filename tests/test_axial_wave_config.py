@@ -29,7 +29,7 @@ import scipy.optimize
 
 from torsio.axial.assembly import DrillingAssembly, pipe_assembly
 from torsio.axial.run_setup import RunOptions
-from torsio.axial.wave_assembly import WaveDrillingAssembly
+from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly
 from torsio.axial.wave_setup import wave_run_setup
 from torsio.axial.wave_stability import distributed_stability
 from torsio.cli import main
@@ -119,10 +119,8 @@ def test_one_section_lumped_chain_is_pipe_assembly(hook):
     data["axial"] = {"hook": hook, "element_length": "250 m"}
     chain = parse_config(data).axial.assembly
     od, inner, _ = PIPE[0]
-    expected = pipe_assembly(
-        4, 1000.0, E, G, RHO, _area(od, inner), _polar(od, inner), BHA_MASS, BHA_INERTIA,
-        hook=hook,
-    )  # fmt: skip
+    section = PipeSection(1000.0, E, G, RHO, _area(od, inner), _polar(od, inner))
+    expected = pipe_assembly(4, section, BHA_MASS, BHA_INERTIA, hook=hook)
     for name in ("masses", "inertias", "stiffnesses", "axial_stiffnesses"):
         np.testing.assert_allclose(getattr(chain, name), getattr(expected, name), rtol=1e-14)
     assert chain.hook == hook and not chain.damping.any()

@@ -13,23 +13,25 @@ node −1 being the hook:
   penetration V₀ of the run's (W₀, Ω₀), through k_a,0 and c_a,0; it needs axial springs.
 
 The 2-DOF model of Richard, Germay and Detournay (2007) is one node, no axial spring:
-:func:`two_dof_assembly`. :func:`pipe_assembly` splits a uniform pipe into nodes with
-springs E A / L and G J / L (L the node spacing) and the BHA on the last node.
+:func:`two_dof_assembly`. :func:`pipe_assembly` splits a uniform pipe section
+(:class:`~torsio.axial.wave_assembly.PipeSection`) into nodes with springs E A / L and
+G J / L (L the node spacing) and the BHA on the last node.
 
 Examples
 --------
 >>> assembly = rgd_two_dof_example()
 >>> assembly.nodes, assembly.axial_dofs, assembly.hook
 (1, 1, 'weight')
->>> chain = pipe_assembly(4, 1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5, 3.0e4, 230.0)
+>>> from torsio.axial.wave_assembly import PipeSection
+>>> pipe = PipeSection(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5)
+>>> chain = pipe_assembly(4, pipe, 3.0e4, 230.0)
 >>> round(float(chain.axial_stiffnesses[1]) / 1e6, 3)  # E A / (L / n), MN/m
 2.72
 """
 
 from __future__ import annotations
 
-import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import attrs
 import numpy as np
@@ -37,6 +39,9 @@ from numpy.typing import NDArray
 
 from torsio.errors import ConfigError
 from torsio.model.arrays import read_only_vector
+
+if TYPE_CHECKING:
+    from torsio.axial.wave_assembly import PipeSection
 
 __all__ = ["DrillingAssembly", "pipe_assembly", "rgd_two_dof_example", "two_dof_assembly"]
 
@@ -211,19 +216,11 @@ def rgd_two_dof_example() -> DrillingAssembly:
 
 
 def pipe_assembly(
-    nodes: int,
-    length: float,
-    youngs_modulus: float,
-    shear_modulus: float,
-    density: float,
-    area: float,
-    polar_moment: float,
-    bha_mass: float,
-    bha_inertia: float,
-    *,
-    hook: str = "weight",
+    nodes: int, pipe: PipeSection, bha_mass: float, bha_inertia: float, *, hook: str = "weight"
 ) -> DrillingAssembly:
-    """A uniform pipe of ``length`` [m] in ``nodes`` lumps above a rigid BHA on the last one.
+    """A uniform ``pipe`` section (length [m], E, G [Pa], ρ [kg/m³], A [m²], J [m⁴]:
+    :class:`~torsio.axial.wave_assembly.PipeSection`) in ``nodes`` lumps above a rigid BHA
+    on the last one.
 
     Springs E A / Δ [N/m] and G J / Δ [N m/rad] with Δ = length / nodes join the top to
     node 0 and each node to the next, so node i is (i + 1) Δ below the top and the last one
@@ -233,21 +230,10 @@ def pipe_assembly(
     drive (torsionally) and at the hook moving at its set speed (``hook = "speed"``); under
     the weight hook the top of the pipe is free, so node 0 carries it as well (1.5 cells):
     the frequencies converge to the continuum's like 1/nodes² (tests/test_axial_wave.py).
-    Units: E, G [Pa], ρ [kg/m³], A [m²], J [m⁴].
     """
     if not (isinstance(nodes, int) and nodes >= 1):
         raise ConfigError("nodes", f"{nodes!r} must be a whole number >= 1")
-    for key, value in (
-        ("length", length),
-        ("youngs_modulus", youngs_modulus),
-        ("shear_modulus", shear_modulus),
-        ("density", density),
-        ("area", area),
-        ("polar_moment", polar_moment),
-    ):
-        if not (math.isfinite(value) and value > 0):
-            raise ConfigError(key, f"{value!r} must be > 0")
-    spacing = length / nodes
+    spacing = pipe.length / nodes
     share = np.ones(nodes)
     share[-1] -= 0.5
     axial_share = share.copy()
@@ -255,9 +241,9 @@ def pipe_assembly(
         axial_share[0] += 0.5
     bottom = np.eye(nodes)[-1]
     return DrillingAssembly(
-        inertias=share * density * polar_moment * spacing + bottom * bha_inertia,
-        stiffnesses=np.full(nodes, shear_modulus * polar_moment / spacing),
-        masses=axial_share * density * area * spacing + bottom * bha_mass,
-        axial_stiffnesses=np.full(nodes, youngs_modulus * area / spacing),
+        inertias=share * pipe.density * pipe.polar_moment * spacing + bottom * bha_inertia,
+        stiffnesses=np.full(nodes, pipe.shear_modulus * pipe.polar_moment / spacing),
+        masses=axial_share * pipe.density * pipe.area * spacing + bottom * bha_mass,
+        axial_stiffnesses=np.full(nodes, pipe.youngs_modulus * pipe.area / spacing),
         hook=hook,
     )

@@ -59,7 +59,8 @@ def _positive(key: str, value: Any) -> float:
 
 @attrs.frozen
 class PipeSection:
-    """One uniform section of the distributed pipe.
+    """One uniform section of pipe: of the distributed pipe, or of a lumped chain
+    (:func:`lumped_pipe`, :func:`torsio.axial.assembly.pipe_assembly`).
 
     Parameters
     ----------
@@ -227,37 +228,26 @@ class WaveDrillingAssembly:
 
 
 def wave_pipe_assembly(
-    length: float,
-    youngs_modulus: float,
-    shear_modulus: float,
-    density: float,
-    area: float,
-    polar_moment: float,
+    pipe: PipeSection,
     bha_mass: float,
     bha_inertia: float,
     *,
     sections: int = 1,
     hook: str = "weight",
 ) -> WaveDrillingAssembly:
-    """A uniform pipe of ``length`` [m] above the BHA, in ``sections`` equal sections.
+    """A uniform ``pipe`` section above the BHA, in ``sections`` equal sections.
 
-    The distributed counterpart of :func:`torsio.axial.assembly.pipe_assembly` (same
-    arguments and units). More than one section changes nothing: the junctions of equal
-    sections are transparent (:mod:`torsio.axial.wave_pipe`).
+    The distributed counterpart of :func:`torsio.axial.assembly.pipe_assembly` (the same
+    pipe and BHA, the same units). More than one section changes nothing: the junctions of
+    equal sections are transparent (:mod:`torsio.axial.wave_pipe`).
 
-    >>> wave_pipe_assembly(2500.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 3e-5, 3e4, 455.65).hook
+    >>> pipe = PipeSection(2500.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 3e-5)
+    >>> wave_pipe_assembly(pipe, 3e4, 455.65).hook
     'weight'
     """
     if isinstance(sections, bool) or not isinstance(sections, int) or sections < 1:
         raise ConfigError("sections", f"{sections!r} must be a whole number >= 1")
-    piece = PipeSection(
-        _positive("length", length) / sections,
-        youngs_modulus,
-        shear_modulus,
-        density,
-        area,
-        polar_moment,
-    )
+    piece = attrs.evolve(pipe, length=pipe.length / sections)
     return WaveDrillingAssembly(
         [piece] * sections, bha_mass=bha_mass, bha_inertia=bha_inertia, hook=hook
     )

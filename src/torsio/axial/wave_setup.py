@@ -20,8 +20,9 @@ the top drive turning at Ω₀ (and the speed hook moving at V₀) from t = 0.
 
 Examples
 --------
->>> from torsio.axial.wave_assembly import wave_pipe_assembly
->>> assembly = wave_pipe_assembly(1000.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 3e-5, 3e4, 455.65)
+>>> from torsio.axial.wave_assembly import PipeSection, wave_pipe_assembly
+>>> pipe = PipeSection(1000.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 3e-5)
+>>> assembly = wave_pipe_assembly(pipe, 3e4, 455.65)
 >>> grid = pipe_grid(assembly, 2e-3)
 >>> grid.axial_cells, grid.torsional_cells, round(grid.step * 1e3, 6)  # ms
 ((100,), (161,), 1.933599)

@@ -60,11 +60,12 @@ def axial_frequencies(
     assembly. A chain gives all of its own; a distributed pipe the first ``count``.
 
     >>> from torsio.axial.assembly import pipe_assembly
-    >>> chain = pipe_assembly(4, 1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5, 3.0e4, 230.0)
+    >>> from torsio.axial.wave_assembly import PipeSection, wave_pipe_assembly
+    >>> section = PipeSection(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5)
+    >>> chain = pipe_assembly(4, section, 3.0e4, 230.0)
     >>> [round(f, 3) for f in axial_frequencies(chain)][:2]
     [1.596, 3.867]
-    >>> from torsio.axial.wave_assembly import wave_pipe_assembly
-    >>> pipe = wave_pipe_assembly(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5, 3.0e4, 230.0)
+    >>> pipe = wave_pipe_assembly(section, 3.0e4, 230.0)
     >>> [round(f, 3) for f in axial_frequencies(pipe, 2)]  # the continuum of the same pipe
     [1.599, 3.93]
     """
