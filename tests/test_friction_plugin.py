@@ -252,6 +252,50 @@ def test_broken_plugin_in_the_cli(monkeypatch, fresh_plugins, capsys):
     assert "tucker-wang" in names and "coulomb-stribeck" in names
 
 
+class _PlainLaw:
+    """Exponential weakening, written from the plugin contract alone (no base class)."""
+
+    name = "plain-exponential"
+
+    def __init__(self, mu_static=0.8, mu_dynamic=0.5, *, decay, label="rock"):
+        self.mu_static, self.mu_dynamic = mu_static, mu_dynamic
+        self.decay, self.label = decay, label
+
+    def torque(self, speed, wob, radius):
+        w = np.asarray(speed, dtype=float)
+        weakening = (self.mu_static - self.mu_dynamic) * np.exp(-np.abs(w) / self.decay)
+        return wob * radius * (self.mu_dynamic + weakening) * np.tanh(w / 0.05)
+
+
+class _PlainPlugin:
+    @hookimpl
+    def torsio_bit_laws(self):
+        return [_PlainLaw]
+
+
+def test_a_law_without_the_base_class_lists_its_keyword_parameters(
+    monkeypatch, fresh_plugins, capsys
+):
+    # the constructor's signature is all such a law declares: its names and defaults (the
+    # number as given, the text of another default, None where required), units unknown
+    from torsio.cli import main
+
+    _fake_entry_points(monkeypatch, _FakeEntryPoint("plain_laws", "plain:plugin", _PlainPlugin))
+    assert main(["laws", "--json"]) == 0
+    laws = {law["name"]: law for law in json.loads(capsys.readouterr().out)["laws"]}
+    plain = laws["plain-exponential"]
+    assert plain["description"] == _PlainLaw.__doc__
+    assert plain["parameters"] == [
+        {"name": "mu_static", "unit": None, "default": 0.8},
+        {"name": "mu_dynamic", "unit": None, "default": 0.5},
+        {"name": "decay", "unit": None, "default": None},
+        {"name": "label", "unit": None, "default": "rock"},
+    ]
+    assert main(["laws"]) == 0
+    table = capsys.readouterr().out
+    assert "mu_static = 0.8" in table and "decay = required" in table
+
+
 # --- a fresh environment ---------------------------------------------------------------
 @pytest.mark.slow
 def test_fresh_environment_discovers_the_plugin(tmp_path):
