@@ -170,12 +170,14 @@ def test_dask_worker_killed_mid_map_is_retried(
     )
     assert killed
     assert_same_map(result, serial)
-    # the scheduler's log shows chunks that were running on the killed worker and ran again
+    # the scheduler's log shows chunks lost with the killed worker and run again: running
+    # on it, or (on a loaded machine, where the kill can come after they finished) done and
+    # held in its memory, which the scheduler releases and recomputes elsewhere
     log = client.run_on_scheduler(
         lambda dask_scheduler: [(t[1], t[2], t[4]) for t in dask_scheduler.transition_log]
     )
     assert any(
-        start == "processing" and end == "released" and "worker" in stimulus
+        start in ("processing", "memory") and end == "released" and "worker" in stimulus
         for start, end, stimulus in log
     )
     client.wait_for_workers(2, timeout=60)
