@@ -19,7 +19,7 @@ per state of all the sources can never hold stale code; folders not written to f
 :data:`STALE_DAYS` days are removed.
 
 The first process that compiles prints one line to stderr (never to stdout, so
-``--json`` output stays clean): ``compiling the batch engine once (about 20 s); later
+``--json`` output stays clean): ``compiling the batch engine once (20 to 60 s); later
 runs start at once``.
 
 Examples
@@ -44,9 +44,10 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any, TextIO
 
-#: Seconds the first compile of the batch engine takes, measured on a 2-core machine
-#: (numba 0.68, Python 3.11: 15-25 s); printed in the first-run note.
-FIRST_COMPILE_SECONDS = 20
+#: Seconds the first compile of the engine takes on a 2-core machine, by the processor
+#: (numba 0.68, Python 3.11: 15-25 s on 2026-12-01's, 48 s for the first map and 65 s for
+#: the first report on 2026-12-05's AMD EPYC 2.0 GHz); printed in the first-run note.
+FIRST_COMPILE_SECONDS = "20 to 60"
 
 #: Days after which a cache folder of other kernel sources (an older version, another
 #: installation) that nothing wrote to is removed.
@@ -207,7 +208,7 @@ def announce_first_compile(stream: TextIO | Any = None) -> bool:
     os.environ[_ANNOUNCED] = "1"
     atexit.register(_mark_cached)
     print(
-        f"torsio: compiling the batch engine once (about {FIRST_COMPILE_SECONDS} s); "
+        f"torsio: compiling the batch engine once ({FIRST_COMPILE_SECONDS} s); "
         "later runs start at once",
         file=sys.stderr if stream is None else stream,
         flush=True,
