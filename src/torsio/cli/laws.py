@@ -28,8 +28,11 @@ def describe(cls: type[Any]) -> dict[str, Any]:
         data = dict(cls.describe())
     else:  # a law that does not subclass BitRockLaw: its keyword parameters, units unknown
         doc = (cls.__doc__ or "").strip().splitlines()
-        data = {"name": cls.name, "description": doc[0] if doc else "", "parameters": []}
-        data["parameters"] = _signature_parameters(cls)
+        data = {
+            "name": cls.name,
+            "description": doc[0] if doc else "",
+            "parameters": _signature_parameters(cls),
+        }
     data.setdefault("parameters", [])
     data["class"] = f"{cls.__module__}.{cls.__qualname__}"
     return data
