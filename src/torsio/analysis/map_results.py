@@ -230,7 +230,9 @@ class SeverityMap:
     def warnings(self) -> tuple[str, ...]:
         """What limits the meaning of the map (:mod:`torsio.analysis.limits`)."""
         stuck = int((self.stuck & self.done).sum())
-        return warning_list(stuck_points(stuck, self.severity.size))
+        return warning_list(
+            self.info.get("contacts_warning"), stuck_points(stuck, self.severity.size)
+        )
 
     def failures(self) -> list[str]:
         """One line per point the solver failed on."""

@@ -83,6 +83,7 @@ from torsio.analysis.sweep import (
 )
 from torsio.analysis.time_scales import check_time_scales
 from torsio.errors import ConfigError, SolverError
+from torsio.model.contacts import carried_contacts
 from torsio.physics.system import System
 from torsio.solvers.batch import (
     simulate_batch,
@@ -276,6 +277,9 @@ def _build_map(
         "initial_state": "rest",
         "steady_tolerance": options.steady_tolerance,
     }
+    no_friction = carried_contacts(getattr(system.model, "contacts", None))[1]
+    if no_friction is not None:
+        info["contacts_warning"] = no_friction
 
     def store(rows: np.ndarray, at: np.ndarray) -> None:
         i, j = np.unravel_index(at, severity.shape)

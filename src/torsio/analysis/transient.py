@@ -69,6 +69,7 @@ from torsio.analysis.simulation_options import (
 from torsio.analysis.time_scales import check_time_scales
 from torsio.analysis.transient_results import TransientResults, window_mask
 from torsio.errors import ConfigError, SolverError
+from torsio.model.contacts import carried_contacts
 from torsio.physics.dynamics import Dynamics
 from torsio.physics.system import System
 
@@ -334,6 +335,7 @@ def simulate_lumped(
         bit_speed_extremes=extremes,
         well_summary=well_summary,
         warnings=warning_list(
+            carried_contacts(getattr(system.model, "contacts", None))[1],
             stuck_throughout(stick, threshold),
             short_window(float(window), period),
             saturated_motor(

@@ -43,6 +43,7 @@ from torsio.analysis.severity import DEFAULT_DURATION_PERIODS, DEFAULT_WINDOW_PE
 from torsio.analysis.simulation_options import SimulationOptions, check_window_samples
 from torsio.analysis.transient_results import TransientResults
 from torsio.errors import ConfigError
+from torsio.model.contacts import carried_contacts
 from torsio.model.wave import WAVE_ENGINES, WaveModel, check_wave_damping, first_frequency
 from torsio.solvers.characteristics import RECORD_CHANNELS, WaveState, node_offsets
 from torsio.solvers.run_chunks import QUIET_SECONDS, stderr_progress
@@ -227,6 +228,9 @@ def wave_response(
     if getattr(grid, "engines", None) != WAVE_ENGINES:  # a model this stepping runs
         raise ConfigError("discretization.strategy", f"expected the wave model, got {grid!r}")
     alpha = check_wave_damping(system.damping, system.model)
+    contacts, no_friction = carried_contacts(grid.contacts)
+    if contacts is not grid.contacts:
+        grid = grid.with_contacts(contacts)
     dt = grid.time_step
     period = 2.0 * math.pi / first_frequency(grid)
     duration = DEFAULT_DURATION_PERIODS * period if duration is None else float(duration)
@@ -333,7 +337,9 @@ def wave_response(
         "severity_speed": reference,
         "well_summary": _well_summary(grid, summary, t[window], bit_speed[window]),
         "warnings": warning_list(  # as the lumped transient says them
-            stuck_throughout(stick, threshold), short_window(float(steady_window), period)
+            no_friction,
+            stuck_throughout(stick, threshold),
+            short_window(float(steady_window), period),
         ),
     }
     return WaveResponse(_transient_results(values), run, _depths(grid), energy)

@@ -34,7 +34,7 @@ import numpy as np
 from torsio.errors import ConfigError
 from torsio.model.arrays import read_only
 
-__all__ = ["StringContacts"]
+__all__ = ["StringContacts", "carried_contacts"]
 
 
 @attrs.frozen(eq=False, repr=False)
@@ -117,6 +117,12 @@ class StringContacts:
         return int(np.count_nonzero(self.static))
 
     @property
+    def carries_friction(self) -> bool:
+        """Whether any contact carries friction (a vertical hole, friction factors 0 or a
+        string without buoyed weight or tension carry none)."""
+        return self.count > 0
+
+    @property
     def static_total(self) -> float:
         """Sum of the static capacities: the break-off torque of the grid's string [N m]."""
         return float(self.static.sum())
@@ -135,3 +141,24 @@ class StringContacts:
             "threshold_speed_rad_s": float(self.threshold_speed),
             **self.details,
         }
+
+
+def carried_contacts(contacts: StringContacts | None) -> tuple[StringContacts | None, str | None]:
+    """The contacts an engine runs with, and the warning where the well carries no friction.
+
+    Contacts of which none carries friction (all capacities 0: a vertical hole, friction
+    factors 0, mud as dense as the steel) leave the run as without contacts; every engine
+    takes its contacts through here, so each says so alike.
+
+    >>> carried_contacts(StringContacts(static=np.zeros(3), dynamic=np.zeros(3)))[1]
+    'no contact along the string carries friction in this well (normal force or friction ...'
+    >>> carried_contacts(None)
+    (None, None)
+    """
+    if contacts is None or contacts.carries_friction:
+        return contacts, None
+    return None, (
+        "no contact along the string carries friction in this well (normal force or friction "
+        "factor 0 all along it: a vertical hole, friction factors 0, or mud as dense as the "
+        "steel); the run is without contacts"
+    )

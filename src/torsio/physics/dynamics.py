@@ -42,6 +42,7 @@ import numpy as np
 import scipy.linalg
 
 from torsio.errors import ConfigError
+from torsio.model.contacts import carried_contacts
 from torsio.model.tridiagonal import is_tridiagonal, tridiagonal_bands, tridiagonal_matvec
 from torsio.physics.law_slope import bit_slope
 from torsio.physics.top_drive_boundary import TopDriveBoundary
@@ -150,7 +151,7 @@ class Dynamics:
         stiffness = np.asarray(model.stiffness, dtype=float)
         relative = damping - np.diag(drag)
         common = (top, system.law, float(system.wob), float(system.bit_radius))
-        contacts = getattr(model, "contacts", None)
+        contacts, _ = carried_contacts(getattr(model, "contacts", None))
         if top.held:
             return cls(
                 mass,

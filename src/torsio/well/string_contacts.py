@@ -68,8 +68,9 @@ def string_contacts(
     Raises
     ------
     ConfigError
-        On ``discretization.drag_spacing`` when the string has no drag node inside it to
-        carry the shares of its ends.
+        On ``discretization.drag_spacing`` when the string has friction but no drag node
+        inside it to carry the shares of its ends (without friction anywhere: every
+        capacity 0, :func:`torsio.model.contacts.carried_contacts`).
     """
     column = column or RotatingColumn(well, grid.string, CONTACT_CELL_LENGTH)
     profile = break_off(well, grid.string, CONTACT_CELL_LENGTH, wob, column)
@@ -97,6 +98,16 @@ def string_contacts(
             np.add.at(out, index, levels[:-1] - levels[1:])
         start += section.length
     inside = np.flatnonzero(static[1:-1] > 0.0) + 1
+    carried = static.any() or below(np.array([start]), profile.static_torque)[0] > 0.0
+    if inside.size == 0 and not carried:  # no friction anywhere: nothing to carry
+        return StringContacts(
+            static=np.zeros_like(static),
+            dynamic=np.zeros_like(dynamic),
+            threshold_speed=well.threshold_speed,
+            details=_details(well, profile),
+            wob=float(wob),
+            rebuild=_rebuild(grid, well, grid.string, column),
+        )
     if inside.size == 0:
         raise ConfigError(
             "discretization.drag_spacing",
