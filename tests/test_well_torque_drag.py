@@ -57,10 +57,13 @@ def test_vertical_well_has_no_friction():
     assert results.hookload_on_bottom == pytest.approx(expected - 80e3, rel=1e-9)
     assert results.surface_torque_rotating == 0.0
     assert results.surface_torque_on_bottom == pytest.approx(4e3, rel=1e-9)
-    assert results.string_top_md == 500.0 and results.md[0] == 500.0
+    # the string hangs from the rig floor: top at md 0, bit at its length (500 m of open
+    # hole below it carry nothing)
+    assert results.string_top_md == 0.0 and results.md[0] == 0.0
+    assert results.bit_md == 2500.0 and results.to_dict()["bit_md"] == 2500.0
     assert np.all(results.normal_force == 0.0)
     # the neutral point: WOB / w above the bit (closed form, buoyed weight)
-    assert results.neutral_point_md == pytest.approx(3000.0 - 0.3 - (80e3 - W_BIT * 0.3) / W_DP)
+    assert results.neutral_point_md == pytest.approx(2500.0 - 0.3 - (80e3 - W_BIT * 0.3) / W_DP)
 
 
 @pytest.mark.parametrize("normal_force", ["soft-string", "gravity"])

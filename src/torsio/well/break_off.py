@@ -128,7 +128,7 @@ def break_off(
     well : Wellbore
         Survey, hole sections (their mu_s and mu_d), mud and normal-force model.
     string : DrillString
-        The string, its bit at the survey's last station.
+        The string, hung from the rig floor (md 0), its bit at md = its length.
     cell_length : float
         Longest cell of the integration [m].
     wob : float

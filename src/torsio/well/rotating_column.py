@@ -37,7 +37,7 @@ from typing import Any
 import numpy as np
 
 from torsio.model.drillstring import DrillString
-from torsio.well.wellbore import Wellbore, string_top_md
+from torsio.well.wellbore import Wellbore, bit_md, string_top_md
 
 __all__ = ["GRAVITY", "MAX_STEP_TURN", "RotatingColumn", "cell_boundaries", "section_properties"]
 
@@ -56,7 +56,7 @@ def cell_boundaries(
     """Cell boundaries [m]: every section end, survey station and hole bottom in the string,
     and at most ``cell_length`` apart."""
     lengths = np.array([s.length for s in string.sections])
-    bottom = well.survey.depth  # the bit at the last station (top + the length, to round-off)
+    bottom = bit_md(well, float(lengths.sum()))  # open hole below the bit carries nothing
     marks = [top + np.concatenate([[0.0], np.cumsum(lengths)]), well.survey.md, well.hole_bottoms]
     edges = np.unique(np.clip(np.concatenate(marks), top, bottom))
     edges[-1] = bottom
@@ -95,7 +95,7 @@ class RotatingColumn:
     well : Wellbore
         The survey, mud and normal-force model.
     string : DrillString
-        The string, its bit at the survey's last station.
+        The string, hung from the rig floor (md 0), its bit at md = its length.
     cell_length : float
         Longest cell [m] (:func:`cell_boundaries`).
 

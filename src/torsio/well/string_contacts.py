@@ -223,6 +223,7 @@ def _details(well: Wellbore, profile: Any) -> dict[str, Any]:
     """Where the capacities came from, for reports: the normal force and the totals."""
     return {
         "normal_force": well.normal_force,
+        "bit_md": float(profile.md[-1]),
         "break_off_torque_N_m": profile.torque,
         "break_off_twist_rad": profile.twist,
         "sliding_torque_N_m": profile.sliding_torque,

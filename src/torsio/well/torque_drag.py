@@ -64,7 +64,7 @@ def torque_drag(
 
     Tripping out and in (off bottom, no rotation), rotating off bottom, and rotating on
     bottom with ``wob`` (compression at the bit, -wob) and ``bit_torque`` (added at the
-    bit). The bit is at the survey's last station.
+    bit). The string hangs from the rig floor: top at md 0, bit at md = its length.
 
     Parameters
     ----------

@@ -46,7 +46,7 @@ class TorqueDragResults:
     wob, bit_torque : float
         Weight [N] and torque [N m] on bit of the on-bottom case.
     string_top_md : float
-        Measured depth of the string's top [m] (the bit is at the survey's last station).
+        Measured depth of the string's top [m]: 0, the string hangs from the rig floor.
     buoyed_weight : float
         Sum of the buoyed weight of the string [N] (its hookload in a vertical hole).
     normal_force_model : str
@@ -119,6 +119,11 @@ class TorqueDragResults:
         j = int(below[0])
         return float(self.md[j] + (self.md[j + 1] - self.md[j]) * t[j] / (t[j] - t[j + 1]))
 
+    @property
+    def bit_md(self) -> float:
+        """Measured depth of the bit [m]: the string's length along the survey."""
+        return float(self.md[-1])
+
     def to_dict(self) -> dict[str, Any]:
         """The keys of ``torsio drag --json`` (DESIGN.md), SI units, and more."""
         return {
@@ -132,6 +137,7 @@ class TorqueDragResults:
             "bit_torque": self.bit_torque,
             "neutral_point_md": self.neutral_point_md,
             "string_top_md": self.string_top_md,
+            "bit_md": self.bit_md,
             "buoyed_weight": self.buoyed_weight,
             "normal_force_model": self.normal_force_model,
             "friction_override": self.friction,

@@ -1,7 +1,8 @@
 """The wellbore: a survey, hole sections with their friction factors, and the mud.
 
-The string is placed with its bit at the survey's last station: its top is at
-md = last md - string length (a string longer than the survey is an error).
+The string hangs from the rig floor: its top at md 0, its bit at md = the string's length
+along the survey (a survey shorter than the string is an error; open hole below the bit
+carries nothing).
 
 Examples
 --------
@@ -28,7 +29,7 @@ import numpy as np
 from torsio.errors import ConfigError
 from torsio.well.survey import Survey
 
-__all__ = ["NORMAL_FORCE_MODELS", "HoleSection", "Wellbore", "string_top_md"]
+__all__ = ["NORMAL_FORCE_MODELS", "HoleSection", "Wellbore", "bit_md", "string_top_md"]
 
 NORMAL_FORCE_MODELS = ("soft-string", "gravity")
 """``soft-string``: buoyed weight and tension times curvature (Johancsik et al. 1984);
@@ -178,26 +179,39 @@ class Wellbore:
 
 
 def string_top_md(well: Wellbore, string_length: float, key: str = "md") -> float:
-    """Measured depth of the string's top [m]: the bit is at the survey's last station.
+    """Measured depth of the string's top [m]: 0, the string hangs from the rig floor.
+
+    The bit is at md = ``string_length`` along the survey (:func:`bit_md`, which checks
+    the survey reaches it); open hole below the bit carries nothing.
+
+    >>> survey = Survey([0.0, 2000.0], [0.0, 0.0], [0.0, 0.0])
+    >>> string_top_md(Wellbore(survey), 1500.0)
+    0.0
+    """
+    bit_md(well, string_length, key)
+    return 0.0
+
+
+def bit_md(well: Wellbore, string_length: float, key: str = "md") -> float:
+    """Measured depth of the bit [m]: the string's length, the top at the rig floor (md 0).
 
     Raises
     ------
     ConfigError
-        If the string is longer than the survey (named by ``key``).
+        If the survey ends above the bit (named by ``key``).
 
     Examples
     --------
     >>> survey = Survey([0.0, 2000.0], [0.0, 0.0], [0.0, 0.0])
-    >>> string_top_md(Wellbore(survey), 1500.0)
-    500.0
+    >>> bit_md(Wellbore(survey), 1500.0)   # 500 m of open hole below the bit
+    1500.0
     """
     depth = well.survey.depth
     if string_length > depth * (1.0 + 1e-12):
         raise ConfigError(
             key,
             f"the string is {string_length:g} m long but the survey ends at md {depth:g} m; "
-            "the bit sits at the last station, so the survey must reach at least the "
-            "string's length (add stations or shorten the string)",
+            "the string hangs from the rig floor (md 0), so the survey must reach at least "
+            "the string's length (add stations or shorten the string)",
         )
-    top = depth - string_length
-    return top if top > 1e-12 * depth else 0.0  # a string as long as the survey, to round-off
+    return min(float(string_length), depth)  # a string as long as the survey, to round-off
