@@ -48,6 +48,7 @@ SI_UNITS: dict[str, str] = {
     "rotational_damping": "N*m*s/rad",
     "dimensionless": "",
     "mass": "kg",
+    "linear_density": "kg/m",
     "axial_stiffness": "N/m",
     "axial_damping": "N*s/m",
 }

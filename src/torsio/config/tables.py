@@ -13,10 +13,22 @@ from collections.abc import Mapping
 from typing import Any
 
 from torsio.errors import ConfigError
-from torsio.model.components import SECTION_KINDS, Material, Section
+from torsio.model.components import SECTION_KINDS, JointedPipe, Material, Section
 from torsio.units import RPM_TO_RAD_S, to_si
 
-SECTION_KEYS = {"kind", "od", "id", "length", "name", "bha", "material"}
+SECTION_KEYS = {
+    "kind",
+    "od",
+    "id",
+    "length",
+    "name",
+    "bha",
+    "material",
+    "adjusted_weight",
+    "tool_joint_od",
+}
+JOINT_KEYS = ("adjusted_weight", "tool_joint_od")
+"""Keys of drill pipe and HWDP only (:class:`torsio.model.components.JointedPipe`)."""
 MATERIAL_KEYS = {"shear_modulus", "density", "youngs_modulus"}  # E: config/axial.py
 
 
@@ -85,6 +97,16 @@ def _section(raw: Any, key: str, default_material: Material) -> Section:
     values = {
         name: to_si(table[name], "length", key=f"{key}.{name}") for name in ("od", "id", "length")
     }
+    for name in JOINT_KEYS:
+        if name not in table:
+            continue
+        if not issubclass(SECTION_KINDS[kind], JointedPipe):
+            raise ConfigError(
+                f"{key}.{name}",
+                f"a {kind} section has no tool joints; expected {name} on drill_pipe or hwdp only",
+            )
+        dimension = "linear_density" if name == "adjusted_weight" else "length"
+        values[name] = to_si(table[name], dimension, key=f"{key}.{name}")
     try:
         return SECTION_KINDS[kind](
             **values,

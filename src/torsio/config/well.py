@@ -173,7 +173,8 @@ def well_table(
     table: Mapping[str, Any], string: DrillString | None, source: str
 ) -> Wellbore | None:
     """The ``[well]`` table of a whole configuration ``table`` (None when absent), checked
-    against the ``string`` of ``[[section]]``: it hangs from the rig floor (md 0), its bit at md = its length."""
+    against the ``string`` of ``[[section]]``: it hangs from the rig floor (md 0), its bit
+    at md = its length."""
     if "well" not in table:
         return None
     if string is None:

@@ -26,7 +26,7 @@ from typing import Any, ClassVar
 import attrs
 
 from torsio.errors import ConfigError
-from torsio.units import si_field
+from torsio.units import as_si, si_field
 
 
 def _finite(what: str, accept: Any) -> Any:
@@ -161,6 +161,23 @@ class Section:
         return self.material.shear_modulus * self.polar_moment / self.length
 
     @property
+    def body_mass_per_length(self) -> float:
+        """Mass per length of the body, rho pi/4 (od^2 - id^2) [kg/m]."""
+        return self.material.density * math.pi / 4.0 * (self.od**2 - self.id**2)
+
+    @property
+    def mass_per_length(self) -> float:
+        """Mass per length in air [kg/m] that the well's weight takes: the body's here
+        (drill pipe and HWDP: their ``adjusted_weight``, with the tool joints)."""
+        return self.body_mass_per_length
+
+    @property
+    def contact_radius(self) -> float:
+        """Radius [m] at which the string touches the borehole: od/2 here (drill pipe and
+        HWDP: their tool joints', ``tool_joint_od`` / 2)."""
+        return self.od / 2.0
+
+    @property
     def wave_travel_time(self) -> float:
         """Time a torsional wave takes to cross the section, L / sqrt(G/rho) [s]."""
         return self.length / self.material.wave_speed
@@ -220,13 +237,80 @@ def _check_derived(section: Section) -> None:
         )
 
 
-# The kinds of section add no fields: plain subclasses of the attrs class Section (frozen,
-# validated, compared by kind and value); ``kind`` names each in configuration files.
-class DrillPipe(Section, kind="drill_pipe", bha=False):
+def _optional_mass_per_length(value: Any) -> float | None:
+    """``adjusted_weight`` in kg/m (a number, or a string with units), or None."""
+    return None if value is None else as_si(value, "linear_density", key="adjusted_weight")
+
+
+def _optional_length(value: Any) -> float | None:
+    """``tool_joint_od`` in m (a number, or a string with units), or None."""
+    return None if value is None else as_si(value, "length", key="tool_joint_od")
+
+
+@attrs.frozen
+class JointedPipe(Section):
+    """Pipe joined by tool joints (drill pipe, HWDP): a body and, every joint, a tool joint.
+
+    Parameters
+    ----------
+    adjusted_weight : float or str, optional
+        Mass per length in air with the tool joints [kg/m] (``"22.3 lb/ft"``); default the
+        body's. It sets the weight (normal force, buoyed weight, friction); the torsional
+        model keeps the body's inertia and stiffness (docs/well.md, "Tool joints").
+    tool_joint_od : float or str, optional
+        Outer diameter of the tool joints [m] (``"6.625 in"``): the contact radius of the
+        friction torque; default ``od``.
+    """
+
+    adjusted_weight: float | None = attrs.field(
+        default=None,
+        converter=_optional_mass_per_length,
+    )
+    tool_joint_od: float | None = attrs.field(
+        default=None,
+        converter=_optional_length,
+    )
+
+    def __attrs_post_init__(self) -> None:
+        super().__attrs_post_init__()
+        joint = self.tool_joint_od
+        if joint is not None and not (math.isfinite(joint) and joint >= self.od):
+            raise ConfigError(
+                "tool_joint_od",
+                f"expected a tool joint at least as wide as the body (od {self.od:g} m) and "
+                f"finite, got {joint!r} m",
+            )
+        mass = self.adjusted_weight
+        if mass is None:
+            return
+        body = self.body_mass_per_length
+        # at most a solid bar of the widest diameter: steel cannot weigh more per length
+        solid = self.material.density * math.pi / 4.0 * max(self.od, joint or 0.0) ** 2
+        if not (math.isfinite(mass) and body * (1.0 - 1e-9) <= mass <= solid):
+            raise ConfigError(
+                "adjusted_weight",
+                f"expected a mass per length in air between the body's {body:.4g} kg/m (the "
+                f"tool joints add mass) and a solid bar's {solid:.4g} kg/m, got {mass!r} kg/m",
+            )
+
+    @property
+    def mass_per_length(self) -> float:
+        """``adjusted_weight`` [kg/m], else the body's."""
+        return self.body_mass_per_length if self.adjusted_weight is None else self.adjusted_weight
+
+    @property
+    def contact_radius(self) -> float:
+        """``tool_joint_od`` / 2 [m], else od/2."""
+        return (self.od if self.tool_joint_od is None else self.tool_joint_od) / 2.0
+
+
+# The other kinds of section add no fields: plain subclasses of the attrs class Section
+# (frozen, validated, compared by kind and value); ``kind`` names each in configuration files.
+class DrillPipe(JointedPipe, kind="drill_pipe", bha=False):
     """Drill pipe: the long slender upper part of the string (not BHA by default)."""
 
 
-class HeavyWeightDrillPipe(Section, kind="hwdp"):
+class HeavyWeightDrillPipe(JointedPipe, kind="hwdp"):
     """Heavy-weight drill pipe (HWDP): part of the BHA by default ("BHA 1" in the paper)."""
 
 

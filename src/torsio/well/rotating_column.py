@@ -68,13 +68,18 @@ def cell_boundaries(
 
 
 def section_properties(string: DrillString, top: float, md: np.ndarray, mud: float) -> Any:
-    """Buoyed weight per metre [N/m] and outer radius [m] of the section at each ``md``."""
+    """Buoyed weight per metre [N/m] and contact radius [m] of the section at each ``md``.
+
+    The buoyed weight is g m (1 - rho_mud / rho_steel), m the section's mass per length in
+    air (with the tool joints where given: ``adjusted_weight``); the contact radius is the
+    tool joints' where given (``tool_joint_od`` / 2), else od / 2."""
     ends = top + np.cumsum([s.length for s in string.sections])
     index = np.minimum(np.searchsorted(ends, md, side="left"), len(ends) - 1)
-    area = np.array([math.pi / 4.0 * (s.od**2 - s.id**2) for s in string.sections])
-    density = np.array([s.material.density for s in string.sections])
-    radius = np.array([s.od / 2.0 for s in string.sections])
-    return (GRAVITY * area * (density - mud))[index], radius[index]
+    weight = np.array(
+        [GRAVITY * s.mass_per_length * (1.0 - mud / s.material.density) for s in string.sections]
+    )
+    radius = np.array([s.contact_radius for s in string.sections])
+    return weight[index], radius[index]
 
 
 def step_counts(well: Wellbore, md: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
