@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import sys
 from importlib import resources
 
@@ -26,7 +27,9 @@ def test_json_contract_and_values(capsys):
     data = run_json(capsys)
     assert set(CONTRACT) <= set(data)
     config = deviated_well_config()
-    expected = torque_drag(config.well, config.string, wob=80e3).to_dict()  # [operation] wob
+    # [operation]: 80 kN, 100 rpm; on bottom the Tucker-Wang torque on bit there (Eq. 2)
+    bit_torque = float(config.bit_law().torque(100 * math.pi / 30, 80e3, config.bit_radius))
+    expected = torque_drag(config.well, config.string, wob=80e3, bit_torque=bit_torque).to_dict()
     for key in CONTRACT:
         assert data[key] == pytest.approx(expected[key], rel=1e-15)
     assert len(data["md"]) == len(data["tension_rotating"]) == len(data["torque_rotating"])

@@ -30,13 +30,23 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "--friction",
         type=common.finite_float,
         metavar="MU",
-        help="sliding friction factor for every hole section (instead of the well's)",
+        help="friction factor for every hole section, static and sliding (instead of the "
+        "well's): the table, the break-off and the sliding torques",
     )
     parser.add_argument(
         "--wob", metavar="W", help="weight on bit on bottom: N or with units (default [operation])"
     )
     parser.add_argument(
-        "--bit-torque", metavar="T", help="torque on bit on bottom: N m or with units (default 0)"
+        "--rpm",
+        metavar="N",
+        help="rotary speed on bottom: rpm or with units (default [operation]); the bit law's "
+        "torque on bit is taken there",
+    )
+    parser.add_argument(
+        "--bit-torque",
+        metavar="T",
+        help="torque on bit on bottom: N m or with units (default: the [bit_rock] law's at "
+        "the weight on bit and rotary speed; RGD: its steady drilling state)",
     )
     parser.add_argument(
         "--plot", metavar="FILE", help="tension and torque against depth (needs matplotlib)"
@@ -72,6 +82,59 @@ def _option(value: str | None, dimension: str, key: str, default: float) -> floa
     return number
 
 
+def _with_friction(well: Any, friction: float | None) -> Any:
+    """``well`` with ``friction`` as its static and sliding factor in every hole section
+    (``--friction``: the break-off and sliding torques take it as the table does)."""
+    import attrs
+
+    if friction is None:
+        return well
+    return attrs.evolve(
+        well,
+        friction_static=friction,
+        friction_dynamic=friction,
+        hole=tuple(attrs.evolve(h, friction_static=None, friction_dynamic=None) for h in well.hole),
+    )
+
+
+def law_bit_torque(config: Any, wob: float, rpm: Any = None) -> tuple[float, str]:
+    """The torque on bit [N m] of the configured law at ``wob`` [N] and the operating rotary
+    speed (``rpm``, else ``[operation] rpm``), and where it comes from: Tucker-Wang (or any
+    rate law) at the bit turning steadily at that speed; the RGD bit's steady drilling state
+    (:func:`torsio.axial.steady.steady_drilling`). Off bottom (``wob`` 0): none.
+    """
+    from torsio.config.tables import parse_rpm
+    from torsio.errors import ConfigError
+    from torsio.units import RPM_TO_RAD_S
+
+    if wob == 0.0:
+        return 0.0, "off bottom"
+    if config.bit_rock is None:
+        raise ConfigError(
+            "bit_rock",
+            "the torque on bit on bottom comes from the bit-rock law, and the configuration "
+            "has none: add [bit_rock] or give --bit-torque",
+        )
+    if rpm is not None:
+        speed = parse_rpm(rpm, "--rpm")
+    elif config.operation.rpm is not None:
+        speed = float(config.operation.rpm)
+    else:
+        raise ConfigError(
+            "operation.rpm",
+            "the torque on bit on bottom is the law's at the rotary speed: give --rpm, set "
+            "[operation] rpm, or give --bit-torque",
+        )
+    if config.axial is not None:  # the RGD bit
+        from torsio.axial.steady import steady_drilling
+
+        state = steady_drilling(config.axial.bit, wob, speed)
+        return float(state.bit_torque), f"rgd steady drilling at {speed:g} rpm"
+    law = config.bit_law()
+    torque = float(law.torque(speed * RPM_TO_RAD_S, wob, config.bit_radius))
+    return torque, f"{law.name} at {speed:g} rpm"
+
+
 def run(args: argparse.Namespace) -> int:
     """Run ``torsio drag`` with parsed arguments; return the exit status."""
     import attrs
@@ -87,11 +150,19 @@ def run(args: argparse.Namespace) -> int:
     common.warn_small_bare_wob(args.wob)
     config = _load(args)
     wob = _option(args.wob, "force", "--wob", config.operation.wob or 0.0)
-    bit_torque = _option(args.bit_torque, "torque", "--bit-torque", 0.0)
+    if args.bit_torque is not None:
+        bit_torque = _option(args.bit_torque, "torque", "--bit-torque", 0.0)
+        source = "given (--bit-torque)"
+    else:
+        bit_torque, source = law_bit_torque(config, wob, args.rpm)
     results = torque_drag(
         config.well, config.string, friction=args.friction, wob=wob, bit_torque=bit_torque
     )
-    results = attrs.evolve(results, break_off=break_off(config.well, config.string))
+    results = attrs.evolve(
+        results,
+        bit_torque_source=source,
+        break_off=break_off(_with_friction(config.well, args.friction), config.string),
+    )
     return common.write_and_print(args, results, outputs, _print_table)
 
 
@@ -110,7 +181,8 @@ def _print_table(results: Any, written: dict[str, str]) -> None:
         f"{results.surface_torque_rotating / 1e3:.2f}",
     )
     table.add_row(
-        f"rotating on bottom (WOB {results.wob / 1e3:g} kN, bit {results.bit_torque / 1e3:g} kN m)",
+        f"rotating on bottom (WOB {results.wob / 1e3:g} kN, bit {results.bit_torque / 1e3:.3g} "
+        f"kN m: {results.bit_torque_source})",
         f"{results.hookload_on_bottom / 1e3:.1f}",
         f"{results.surface_torque_on_bottom / 1e3:.2f}",
     )
@@ -126,7 +198,7 @@ def _print_table(results: Any, written: dict[str, str]) -> None:
         + (
             ""
             if results.friction is None
-            else f"; sliding friction {results.friction:g} everywhere"
+            else f"; friction factor {results.friction:g} everywhere (static and sliding)"
         ),
     ]
     if results.break_off is not None:

@@ -45,6 +45,8 @@ class TorqueDragResults:
         Contact force per metre string on borehole [N/m], each operation.
     wob, bit_torque : float
         Weight [N] and torque [N m] on bit of the on-bottom case.
+    bit_torque_source : str
+        Where ``bit_torque`` comes from (given, or the bit law's at the operating point).
     string_top_md : float
         Measured depth of the string's top [m]: 0, the string hangs from the rig floor.
     buoyed_weight : float
@@ -65,6 +67,7 @@ class TorqueDragResults:
     wob: float = 0.0
     bit_torque: float = 0.0
     string_top_md: float = 0.0
+    bit_torque_source: str = "given"
     buoyed_weight: float = float("nan")
     normal_force_model: str = "soft-string"
     friction: float | None = None
@@ -135,6 +138,7 @@ class TorqueDragResults:
             "surface_torque_on_bottom": self.surface_torque_on_bottom,
             "wob": self.wob,
             "bit_torque": self.bit_torque,
+            "bit_torque_source": self.bit_torque_source,
             "neutral_point_md": self.neutral_point_md,
             "string_top_md": self.string_top_md,
             "bit_md": self.bit_md,
