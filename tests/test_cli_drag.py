@@ -72,7 +72,7 @@ def test_no_well_is_an_error(capsys):
 @pytest.mark.parametrize(
     ("argv", "text"),
     [
-        (["--friction", "-0.1"], "--friction: expected a non-negative factor"),
+        (["--friction", "-0.1"], "--friction: expected a friction factor from 0 to 1"),
         (["--wob", "-5 kN"], "--wob: expected a non-negative value"),
         (["--bit-torque", "5 kN"], "--bit-torque: '5 kN' is not a torque"),
     ],

@@ -142,11 +142,16 @@ def run(args: argparse.Namespace) -> int:
     from torsio.errors import ConfigError
     from torsio.well.break_off import break_off
     from torsio.well.torque_drag import torque_drag
+    from torsio.well.wellbore import MAX_FRICTION_FACTOR
 
     outputs = common.check_outputs(args, ["plot"])
     common.require_plotting(args)
-    if args.friction is not None and args.friction < 0.0:
-        raise ConfigError("--friction", f"expected a non-negative factor, got {args.friction:g}")
+    if args.friction is not None and not 0.0 <= args.friction <= MAX_FRICTION_FACTOR:
+        raise ConfigError(
+            "--friction",
+            f"expected a friction factor from 0 to {MAX_FRICTION_FACTOR:g} (measured factors "
+            f"in mud are 0.1 to 0.5), got {args.friction:g}",
+        )
     common.warn_small_bare_wob(args.wob)
     config = _load(args)
     wob = _option(args.wob, "force", "--wob", config.operation.wob or 0.0)
@@ -192,8 +197,7 @@ def _print_table(results: Any, written: dict[str, str]) -> None:
     lines = [
         f"buoyed weight of the string {results.buoyed_weight / 1e3:.1f} kN; "
         f"string top at md {results.string_top_md:g} m, bit at md {results.md[-1]:g} m",
-        "neutral point on bottom: "
-        + ("none (no compression)" if neutral is None else f"md {neutral:.0f} m"),
+        "neutral point on bottom: " + _neutral_point(results, neutral),
         f"normal force: {results.normal_force_model}"
         + (
             ""
@@ -212,3 +216,16 @@ def _print_table(results: Any, written: dict[str, str]) -> None:
         lines.append(f"wrote {written['plot']}")
     for line in lines:
         console.print(line, highlight=False)
+
+
+def _neutral_point(results: Any, neutral: float | None) -> str:
+    """Where the on-bottom tension changes sign, or why there is no such point."""
+    if neutral is not None:
+        return f"md {neutral:.0f} m"
+    if results.all_in_compression:
+        return (
+            f"above the top: the whole string is in compression (hookload on bottom "
+            f"{results.hookload_on_bottom / 1e3:.1f} kN: the weight on bit exceeds what the "
+            "string's weight holds)"
+        )
+    return "none (the string is nowhere in compression)"

@@ -28,7 +28,7 @@ from torsio.errors import ConfigError
 from torsio.units import to_si
 from torsio.well.survey import Survey
 from torsio.well.survey_csv import read_survey_csv
-from torsio.well.wellbore import HoleSection, Wellbore, string_top_md
+from torsio.well.wellbore import HoleSection, Wellbore, check_mud_density, string_top_md
 
 if TYPE_CHECKING:
     from torsio.model.drillstring import DrillString
@@ -182,4 +182,5 @@ def well_table(
     well = parse_well(table["well"], source)
     key = "well.survey" if "survey" in table["well"] else "well.md"
     string_top_md(well, sum(s.length for s in string.sections), key=key)
+    check_mud_density(well, string, key="well.mud_density")
     return well

@@ -37,7 +37,7 @@ from typing import Any
 import numpy as np
 
 from torsio.model.drillstring import DrillString
-from torsio.well.wellbore import Wellbore, bit_md, string_top_md
+from torsio.well.wellbore import Wellbore, bit_md, check_mud_density, string_top_md
 
 __all__ = ["GRAVITY", "MAX_STEP_TURN", "RotatingColumn", "cell_boundaries", "section_properties"]
 
@@ -117,6 +117,7 @@ class RotatingColumn:
     def __init__(self, well: Wellbore, string: DrillString, cell_length: float = 10.0) -> None:
         length = float(sum(s.length for s in string.sections))
         self.string_top_md = top = string_top_md(well, length)
+        check_mud_density(well, string)
         self.md = md = cell_boundaries(well, string, top, cell_length)
         self.weights, self.radii = section_properties(
             string, top, 0.5 * (md[:-1] + md[1:]), well.mud_density

@@ -67,6 +67,12 @@ def _floats(values: Any, key: str) -> np.ndarray:
     return np.array(out, dtype=float)
 
 
+MAX_DOGLEG_SEVERITY = 1.0
+"""Largest dogleg severity a survey may have [rad/m] (a bend of radius 1 m, about 1719 deg
+per 30 m): short-radius laterals, the tightest drilled, bend at radii of 6 to 12 m (1.5 to
+3 deg/ft); a tighter survey is a typing error."""
+
+
 @attrs.frozen(repr=False, eq=False)
 class Survey:
     """Survey stations and the minimum-curvature hole through them.
@@ -87,7 +93,8 @@ class Survey:
     ConfigError
         Arrays of different lengths, fewer than two stations, a first station below the
         surface, stations out of order, an inclination outside 0-180 deg, a value that is
-        not a finite number, or two stations whose tangents are opposite (no single arc).
+        not a finite number, two stations whose tangents are opposite (no single arc), a
+        dogleg severity above :data:`MAX_DOGLEG_SEVERITY`, or a station above the surface.
         The key named is ``md``, ``inclination`` or ``azimuth`` with the station index.
     """
 
@@ -145,6 +152,23 @@ class Survey:
         object.__setattr__(self, "_doglegs", doglegs)
         steps = np.array([self._arc(i, 1.0)[0] for i in range(len(md) - 1)]).reshape(-1, 3)
         object.__setattr__(self, "_positions", np.vstack([np.zeros(3), np.cumsum(steps, axis=0)]))
+        severity = doglegs / np.diff(md)
+        for i in np.flatnonzero(severity > MAX_DOGLEG_SEVERITY)[:1]:
+            raise ConfigError(
+                f"inclination[{i + 1}]",
+                f"a dogleg of {math.degrees(doglegs[i]):.6g} deg over {md[i + 1] - md[i]:.4g} m "
+                f"between stations {i} and {i + 1} (md {md[i]:g} and {md[i + 1]:g} m) bends the "
+                f"hole at {severity[i]:.4g} rad/m; expected at most {MAX_DOGLEG_SEVERITY:g} "
+                "rad/m (a radius of 1 m: the tightest drilled bends, short-radius laterals, "
+                "have radii of 6 to 12 m)",
+            )
+        tvd = self._positions[:, 2]
+        for i in np.flatnonzero(tvd < -1e-9 * md[-1])[:1]:
+            raise ConfigError(
+                f"inclination[{i}]",
+                f"the hole is {-tvd[i]:.4g} m above the surface at station {i} (md {md[i]:g} "
+                "m); expected a survey that stays at or below the rig floor (TVD >= 0)",
+            )
 
     def __repr__(self) -> str:
         where = f", {self.source}" if self.source else ""

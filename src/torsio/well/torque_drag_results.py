@@ -123,6 +123,24 @@ class TorqueDragResults:
         return float(self.md[j] + (self.md[j + 1] - self.md[j]) * t[j] / (t[j] - t[j + 1]))
 
     @property
+    def all_in_compression(self) -> bool:
+        """Whether the whole string is in compression on bottom (the top too: the weight on
+        bit exceeds what the string's weight and drag hold, a negative hookload)."""
+        return bool(np.all(self.tension[:-1, 3] < 0.0))
+
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """What limits the meaning of the result (JSON ``warnings``, and stderr)."""
+        if not self.all_in_compression:
+            return ()
+        return (
+            f"the whole string is in compression on bottom (hookload "
+            f"{self.hookload_on_bottom / 1e3:.4g} kN, weight on bit {self.wob / 1e3:.4g} kN): "
+            "a string pushed from the top buckles, which soft-string torque and drag does not "
+            "model",
+        )
+
+    @property
     def bit_md(self) -> float:
         """Measured depth of the bit [m]: the string's length along the survey."""
         return float(self.md[-1])
@@ -140,6 +158,8 @@ class TorqueDragResults:
             "bit_torque": self.bit_torque,
             "bit_torque_source": self.bit_torque_source,
             "neutral_point_md": self.neutral_point_md,
+            "all_in_compression": self.all_in_compression,
+            "warnings": list(self.warnings),
             "string_top_md": self.string_top_md,
             "bit_md": self.bit_md,
             "buoyed_weight": self.buoyed_weight,

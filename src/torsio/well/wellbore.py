@@ -29,11 +29,25 @@ import numpy as np
 from torsio.errors import ConfigError
 from torsio.well.survey import Survey
 
-__all__ = ["NORMAL_FORCE_MODELS", "HoleSection", "Wellbore", "bit_md", "string_top_md"]
+__all__ = [
+    "MAX_FRICTION_FACTOR",
+    "NORMAL_FORCE_MODELS",
+    "HoleSection",
+    "Wellbore",
+    "bit_md",
+    "check_mud_density",
+    "string_top_md",
+]
 
 NORMAL_FORCE_MODELS = ("soft-string", "gravity")
 """``soft-string``: buoyed weight and tension times curvature (Johancsik et al. 1984);
 ``gravity``: the buoyed weight's component normal to the hole alone (inclination only)."""
+
+
+MAX_FRICTION_FACTOR = 1.0
+"""Largest friction factor of string on borehole: factors measured in mud, cased and open
+hole, lie from 0.1 to 0.5 (Johancsik et al. 1984 fitted 0.25 to 0.4); above 1 a contact
+would hold more than the force pressing it, which no lubricated steel-on-rock contact does."""
 
 
 def _check_friction(static: float, dynamic: float, key: str) -> None:
@@ -41,6 +55,12 @@ def _check_friction(static: float, dynamic: float, key: str) -> None:
         if not (isinstance(value, int | float) and math.isfinite(value) and value >= 0.0):
             raise ConfigError(
                 f"{key}{name}", f"expected a non-negative friction factor, got {value!r}"
+            )
+        if value > MAX_FRICTION_FACTOR:
+            raise ConfigError(
+                f"{key}{name}",
+                f"expected a friction factor from 0 to {MAX_FRICTION_FACTOR:g} (measured "
+                f"factors in mud are 0.1 to 0.5), got {value:g}",
             )
     if dynamic > static:
         raise ConfigError(
@@ -215,3 +235,18 @@ def bit_md(well: Wellbore, string_length: float, key: str = "md") -> float:
             "the string's length (add stations or shorten the string)",
         )
     return min(float(string_length), depth)  # a string as long as the survey, to round-off
+
+
+def check_mud_density(well: Wellbore, string: Any, key: str = "mud_density") -> None:
+    """Refuse a mud denser than a section of the string: its buoyed weight would be
+    negative, a string that floats, which a string hung from the hook (the soft-string
+    model) is not. Mud as dense as the steel (buoyed weight 0) is allowed."""
+    for section in string.sections:
+        density = section.material.density
+        if well.mud_density > density:
+            raise ConfigError(
+                key,
+                f"expected a mud no denser than the string ({density:g} kg/m^3 in "
+                f"{section.describe()}: the string would float), got {well.mud_density:g} "
+                "kg/m^3 (drilling muds weigh 1000 to 2500 kg/m^3)",
+            )
