@@ -17,6 +17,8 @@ Examples
 ('80.0 kN', 'hookload [kN]')
 >>> DisplayUnits("si").energy(2.623e7), DisplayUnits("si").energy(850.0)
 ('26.23 MJ', '850 J')
+>>> DisplayUnits("field").energy(2.623e7)
+'19,346 kft·lbf'
 """
 
 from __future__ import annotations
@@ -97,12 +99,13 @@ class DisplayUnits:
         return f"{name} [{self.label(quantity)}]"
 
     def energy(self, joules: float) -> str:
-        """An energy with a prefix that keeps it readable: ``"26.23 MJ"`` (SI) or
-        ``"19.35 Mft·lbf"`` (field), four significant figures, no exponent."""
-        unit, value = (
-            ("J", joules) if self.system == "si" else ("ft·lbf", joules / (FOOT * POUND_FORCE))
-        )
+        """An energy without an exponent: SI with a prefix, four significant figures
+        (``"26.23 MJ"``); field in kft·lbf, the rig's torque unit, thousands grouped
+        (``"19,346 kft·lbf"``)."""
+        if self.system == "field":
+            value = joules / (FOOT * POUND_FORCE) / 1e3
+            return f"{value:,.0f} kft·lbf" if abs(value) >= 1e3 else f"{value:.4g} kft·lbf"
         for prefix, scale in _ENERGY_PREFIXES:
-            if abs(value) >= scale or scale == 1.0:
-                return f"{value / scale:.4g} {prefix}{unit}"
+            if abs(joules) >= scale or scale == 1.0:
+                return f"{joules / scale:.4g} {prefix}J"
         raise AssertionError("unreachable")  # pragma: no cover
