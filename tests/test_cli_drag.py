@@ -93,3 +93,50 @@ def test_plot_without_matplotlib(tmp_path, monkeypatch, capsys):
     err = capsys.readouterr().err
     assert "--plot" in err and "torsio[plot]" in err and "Traceback" not in err
     assert not (tmp_path / "x.png").exists()
+
+
+LBF = 4.4482216152605
+"""1 lbf in N, exactly (NIST SP 811, appendix B.8); 1 ft = 0.3048 m exactly."""
+
+
+def _row(out: str, label: str) -> list[str]:
+    line = next(line for line in out.splitlines() if label in line)
+    return [cell.strip() for cell in line.split("│") if cell.strip()]
+
+
+def test_units_field_tables_give_ft_klbf_and_kft_lbf(capsys):
+    """The table in field units is the SI JSON converted by the exact factors."""
+    data = run_json(capsys)
+    assert run_json(capsys, "--units", "field") == data  # JSON stays SI
+    assert main(["drag", "--units", "field"]) == 0
+    out = capsys.readouterr().out
+    assert "hookload [klbf]" in out and "surface torque [kft·lbf]" in out
+    assert _row(out, "tripping out")[1] == f"{data['hookload_trip_out'] / LBF / 1e3:.1f}"
+    off_bottom = _row(out, "rotating off bottom")
+    assert off_bottom[1] == f"{data['hookload_rotating'] / LBF / 1e3:.1f}"
+    torque = data["surface_torque_rotating"] / (0.3048 * LBF) / 1e3
+    assert off_bottom[2] == f"{torque:.2f}"
+    assert f"bit at md {2500 / 0.3048:g} ft" in " ".join(out.split())  # the bit at md 2500 m
+    assert "kN" not in out
+
+
+def test_si_table_headers_carry_their_units(capsys):
+    assert main(["drag"]) == 0
+    out = capsys.readouterr().out
+    assert "hookload [kN]" in out and "surface torque [kN m]" in out
+
+
+def test_units_field_plot(tmp_path, capsys):
+    pytest.importorskip("matplotlib")
+    from torsio.display_units import DisplayUnits
+
+    config = deviated_well_config()
+    results = torque_drag(config.well, config.string, wob=80e3)
+    figure = results.plot(units=DisplayUnits("field"))
+    axes = figure.axes
+    assert axes[0].get_ylabel() == "measured depth [ft]"
+    assert axes[0].get_xlabel() == "effective tension [klbf]"
+    assert axes[1].get_xlabel() == "torque [kft·lbf]"
+    line = axes[0].get_lines()[0]  # tripping out: tension at the top is the hookload
+    assert line.get_xdata()[0] == pytest.approx(results.hookload_trip_out / LBF / 1e3, rel=1e-12)
+    assert max(line.get_ydata()) == pytest.approx(2500 / 0.3048, rel=1e-12)

@@ -43,6 +43,18 @@ def test_report_terminal_output(capsys):
     assert "Ritto et al. (2017)" in out and "S_SS" in out and "0.13438" in out
 
 
+def test_report_bit_speed_in_rpm(capsys):
+    """The response's bit speed is printed in rpm (1 rad/s = 30/pi rpm), as the rotary speed."""
+    import math
+    import re
+
+    data = report_json(capsys, "--strategy", "A")["response"]
+    assert main(["report", "--strategy", "A"]) == 0
+    line = next(line for line in capsys.readouterr().out.splitlines() if "bit speed" in line)
+    low, high = (data[f"bit_speed_{k}_rad_s"] * 30 / math.pi for k in ("min", "max"))
+    assert re.search(rf"{low:.4g} to {high:.4g} rpm", line), line
+
+
 def test_report_of_a_modal_only_configuration(tmp_path, capsys):
     path = tmp_path / "modal.toml"
     path.write_text(

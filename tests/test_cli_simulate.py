@@ -304,3 +304,27 @@ def test_a_recording_of_an_axial_run_is_refused(capsys, tmp_path):
     status = main(["simulate", str(source), "--recording", str(tmp_path / "r.csv")])
     assert status == 2
     assert "--recording" in capsys.readouterr().err
+
+
+def test_units_field_table_and_readable_energy(capsys):
+    """--units field: the table's forces in klbf and torques in kft·lbf (1 lbf =
+    4.4482216152605 N, 1 ft = 0.3048 m, exact: NIST SP 811, B.8), energy without an
+    exponent; the JSON stays SI (the same numbers with and without --units)."""
+    from importlib import resources
+
+    path = str(resources.files("torsio").joinpath("data/deviated_well.toml"))
+    run = ["simulate", path, "--duration", "20", "--window", "10"]
+    assert main([*run, "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert main([*run, "--units", "field", "--json"]) == 0
+    field_json = json.loads(capsys.readouterr().out)
+    assert field_json["friction_work"] == data["friction_work"]
+    assert main([*run, "--units", "field"]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    lbf, ft_lbf = 4.4482216152605, 0.3048 * 4.4482216152605
+    assert f"{data['wob'] / lbf / 1e3:.4g} klbf" in out
+    peak = data["surface_torque_peak"]
+    assert f"peak surface torque │ {peak / ft_lbf / 1e3:.4g} kft·lbf" in out
+    work = data["friction_work"] / ft_lbf / 1e3
+    assert f"{work:,.0f} kft·lbf" in out and "e+" not in out
+    assert " kN" not in out

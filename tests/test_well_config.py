@@ -107,6 +107,12 @@ def test_survey_file_relative_to_the_configuration(tmp_path):
             "well.inclination[2]",
             "from 0 to 180 degrees, got 190",
         ),  # fmt: skip
+        (  # a string that is not a number: the key once, not well.well.inclination[2]
+            WELL.replace("[0.0, 0.0, 60.0]", '[0.0, 0.0, "sixty"]'),
+            "well.inclination[2]",
+            "expected a number of degrees, got 'sixty'",
+        ),  # fmt: skip
+        (WELL.replace("[0.0, 0.0, 30.0]", '[0.0, "x", 30.0]'), "well.azimuth[1]", "'x'"),
         (
             WELL.replace("[0.0, 1000.0, 1600.0]", "[0.0, 1700.0, 1600.0]"),
             "well.md[2]",

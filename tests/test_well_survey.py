@@ -148,13 +148,51 @@ def test_csv_survey(tmp_path):
     np.testing.assert_array_equal(survey.azimuth_deg, AZI)
 
 
+FT = 0.3048
+"""1 ft in m, exactly (NIST SP 811, appendix B.8)."""
+
+
+@pytest.mark.parametrize(
+    "header",
+    ["md [ft],inclination,azimuth", "MD (ft),Inc (deg),Azi (deg)", "md[ft],Incl,Azim",
+     "Measured Depth (ft),Inclination [deg],AZIMUTH", "Azi,md (FT),inc (°)"],
+)  # fmt: skip
+def test_csv_survey_in_feet_with_unit_headers(tmp_path, header):
+    """The same stations in ft (md / 0.3048) read back as the metric survey."""
+    order = [c.strip().split()[0].split("[")[0].lower()[:2] for c in header.split(",")]
+    feet = [m / FT for m in MD]
+    values = {"md": feet, "me": feet, "in": INC, "az": AZI}
+    rows = "\n".join(",".join(repr(values[c][k]) for c in order) for k in range(len(MD)))
+    path = tmp_path / "ft.csv"
+    path.write_text(header + "\n" + rows + "\n", "utf-8")
+    survey = read_survey_csv(path)
+    np.testing.assert_allclose(survey.md, MD, rtol=1e-15, atol=1e-12)
+    np.testing.assert_array_equal(survey.inclination_deg, INC)
+    np.testing.assert_array_equal(survey.azimuth_deg, AZI)
+
+
+def test_csv_survey_in_radians(tmp_path):
+    """pi rad = 180 deg (definition of the radian)."""
+    path = tmp_path / "rad.csv"
+    rows = "\n".join(
+        f"{m},{float(np.radians(i))!r},{float(np.radians(a))!r}"
+        for m, i, a in zip(MD, INC, AZI, strict=True)
+    )
+    path.write_text("md (m),inc (rad),azi (rad)\n" + rows + "\n", "utf-8")
+    survey = read_survey_csv(path)
+    np.testing.assert_allclose(survey.inclination_deg, INC, rtol=1e-14, atol=1e-12)
+    np.testing.assert_allclose(survey.azimuth_deg, AZI, rtol=1e-14, atol=1e-12)
+
+
 @pytest.mark.parametrize(
     ("text", "message"),
     [
         (
-            "md,inc,azimuth\n0,0,0\n",
-            "s.csv, line 1: the header 'md,inc,azimuth' has no column 'inclination'",
+            "md,dip,azimuth\n0,0,0\n",
+            "s.csv, line 1: the header 'md,dip,azimuth' has no column 'inclination'",
         ),  # fmt: skip
+        ("md [yd],inc,azi\n0,0,0\n", "line 1: column 'md [yd]': unknown unit 'yd'; expected"),
+        ("md,MD (ft),inc,azi\n0,0,0,0\n", "line 1: column md is given twice"),
         (
             "md,inclination,azimuth\n0,0,0\n10,5\n",
             "s.csv, line 3: 2 fields, no value for column azimuth",

@@ -16,11 +16,31 @@ Examples
 from __future__ import annotations
 
 import csv
+import re
 from pathlib import Path
 
 from torsio.errors import ConfigError
 
-__all__ = ["csv_rows"]
+__all__ = ["csv_rows", "header_cell"]
+
+_HEADER_CELL = re.compile(r"^\s*(.*?)\s*(?:\[\s*([^\]]*?)\s*\]|\(\s*([^)]*?)\s*\))?\s*$")
+
+
+def header_cell(cell: str) -> tuple[str, str | None]:
+    """A header cell's column name (lower case, inner spaces single) and its unit, if it
+    gives one in brackets or parentheses (``md [ft]``, ``MD (ft)``, ``md[ft]``).
+
+    Examples
+    --------
+    >>> header_cell(" MD (ft) "), header_cell("md[ft]"), header_cell("Measured  Depth")
+    (('md', 'ft'), ('md', 'ft'), ('measured depth', None))
+    >>> header_cell("surface_torque [kN*m]")
+    ('surface_torque', 'kN*m')
+    """
+    match = _HEADER_CELL.match(cell)
+    assert match is not None  # the pattern matches any text
+    unit = match[2] if match[2] is not None else match[3]
+    return " ".join(match[1].lower().split()), unit
 
 
 def csv_rows(path: Path, key: str, what: str, header: str) -> list[tuple[int, list[str]]]:

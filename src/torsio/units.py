@@ -88,6 +88,57 @@ _NUMBER_AND_UNIT = re.compile(
 )
 
 
+#: The largest exponent a unit may carry ("m**3", "s^-2"): pint evaluates powers, and
+#: "9**9**9 N" would take it hours, so nothing else reaches it.
+MAX_UNIT_EXPONENT = 4
+_UNIT_TEXT = re.compile(  # a number, then names, "*", "/", spaces and parentheses
+    r"\s*(?:[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)?[\sA-Za-z_µΩ°\d*/^().+-]*"
+)
+_POWER = re.compile(r"(\*\*|\^)\s*")
+_EXPONENT = re.compile(r"\(?\s*[-+]?\d(?:\.\d+)?\s*\)?")
+
+
+def check_unit_text(text: str, key: str) -> None:
+    """Refuse a quantity string pint must not see: only a plain number and unit names,
+    ``*``, ``/`` and parentheses, each power a small exponent of a unit name.
+
+    Raises
+    ------
+    ConfigError
+        Naming ``key``, for other characters or for a power that is not
+        ``name**n`` / ``name^n`` with ``|n| <= MAX_UNIT_EXPONENT``.
+
+    Examples
+    --------
+    >>> check_unit_text("1.2 g/cm**3", "well.mud_density")
+    >>> check_unit_text("9**9**9 N", "wob")
+    Traceback (most recent call last):
+    ...
+    torsio.errors.ConfigError: wob: '9**9**9 N': a power applies to a unit name only ...
+    """
+    if _UNIT_TEXT.fullmatch(text) is None:
+        raise ConfigError(
+            key,
+            f"cannot read {text!r} as a quantity: expected a number and a unit "
+            "(letters, '*', '/', '**n' or '^n', parentheses), e.g. '100 kN'",
+        )
+    for power in _POWER.finditer(text):
+        before = text[: power.start()].rstrip()
+        exponent = _EXPONENT.match(text, power.end())
+        if not before or not (before[-1].isalpha() or before[-1] in "_µΩ°"):
+            raise ConfigError(
+                key,
+                f"{text!r}: a power applies to a unit name only (e.g. 'm**3'), "
+                "not to a number or a group",
+            )
+        if exponent is None or abs(float(exponent[0].strip("() "))) > MAX_UNIT_EXPONENT:
+            raise ConfigError(
+                key,
+                f"{text!r}: expected a unit's exponent from -{MAX_UNIT_EXPONENT} to "
+                f"{MAX_UNIT_EXPONENT} after {power[1]!r}",
+            )
+
+
 @lru_cache(maxsize=1)
 def _registry() -> Any:
     import pint  # imported lazily: only strings with units need it
@@ -148,6 +199,7 @@ def _parse(text: str, dimension: str, key: str) -> float:
     match = _NUMBER_AND_UNIT.fullmatch(text)
     if match is not None and COMMON_UNITS.get(match[2], ("", 0.0))[0] == dimension:
         return float(match[1]) * COMMON_UNITS[match[2]][1]  # "100 kN": no need for pint
+    check_unit_text(text, key)
     import pint
 
     ureg = _registry()

@@ -56,6 +56,7 @@ from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_setup import WaveRunSetup, run_wave, wave_run_setup
 from torsio.errors import ConfigError, SolverError
 from torsio.model.lumped import chain_matrix
+from torsio.units import as_rpm, as_si
 
 __all__ = ["AxialTransient", "first_torsional_frequency", "run_times", "simulate_axial"]
 
@@ -368,6 +369,7 @@ def simulate_axial(
         rebuilt at ``wob``. The growth rate is then that of the linearization with the
         contacts' damping (:mod:`torsio.axial.steady_friction`).
     """
+    wob, rpm = as_si(wob, "force", "wob"), as_rpm(rpm)  # "100 kN", "60 rpm" as in a file
     duration, window = run_times(assembly, duration, window)
     options = RunOptions(duration, window, start, perturbation, step, steps_per_period)
     setup: RunSetup | WaveRunSetup

@@ -169,8 +169,9 @@ def fit_recordings(
     recordings : sequence of Recording or path
         Each a start-up from rest (the model starts every run from rest at the record's
         first sample).
-    names : sequence of str
-        Fittable configuration keys (:mod:`torsio.calibration.parameters`).
+    names : sequence of str, or str
+        Fittable configuration keys (:mod:`torsio.calibration.parameters`); one key alone
+        may be given as a string.
     top : {"recorded", "configured"}
         The top held at the recorded speed (default), or the configured top drive.
     objective : {"torque", "features"}
@@ -193,6 +194,7 @@ def fit_recordings(
     FitResults
     """
     started = clock.perf_counter()
+    names = (names,) if isinstance(names, str) else names  # one name, not its letters
     records = _recordings(recordings)
     if objective not in OBJECTIVES:
         raise ConfigError(

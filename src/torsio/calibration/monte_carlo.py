@@ -26,6 +26,7 @@ import numpy as np
 
 from torsio.analysis.maps import severity_map
 from torsio.calibration.parameters import SystemFamily
+from torsio.errors import ConfigError
 
 if TYPE_CHECKING:
     from torsio.analysis.map_options import MapOptions
@@ -142,6 +143,8 @@ def severity_probability(
     executor
         Any executor :func:`~torsio.analysis.maps.severity_map` takes.
     """
+    if isinstance(samples, bool) or not isinstance(samples, int | np.integer) or samples < 1:
+        raise ConfigError("samples", f"expected a whole number of samples >= 1, got {samples!r}")
     family = SystemFamily(config)
     draws = parameter_draws(fit, family, int(samples), seed)
     maps = [

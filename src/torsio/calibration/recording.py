@@ -2,7 +2,7 @@
 
 The header names the columns; ``time``, a top-drive speed and the surface torque are
 required, a downhole bit speed is optional, other columns are read past. A column name
-may carry its unit in brackets; without one, the defaults apply:
+may carry its unit in brackets or parentheses; without one, the defaults apply:
 
 ==================  =========================  ===============================================
 column              default unit               units accepted in brackets
@@ -46,7 +46,6 @@ from __future__ import annotations
 
 import csv
 import math
-import re
 import warnings
 from collections.abc import Callable
 from pathlib import Path
@@ -55,7 +54,7 @@ from typing import TYPE_CHECKING
 import attrs
 import numpy as np
 
-from torsio.csv_rows import csv_rows
+from torsio.csv_rows import csv_rows, header_cell
 from torsio.errors import ConfigError
 from torsio.model.arrays import read_only
 
@@ -90,7 +89,6 @@ COLUMNS: dict[str, tuple[str, str]] = {
 
 GAP_FACTOR = 5.0
 SPIKE_SIGMAS = 8.0
-_HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
 
 
 def _area(time: np.ndarray, speed: np.ndarray, at: np.ndarray) -> np.ndarray:
@@ -245,12 +243,11 @@ def _columns(header: list[str], name: str, line: int) -> dict[str, tuple[int, fl
     """Column index and factor to SI of each column read, by its canonical name."""
     found: dict[str, tuple[int, float]] = {}
     for index, cell in enumerate(header):
-        match = _HEADER.match(cell)
-        if match is None or match.group(1).lower() not in COLUMNS:
+        column, given_unit = header_cell(cell)
+        if column not in COLUMNS:
             continue
-        column = match.group(1).lower()
         dimension, default = COLUMNS[column]
-        unit = (match.group(2) or default).lower()
+        unit = (given_unit or default).lower()
         units = COLUMN_UNITS[dimension]
         if unit not in units:
             raise ConfigError(

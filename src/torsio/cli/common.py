@@ -81,6 +81,17 @@ def add_json_argument(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print one JSON object")
 
 
+def add_units_argument(parser: argparse.ArgumentParser) -> None:
+    """--units: the units of tables and plots (torsio.display_units); JSON stays SI."""
+    parser.add_argument(
+        "--units",
+        choices=("si", "field"),
+        default="si",
+        help="units of tables and plots: si (kN, kN m, m; default) or field (klbf, "
+        "kft·lbf, ft, ppg); JSON stays SI",
+    )
+
+
 def add_run_time_arguments(
     parser: argparse.ArgumentParser, length: str = "run length", run: str = "the run"
 ) -> None:

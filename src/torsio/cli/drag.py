@@ -51,6 +51,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--plot", metavar="FILE", help="tension and torque against depth (needs matplotlib)"
     )
+    common.add_units_argument(parser)
     common.add_json_argument(parser)
 
 
@@ -137,8 +138,11 @@ def law_bit_torque(config: Any, wob: float, rpm: Any = None) -> tuple[float, str
 
 def run(args: argparse.Namespace) -> int:
     """Run ``torsio drag`` with parsed arguments; return the exit status."""
+    import functools
+
     import attrs
 
+    from torsio.display_units import DisplayUnits
     from torsio.errors import ConfigError
     from torsio.well.break_off import break_off
     from torsio.well.torque_drag import torque_drag
@@ -168,36 +172,55 @@ def run(args: argparse.Namespace) -> int:
         bit_torque_source=source,
         break_off=break_off(_with_friction(config.well, args.friction), config.string),
     )
-    return common.write_and_print(args, results, outputs, _print_table)
+    units = DisplayUnits(args.units)
+    written = {}
+    if "plot" in outputs:  # drawn here, in the units asked for
+        written["plot"] = outputs.pop("plot")
+        results.plot(written["plot"], units=units)
+    return common.write_and_print(
+        args, results, outputs, functools.partial(_print_table, units=units), written
+    )
 
 
-def _print_table(results: Any, written: dict[str, str]) -> None:
+def _print_table(results: Any, written: dict[str, str], units: Any) -> None:
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
+    force, torque = units.label("force"), units.label("torque")
     table = Table(title="Soft-string torque and drag")
-    for name in ("operation", "hookload [kN]", "surface torque [kN m]"):
-        table.add_column(name, justify="left" if name == "operation" else "right")
-    table.add_row("tripping out (pick-up)", f"{results.hookload_trip_out / 1e3:.1f}", "-")
-    table.add_row("tripping in (slack-off)", f"{results.hookload_trip_in / 1e3:.1f}", "-")
+    for name in (
+        "operation",
+        units.header("hookload", "force"),
+        units.header("surface torque", "torque"),
+    ):
+        table.add_column(escape(name), justify="left" if name == "operation" else "right")
     table.add_row(
-        "rotating off bottom",
-        f"{results.hookload_rotating / 1e3:.1f}",
-        f"{results.surface_torque_rotating / 1e3:.2f}",
+        "tripping out (pick-up)", units.number("force", results.hookload_trip_out, ".1f"), "-"
     )
     table.add_row(
-        f"rotating on bottom (WOB {results.wob / 1e3:g} kN, bit {results.bit_torque / 1e3:.3g} "
-        f"kN m: {results.bit_torque_source})",
-        f"{results.hookload_on_bottom / 1e3:.1f}",
-        f"{results.surface_torque_on_bottom / 1e3:.2f}",
+        "tripping in (slack-off)", units.number("force", results.hookload_trip_in, ".1f"), "-"
+    )
+    table.add_row(
+        "rotating off bottom",
+        units.number("force", results.hookload_rotating, ".1f"),
+        units.number("torque", results.surface_torque_rotating, ".2f"),
+    )
+    table.add_row(
+        f"rotating on bottom (WOB {units.number('force', results.wob, '.4g')} {force}, "
+        f"bit {units.number('torque', results.bit_torque, '.3g')} {torque}: "
+        f"{results.bit_torque_source})",
+        units.number("force", results.hookload_on_bottom, ".1f"),
+        units.number("torque", results.surface_torque_on_bottom, ".2f"),
     )
     console = Console()
     console.print(table)
     neutral = results.neutral_point_md
     lines = [
-        f"buoyed weight of the string {results.buoyed_weight / 1e3:.1f} kN; "
-        f"string top at md {results.string_top_md:g} m, bit at md {results.md[-1]:g} m",
-        "neutral point on bottom: " + _neutral_point(results, neutral),
+        f"buoyed weight of the string {units.text('force', results.buoyed_weight, '.1f')}; "
+        f"string top at md {units.text('length', results.string_top_md, 'g')}, "
+        f"bit at md {units.text('length', results.md[-1], 'g')}",
+        "neutral point on bottom: " + _neutral_point(results, neutral, units),
         f"normal force: {results.normal_force_model}"
         + (
             ""
@@ -207,10 +230,11 @@ def _print_table(results: Any, written: dict[str, str]) -> None:
     ]
     if results.break_off is not None:
         lines.append(
-            f"break-off from rest (static friction): {results.break_off.torque / 1e3:.2f} kN m "
+            "break-off from rest (static friction): "
+            f"{units.text('torque', results.break_off.torque, '.2f')} "
             f"at the top after a twist of {results.break_off.twist:.2f} rad "
             f"({results.break_off.twist / (2 * 3.141592653589793):.2f} turns); sliding "
-            f"{results.break_off.sliding_torque / 1e3:.2f} kN m"
+            f"{units.text('torque', results.break_off.sliding_torque, '.2f')}"
         )
     if "plot" in written:
         lines.append(f"wrote {written['plot']}")
@@ -218,14 +242,15 @@ def _print_table(results: Any, written: dict[str, str]) -> None:
         console.print(line, highlight=False)
 
 
-def _neutral_point(results: Any, neutral: float | None) -> str:
+def _neutral_point(results: Any, neutral: float | None, units: Any) -> str:
     """Where the on-bottom tension changes sign, or why there is no such point."""
     if neutral is not None:
-        return f"md {neutral:.0f} m"
+        return f"md {units.text('length', neutral, '.0f')}"
     if results.all_in_compression:
         return (
             f"above the top: the whole string is in compression (hookload on bottom "
-            f"{results.hookload_on_bottom / 1e3:.1f} kN: the weight on bit exceeds what the "
+            f"{units.text('force', results.hookload_on_bottom, '.1f')}: the weight on bit "
+            "exceeds what the "
             "string's weight holds)"
         )
     return "none (the string is nowhere in compression)"

@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import argparse
+import functools
 import sys
 from pathlib import Path
 from typing import Any
 
 from torsio.cli import common
+from torsio.display_units import DisplayUnits
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -51,6 +53,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="write what a rig records of the run (time, top_rpm, surface_torque, bit_rpm): "
         "the CSV torsio fit reads",
     )
+    common.add_units_argument(parser)
     common.add_json_argument(parser)
 
 
@@ -111,7 +114,8 @@ def run(args: argparse.Namespace) -> int:
         name = Path(outputs["recording"]).name
         Recording.from_transient(results, bit_speed=True, name=name).save(outputs["recording"])
         written["recording"] = outputs["recording"]
-    return common.write_and_print(args, results, outputs, _print_summary, written)
+    summary = functools.partial(_print_summary, units=DisplayUnits(args.units))
+    return common.write_and_print(args, results, outputs, summary, written)
 
 
 def _refuse_integrator_options(config: Any, args: argparse.Namespace, given: dict) -> None:
@@ -147,11 +151,12 @@ def _option_name(key: str) -> str:
     return _OPTIONS.get(key, key)
 
 
-def _print_summary(results: Any, written: dict[str, str]) -> None:
+def _print_summary(results: Any, written: dict[str, str], units: Any = None) -> None:
     from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
 
+    units = DisplayUnits() if units is None else units
     system = results.system
     solver = results.solver
     table = Table(title=f"Transient response: {system.model.strategy}, {system.model.dofs} DOF")
@@ -159,7 +164,7 @@ def _print_summary(results: Any, written: dict[str, str]) -> None:
     table.add_column("value", justify="right")
     window = results.window_mask
     rows = [
-        ("weight on bit", f"{system.wob / 1e3:.4g} kN"),
+        ("weight on bit", units.text("force", system.wob, ".4g")),
         (
             "rotary speed",
             f"{results.rpm:.4g} rpm"
@@ -183,8 +188,8 @@ def _print_summary(results: Any, written: dict[str, str]) -> None:
             "stick fraction",
             f"{results.stick_fraction:.3f}  (|bit speed| < {results.stick_threshold:g} Omega)",
         ),
-        ("mean surface torque", f"{results.surface_torque[window].mean() / 1e3:.4g} kN m"),
-        ("mean torque on bit", f"{results.bit_torque[window].mean() / 1e3:.4g} kN m"),
+        ("mean surface torque", units.text("torque", results.surface_torque[window].mean(), ".4g")),
+        ("mean torque on bit", units.text("torque", results.bit_torque[window].mean(), ".4g")),
         (
             "solver",
             f"{solver['method']} ({solver.get('engine', 'scipy')} engine) "
@@ -194,7 +199,7 @@ def _print_summary(results: Any, written: dict[str, str]) -> None:
             f"{solver['wall_time_s']:.2f} s",
         ),
     ]
-    rows.extend(_well_rows(results.well_summary))
+    rows.extend(_well_rows(results.well_summary, units))
     if "csv" in written:
         rows.append(("time series", written["csv"]))
     if "plot" in written:
@@ -206,7 +211,7 @@ def _print_summary(results: Any, written: dict[str, str]) -> None:
     Console().print(table)
 
 
-def _well_rows(summary: Any) -> list[tuple[str, str]]:
+def _well_rows(summary: Any, units: Any) -> list[tuple[str, str]]:
     """Rows of a run with friction along the string (a [well]); none without."""
     if summary is None:
         return []
@@ -215,11 +220,14 @@ def _well_rows(summary: Any) -> list[tuple[str, str]]:
     return [
         (
             "surface torque in window",
-            f"{summary['surface_torque_min'] / 1e3:.4g} .. "
-            f"{summary['surface_torque_max'] / 1e3:.4g} kN m",
+            f"{units.number('torque', summary['surface_torque_min'], '.4g')} .. "
+            f"{units.text('torque', summary['surface_torque_max'], '.4g')}",
         ),
-        ("peak surface torque", f"{summary['surface_torque_peak'] / 1e3:.4g} kN m"),
-        ("surface-torque swing in window", f"{summary['surface_torque_swing'] / 1e3:.4g} kN m"),
+        ("peak surface torque", units.text("torque", summary["surface_torque_peak"], ".4g")),
+        (
+            "surface-torque swing in window",
+            units.text("torque", summary["surface_torque_swing"], ".4g"),
+        ),
         (
             "stick-slip period in window",
             "none" if period is None else f"{period:.4g} s",
@@ -228,5 +236,5 @@ def _well_rows(summary: Any) -> list[tuple[str, str]]:
             f"bit first faster than {summary['threshold_speed']:g} rad/s",
             "never" if first is None else f"at {first:.4g} s",
         ),
-        ("friction work along the string", f"{summary['friction_work'] / 1e3:.4g} kJ"),
+        ("friction work along the string", units.energy(summary["friction_work"])),
     ]

@@ -102,11 +102,11 @@ def _survey(table: Mapping[str, Any], source: str) -> Survey:
     try:
         return Survey(
             md,
-            _degrees(table["inclination"], "well.inclination"),
-            _degrees(table["azimuth"], "well.azimuth"),
+            _degrees(table["inclination"], "inclination"),
+            _degrees(table["azimuth"], "azimuth"),
             source="[well]",
         )
-    except ConfigError as exc:
+    except ConfigError as exc:  # keys inside are relative to [well]: prefixed here only
         raise ConfigError(f"well.{exc.key}", exc.message) from None
 
 

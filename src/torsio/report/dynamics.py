@@ -3,6 +3,7 @@ critical weight on bit."""
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -126,7 +127,10 @@ def response_section(ctx: ReportContext) -> ReportSection | None:
     )
     table.add_row(
         "bit speed",
-        Text(f"{data['bit_speed_min_rad_s']:.4g} to {data['bit_speed_max_rad_s']:.4g} rad/s"),
+        Text(  # in rpm, as the rotary speed it is compared with (30/pi rpm per rad/s)
+            f"{data['bit_speed_min_rad_s'] * 30.0 / math.pi:.4g} to "
+            f"{data['bit_speed_max_rad_s'] * 30.0 / math.pi:.4g} rpm"
+        ),
     )
     table.add_row("window", Text(f"{start:.4g} to {end:.4g} s of a start-up from rest"))
     rtol, atol = solver.get("rtol"), solver.get("atol")

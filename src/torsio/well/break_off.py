@@ -57,6 +57,7 @@ import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.model.drillstring import DrillString
+from torsio.units import as_si
 from torsio.well.rotating_column import RotatingColumn
 from torsio.well.wellbore import Wellbore
 
@@ -143,6 +144,7 @@ def break_off(
     -------
     BreakOff
     """
+    wob, cell_length = as_si(wob, "force", "wob"), as_si(cell_length, "length", "cell_length")
     if not (math.isfinite(cell_length) and cell_length > 0.0):
         raise ConfigError("cell_length", f"expected a positive length in m, got {cell_length!r}")
     if not (math.isfinite(wob) and wob >= 0.0):

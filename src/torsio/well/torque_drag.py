@@ -41,6 +41,7 @@ import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.model.drillstring import DrillString
+from torsio.units import as_si
 from torsio.well.rotating_column import RotatingColumn, step_counts
 from torsio.well.torque_drag_results import TorqueDragResults
 from torsio.well.wellbore import Wellbore
@@ -91,6 +92,8 @@ def torque_drag(
     ConfigError
         A string longer than the survey, or a negative or non-finite option (named).
     """
+    wob, bit_torque = as_si(wob, "force", "wob"), as_si(bit_torque, "torque", "bit_torque")
+    cell_length = as_si(cell_length, "length", "cell_length")
     for name, value in (("friction", friction), ("wob", wob), ("bit_torque", bit_torque)):
         if value is not None and not (math.isfinite(value) and value >= 0.0):
             raise ConfigError(name, f"expected a non-negative finite number, got {value!r}")

@@ -176,12 +176,14 @@ class TorqueDragResults:
             **({} if self.break_off is None else self.break_off.to_dict()),
         }
 
-    def plot(self, path: str | Path | None = None, ax: Any = None) -> Any:
+    def plot(self, path: str | Path | None = None, ax: Any = None, units: Any = None) -> Any:
         """Tension and torque against measured depth, depth increasing downward.
 
         ``ax``: two matplotlib axes (tension, torque) to draw into; ``path`` writes the
-        figure (format by suffix). Returns the figure. Needs matplotlib (``torsio[plot]``).
+        figure (format by suffix); ``units``: a :class:`~torsio.display_units.DisplayUnits`
+        (default SI: kN, kN m, m). Returns the figure. Needs matplotlib (``torsio[plot]``).
         """
+        from torsio.display_units import DisplayUnits
         from torsio.errors import ConfigError
         from torsio.plotting.figures import pyplot, save_figure
 
@@ -191,15 +193,17 @@ class TorqueDragResults:
             axes, figure = ax, ax[0].figure
         else:
             figure, axes = pyplot().subplots(1, 2, sharey=True, figsize=(9.0, 6.0))
+        units = DisplayUnits() if units is None else units
+        md = units.value("length", self.md)
         labels = ("tripping out", "tripping in", "rotating off bottom", "rotating on bottom")
         for column, label in enumerate(labels):
-            axes[0].plot(self.tension[:, column] / 1e3, self.md, label=label)
+            axes[0].plot(units.value("force", self.tension[:, column]), md, label=label)
         axes[0].axvline(0.0, color="0.6", linewidth=0.8)
-        axes[1].plot(self.torque[:, 0] / 1e3, self.md, label=labels[2], color="C2")
-        axes[1].plot(self.torque[:, 1] / 1e3, self.md, label=labels[3], color="C3")
-        axes[0].set_xlabel("effective tension [kN]")
-        axes[1].set_xlabel("torque [kN m]")
-        axes[0].set_ylabel("measured depth [m]")
+        axes[1].plot(units.value("torque", self.torque[:, 0]), md, label=labels[2], color="C2")
+        axes[1].plot(units.value("torque", self.torque[:, 1]), md, label=labels[3], color="C3")
+        axes[0].set_xlabel(units.header("effective tension", "force"))
+        axes[1].set_xlabel(units.header("torque", "torque"))
+        axes[0].set_ylabel(units.header("measured depth", "length"))
         if not axes[0].yaxis_inverted():
             axes[0].invert_yaxis()
         for axis in axes:

@@ -27,6 +27,7 @@ import attrs
 import numpy as np
 
 from torsio.errors import ConfigError
+from torsio.units import si_field
 from torsio.well.survey import Survey
 
 __all__ = [
@@ -83,7 +84,7 @@ class HoleSection:
         Free text for reports (``"casing 9 5/8 in"``).
     """
 
-    to_md: float
+    to_md: float = si_field("length", "to_md")
     friction_static: float | None = None
     friction_dynamic: float | None = None
     name: str = ""
@@ -119,10 +120,10 @@ class Wellbore:
     """
 
     survey: Survey
-    mud_density: float = 0.0
+    mud_density: float = si_field("density", "mud_density", default=0.0)
     friction_static: float = 0.3
     friction_dynamic: float = 0.25
-    threshold_speed: float = 0.5
+    threshold_speed: float = si_field("angular_speed", "threshold_speed", default=0.5)
     normal_force: str = "soft-string"
     hole: tuple[HoleSection, ...] = attrs.field(default=(), converter=tuple)
 
