@@ -13,6 +13,7 @@ from __future__ import annotations
 import json
 
 import attrs
+import numpy as np
 import pytest
 
 from torsio.analysis.wave import wave_response
@@ -80,6 +81,29 @@ def test_start_ups_recorded_by_torsio_give_back_their_friction_factors(which, re
     assert results.notes()[0].startswith("started from the closed forms")
     assert results.to_dict()["start"]["friction_static"] != pytest.approx(0.35, abs=1e-3)
     assert results.residual < (1.0 if which == "clean" else 0.03 * 12e3)  # N m
+
+
+def test_clean_and_noisy_start_ups_have_no_spike(clean, noisy):
+    # the break-free moment is physics, not a fault of the torque sub
+    assert [r.spikes().size for r in clean + noisy] == [0, 0, 0, 0]
+
+
+def test_a_spike_in_a_record_logged_to_10_n_m_does_not_drive_the_fit(clean):
+    # issue 36 case 7: one 5x spike at 30 s in the 120 rpm start-up logged to 10 N m gave
+    # mu_s = 2.245 +- 0.049 (identifiable, no warning); the spike is left out, the fit
+    # returns the truth of the record (TRUTH) and says what it left out
+    record = clean[0]
+    torque = np.round(record.surface_torque, -1)
+    spike = int(np.searchsorted(record.time, 30.0))
+    torque[spike] *= 5.0
+    record = attrs.evolve(record, surface_torque=torque, name="rig.csv")
+    results = fit_recordings(deviated_well_config(), [record], NAMES)
+    _check_recovered(results)
+    assert results.warnings == (
+        "rig.csv: 1 surface-torque spike (at 30.0008 s) left out of the fit: each replaced "
+        "by the record linear between its neighbours",
+    )
+    assert results.to_dict()["warnings"] == list(results.warnings)
 
 
 def test_the_same_top_drive_and_grid_that_made_the_recordings_return_the_truth(clean):

@@ -76,8 +76,39 @@ def test_gaps_and_spikes_are_warnings_naming_the_line(tmp_path):
         warnings.simplefilter("always")
         read_recording(_write(tmp_path, HEADER + rows))
     messages = [str(w.message) for w in caught]
-    assert any("line 42: a gap of 6.1 s" in m for m in messages), messages
-    assert any("line 22: surface torque 9000 N m is a spike" in m for m in messages), messages
+    assert any("1 gap in all: line 42: a gap of 6.1 s" in m for m in messages), messages
+    assert any("1 surface-torque spike in all: line 22: 9000 N m" in m for m in messages)
+
+
+def test_spikes_in_a_record_logged_to_10_n_m_are_found_and_counted(tmp_path):
+    # a rig logs the torque to 10 N m: on a smooth ramp most samples are their own median,
+    # so the median absolute deviation is 0 (the check used to return there, silently);
+    # five 5x spikes (a glitch no string makes) are counted and the first three named
+    time = 0.01 * np.arange(1000)
+    torque = np.round(12e3 * (1.0 - np.exp(-time)), -1)
+    spiky = [200, 400, 500, 600, 800]
+    torque[spiky] *= 5.0
+    rows = "".join(f"{t:.2f},120,{q:g}\n" for t, q in zip(time, torque, strict=True))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        record = read_recording(_write(tmp_path, HEADER + rows))
+    messages = [str(w.message) for w in caught if "spike" in str(w.message)]
+    assert len(messages) == 1, messages
+    # line = index + 2 (the header is line 1)
+    assert "5 surface-torque spikes in all (the first 3 named): line 202: " in messages[0]
+    assert "line 402: " in messages[0] and "line 502: " in messages[0]
+    assert "line 602" not in messages[0]
+    assert record.spikes().tolist() == spiky
+    # without them: the record linear between the neighbours (exact on a 10 N m grid to 10)
+    assert np.abs(record.without_spikes().surface_torque[spiky] - torque[spiky] / 5).max() <= 10
+
+
+def test_a_break_free_drop_is_not_a_spike():
+    # a step of the torque (the string breaking free, a wave reaching the top) is followed
+    # sample for sample by the median of 11: no departure, no spike
+    torque = np.r_[np.linspace(0.0, 15e3, 300), np.full(300, 11e3)]
+    record = Recording(time=np.arange(600.0), top_speed=np.ones(600), surface_torque=torque)
+    assert record.spikes().size == 0
 
 
 def test_a_recording_saved_reads_back(tmp_path):

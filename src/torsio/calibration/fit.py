@@ -128,10 +128,28 @@ def _search_non_smooth(misfit: _Misfit, x: np.ndarray, lower: np.ndarray) -> np.
     return x
 
 
-def _recordings(recordings: Sequence[Any]) -> list[Recording]:
+def _recordings(recordings: Sequence[Any], said: list[str]) -> list[Recording]:
+    """The recordings read, each spike of their torque replaced by the record linear
+    between its neighbours (a spike would otherwise drive the fit: the closed-form start
+    reads the peak, and one sample far off outweighs thousands); ``said`` gets a warning
+    per recording with spikes."""
     if not recordings:
         raise ConfigError("recording", "no recording to fit; give at least one")
-    return [r if isinstance(r, Recording) else read_recording(Path(r)) for r in recordings]
+    records = [r if isinstance(r, Recording) else read_recording(Path(r)) for r in recordings]
+    cleaned = []
+    for record in records:
+        spikes = record.spikes()
+        if spikes.size:
+            at = ", ".join(f"{t:g}" for t in record.time[spikes[:3]])
+            said.append(
+                f"{record.name}: {spikes.size} surface-torque spike"
+                f"{'s' if spikes.size > 1 else ''} (at {at}{' ...' if spikes.size > 3 else ''}"
+                " s) left out of the fit: each replaced by the record linear between its "
+                "neighbours"
+            )
+            record = record.without_spikes()
+        cleaned.append(record)
+    return cleaned
 
 
 def _tops(config: Any, recordings: Sequence[Recording], top: str, smoothing: float) -> list[Any]:
@@ -193,7 +211,8 @@ def fit_recordings(
     FitResults
     """
     started = clock.perf_counter()
-    records = _recordings(recordings)
+    said: list[str] = []
+    records = _recordings(recordings, said)
     if objective not in OBJECTIVES:
         raise ConfigError(
             "objective", f"unknown objective {objective!r}; expected one of {', '.join(OBJECTIVES)}"
@@ -257,4 +276,5 @@ def fit_recordings(
         runs=misfit.runs,
         seconds=clock.perf_counter() - started,
         message=str(solution.message),
+        warnings=tuple(said),
     )
