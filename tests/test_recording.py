@@ -57,6 +57,13 @@ def test_units_in_the_header_and_an_optional_bit_speed(tmp_path):
         (HEADER + "0,0,0\n1,nan,0\n", r"rig\.csv, line 3: column top_rpm: 'nan' is not a finite"),
         (HEADER + "0,0,0\n2,1,1\n1,1,1\n", r"rig\.csv, line 4: time 1 s does not increase"),
         (HEADER + "0,0,0\n1,1\n", r"rig\.csv, line 3: 2 fields, expected 3"),
+        # issue 38 item 4: a thousands separator in a comma CSV makes an extra field
+        (HEADER + "0,0,0\n0.02,2,12,503\n", r"line 3: 4 fields, expected 3 .*thousands"),
+        # quoted, it is one field of the right column; a letter O for a zero likewise
+        (HEADER + '0,0,0\n0.02,2,"12,503"\n', r"line 3: column surface_torque: .*thousands"),
+        (HEADER + "0,0,0\n0.02,2,5O3\n", r"line 3: column surface_torque: '5O3' .*letter"),
+        ("time,surface_torque,top_rpm\n0,0,0\n1,5O3,2\n", r"line 3: column surface_torque"),
+        (HEADER + "0,0,0\n1,1,1\n0.5,1,1\n", r"rig\.csv, line 4: time 0\.5 s does not"),
         ("time,top_rpm,surface_torque[lbs]\n0,0,0\n", r"line 1: .*unknown unit 'lbs'"),
         (HEADER, r"rig\.csv: expected at least 2 samples"),
         ("", r"rig\.csv: the file is empty"),
@@ -109,6 +116,29 @@ def test_a_break_free_drop_is_not_a_spike():
     torque = np.r_[np.linspace(0.0, 15e3, 300), np.full(300, 11e3)]
     record = Recording(time=np.arange(600.0), top_speed=np.ones(600), surface_torque=torque)
     assert record.spikes().size == 0
+
+
+def test_a_recording_too_large_is_refused_before_it_is_read(tmp_path, monkeypatch):
+    # issue 36 case 14: a 10-million-row file was read (66 s, 6.5 GB) before the run's
+    # duration was refused; the size is checked first
+    from torsio.calibration import recording
+
+    path = _write(tmp_path, HEADER + "0,0,0\n1,1,1\n")
+    monkeypatch.setattr(recording, "MAX_BYTES", 10)
+    # the file: 28 bytes of header and two lines of 6 bytes
+    with pytest.raises(ConfigError, match=r"^recording: rig\.csv: 4e-05 MB, more than the 1e-05"):
+        read_recording(path)
+
+
+def test_torsio_fit_on_a_line_with_extra_fields_exits_2_naming_the_line(tmp_path, capsys):
+    from torsio.cli import main
+
+    config = _write(tmp_path, WELL_TOML, name="well.toml")
+    record = _write(tmp_path, HEADER + "0,0,0\n0.01,2,12503\n0.02,2,12,503\n")
+    status = main(["fit", str(config), "--recording", str(record), "--fit", "friction_dynamic"])
+    error = capsys.readouterr().err
+    assert status == 2 and "Traceback" not in error
+    assert "rig.csv, line 4: 4 fields, expected 3" in error
 
 
 def test_a_recording_saved_reads_back(tmp_path):

@@ -92,6 +92,11 @@ COLUMNS: dict[str, tuple[str, str]] = {
 GAP_FACTOR = 5.0
 NAMED = 3
 """Gaps or spikes named by their line in a warning (the others counted)."""
+
+MAX_BYTES = 20e6
+"""The largest recording file read [bytes], checked before it is read: a line of a
+recording takes about 40 bytes in the file and, read, about 600 bytes of memory, and each
+run of a fit simulates the whole record (a 60 s start-up takes about 0.06 s of stepping)."""
 _HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
 
 
@@ -291,9 +296,16 @@ def _value(cell: str, column: str, name: str, line: int) -> float:
         value = float(cell)
     except ValueError:
         value = math.nan
-        if cell.strip().lower() not in ("nan", "inf", "-inf"):
+        text = cell.strip()
+        if text.lower() not in ("nan", "inf", "-inf"):
+            hint = ""
+            if "," in text or "'" in text or " " in text:
+                hint = " (a thousands separator? write the number without it)"
+            elif any(c.isalpha() for c in text):
+                hint = " (a letter in a number: O typed for 0?)"
             raise ConfigError(
-                "recording", f"{name}, line {line}: column {column}: {cell!r} is not a number"
+                "recording",
+                f"{name}, line {line}: column {column}: {cell!r} is not a number{hint}",
             ) from None
     if not math.isfinite(value):
         raise ConfigError(
@@ -363,24 +375,40 @@ def read_recording(path: str | Path) -> Recording:
     Raises
     ------
     ConfigError
-        The file cannot be read, its header lacks a column or names an unknown unit, a
-        line has too few fields, a value is not a finite number or a time does not
-        increase; the message names the file and the line.
+        The file cannot be read or is larger than :data:`MAX_BYTES`, its header lacks a
+        column or names an unknown unit, a line has more or fewer fields than the header,
+        a value is not a finite number or a time does not increase; the message names the
+        file and the line (and the column).
     """
     path = Path(path)
     name = path.name
+    try:
+        size = path.stat().st_size
+    except OSError:
+        size = 0  # csv_rows says why it cannot be read
+    if size > MAX_BYTES:
+        raise ConfigError(
+            "recording",
+            f"{name}: {size / 1e6:.4g} MB, more than the {MAX_BYTES / 1e6:g} MB a recording "
+            "may take (about 500,000 samples: 1.4 h at 100 samples per second); cut it to "
+            "the start-ups, or resample it",
+        )
     rows = csv_rows(path, "recording", "recording", "time,top_rpm,surface_torque")
     header_line, header = rows[0]
     columns = _columns(header, name, header_line)
     values: dict[str, list[float]] = {key: [] for key in columns}
     lines = []
     for number, row in rows[1:]:
+        if len(row) != len(header):
+            hint = ""
+            if len(row) > len(header):
+                hint = " (a thousands separator or a decimal comma in a comma-separated file?)"
+            raise ConfigError(
+                "recording",
+                f"{name}, line {number}: {len(row)} fields, expected {len(header)} as the "
+                f"header {','.join(header)!r}{hint}",
+            )
         for key, (index, factor) in columns.items():
-            if index >= len(row):
-                raise ConfigError(
-                    "recording",
-                    f"{name}, line {number}: {len(row)} fields, expected {len(header)}",
-                )
             values[key].append(_value(row[index], header[index].strip(), name, number) * factor)
         lines.append(number)
     if len(lines) < 2:
