@@ -106,6 +106,36 @@ def test_a_spike_in_a_record_logged_to_10_n_m_does_not_drive_the_fit(clean):
     assert results.to_dict()["warnings"] == list(results.warnings)
 
 
+def _moving(record: Recording) -> Recording:
+    # the 120 rpm start-up from 20 s on: its first sample at 117 rpm, the string sliding
+    keep = record.time >= 20.0
+    return Recording(
+        time=record.time[keep],
+        top_speed=record.top_speed[keep],
+        surface_torque=record.surface_torque[keep],
+        name="moving.csv",
+    )
+
+
+def test_a_record_that_does_not_start_at_rest_cannot_inform_the_static_factor(clean):
+    # issue 36 case 8: such a record returned mu_s 0.288 < mu_d 0.301, only "weakly
+    # identifiable"; with no break-over recorded (the first speed, 117 rpm, is above the
+    # threshold speed 0.5 rad/s of data/deviated_well.toml) mu_s is refused, named
+    moving = _moving(clean[0])
+    with pytest.raises(
+        ConfigError,
+        match=r"^fit: friction_static cannot be fitted .*"
+        r"moving\.csv starts at 117 rpm, above the threshold speed 4\.77 rpm",
+    ):
+        fit_recordings(deviated_well_config(), [moving], NAMES)
+    # with a start-up beside it: said, and the fit stays in the admissible set mu_d <= mu_s
+    results = fit_recordings(deviated_well_config(), [moving, clean[1]], NAMES)
+    assert results.parameters["friction_dynamic"] <= results.parameters["friction_static"]
+    assert len(results.warnings) == 1
+    assert results.warnings[0].startswith("moving.csv starts at 117 rpm")
+    assert "only the other recordings inform friction_static" in results.warnings[0]
+
+
 def test_the_same_top_drive_and_grid_that_made_the_recordings_return_the_truth(clean):
     # the model that made the recordings: its fit has nothing left to explain
     config = deviated_well_config()

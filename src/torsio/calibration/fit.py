@@ -160,6 +160,54 @@ def _tops(config: Any, recordings: Sequence[Recording], top: str, smoothing: flo
     raise ConfigError("top", f"unknown top {top!r}; expected one of {', '.join(TOPS)}")
 
 
+def _pairs(names: Sequence[str]) -> list[tuple[int, int]]:
+    """(static, sliding) indices of the factors of a stretch fitted together."""
+    pairs = []
+    for k, name in enumerate(names):
+        dynamic = name.replace("friction_static", "friction_dynamic")
+        if dynamic != name and dynamic in names:
+            pairs.append((k, list(names).index(dynamic)))
+    return pairs
+
+
+def _gaps(pairs: list[tuple[int, int]], size: int) -> np.ndarray:
+    """The matrix A of y = A x: each fitted static factor replaced by its excess over the
+    sliding one, mu_s - mu_d >= 0, so that a box bound keeps the fit in the admissible
+    set mu_d <= mu_s (the one a configuration accepts)."""
+    matrix = np.eye(size)
+    for static, dynamic in pairs:
+        matrix[static, dynamic] = -1.0
+    return matrix
+
+
+def _not_at_rest(
+    family: SystemFamily, records: Sequence[Recording], names: Sequence[str], said: list[str]
+) -> None:
+    """A record whose first top speed is above the threshold speed starts with the string
+    sliding: it holds no break-over and cannot inform a static factor. Refused when no
+    record starts at rest and a static factor is fitted; said otherwise."""
+    threshold = float(family.values["threshold_speed"])
+    moving = [r for r in records if abs(float(r.top_speed[0])) > threshold]
+    static = [n for n in names if n.split(".")[-1] == "friction_static"]
+    why = ", ".join(f"{r.name} starts at {float(r.top_speed[0]) / RPM:.4g} rpm" for r in moving)
+    where = (
+        f"above the threshold speed {threshold / RPM:.3g} rpm: the string is already "
+        "sliding and no break-over is recorded"
+    )
+    if static and len(moving) == len(records):
+        raise ConfigError(
+            "fit",
+            f"{', '.join(static)} cannot be fitted from these recordings: none starts from "
+            f"rest ({why}, {where}); fit the sliding factors alone, or give a start-up",
+        )
+    if moving:
+        said.append(
+            f"{why}, {where}; the model starts from rest at the first sample, so the "
+            "start of the record is a transient the rig did not have"
+            + (f"; only the other recordings inform {', '.join(static)}" if static else "")
+        )
+
+
 def _final_rpm(record: Recording) -> float:
     tail = record.time >= record.time[-1] - 0.1 * record.duration
     return float(np.mean(record.top_speed[tail]) / RPM)
@@ -227,6 +275,7 @@ def fit_recordings(
     rpms = list(rpm) if rpm is not None else [_final_rpm(r) for r in records]
     if len(rpms) != len(records):
         raise ConfigError("rpm", f"expected one set speed per recording ({len(records)})")
+    _not_at_rest(family, records, names, said)
     misfit = _Misfit(family, records, names, tops, rpms, wob, objective)
     start = closed_form_start(family, records, names)
     for _ in range(START_STEPS):
@@ -235,11 +284,16 @@ def fit_recordings(
     lower = np.array([_lower_bound(family, n, names) for n in names])
     x0 = np.maximum(np.array([start[n] for n in names]), lower + 1e-6)
     x0 = _search_non_smooth(misfit, x0, lower)
+    pairs = _pairs(names)
+    gaps = _gaps(pairs, len(names))
+    lower_gaps = lower.copy()
+    lower_gaps[[static for static, _ in pairs]] = 0.0
+    y0 = np.maximum(gaps @ x0, lower_gaps)
     solution = least_squares(
-        misfit,
-        x0,
-        bounds=(lower, np.inf),
-        x_scale=np.abs(x0),
+        lambda y: misfit(np.linalg.solve(gaps, y)),
+        y0,
+        bounds=(lower_gaps, np.inf),
+        x_scale=np.where(np.abs(y0) > 0.0, np.abs(y0), np.abs(x0)),
         diff_step=DIFF_STEP,
         method="trf",
         xtol=1e-8,
@@ -247,9 +301,12 @@ def fit_recordings(
         gtol=1e-10,
         max_nfev=60,
     )
-    best = solution.x
+    best = np.linalg.solve(gaps, solution.x)
+    jacobian = solution.jac @ gaps  # d r / d x = d r / d y  d y / d x
+    for static, dynamic in pairs:  # the profile stays in the admissible set too
+        lower[static] = max(lower[static], best[dynamic])
     parts = misfit.split(best)
-    spread = parameter_uncertainty(misfit, best, solution.jac, parts, lower=lower, profile=profile)
+    spread = parameter_uncertainty(misfit, best, jacobian, parts, lower=lower, profile=profile)
     models = misfit.models(best)
     fits = tuple(
         RecordingFit(
@@ -268,7 +325,7 @@ def fit_recordings(
         start=tuple(float(start[n]) for n in names),
         configured=tuple(float(family.values[n]) for n in names),
         uncertainty=spread,
-        correlation=jacobian_correlation(solution.jac),
+        correlation=jacobian_correlation(jacobian),
         residual=float(np.sqrt(np.mean(allsamples**2))),
         recordings=fits,
         objective=objective,
