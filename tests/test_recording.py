@@ -203,3 +203,35 @@ def test_a_missing_recording_file_is_an_error_on_its_key(tmp_path):
     _write(tmp_path, text, name="well.toml")
     with pytest.raises(ConfigError, match=r"top_drive\.recording: cannot read recording"):
         load_config(tmp_path / "well.toml")
+
+
+def test_a_recorded_top_drive_takes_no_rpm_reports_the_recorded_speed_and_says_when_outlasted(
+    tmp_path, capsys
+):
+    # issue 36 case 9: --rpm 60 was ignored silently, the JSON said rpm 100 (the file's
+    # operation.rpm) "set", and the record was held past its end without a word
+    import json
+
+    from torsio.cli import main
+
+    _write(tmp_path, HEADER + "0,0,0\n2,90,9000\n5,90,8000\n", name="startup.csv")
+    text = WELL_TOML + '\n[top_drive]\nkind = "recorded"\nrecording = "startup.csv"\n'
+    config = str(_write(tmp_path, text, name="well.toml"))
+    status = main(["simulate", config, "--wob", "0", "--rpm", "60"])
+    error = capsys.readouterr().err
+    assert status == 2
+    assert "--rpm: the top drive is 'recorded' (top_drive.kind): its speed follows the" in error
+    run = ["simulate", config, "--wob", "0", "--duration", "20", "--window", "10", "--json"]
+    status = main(run)
+    captured = capsys.readouterr()
+    data = json.loads(captured.out)
+    assert status == 0
+    # reference: the record holds 90 rpm from 2 s on, so over the window (10 to 20 s) too
+    assert data["rpm_source"] == "top_speed_mean"
+    assert data["rpm"] == pytest.approx(90.0, rel=1e-9)
+    expected = (
+        "the run (20 s) outlasts the recording startup.csv (5 s): the top is held at its last "
+        "speed, 90 rpm, for the last 15 s"
+    )
+    assert data["warnings"] == [expected]
+    assert expected in captured.err

@@ -123,6 +123,12 @@ class WaveResponse:
         return model
 
 
+def _past_the_record(top: Any, duration: float) -> str | None:
+    """A top that follows a recording says when the run outlasts it (else None)."""
+    past = getattr(top, "past_the_record", None)
+    return None if past is None else past(duration)
+
+
 def _depths(grid: WaveModel) -> np.ndarray:
     offsets = node_offsets(grid)
     depths = np.empty(int(offsets[-1]))
@@ -333,7 +339,9 @@ def wave_response(
         "severity_speed": reference,
         "well_summary": _well_summary(grid, summary, t[window], bit_speed[window]),
         "warnings": warning_list(  # as the lumped transient says them
-            stuck_throughout(stick, threshold), short_window(float(steady_window), period)
+            stuck_throughout(stick, threshold),
+            short_window(float(steady_window), period),
+            _past_the_record(system.top, duration),
         ),
     }
     return WaveResponse(_transient_results(values), run, _depths(grid), energy)
