@@ -268,3 +268,47 @@ def test_a_fit_without_spread_gives_the_severe_points_of_its_own_map():
     assert result.probability.tolist() == expected.tolist()
     assert expected.min() == 0.0 and expected.max() == 1.0  # both kinds of point
     assert [s["friction_dynamic"] for s in result.samples] == [0.3, 0.3]
+
+
+def _cli_fit(tmp_path, rows: str, *options: str, config: str = "deviated_well.toml"):
+    from importlib import resources
+
+    record = tmp_path / "rig.csv"
+    record.write_text("time,top_rpm,surface_torque\n" + rows)
+    source = tmp_path / "well.toml"
+    source.write_text(resources.files("torsio").joinpath(f"data/{config}").read_text("utf-8"))
+    args = ["fit", str(source), "--recording", str(record), "--fit", "friction_dynamic"]
+    return main([*args, "--no-profile", *options])
+
+
+STARTUP_ROWS = "".join(f"{0.1 * i:.1f},{min(12 * i, 120)},{100 * i}\n" for i in range(40))
+
+
+@pytest.mark.parametrize(
+    ("rows", "options", "config", "message"),
+    [
+        # issue 36 case 14: each named operation.wob, operation.rpm, simulation.steady_window
+        # or asked the RGD file for the youngs_modulus it has
+        (STARTUP_ROWS, ("--wob", "-1"), "deviated_well.toml", "--wob: expected a weight"),
+        (
+            "".join(f"{0.1 * i:.1f},0,{100 * i}\n" for i in range(40)),
+            (),
+            "deviated_well.toml",
+            "recording: rig.csv: the top-drive speed never exceeds the threshold speed",
+        ),
+        (
+            "0,0,0\n0.001,60,5000\n",
+            (),
+            "deviated_well.toml",
+            "recording: rig.csv: 2 samples over 0.001 s; a fit needs at least 11 samples",
+        ),
+        (STARTUP_ROWS, (), "rgd_deviated_well.toml", "bit_rock.law: a fit runs the torsional"),
+    ],
+)
+def test_bad_fit_input_names_the_flag_or_the_recording(
+    tmp_path, capsys, rows, options, config, message
+):
+    status = _cli_fit(tmp_path, rows, *options, config=config)
+    error = capsys.readouterr().err
+    assert status == 2 and "Traceback" not in error
+    assert f"torsio fit: error: {message}" in error

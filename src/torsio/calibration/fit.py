@@ -208,9 +208,58 @@ def _not_at_rest(
         )
 
 
-def _final_rpm(record: Recording) -> float:
+MIN_SAMPLES = 11
+"""The fewest samples of a recording a fit takes (the spike check's window)."""
+
+MIN_STEPS = 100
+"""The shortest recording a fit takes, in time steps of the model's grid: its steady window
+(a tenth of the run) must hold 10 of them."""
+
+
+def check_wob(value: Any, key: str) -> float:
+    """The weight on bit [N] of a fit, a finite number >= 0 (else an error on ``key``)."""
+    if isinstance(value, bool) or not isinstance(value, int | float) or not value >= 0.0:
+        raise ConfigError(key, f"expected a weight on bit >= 0 (0: off bottom), got {value!r}")
+    if not np.isfinite(value):
+        raise ConfigError(key, f"expected a finite weight on bit, got {value!r}")
+    return float(value)
+
+
+def _check_records(family: SystemFamily, records: Sequence[Recording]) -> None:
+    """Each record long enough for the model's grid, and turning (errors name it)."""
+    shortest = MIN_STEPS * float(family.base.model.time_step)
+    threshold = float(family.values["threshold_speed"])
+    for record in records:
+        if record.time.size < MIN_SAMPLES or record.duration < shortest:
+            raise ConfigError(
+                "recording",
+                f"{record.name}: {record.time.size} samples over {record.duration:g} s; a fit "
+                f"needs at least {MIN_SAMPLES} samples over {shortest:.3g} s ({MIN_STEPS} "
+                "time steps of the model's grid)",
+            )
+        if float(np.max(np.abs(record.top_speed))) <= threshold:
+            raise ConfigError(
+                "recording",
+                f"{record.name}: the top-drive speed never exceeds the threshold speed "
+                f"({threshold / RPM:.3g} rpm): the string does not turn, there is no friction "
+                "torque to fit",
+            )
+
+
+def _final_rpm(record: Recording, top: str) -> float:
+    """The set speed a run against ``record`` is labelled with [rpm]: the mean over its last
+    tenth (with the recorded top, its largest speed if that mean is not above 0)."""
     tail = record.time >= record.time[-1] - 0.1 * record.duration
-    return float(np.mean(record.top_speed[tail]) / RPM)
+    final = float(np.mean(record.top_speed[tail]) / RPM)
+    if final > 0.0:
+        return final
+    if top == "recorded":
+        return float(np.max(record.top_speed) / RPM)
+    raise ConfigError(
+        "rpm",
+        f"{record.name} ends at {final:.4g} rpm (the mean over its last tenth): the configured "
+        "top drive needs a set speed > 0; give rpm per recording, or use the recorded top",
+    )
 
 
 def fit_recordings(
@@ -272,7 +321,9 @@ def fit_recordings(
             "speed_smoothing", f"expected a window >= 0 in s, got {speed_smoothing!r}"
         )
     tops = _tops(config, records, top, speed_smoothing)
-    rpms = list(rpm) if rpm is not None else [_final_rpm(r) for r in records]
+    _check_records(family, records)
+    wob = check_wob(wob, "wob")
+    rpms = list(rpm) if rpm is not None else [_final_rpm(r, top) for r in records]
     if len(rpms) != len(records):
         raise ConfigError("rpm", f"expected one set speed per recording ({len(records)})")
     _not_at_rest(family, records, names, said)
