@@ -184,6 +184,7 @@ def test_a_parameter_the_data_cannot_pin_down_is_reported_with_its_interval(nois
     low, high = results.to_dict()["interval"]["friction_static"]
     assert low <= TRUTH["friction_static"] <= high and high - low > 0.2
     assert results.to_dict()["identifiable"] == {"friction_static": False}
+    assert results.to_dict()["interval_method"]["friction_static"].startswith("profile: ")
     assert any("weakly identifiable" in note and f"{low:.4g}" in note for note in results.notes())
 
 
@@ -210,6 +211,7 @@ def test_torsio_fit_json_has_the_contract_keys(clean, tmp_path, capsys):
     assert data["uncertainty"]["friction_dynamic"] > 0.0
     assert [r["name"] for r in data["recordings"]] == [r.name for r in clean]
     assert data["correlation"] == {"friction_dynamic": {"friction_dynamic": 1.0}}  # one name
+    assert data["interval_method"]["friction_dynamic"].startswith("jacobian: the value +- 2")
 
 
 def test_a_bad_fit_name_is_an_error_naming_it_and_the_valid_ones(tmp_path, capsys):

@@ -133,7 +133,8 @@ class FitResults:
     def to_dict(self) -> dict[str, Any]:
         """Plain data for JSON: ``parameters``, ``uncertainty`` (one sigma), ``residual``
         (RMS surface torque, N m), ``recordings``, and ``start``, ``interval``,
-        ``identifiable``, ``uncertainty_method``, ``objective``, ``top``, ``notes``,
+        ``identifiable``, ``uncertainty_method``, ``interval_method`` (how each two-sigma
+        interval was found), ``objective``, ``top``, ``notes``,
         ``correlation`` (name to name, from the Jacobian; None if not computed) and
         ``warnings``."""
         spreads = dict(zip(self.names, self.uncertainty, strict=True))
@@ -155,6 +156,7 @@ class FitResults:
             "interval": {n: list(s.interval) for n, s in spreads.items()},
             "identifiable": {n: s.identifiable for n, s in spreads.items()},
             "uncertainty_method": {n: s.method for n, s in spreads.items()},
+            "interval_method": {n: s.interval_method for n, s in spreads.items()},
             "objective": self.objective,
             "top": self.top,
             "runs": self.runs,
