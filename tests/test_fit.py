@@ -13,6 +13,7 @@ from __future__ import annotations
 import json
 
 import attrs
+import numpy as np
 import pytest
 
 from torsio.analysis.wave import wave_response
@@ -82,6 +83,59 @@ def test_start_ups_recorded_by_torsio_give_back_their_friction_factors(which, re
     assert results.residual < (1.0 if which == "clean" else 0.03 * 12e3)  # N m
 
 
+def test_clean_and_noisy_start_ups_have_no_spike(clean, noisy):
+    # the break-free moment is physics, not a fault of the torque sub
+    assert [r.spikes().size for r in clean + noisy] == [0, 0, 0, 0]
+
+
+def test_a_spike_in_a_record_logged_to_10_n_m_does_not_drive_the_fit(clean):
+    # issue 36 case 7: one 5x spike at 30 s in the 120 rpm start-up logged to 10 N m gave
+    # mu_s = 2.245 +- 0.049 (identifiable, no warning); the spike is left out, the fit
+    # returns the truth of the record (TRUTH) and says what it left out
+    record = clean[0]
+    torque = np.round(record.surface_torque, -1)
+    spike = int(np.searchsorted(record.time, 30.0))
+    torque[spike] *= 5.0
+    record = attrs.evolve(record, surface_torque=torque, name="rig.csv")
+    results = fit_recordings(deviated_well_config(), [record], NAMES)
+    _check_recovered(results)
+    assert results.warnings == (
+        "rig.csv: 1 surface-torque spike (at 30.0008 s) left out of the fit: each replaced "
+        "by the record linear between its neighbours",
+    )
+    assert results.to_dict()["warnings"] == list(results.warnings)
+
+
+def _moving(record: Recording) -> Recording:
+    # the 120 rpm start-up from 20 s on: its first sample at 117 rpm, the string sliding
+    keep = record.time >= 20.0
+    return Recording(
+        time=record.time[keep],
+        top_speed=record.top_speed[keep],
+        surface_torque=record.surface_torque[keep],
+        name="moving.csv",
+    )
+
+
+def test_a_record_that_does_not_start_at_rest_cannot_inform_the_static_factor(clean):
+    # issue 36 case 8: such a record returned mu_s 0.288 < mu_d 0.301, only "weakly
+    # identifiable"; with no break-over recorded (the first speed, 117 rpm, is above the
+    # threshold speed 0.5 rad/s of data/deviated_well.toml) mu_s is refused, named
+    moving = _moving(clean[0])
+    with pytest.raises(
+        ConfigError,
+        match=r"^fit: friction_static cannot be fitted .*"
+        r"moving\.csv starts at 117 rpm, above the threshold speed 4\.77 rpm",
+    ):
+        fit_recordings(deviated_well_config(), [moving], NAMES)
+    # with a start-up beside it: said, and the fit stays in the admissible set mu_d <= mu_s
+    results = fit_recordings(deviated_well_config(), [moving, clean[1]], NAMES)
+    assert results.parameters["friction_dynamic"] <= results.parameters["friction_static"]
+    assert len(results.warnings) == 1
+    assert results.warnings[0].startswith("moving.csv starts at 117 rpm")
+    assert "only the other recordings inform friction_static" in results.warnings[0]
+
+
 def test_the_same_top_drive_and_grid_that_made_the_recordings_return_the_truth(clean):
     # the model that made the recordings: its fit has nothing left to explain
     config = deviated_well_config()
@@ -130,6 +184,7 @@ def test_a_parameter_the_data_cannot_pin_down_is_reported_with_its_interval(nois
     low, high = results.to_dict()["interval"]["friction_static"]
     assert low <= TRUTH["friction_static"] <= high and high - low > 0.2
     assert results.to_dict()["identifiable"] == {"friction_static": False}
+    assert results.to_dict()["interval_method"]["friction_static"].startswith("profile: ")
     assert any("weakly identifiable" in note and f"{low:.4g}" in note for note in results.notes())
 
 
@@ -156,6 +211,7 @@ def test_torsio_fit_json_has_the_contract_keys(clean, tmp_path, capsys):
     assert data["uncertainty"]["friction_dynamic"] > 0.0
     assert [r["name"] for r in data["recordings"]] == [r.name for r in clean]
     assert data["correlation"] == {"friction_dynamic": {"friction_dynamic": 1.0}}  # one name
+    assert data["interval_method"]["friction_dynamic"].startswith("jacobian: the value +- 2")
 
 
 def test_a_bad_fit_name_is_an_error_naming_it_and_the_valid_ones(tmp_path, capsys):
@@ -214,3 +270,47 @@ def test_a_fit_without_spread_gives_the_severe_points_of_its_own_map():
     assert result.probability.tolist() == expected.tolist()
     assert expected.min() == 0.0 and expected.max() == 1.0  # both kinds of point
     assert [s["friction_dynamic"] for s in result.samples] == [0.3, 0.3]
+
+
+def _cli_fit(tmp_path, rows: str, *options: str, config: str = "deviated_well.toml"):
+    from importlib import resources
+
+    record = tmp_path / "rig.csv"
+    record.write_text("time,top_rpm,surface_torque\n" + rows)
+    source = tmp_path / "well.toml"
+    source.write_text(resources.files("torsio").joinpath(f"data/{config}").read_text("utf-8"))
+    args = ["fit", str(source), "--recording", str(record), "--fit", "friction_dynamic"]
+    return main([*args, "--no-profile", *options])
+
+
+STARTUP_ROWS = "".join(f"{0.1 * i:.1f},{min(12 * i, 120)},{100 * i}\n" for i in range(40))
+
+
+@pytest.mark.parametrize(
+    ("rows", "options", "config", "message"),
+    [
+        # issue 36 case 14: each named operation.wob, operation.rpm, simulation.steady_window
+        # or asked the RGD file for the youngs_modulus it has
+        (STARTUP_ROWS, ("--wob", "-1"), "deviated_well.toml", "--wob: expected a weight"),
+        (
+            "".join(f"{0.1 * i:.1f},0,{100 * i}\n" for i in range(40)),
+            (),
+            "deviated_well.toml",
+            "recording: rig.csv: the top-drive speed never exceeds the threshold speed",
+        ),
+        (
+            "0,0,0\n0.001,60,5000\n",
+            (),
+            "deviated_well.toml",
+            "recording: rig.csv: 2 samples over 0.001 s; a fit needs at least 11 samples",
+        ),
+        (STARTUP_ROWS, (), "rgd_deviated_well.toml", "bit_rock.law: a fit runs the torsional"),
+    ],
+)
+def test_bad_fit_input_names_the_flag_or_the_recording(
+    tmp_path, capsys, rows, options, config, message
+):
+    status = _cli_fit(tmp_path, rows, *options, config=config)
+    error = capsys.readouterr().err
+    assert status == 2 and "Traceback" not in error
+    assert f"torsio fit: error: {message}" in error

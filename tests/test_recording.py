@@ -57,6 +57,13 @@ def test_units_in_the_header_and_an_optional_bit_speed(tmp_path):
         (HEADER + "0,0,0\n1,nan,0\n", r"rig\.csv, line 3: column top_rpm: 'nan' is not a finite"),
         (HEADER + "0,0,0\n2,1,1\n1,1,1\n", r"rig\.csv, line 4: time 1 s does not increase"),
         (HEADER + "0,0,0\n1,1\n", r"rig\.csv, line 3: 2 fields, expected 3"),
+        # issue 38 item 4: a thousands separator in a comma CSV makes an extra field
+        (HEADER + "0,0,0\n0.02,2,12,503\n", r"line 3: 4 fields, expected 3 .*thousands"),
+        # quoted, it is one field of the right column; a letter O for a zero likewise
+        (HEADER + '0,0,0\n0.02,2,"12,503"\n', r"line 3: column surface_torque: .*thousands"),
+        (HEADER + "0,0,0\n0.02,2,5O3\n", r"line 3: column surface_torque: '5O3' .*letter"),
+        ("time,surface_torque,top_rpm\n0,0,0\n1,5O3,2\n", r"line 3: column surface_torque"),
+        (HEADER + "0,0,0\n1,1,1\n0.5,1,1\n", r"rig\.csv, line 4: time 0\.5 s does not"),
         ("time,top_rpm,surface_torque[lbs]\n0,0,0\n", r"line 1: .*unknown unit 'lbs'"),
         (HEADER, r"rig\.csv: expected at least 2 samples"),
         ("", r"rig\.csv: the file is empty"),
@@ -76,8 +83,62 @@ def test_gaps_and_spikes_are_warnings_naming_the_line(tmp_path):
         warnings.simplefilter("always")
         read_recording(_write(tmp_path, HEADER + rows))
     messages = [str(w.message) for w in caught]
-    assert any("line 42: a gap of 6.1 s" in m for m in messages), messages
-    assert any("line 22: surface torque 9000 N m is a spike" in m for m in messages), messages
+    assert any("1 gap in all: line 42: a gap of 6.1 s" in m for m in messages), messages
+    assert any("1 surface-torque spike in all: line 22: 9000 N m" in m for m in messages)
+
+
+def test_spikes_in_a_record_logged_to_10_n_m_are_found_and_counted(tmp_path):
+    # a rig logs the torque to 10 N m: on a smooth ramp most samples are their own median,
+    # so the median absolute deviation is 0 (the check used to return there, silently);
+    # five 5x spikes (a glitch no string makes) are counted and the first three named
+    time = 0.01 * np.arange(1000)
+    torque = np.round(12e3 * (1.0 - np.exp(-time)), -1)
+    spiky = [200, 400, 500, 600, 800]
+    torque[spiky] *= 5.0
+    rows = "".join(f"{t:.2f},120,{q:g}\n" for t, q in zip(time, torque, strict=True))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        record = read_recording(_write(tmp_path, HEADER + rows))
+    messages = [str(w.message) for w in caught if "spike" in str(w.message)]
+    assert len(messages) == 1, messages
+    # line = index + 2 (the header is line 1)
+    assert "5 surface-torque spikes in all (the first 3 named): line 202: " in messages[0]
+    assert "line 402: " in messages[0] and "line 502: " in messages[0]
+    assert "line 602" not in messages[0]
+    assert record.spikes().tolist() == spiky
+    # without them: the record linear between the neighbours (exact on a 10 N m grid to 10)
+    assert np.abs(record.without_spikes().surface_torque[spiky] - torque[spiky] / 5).max() <= 10
+
+
+def test_a_break_free_drop_is_not_a_spike():
+    # a step of the torque (the string breaking free, a wave reaching the top) is followed
+    # sample for sample by the median of 11: no departure, no spike
+    torque = np.r_[np.linspace(0.0, 15e3, 300), np.full(300, 11e3)]
+    record = Recording(time=np.arange(600.0), top_speed=np.ones(600), surface_torque=torque)
+    assert record.spikes().size == 0
+
+
+def test_a_recording_too_large_is_refused_before_it_is_read(tmp_path, monkeypatch):
+    # issue 36 case 14: a 10-million-row file was read (66 s, 6.5 GB) before the run's
+    # duration was refused; the size is checked first
+    from torsio.calibration import recording
+
+    path = _write(tmp_path, HEADER + "0,0,0\n1,1,1\n")
+    monkeypatch.setattr(recording, "MAX_BYTES", 10)
+    # the file: 28 bytes of header and two lines of 6 bytes
+    with pytest.raises(ConfigError, match=r"^recording: rig\.csv: 4e-05 MB, more than the 1e-05"):
+        read_recording(path)
+
+
+def test_torsio_fit_on_a_line_with_extra_fields_exits_2_naming_the_line(tmp_path, capsys):
+    from torsio.cli import main
+
+    config = _write(tmp_path, WELL_TOML, name="well.toml")
+    record = _write(tmp_path, HEADER + "0,0,0\n0.01,2,12503\n0.02,2,12,503\n")
+    status = main(["fit", str(config), "--recording", str(record), "--fit", "friction_dynamic"])
+    error = capsys.readouterr().err
+    assert status == 2 and "Traceback" not in error
+    assert "rig.csv, line 4: 4 fields, expected 3" in error
 
 
 def test_a_recording_saved_reads_back(tmp_path):
@@ -142,3 +203,35 @@ def test_a_missing_recording_file_is_an_error_on_its_key(tmp_path):
     _write(tmp_path, text, name="well.toml")
     with pytest.raises(ConfigError, match=r"top_drive\.recording: cannot read recording"):
         load_config(tmp_path / "well.toml")
+
+
+def test_a_recorded_top_drive_takes_no_rpm_reports_the_recorded_speed_and_says_when_outlasted(
+    tmp_path, capsys
+):
+    # issue 36 case 9: --rpm 60 was ignored silently, the JSON said rpm 100 (the file's
+    # operation.rpm) "set", and the record was held past its end without a word
+    import json
+
+    from torsio.cli import main
+
+    _write(tmp_path, HEADER + "0,0,0\n2,90,9000\n5,90,8000\n", name="startup.csv")
+    text = WELL_TOML + '\n[top_drive]\nkind = "recorded"\nrecording = "startup.csv"\n'
+    config = str(_write(tmp_path, text, name="well.toml"))
+    status = main(["simulate", config, "--wob", "0", "--rpm", "60"])
+    error = capsys.readouterr().err
+    assert status == 2
+    assert "--rpm: the top drive is 'recorded' (top_drive.kind): its speed follows the" in error
+    run = ["simulate", config, "--wob", "0", "--duration", "20", "--window", "10", "--json"]
+    status = main(run)
+    captured = capsys.readouterr()
+    data = json.loads(captured.out)
+    assert status == 0
+    # reference: the record holds 90 rpm from 2 s on, so over the window (10 to 20 s) too
+    assert data["rpm_source"] == "top_speed_mean"
+    assert data["rpm"] == pytest.approx(90.0, rel=1e-9)
+    expected = (
+        "the run (20 s) outlasts the recording startup.csv (5 s): the top is held at its last "
+        "speed, 90 rpm, for the last 15 s"
+    )
+    assert data["warnings"] == [expected]
+    assert expected in captured.err

@@ -134,7 +134,10 @@ class TransientResults:
 
     @property
     def has_set_speed(self) -> bool:
-        """Whether the top drive turns at a set speed (False for a torque-driven top)."""
+        """Whether the top drive turns at a set speed (False for a torque-driven top, and
+        for a top that follows a recording: its speed is the record's)."""
+        if getattr(self.system.top, "name", "") == "recorded":
+            return False
         return bool(np.isfinite(self.system.top.boundary(self.system).set_speed))
 
     @property

@@ -124,6 +124,12 @@ class WaveResponse:
         return model
 
 
+def _past_the_record(top: Any, duration: float) -> str | None:
+    """A top that follows a recording says when the run outlasts it (else None)."""
+    past = getattr(top, "past_the_record", None)
+    return None if past is None else past(duration)
+
+
 def _depths(grid: WaveModel) -> np.ndarray:
     offsets = node_offsets(grid)
     depths = np.empty(int(offsets[-1]))
@@ -340,6 +346,7 @@ def wave_response(
             no_friction,
             stuck_throughout(stick, threshold),
             short_window(float(steady_window), period),
+            _past_the_record(system.top, duration),
         ),
     }
     return WaveResponse(_transient_results(values), run, _depths(grid), energy)

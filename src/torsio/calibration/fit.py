@@ -128,10 +128,28 @@ def _search_non_smooth(misfit: _Misfit, x: np.ndarray, lower: np.ndarray) -> np.
     return x
 
 
-def _recordings(recordings: Sequence[Any]) -> list[Recording]:
+def _recordings(recordings: Sequence[Any], said: list[str]) -> list[Recording]:
+    """The recordings read, each spike of their torque replaced by the record linear
+    between its neighbours (a spike would otherwise drive the fit: the closed-form start
+    reads the peak, and one sample far off outweighs thousands); ``said`` gets a warning
+    per recording with spikes."""
     if not recordings:
         raise ConfigError("recording", "no recording to fit; give at least one")
-    return [r if isinstance(r, Recording) else read_recording(Path(r)) for r in recordings]
+    records = [r if isinstance(r, Recording) else read_recording(Path(r)) for r in recordings]
+    cleaned = []
+    for record in records:
+        spikes = record.spikes()
+        if spikes.size:
+            at = ", ".join(f"{t:g}" for t in record.time[spikes[:3]])
+            said.append(
+                f"{record.name}: {spikes.size} surface-torque spike"
+                f"{'s' if spikes.size > 1 else ''} (at {at}{' ...' if spikes.size > 3 else ''}"
+                " s) left out of the fit: each replaced by the record linear between its "
+                "neighbours"
+            )
+            record = record.without_spikes()
+        cleaned.append(record)
+    return cleaned
 
 
 def _tops(config: Any, recordings: Sequence[Recording], top: str, smoothing: float) -> list[Any]:
@@ -142,9 +160,106 @@ def _tops(config: Any, recordings: Sequence[Recording], top: str, smoothing: flo
     raise ConfigError("top", f"unknown top {top!r}; expected one of {', '.join(TOPS)}")
 
 
-def _final_rpm(record: Recording) -> float:
+def _pairs(names: Sequence[str]) -> list[tuple[int, int]]:
+    """(static, sliding) indices of the factors of a stretch fitted together."""
+    pairs = []
+    for k, name in enumerate(names):
+        dynamic = name.replace("friction_static", "friction_dynamic")
+        if dynamic != name and dynamic in names:
+            pairs.append((k, list(names).index(dynamic)))
+    return pairs
+
+
+def _gaps(pairs: list[tuple[int, int]], size: int) -> np.ndarray:
+    """The matrix A of y = A x: each fitted static factor replaced by its excess over the
+    sliding one, mu_s - mu_d >= 0, so that a box bound keeps the fit in the admissible
+    set mu_d <= mu_s (the one a configuration accepts)."""
+    matrix = np.eye(size)
+    for static, dynamic in pairs:
+        matrix[static, dynamic] = -1.0
+    return matrix
+
+
+def _not_at_rest(
+    family: SystemFamily, records: Sequence[Recording], names: Sequence[str], said: list[str]
+) -> None:
+    """A record whose first top speed is above the threshold speed starts with the string
+    sliding: it holds no break-over and cannot inform a static factor. Refused when no
+    record starts at rest and a static factor is fitted; said otherwise."""
+    threshold = float(family.values["threshold_speed"])
+    moving = [r for r in records if abs(float(r.top_speed[0])) > threshold]
+    static = [n for n in names if n.split(".")[-1] == "friction_static"]
+    why = ", ".join(f"{r.name} starts at {float(r.top_speed[0]) / RPM:.4g} rpm" for r in moving)
+    where = (
+        f"above the threshold speed {threshold / RPM:.3g} rpm: the string is already "
+        "sliding and no break-over is recorded"
+    )
+    if static and len(moving) == len(records):
+        raise ConfigError(
+            "fit",
+            f"{', '.join(static)} cannot be fitted from these recordings: none starts from "
+            f"rest ({why}, {where}); fit the sliding factors alone, or give a start-up",
+        )
+    if moving:
+        said.append(
+            f"{why}, {where}; the model starts from rest at the first sample, so the "
+            "start of the record is a transient the rig did not have"
+            + (f"; only the other recordings inform {', '.join(static)}" if static else "")
+        )
+
+
+MIN_SAMPLES = 11
+"""The fewest samples of a recording a fit takes (the spike check's window)."""
+
+MIN_STEPS = 100
+"""The shortest recording a fit takes, in time steps of the model's grid: its steady window
+(a tenth of the run) must hold 10 of them."""
+
+
+def check_wob(value: Any, key: str) -> float:
+    """The weight on bit [N] of a fit, a finite number >= 0 (else an error on ``key``)."""
+    if isinstance(value, bool) or not isinstance(value, int | float) or not value >= 0.0:
+        raise ConfigError(key, f"expected a weight on bit >= 0 (0: off bottom), got {value!r}")
+    if not np.isfinite(value):
+        raise ConfigError(key, f"expected a finite weight on bit, got {value!r}")
+    return float(value)
+
+
+def _check_records(family: SystemFamily, records: Sequence[Recording]) -> None:
+    """Each record long enough for the model's grid, and turning (errors name it)."""
+    shortest = MIN_STEPS * float(family.base.model.time_step)
+    threshold = float(family.values["threshold_speed"])
+    for record in records:
+        if record.time.size < MIN_SAMPLES or record.duration < shortest:
+            raise ConfigError(
+                "recording",
+                f"{record.name}: {record.time.size} samples over {record.duration:g} s; a fit "
+                f"needs at least {MIN_SAMPLES} samples over {shortest:.3g} s ({MIN_STEPS} "
+                "time steps of the model's grid)",
+            )
+        if float(np.max(np.abs(record.top_speed))) <= threshold:
+            raise ConfigError(
+                "recording",
+                f"{record.name}: the top-drive speed never exceeds the threshold speed "
+                f"({threshold / RPM:.3g} rpm): the string does not turn, there is no friction "
+                "torque to fit",
+            )
+
+
+def _final_rpm(record: Recording, top: str) -> float:
+    """The set speed a run against ``record`` is labelled with [rpm]: the mean over its last
+    tenth (with the recorded top, its largest speed if that mean is not above 0)."""
     tail = record.time >= record.time[-1] - 0.1 * record.duration
-    return float(np.mean(record.top_speed[tail]) / RPM)
+    final = float(np.mean(record.top_speed[tail]) / RPM)
+    if final > 0.0:
+        return final
+    if top == "recorded":
+        return float(np.max(record.top_speed) / RPM)
+    raise ConfigError(
+        "rpm",
+        f"{record.name} ends at {final:.4g} rpm (the mean over its last tenth): the configured "
+        "top drive needs a set speed > 0; give rpm per recording, or use the recorded top",
+    )
 
 
 def fit_recordings(
@@ -195,7 +310,8 @@ def fit_recordings(
     """
     started = clock.perf_counter()
     names = (names,) if isinstance(names, str) else names  # one name, not its letters
-    records = _recordings(recordings)
+    said: list[str] = []
+    records = _recordings(recordings, said)
     if objective not in OBJECTIVES:
         raise ConfigError(
             "objective", f"unknown objective {objective!r}; expected one of {', '.join(OBJECTIVES)}"
@@ -207,9 +323,12 @@ def fit_recordings(
             "speed_smoothing", f"expected a window >= 0 in s, got {speed_smoothing!r}"
         )
     tops = _tops(config, records, top, speed_smoothing)
-    rpms = list(rpm) if rpm is not None else [_final_rpm(r) for r in records]
+    _check_records(family, records)
+    wob = check_wob(wob, "wob")
+    rpms = list(rpm) if rpm is not None else [_final_rpm(r, top) for r in records]
     if len(rpms) != len(records):
         raise ConfigError("rpm", f"expected one set speed per recording ({len(records)})")
+    _not_at_rest(family, records, names, said)
     misfit = _Misfit(family, records, names, tops, rpms, wob, objective)
     start = closed_form_start(family, records, names)
     for _ in range(START_STEPS):
@@ -218,11 +337,16 @@ def fit_recordings(
     lower = np.array([_lower_bound(family, n, names) for n in names])
     x0 = np.maximum(np.array([start[n] for n in names]), lower + 1e-6)
     x0 = _search_non_smooth(misfit, x0, lower)
+    pairs = _pairs(names)
+    gaps = _gaps(pairs, len(names))
+    lower_gaps = lower.copy()
+    lower_gaps[[static for static, _ in pairs]] = 0.0
+    y0 = np.maximum(gaps @ x0, lower_gaps)
     solution = least_squares(
-        misfit,
-        x0,
-        bounds=(lower, np.inf),
-        x_scale=np.abs(x0),
+        lambda y: misfit(np.linalg.solve(gaps, y)),
+        y0,
+        bounds=(lower_gaps, np.inf),
+        x_scale=np.where(np.abs(y0) > 0.0, np.abs(y0), np.abs(x0)),
         diff_step=DIFF_STEP,
         method="trf",
         xtol=1e-8,
@@ -230,9 +354,12 @@ def fit_recordings(
         gtol=1e-10,
         max_nfev=60,
     )
-    best = solution.x
+    best = np.linalg.solve(gaps, solution.x)
+    jacobian = solution.jac @ gaps  # d r / d x = d r / d y  d y / d x
+    for static, dynamic in pairs:  # the profile stays in the admissible set too
+        lower[static] = max(lower[static], best[dynamic])
     parts = misfit.split(best)
-    spread = parameter_uncertainty(misfit, best, solution.jac, parts, lower=lower, profile=profile)
+    spread = parameter_uncertainty(misfit, best, jacobian, parts, lower=lower, profile=profile)
     models = misfit.models(best)
     fits = tuple(
         RecordingFit(
@@ -251,7 +378,7 @@ def fit_recordings(
         start=tuple(float(start[n]) for n in names),
         configured=tuple(float(family.values[n]) for n in names),
         uncertainty=spread,
-        correlation=jacobian_correlation(solution.jac),
+        correlation=jacobian_correlation(jacobian),
         residual=float(np.sqrt(np.mean(allsamples**2))),
         recordings=fits,
         objective=objective,
@@ -259,4 +386,5 @@ def fit_recordings(
         runs=misfit.runs,
         seconds=clock.perf_counter() - started,
         message=str(solution.message),
+        warnings=tuple(said),
     )

@@ -73,6 +73,9 @@ class FitResults:
     correlation : ndarray or None
         Correlation of the fitted parameters from the Jacobian (``names`` order), which
         the Monte Carlo draws carry (:mod:`torsio.calibration.monte_carlo`).
+    warnings : tuple of str
+        What limits the meaning of the fit (spikes left out, a record that cannot inform a
+        parameter); the command line prints each on stderr.
     """
 
     names: tuple[str, ...]
@@ -88,6 +91,7 @@ class FitResults:
     seconds: float
     message: str
     correlation: np.ndarray | None = None
+    warnings: tuple[str, ...] = ()
 
     def __repr__(self) -> str:
         fitted = ", ".join(
@@ -129,8 +133,10 @@ class FitResults:
     def to_dict(self) -> dict[str, Any]:
         """Plain data for JSON: ``parameters``, ``uncertainty`` (one sigma), ``residual``
         (RMS surface torque, N m), ``recordings``, and ``start``, ``interval``,
-        ``identifiable``, ``uncertainty_method``, ``objective``, ``top``, ``notes`` and
-        ``correlation`` (name to name, from the Jacobian; None if not computed)."""
+        ``identifiable``, ``uncertainty_method``, ``interval_method`` (how each two-sigma
+        interval was found), ``objective``, ``top``, ``notes``,
+        ``correlation`` (name to name, from the Jacobian; None if not computed) and
+        ``warnings``."""
         spreads = dict(zip(self.names, self.uncertainty, strict=True))
         return {
             "parameters": self.parameters,
@@ -150,6 +156,7 @@ class FitResults:
             "interval": {n: list(s.interval) for n, s in spreads.items()},
             "identifiable": {n: s.identifiable for n, s in spreads.items()},
             "uncertainty_method": {n: s.method for n, s in spreads.items()},
+            "interval_method": {n: s.interval_method for n, s in spreads.items()},
             "objective": self.objective,
             "top": self.top,
             "runs": self.runs,
@@ -161,6 +168,7 @@ class FitResults:
                 a: {b: float(self.correlation[i, j]) for j, b in enumerate(self.names)}
                 for i, a in enumerate(self.names)
             },
+            "warnings": list(self.warnings),
         }
 
     def rows(self) -> list[tuple[str, str, str, str, str]]:

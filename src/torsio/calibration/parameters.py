@@ -85,6 +85,14 @@ class SystemFamily:
     def __init__(self, config: Any, **discretization: Any) -> None:
         if config.well is None:
             raise ConfigError("well", "a fit of friction needs a [well] (survey and friction)")
+        if config.axial is not None:
+            raise ConfigError(
+                "bit_rock.law",
+                "a fit runs the torsional wave model, and this configuration has axial "
+                "dynamics (an axial bit-rock law such as rgd, or [chain] masses), which it "
+                "does not run; fit a copy with a torsional [bit_rock] law (e.g. tucker-wang: "
+                "the fit is off bottom by default, where the law gives no torque)",
+            )
         strategy = discretization.pop("strategy", "wave")
         self.config = config
         self.base = config.system(strategy=strategy, **discretization)

@@ -19,8 +19,8 @@ e.g. ``time[s],top_speed[rad/s],surface_torque[kN*m]``. Blank lines and lines st
 with ``#`` are skipped. Checks, each an error (:class:`~torsio.errors.ConfigError`) naming
 the file and the line: a missing column, a field that is not a finite number, a time that
 does not increase, an unknown unit. Warnings naming the line: a gap (a time step more
-than 5 times the median step) and a spike (a torque more than 8 robust standard deviations,
-1.4826 x median absolute deviation, from the median of its 11 neighbours).
+than 5 times the median step) and spikes (:mod:`torsio.calibration.spikes`: counted, the
+first few named by their line).
 
 Examples
 --------
@@ -54,6 +54,7 @@ from typing import TYPE_CHECKING
 import attrs
 import numpy as np
 
+from torsio.calibration.spikes import SIGMAS, WINDOW, torque_spikes, without_spikes
 from torsio.csv_rows import csv_rows, header_cell
 from torsio.errors import ConfigError
 from torsio.model.arrays import read_only
@@ -88,7 +89,13 @@ COLUMNS: dict[str, tuple[str, str]] = {
 """Column names read, with their dimension and default unit."""
 
 GAP_FACTOR = 5.0
-SPIKE_SIGMAS = 8.0
+NAMED = 3
+"""Gaps or spikes named by their line in a warning (the others counted)."""
+
+MAX_BYTES = 20e6
+"""The largest recording file read [bytes], checked before it is read: a line of a
+recording takes about 40 bytes in the file and, read, about 600 bytes of memory, and each
+run of a fit simulates the whole record (a 60 s start-up takes about 0.06 s of stepping)."""
 
 
 def _area(time: np.ndarray, speed: np.ndarray, at: np.ndarray) -> np.ndarray:
@@ -196,6 +203,17 @@ class Recording:
             name=name,
         )
 
+    def spikes(self) -> np.ndarray:
+        """Indices of the samples whose surface torque is a spike
+        (:func:`~torsio.calibration.spikes.torque_spikes`)."""
+        return torque_spikes(self.surface_torque)
+
+    def without_spikes(self) -> Recording:
+        """The recording with each spike of the surface torque replaced by the record
+        linear between its neighbours that are not spikes."""
+        torque = without_spikes(self.time, self.surface_torque, self.spikes())
+        return attrs.evolve(self, surface_torque=torque)
+
     @property
     def duration(self) -> float:
         """Time from the first sample to the last [s]."""
@@ -275,9 +293,16 @@ def _value(cell: str, column: str, name: str, line: int) -> float:
         value = float(cell)
     except ValueError:
         value = math.nan
-        if cell.strip().lower() not in ("nan", "inf", "-inf"):
+        text = cell.strip()
+        if text.lower() not in ("nan", "inf", "-inf"):
+            hint = ""
+            if "," in text or "'" in text or " " in text:
+                hint = " (a thousands separator? write the number without it)"
+            elif any(c.isalpha() for c in text):
+                hint = " (a letter in a number: O typed for 0?)"
             raise ConfigError(
-                "recording", f"{name}, line {line}: column {column}: {cell!r} is not a number"
+                "recording",
+                f"{name}, line {line}: column {column}: {cell!r} is not a number{hint}",
             ) from None
     if not math.isfinite(value):
         raise ConfigError(
@@ -289,11 +314,21 @@ def _value(cell: str, column: str, name: str, line: int) -> float:
 
 
 def _warn_at(
-    name: str, lines: list[int], samples: np.ndarray, message: Callable[[int], str]
+    name: str,
+    lines: list[int],
+    samples: np.ndarray,
+    what: str,
+    message: Callable[[int], str],
+    after: str = "",
 ) -> None:
-    """A warning naming the line of each of the first three ``samples`` (indices)."""
-    for i in samples[:3]:
-        warnings.warn(f"{name}, line {lines[i]}: {message(i)}", UserWarning, stacklevel=5)
+    """One warning for ``samples`` (indices): their count, the line of each of the first
+    :data:`NAMED`, then ``after``."""
+    if samples.size == 0:
+        return
+    named = "; ".join(f"line {lines[i]}: {message(i)}" for i in samples[:NAMED])
+    more = f" (the first {NAMED} named)" if samples.size > NAMED else ""
+    count = f"{samples.size} {what}{'s' if samples.size > 1 else ''} in all{more}"
+    warnings.warn(f"{name}: {count}: {named}{after}", UserWarning, stacklevel=4)
 
 
 def _check_times(time: np.ndarray, lines: list[int], name: str) -> None:
@@ -311,6 +346,7 @@ def _check_times(time: np.ndarray, lines: list[int], name: str) -> None:
         name,
         lines,
         np.flatnonzero(steps > GAP_FACTOR * median) + 1,
+        "gap",
         lambda i: (
             f"a gap of {steps[i - 1]:g} s in the time (the median step is {median:g} s); "
             "the model follows the speed linearly across it"
@@ -319,23 +355,14 @@ def _check_times(time: np.ndarray, lines: list[int], name: str) -> None:
 
 
 def _check_spikes(torque: np.ndarray, lines: list[int], name: str) -> None:
-    if torque.size < 11:
-        return
-    padded = np.pad(torque, 5, mode="edge")
-    windows = np.lib.stride_tricks.sliding_window_view(padded, 11)
-    local = np.median(windows, axis=1)
-    deviation = np.abs(torque - local)
-    scale = 1.4826 * float(np.median(deviation))
-    if scale <= 0.0:
-        return
     _warn_at(
         name,
         lines,
-        np.flatnonzero(deviation > SPIKE_SIGMAS * scale),
-        lambda i: (
-            f"surface torque {torque[i]:g} N m is a spike "
-            f"({deviation[i] / scale:.0f} robust standard deviations from its neighbours)"
-        ),
+        torque_spikes(torque),
+        "surface-torque spike",
+        lambda i: f"{torque[i]:g} N m",
+        f" (more than {SIGMAS:g} times the record's scale from the median of its {WINDOW} "
+        "neighbours; a fit replaces each by the record linear between its neighbours)",
     )
 
 
@@ -345,24 +372,40 @@ def read_recording(path: str | Path) -> Recording:
     Raises
     ------
     ConfigError
-        The file cannot be read, its header lacks a column or names an unknown unit, a
-        line has too few fields, a value is not a finite number or a time does not
-        increase; the message names the file and the line.
+        The file cannot be read or is larger than :data:`MAX_BYTES`, its header lacks a
+        column or names an unknown unit, a line has more or fewer fields than the header,
+        a value is not a finite number or a time does not increase; the message names the
+        file and the line (and the column).
     """
     path = Path(path)
     name = path.name
+    try:
+        size = path.stat().st_size
+    except OSError:
+        size = 0  # csv_rows says why it cannot be read
+    if size > MAX_BYTES:
+        raise ConfigError(
+            "recording",
+            f"{name}: {size / 1e6:.4g} MB, more than the {MAX_BYTES / 1e6:g} MB a recording "
+            "may take (about 500,000 samples: 1.4 h at 100 samples per second); cut it to "
+            "the start-ups, or resample it",
+        )
     rows = csv_rows(path, "recording", "recording", "time,top_rpm,surface_torque")
     header_line, header = rows[0]
     columns = _columns(header, name, header_line)
     values: dict[str, list[float]] = {key: [] for key in columns}
     lines = []
     for number, row in rows[1:]:
+        if len(row) != len(header):
+            hint = ""
+            if len(row) > len(header):
+                hint = " (a thousands separator or a decimal comma in a comma-separated file?)"
+            raise ConfigError(
+                "recording",
+                f"{name}, line {number}: {len(row)} fields, expected {len(header)} as the "
+                f"header {','.join(header)!r}{hint}",
+            )
         for key, (index, factor) in columns.items():
-            if index >= len(row):
-                raise ConfigError(
-                    "recording",
-                    f"{name}, line {number}: {len(row)} fields, expected {len(header)}",
-                )
             values[key].append(_value(row[index], header[index].strip(), name, number) * factor)
         lines.append(number)
     if len(lines) < 2:

@@ -36,7 +36,13 @@ from collections.abc import Callable, Sequence
 import attrs
 import numpy as np
 
-__all__ = ["ParameterSpread", "correlation_time", "jacobian_correlation", "parameter_uncertainty"]
+__all__ = [
+    "INTERVAL_METHODS",
+    "ParameterSpread",
+    "correlation_time",
+    "jacobian_correlation",
+    "parameter_uncertainty",
+]
 
 SMOOTH_TOLERANCE = 0.3
 PROFILE_DOUBLINGS = 10
@@ -45,6 +51,20 @@ RESOLUTION = 1e-4
 """The least relative sigma stated: the model's own resolution against a record. Measured:
 with the top held at the recorded speed, linear between samples 0.01 s apart, the model
 misses a record it made itself by 0.6 N m RMS, and mu_s fits 2e-5 (6e-5 relative) off."""
+
+
+INTERVAL_METHODS = {
+    "profile": (
+        "profile: where the misfit along the parameter (the others at their conditional best "
+        "values) rises by 4 s^2 tau from its least, s^2 the residual variance and tau the "
+        "residuals' integrated correlation time (n / tau independent samples)"
+    ),
+    "jacobian": (
+        "jacobian: the value +- 2 sqrt(s^2 tau (J^T J)^-1), s^2 the residual variance and tau "
+        "the residuals' integrated correlation time (n / tau independent samples)"
+    ),
+}
+"""How a two-sigma interval was found, by its kind (``ParameterSpread.interval_method``)."""
 
 
 @attrs.frozen
@@ -71,6 +91,12 @@ class ParameterSpread:
     interval: tuple[float, float]
     method: str
     identifiable: bool
+
+    @property
+    def interval_method(self) -> str:
+        """How :attr:`interval` was found (:data:`INTERVAL_METHODS`): from the profile of
+        the misfit when it was profiled, else from the Jacobian."""
+        return INTERVAL_METHODS["profile" if np.isfinite(self.sigma_profile) else "jacobian"]
 
 
 def correlation_time(residual: np.ndarray) -> float:

@@ -125,12 +125,15 @@ def require_plotting(args: argparse.Namespace) -> None:
 
 
 def refuse_rpm_without_set_speed(config: Config, rpm: Any, consequence: str) -> None:
-    """A clear error if a rotary speed is given for a top drive without a set speed."""
-    if rpm is not None and not config.top_drive.has_set_speed:
+    """A clear error if a rotary speed is given for a top drive that takes none (torque
+    driven, or following a recording)."""
+    follows = config.top_drive.speed_follows
+    if rpm is not None and follows is not None:
+        if config.top_drive.kind == "recorded":
+            consequence = "; remove --rpm, or use another top_drive.kind"
         raise ConfigError(
             "--rpm",
-            f"the top drive is {config.top_drive.kind!r} (top_drive.kind): its speed follows "
-            f"from the torque balance{consequence}",
+            f"the top drive is {config.top_drive.kind!r} (top_drive.kind): {follows}{consequence}",
         )
 
 

@@ -67,7 +67,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``torsio fit`` with parsed arguments; return the exit status."""
-    from torsio.calibration.fit import SPEED_SMOOTHING, fit_recordings
+    from torsio.calibration.fit import SPEED_SMOOTHING, check_wob, fit_recordings
     from torsio.calibration.recording import read_recording
     from torsio.config.reading import load_config
     from torsio.errors import ConfigError
@@ -79,7 +79,7 @@ def run(args: argparse.Namespace) -> int:
     config = load_config(args.config)
     if config.well is None:
         raise ConfigError("well", f"{args.config} has no [well] table: nothing to fit friction to")
-    wob = 0.0 if args.wob is None else to_si(args.wob, "force", key="--wob")
+    wob = 0.0 if args.wob is None else check_wob(to_si(args.wob, "force", key="--wob"), "--wob")
     recordings = [read_recording(path) for path in args.recording]
     window = common.parse_time(args.speed_smoothing, "--speed-smoothing")
     if window is not None and args.top != "recorded":

@@ -43,6 +43,12 @@ take bare SI numbers.
 NO_SET_SPEED = ("torque",)
 """Kinds whose speed follows from a torque balance: no rotary speed may be set for them."""
 
+SPEED_FOLLOWS = {
+    "torque": "its speed follows from the torque balance",
+    "recorded": "its speed follows the recording (top_drive.recording)",
+}
+"""Why a kind takes no rotary speed from the command line (``--rpm``)."""
+
 
 @attrs.frozen
 class TopDriveConfig:
@@ -55,6 +61,11 @@ class TopDriveConfig:
     def has_set_speed(self) -> bool:
         """Whether the kind turns at a set speed (``--rpm``); False for ``torque``."""
         return self.kind not in NO_SET_SPEED
+
+    @property
+    def speed_follows(self) -> str | None:
+        """Why the kind takes no ``--rpm`` (None: it takes one)."""
+        return SPEED_FOLLOWS.get(self.kind)
 
     def build(self) -> Any:
         """The top-drive object (a registered kind built from the parameters)."""

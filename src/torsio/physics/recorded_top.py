@@ -27,6 +27,7 @@ torsio.errors.ConfigError: top_drive.recording: expected a CSV file (a path) or 
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any, ClassVar
 
@@ -83,6 +84,28 @@ class RecordedTopDrive:
 
     recording: Recording = attrs.field(converter=_as_recording)
     smoothing: float = attrs.field(default=0.0, converter=_as_window)
+
+    def past_the_record(self, duration: float) -> str | None:
+        """The warning for a run of ``duration`` [s] that outlasts the record, else None:
+        the top is then held at the last recorded speed, which the rig may not have kept.
+
+        >>> record = Recording(time=[0.0, 30.0], top_speed=[0.0, 12.5],
+        ...                    surface_torque=[0.0, 9e3], name="rig.csv")
+        >>> print(RecordedTopDrive(recording=record).past_the_record(173.5))
+        the run (173.5 s) outlasts the recording rig.csv (30 s): the top is held at its last
+        speed, 119.4 rpm, for the last 143.5 s
+        >>> RecordedTopDrive(recording=record).past_the_record(30.0) is None
+        True
+        """
+        record = self.recording
+        if duration <= record.duration * (1.0 + 1e-9):
+            return None
+        return (
+            f"the run ({duration:g} s) outlasts the recording {record.name} "
+            f"({record.duration:g} s): the top is held at its last speed, "
+            f"{float(record.top_speed[-1]) * 30.0 / math.pi:.4g} rpm, for the last "
+            f"{duration - record.duration:g} s"
+        )
 
     def boundary(self, system: Any) -> TopDriveBoundary:
         """A held top whose set speed is the recorded speed against time."""
