@@ -222,7 +222,7 @@ def _well_rows(summary: Any) -> list[tuple[str, str]]:
         ("surface-torque swing in window", f"{summary['surface_torque_swing'] / 1e3:.4g} kN m"),
         (
             "stick-slip period in window",
-            "none" if period is None else f"{period:.4g} s",
+            f"none: {summary['stick_slip_period_reason']}" if period is None else f"{period:.4g} s",
         ),
         (
             f"bit first faster than {summary['threshold_speed']:g} rad/s",
