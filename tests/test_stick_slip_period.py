@@ -8,11 +8,13 @@ from __future__ import annotations
 
 import math
 
+import attrs
 import numpy as np
 import pytest
 
 from torsio.analysis import cycle_period as cp
 from torsio.analysis.cycle_period import cycle_period
+from torsio.analysis.grid_check import with_grid_check
 
 OMEGA = 2.0 * math.pi  # rad/s: 60 rpm
 
@@ -74,3 +76,83 @@ def test_fewer_than_two_cycles_have_no_period():
     # a 25 s cycle: 2.4 cycles, read (the signal is built with that period)
     time, speed = stick_slip_signal(25.0, 4.0, everywhere=True)
     assert cycle_period(time, speed)[0] == pytest.approx(25.0, rel=0.02)
+
+
+def off_bottom_case():
+    """The built-in deviated well (2.5 km) off bottom with one friction along the hole
+    (mu_s 0.3, mu_d 0.195), a PI top drive (J 2900 kg m^2, kp 300 N m s/rad, ki 2067.6 N m/rad)
+    and no distributed drag: the case of benchmarks/stickslip_grid_study.py."""
+    from importlib import resources
+
+    from torsio.config.reading import parse_config_text
+
+    text = resources.files("torsio").joinpath("data/deviated_well.toml").read_text("utf-8")
+    top = '[top_drive]\nkind = "pi"\ninertia = "2900 kg*m^2"\nkp = 300.0\nki = 2067.6\n\n'
+    for old, new in (
+        ("friction_static = 0.35", "friction_static = 0.3"),
+        ("friction_dynamic = 0.3\n", "friction_dynamic = 0.195\n"),
+        ("friction_static = 0.25", "friction_static = 0.3"),
+        ("friction_dynamic = 0.2\n", "friction_dynamic = 0.195\n"),
+        ("alpha = 0.35", "alpha = 0.0"),
+        ("[bit_rock]", top + "[bit_rock]"),
+    ):
+        assert old in text
+        text = text.replace(old, new, 1)
+    return parse_config_text(text, source="off-bottom stick-slip")
+
+
+def test_off_bottom_period_lies_in_the_reference_band_on_two_grids():
+    # the issue's must-show: off bottom at 60 rpm the period lies within 2-7 s (the
+    # independent solution of the Aarsnes & Shor model gives 5.2 s, 2.3-5.3 s over grids)
+    # on the default grid and on one 4x finer; the level-crossing count it replaces read
+    # 0.41 s here (chatter)
+    from torsio.analysis.transient import simulate_config
+
+    config = off_bottom_case()
+    default = simulate_config(config, wob=0.0, rpm=60.0, duration=160.0, steady_window=60.0)
+    step = default.solver["time_step"]
+    finer = simulate_config(
+        config, wob=0.0, rpm=60.0, duration=160.0, steady_window=60.0,
+        discretization={"time_step": step / 4.0},
+    )  # fmt: skip
+    assert finer.solver["time_step"] == pytest.approx(step / 4.0, rel=1e-9)
+    for run in (default, finer):
+        assert run.well_summary["stick_slip_period_reason"] is None
+        assert 2.0 <= run.well_summary["stick_slip_period"] <= 7.0
+    # the finer grid's coarse twin (about the default's step) is its grid check
+    assert finer.well_summary["grid_check"]["time_step"] > 1.5 * finer.solver["time_step"]
+
+
+@attrs.frozen
+class _Run:
+    """The fields of TransientResults the grid check reads."""
+
+    severity: float
+    stick_fraction: float
+    well_summary: dict
+    solver: dict
+    warnings: tuple = ()
+
+
+def _run(severity, stick, swing, period, step):
+    summary = {"surface_torque_swing": swing, "stick_slip_period": period}
+    return _Run(severity, stick, summary, {"time_step": step})
+
+
+def test_the_grid_check_warns_beyond_ten_percent():
+    # the changes are the relative differences of the given numbers (exact arithmetic):
+    # swing 3000 against 2600 N m is 2/15 > 10 %: a warning naming discretization.time_step
+    run = _run(0.6, 0.2, 3000.0, 4.0, 1e-3)
+    checked = with_grid_check(run, _run(0.58, 0.21, 2600.0, 4.1, 2e-3))
+    assert checked.well_summary["grid_check"]["largest_change"] == pytest.approx(2.0 / 15.0)
+    assert checked.well_summary["grid_check"]["time_step"] == 2e-3
+    (warning,) = checked.warnings
+    assert warning.startswith("discretization.time_step") and "swing" in warning
+    # within 10 % on every feature (S_SS 1/30, stick 0.01, swing 1/30, period 0.025): quiet
+    quiet = with_grid_check(run, _run(0.62, 0.21, 3100.0, 4.1, 2e-3))
+    assert quiet.warnings == () and quiet.well_summary["grid_check"]["largest_change"] == (
+        pytest.approx(1.0 / 30.0)
+    )
+    # a twin without a cycle is a whole change
+    lost = with_grid_check(run, _run(0.0, 0.0, 1.0, None, 2e-3))
+    assert lost.well_summary["grid_check"]["largest_change"] == 1.0 and lost.warnings
