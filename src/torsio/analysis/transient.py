@@ -401,7 +401,8 @@ def simulate_config(
         "travel_time_tolerance": TWIN_TRAVEL_TIME_TOLERANCE,
     }
     try:
-        twin = simulate(config.system(**coarse).at(**point), **options.kwargs())
+        quiet = False if progress is False else None  # as quiet as the run, else after 2 s
+        twin = simulate(config.system(**coarse).at(**point), progress=quiet, **options.kwargs())
     except ConfigError as exc:  # no coarser grid for this string: the run stands, unchecked
         note = f"the grid was not checked against a grid of twice the time step: {exc}"
         return attrs.evolve(results, warnings=(*results.warnings, note))
