@@ -170,3 +170,28 @@ def test_the_grid_check_warns_beyond_ten_percent():
     # a twin without a cycle is a whole change
     lost = with_grid_check(run, _run(0.0, 0.0, 1.0, None, 2e-3))
     assert lost.well_summary["grid_check"]["largest_change"] == 1.0 and lost.warnings
+
+
+def test_the_command_line_says_why_there_is_no_period(capsys, tmp_path):
+    # the built-in deviated well off bottom at 60 rpm under a constant-speed top drive with
+    # alpha = 0.35 1/s settles to steady rotation (its steady torque is the closed form of
+    # docs/wave.md, "Checks with friction"): no cycle, so null with the reason, and the
+    # table says the same
+    import json
+    from importlib import resources
+
+    from torsio.cli import main
+
+    path = tmp_path / "well.toml"
+    path.write_text(
+        resources.files("torsio").joinpath("data/deviated_well.toml").read_text("utf-8"),
+        encoding="utf-8",
+    )
+    args = ["simulate", str(path), "--wob", "0", "--rpm", "60"]  # default run and window
+    assert main([*args, "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["stick_slip_period"] is None
+    assert data["stick_slip_period_reason"] == cp.STEADY
+    assert "grid_check" not in data  # no cycle, nothing to check
+    assert main(args) == 0
+    assert "none: steady rotation" in " ".join(capsys.readouterr().out.split())
