@@ -195,3 +195,28 @@ def test_the_command_line_says_why_there_is_no_period(capsys, tmp_path):
     assert "grid_check" not in data  # no cycle, nothing to check
     assert main(args) == 0
     assert "none: steady rotation" in " ".join(capsys.readouterr().out.split())
+
+
+def test_the_report_gives_the_same_period(capsys, tmp_path):
+    # one estimate everywhere: the report's response section reads the period of its run's
+    # window with cycle_period, the same function and window as the results' summary; the
+    # paper's string at 175 kN, 100 rpm on strategy A is in stick-slip (S_SS 1.099, the
+    # doctest of simulate_config)
+    import json
+    from importlib import resources
+
+    from torsio.analysis.transient import simulate_config
+    from torsio.cli import main
+    from torsio.config.reading import load_config
+
+    text = resources.files("torsio").joinpath("data/ritto2017.toml").read_text("utf-8")
+    assert 'wob = "100 kN"' in text
+    path = tmp_path / "stick_slip.toml"
+    path.write_text(text.replace('wob = "100 kN"', 'wob = "175 kN"'), encoding="utf-8")
+    assert main(["report", str(path), "--strategy", "A", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)["response"]
+    assert data["stick_slip_period"] is not None
+    run = simulate_config(load_config(path), discretization={"strategy": "A"})
+    window = run.window_mask
+    expected = cycle_period(run.time[window], run.bit_speed[window])
+    assert (data["stick_slip_period"], data["stick_slip_period_reason"]) == expected
