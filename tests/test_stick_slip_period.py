@@ -45,6 +45,18 @@ def test_a_6_s_cycle_with_chatter_reads_6_s(chatter_hz, everywhere):
     assert period == pytest.approx(6.0, rel=0.02)
 
 
+def test_slips_alternating_in_size_read_the_time_from_slip_to_slip():
+    # a 6 s cycle whose slips alternate between 2 Omega and 1.2 Omega peaks (the signal
+    # repeats every 12 s, a slip every 6 s as built): the period is the 6 s between slips
+    time = np.arange(0.0, 60.0, 1e-3) + 0.37
+    phase = np.mod(time, 6.0)
+    size = np.where(np.floor(time / 6.0) % 2 == 1, 0.6, 1.0)
+    slip = np.where(phase < 2.0, 0.0, size * OMEGA * (1.0 - np.cos(np.pi * (phase - 2.0) / 2.0)))
+    speed = slip + 0.3 * OMEGA * np.sin(2.0 * np.pi * 4.0 * time)
+    period, reason = cycle_period(time, speed)
+    assert reason is None and period == pytest.approx(6.0, rel=0.02)
+
+
 def test_the_period_does_not_depend_on_the_sampling():
     # the same 6 s cycle sampled unevenly (jittered steps of 1-20 ms) reads the same period
     time, speed = stick_slip_signal(6.0, 4.0, everywhere=True)

@@ -15,9 +15,12 @@ import numpy as np
 
 __all__ = ["MAJOR_PEAK", "MIN_CORRELATION", "cycle_period"]
 
-MAJOR_PEAK = 0.8
+MAJOR_PEAK = 0.5
 """A lobe of the autocorrelation is major when its peak reaches this share of the largest
-correlation after the central lobe (a multiple of the period correlates about as well)."""
+correlation after the central lobe. A multiple of the period correlates about as well as the
+period; slips that alternate in size, or an irregular cycle, correlate better at two cycles
+than at one, and half the largest still takes the one: the time from slip to slip, where the
+spectrum of the signal peaks."""
 
 MIN_CORRELATION = 0.3
 """Below this normalized correlation at every lag after the central lobe, the window holds no
