@@ -12,30 +12,9 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["contact_summary", "oscillation_period"]
+from torsio.analysis.cycle_period import cycle_period
 
-
-def oscillation_period(time: np.ndarray, speed: np.ndarray) -> float | None:
-    """Mean time [s] between upward crossings of the middle of ``speed``'s range, or None
-    with fewer than three crossings (two whole cycles) or a range under 1e-3 of the
-    largest speed (steady rotation, whose round-off has no period).
-
-    >>> t = np.linspace(0.0, 10.0, 10001)
-    >>> round(oscillation_period(t, np.sin(2 * np.pi * t / 2.5)), 6)
-    2.5
-    """
-    if speed.size < 2:
-        return None
-    low, high = float(np.min(speed)), float(np.max(speed))
-    if not high - low > 1e-3 * max(abs(low), abs(high)):
-        return None
-    level = 0.5 * (low + high)
-    up = np.flatnonzero((speed[:-1] < level) & (speed[1:] >= level))
-    if up.size < 3:
-        return None
-    share = (level - speed[up]) / (speed[up + 1] - speed[up])
-    crossings = time[up] + share * (time[up + 1] - time[up])
-    return float(np.mean(np.diff(crossings)))
+__all__ = ["contact_summary"]
 
 
 def contact_summary(
@@ -51,14 +30,18 @@ def contact_summary(
     """The keys of a run with contacts (docs/cli.md): the surface torque's extremes in the
     steady window [N m] and their swing, its peak over the run, when the bit first turned
     faster than the threshold speed [s] (None if never; NaN in means never), the friction's
-    work [J], the stick-slip period of the bit speed in the window [s] and the contacts."""
+    work [J], the stick-slip period of the bit speed in the window [s]
+    (:func:`~torsio.analysis.cycle_period.cycle_period`; None with the reason why) and the
+    contacts."""
     low, high = (float(value) for value in surface_range)
+    period, no_period = cycle_period(window_time, window_bit_speed)
     return {
         "surface_torque_min": low,
         "surface_torque_max": high,
         "surface_torque_swing": high - low,
         "surface_torque_peak": float(surface_peak),
-        "stick_slip_period": oscillation_period(window_time, window_bit_speed),
+        "stick_slip_period": period,
+        "stick_slip_period_reason": no_period,
         "bit_first_motion": None if math.isnan(first_motion) else float(first_motion),
         "friction_work": float(friction_work),
         "threshold_speed": float(contacts.threshold_speed),

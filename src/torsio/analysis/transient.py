@@ -47,6 +47,7 @@ import math
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
+import attrs
 import numpy as np
 
 from torsio.analysis.budget import (
@@ -54,6 +55,7 @@ from torsio.analysis.budget import (
     check_output_size,
 )
 from torsio.analysis.contact_summary import contact_summary
+from torsio.analysis.grid_check import TWIN_TRAVEL_TIME_TOLERANCE, with_grid_check
 from torsio.analysis.limits import saturated_motor, short_window, stuck_throughout, warning_list
 from torsio.analysis.severity import (
     DEFAULT_SAMPLES_PER_PERIOD,
@@ -361,6 +363,10 @@ def simulate_config(
 ) -> TransientResults:
     """Simulate a configuration: its System, its ``[simulation]`` options, ``overrides`` on top.
 
+    A wave run from rest with friction along the string whose bit speed has a cycle is
+    checked against a coarse twin (:mod:`torsio.analysis.grid_check`: ``grid_check`` in
+    its well summary, a warning when the grid does not resolve the cycle).
+
     Parameters
     ----------
     config : Config
@@ -387,4 +393,28 @@ def simulate_config(
     point = config.operating_point(wob, rpm)
     given = {k: v for k, v in (discretization or {}).items() if v is not None}
     system = config.system(**given).at(**point)
-    return simulate(system, initial_state=initial_state, progress=progress, **options.kwargs())
+    results = simulate(system, initial_state=initial_state, progress=progress, **options.kwargs())
+    step = system.model.time_step
+    if step is None or not _checks_its_grid(results, initial_state):
+        return results
+    coarse = {
+        **given,
+        "time_step": 2.0 * step,
+        "travel_time_tolerance": TWIN_TRAVEL_TIME_TOLERANCE,
+    }
+    try:
+        quiet = False if progress is False else None  # as quiet as the run, else after 2 s
+        twin = simulate(config.system(**coarse).at(**point), progress=quiet, **options.kwargs())
+    except ConfigError as exc:  # no coarser grid for this string: the run stands, unchecked
+        note = f"the grid was not checked against a grid of twice the time step: {exc}"
+        return attrs.evolve(results, warnings=(*results.warnings, note))
+    return with_grid_check(results, twin)
+
+
+def _checks_its_grid(results: TransientResults, initial_state: Any) -> bool:
+    """A run from rest with friction along the string whose bit speed has a cycle (on a
+    model's own fixed grid: :mod:`torsio.analysis.grid_check`)."""
+    summary = results.well_summary
+    return (
+        initial_state is None and summary is not None and summary["stick_slip_period"] is not None
+    )

@@ -230,7 +230,7 @@ def _well_rows(summary: Any, units: Any) -> list[tuple[str, str]]:
         ),
         (
             "stick-slip period in window",
-            "none" if period is None else f"{period:.4g} s",
+            f"none: {summary['stick_slip_period_reason']}" if period is None else f"{period:.4g} s",
         ),
         (
             f"bit first faster than {summary['threshold_speed']:g} rad/s",

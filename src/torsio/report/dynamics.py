@@ -92,7 +92,9 @@ def dimensionless_section(ctx: ReportContext) -> ReportSection | None:
 
 # --- response at the operating point ------------------------------------------------------------
 def response_section(ctx: ReportContext) -> ReportSection | None:
-    """S_SS (Eq. 12) and the stick fraction of a start-up from rest at the operating point."""
+    """S_SS (Eq. 12), the stick fraction and the stick-slip period (the cycle's fundamental,
+    :func:`torsio.analysis.cycle_period.cycle_period`) of a start-up from rest at the
+    operating point."""
     results = ctx.transient
     if results is None:
         return None
@@ -107,7 +109,13 @@ def response_section(ctx: ReportContext) -> ReportSection | None:
         "bit_speed_max_rad_s": float(results.bit_speed[results.window_mask].max()),
         "solver": {k: solver[k] for k in ("method", "rtol", "atol", "nfev") if k in solver},
     }
+    from torsio.analysis.cycle_period import cycle_period
     from torsio.analysis.severity import SEVERE_THRESHOLD
+
+    period, no_period = cycle_period(
+        results.time[results.window_mask], results.bit_speed[results.window_mask]
+    )
+    data.update(stick_slip_period=period, stick_slip_period_reason=no_period)
 
     if results.severity > SEVERE_THRESHOLD:
         verdict = Text("severe stick-slip", style="bold red")
@@ -131,6 +139,10 @@ def response_section(ctx: ReportContext) -> ReportSection | None:
             f"{data['bit_speed_min_rad_s'] * 30.0 / math.pi:.4g} to "
             f"{data['bit_speed_max_rad_s'] * 30.0 / math.pi:.4g} rpm"
         ),
+    )
+    table.add_row(
+        "stick-slip period",
+        Text(f"none: {no_period}" if period is None else f"{period:.4g} s"),
     )
     table.add_row("window", Text(f"{start:.4g} to {end:.4g} s of a start-up from rest"))
     rtol, atol = solver.get("rtol"), solver.get("atol")
