@@ -73,7 +73,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     terminated: list[int] = []
     previous = _handle_sigterm(terminated)
     stdout = sys.stdout
-    sys.stdout = _Stdout(stdout)  # type: ignore[assignment]
+    sys.stdout = _Stdout(stdout)
     try:
         with warnings.catch_warnings(), _warning_format(args.command):
             warnings.simplefilter("default")

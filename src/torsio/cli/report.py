@@ -33,7 +33,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the report (rich, or JSON with ``--json``)."""
-    from torsio.errors import ConfigError
+    from torsio.errors import ConfigError, OutputError
     from torsio.report.context import ReportContext
     from torsio.report.document import render, report_data
 
@@ -43,7 +43,7 @@ def run(args: argparse.Namespace) -> int:
     config = common.load(args)
     options = {**common.discretization_overrides(args), "modes": args.modes}
     ctx = ReportContext(config, **options)  # computed once, shared by every output
-    failed = {}
+    failed: dict[str, OutputError] = {}
     if args.html:
         from torsio.output_files import write_text
         from torsio.report.html import NO_FIGURES_NOTE, have_matplotlib, html_report
