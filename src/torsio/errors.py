@@ -34,3 +34,24 @@ class SolverError(TorsioError, RuntimeError):
 
 class PluginError(TorsioError):
     """A plugin is broken or conflicts with another one."""
+
+
+class OutputError(TorsioError, OSError):
+    """A file could not be written (a full disk, a quota, an I/O error); nothing was left
+    in its place (:mod:`torsio.output_files`).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file that was being written.
+    reason : str
+        The operating system's reason (``"No space left on device"``).
+    """
+
+    def __init__(self, path: object, reason: str) -> None:
+        self.path = str(path)
+        self.reason = reason
+        super().__init__(f"cannot write {self.path!r}: {reason}")
+
+    def __str__(self) -> str:
+        return str(self.args[0])

@@ -12,8 +12,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import uuid
 import zipfile
 from pathlib import Path
 from typing import Any
@@ -24,6 +22,7 @@ import numpy as np
 from torsio.analysis.limits import stuck_points, warning_list
 from torsio.analysis.map_checks import FORMAT, FORMAT_VERSION, check_map_data
 from torsio.errors import ConfigError
+from torsio.output_files import atomic_output
 from torsio.solvers.batch_results import STATUS_MESSAGES
 from torsio.units import RPM_TO_RAD_S
 
@@ -343,7 +342,9 @@ class SeverityMap:
 
         JSON holds :meth:`to_dict`; ``.npz`` holds the same as arrays plus a
         ``metadata`` JSON string. The file is written to a temporary name and
-        renamed, so an interrupted write never leaves a truncated file.
+        renamed once on the disk (:func:`torsio.output_files.atomic_output`), so a full
+        disk or an interrupted write never leaves a truncated file: it raises
+        :class:`~torsio.errors.OutputError` naming the path.
         An incomplete map is saved with ``"complete": false``.
         """
         path = Path(path)
@@ -351,24 +352,18 @@ class SeverityMap:
         directory = path.parent if str(path.parent) else Path(".")
         if not directory.is_dir():
             raise ConfigError("out", f"directory {str(directory)!r} does not exist")
-        temporary = directory / f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp"
-        try:
-            with open(temporary, "xb") as stream:  # ordinary permissions (umask)
-                if path.suffix == ".npz":
-                    arrays: dict[str, Any] = {
-                        key: np.array(data[key], dtype=None if key in _EXACT else float)
-                        for key in _NPZ_ARRAYS
-                    }
-                    arrays["severity"] = self.severity
-                    arrays["critical_bracket"] = self.critical_bracket
-                    meta = {k: v for k, v in data.items() if k not in arrays}
-                    np.savez_compressed(stream, metadata=np.array(json.dumps(meta)), **arrays)
-                else:
-                    stream.write(json.dumps(data, indent=1).encode("utf-8"))
-            os.replace(temporary, path)
-        except BaseException:
-            Path(temporary).unlink(missing_ok=True)
-            raise
+        with atomic_output(path, binary=True) as stream:
+            if path.suffix == ".npz":
+                arrays: dict[str, Any] = {
+                    key: np.array(data[key], dtype=None if key in _EXACT else float)
+                    for key in _NPZ_ARRAYS
+                }
+                arrays["severity"] = self.severity
+                arrays["critical_bracket"] = self.critical_bracket
+                meta = {k: v for k, v in data.items() if k not in arrays}
+                np.savez_compressed(stream, metadata=np.array(json.dumps(meta)), **arrays)
+            else:
+                stream.write(json.dumps(data, indent=1).encode("utf-8"))
         return path
 
     def to_csv(self, path: str | Path) -> Path:
@@ -378,7 +373,7 @@ class SeverityMap:
         path = Path(path)
         labels = self.classification()
         pi1, pi2 = self.pi1, self.pi2
-        with path.open("w", newline="", encoding="utf-8") as stream:
+        with atomic_output(path) as stream:
             writer = csv.writer(stream)
             writer.writerow(["rpm", "wob_N", "pi1", "pi2", "severity", "class", "status"])
             for i in range(self.rpm.size):

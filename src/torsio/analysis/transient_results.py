@@ -14,6 +14,7 @@ import numpy as np
 
 from torsio.analysis.severity import SEVERE_THRESHOLD
 from torsio.errors import ConfigError
+from torsio.output_files import atomic_output, save_figure_file
 from torsio.physics.system import System
 from torsio.units import RPM_TO_RAD_S
 
@@ -279,17 +280,15 @@ class TransientResults:
         for j in range(self.node_speeds.shape[1]):
             columns.append(self.node_speeds[:, j])
             names.append(f"node_speed_{j + 1}_rad_s")
-        try:
+        with atomic_output(path) as stream:  # whole or not at all (OutputError)
             np.savetxt(
-                path,
+                stream,
                 np.column_stack(columns),
                 delimiter=",",
                 header=",".join(names),
                 comments="",
                 fmt="%.10g",
             )
-        except OSError as exc:
-            raise ConfigError("csv", f"cannot write {str(path)!r}: {exc.strerror or exc}") from None
         return path
 
     def plot(self, path: str | Path | None = None, ax: Any = None) -> Any:
@@ -361,12 +360,7 @@ class TransientResults:
         axes[0].set_title(f"{op}: S_SS = {self.severity:.3f} (steady window shaded)")
         fig.tight_layout()
         if path is not None:
-            try:
-                fig.savefig(path, dpi=120)
-            except OSError as exc:
-                raise ConfigError(
-                    "plot", f"cannot write {str(path)!r}: {exc.strerror or exc}"
-                ) from None
+            save_figure_file(fig, path, dpi=120)  # whole or not at all (OutputError)
         return fig
 
 

@@ -58,6 +58,7 @@ from torsio.calibration.spikes import SIGMAS, WINDOW, torque_spikes, without_spi
 from torsio.csv_rows import csv_rows, header_cell
 from torsio.errors import ConfigError
 from torsio.model.arrays import read_only
+from torsio.output_files import atomic_output
 
 if TYPE_CHECKING:
     from torsio.analysis.transient_results import TransientResults
@@ -251,7 +252,7 @@ class Recording:
         if self.bit_speed is not None:
             columns.append(self.bit_speed / RPM)
             header.append("bit_rpm")
-        with Path(path).open("w", newline="", encoding="utf-8") as stream:
+        with atomic_output(path) as stream:  # whole or not at all (OutputError)
             writer = csv.writer(stream)
             writer.writerow(header)
             writer.writerows(zip(*(c.tolist() for c in columns), strict=True))

@@ -72,10 +72,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(words)
     terminated: list[int] = []
     previous = _handle_sigterm(terminated)
+    stdout = sys.stdout
+    sys.stdout = _Stdout(stdout)
     try:
         with warnings.catch_warnings(), _warning_format(args.command):
             warnings.simplefilter("default")
             status = args.run(args)
+        sys.stdout.flush()  # a full stdout fails here, not at the exit
+    except _StdoutFailed as exc:  # stdout on a full disk, /dev/full, an I/O error
+        _discard_stdout(stdout)
+        print(f"torsio {args.command}: error: cannot write to stdout: {exc}", file=sys.stderr)
+        return 2
     except TorsioError as exc:
         print(f"torsio {args.command}: error: {exc}", file=sys.stderr)
         return 2
@@ -84,14 +91,58 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"torsio {args.command}: {what}", file=sys.stderr)
         return 143 if terminated else 130
     except BrokenPipeError:  # output piped into a program that stopped reading (| head)
-        import os
-
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        _discard_stdout(stdout)
         return 0
     finally:
+        sys.stdout = stdout
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
     return int(status or 0)
+
+
+class _StdoutFailed(Exception):
+    """stdout could not be written (not a closed pipe); the OS's reason."""
+
+
+class _Stdout:
+    """sys.stdout whose failures (other than a closed pipe) are :class:`_StdoutFailed`, told
+    apart from those of the files a command reads or writes."""
+
+    def __init__(self, stream: Any) -> None:
+        self._stream = stream
+
+    def write(self, text: str) -> int:
+        try:
+            return int(self._stream.write(text))
+        except BrokenPipeError:
+            raise
+        except OSError as exc:
+            raise _StdoutFailed(exc.strerror or str(exc)) from None
+
+    def flush(self) -> None:
+        try:
+            self._stream.flush()
+        except BrokenPipeError:
+            raise
+        except OSError as exc:
+            raise _StdoutFailed(exc.strerror or str(exc)) from None
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._stream, name)
+
+
+def _discard_stdout(stdout: Any) -> None:
+    """Point stdout's descriptor at the null device: what is still buffered for it is
+    dropped at the exit instead of failing again there."""
+    import os
+
+    try:
+        descriptor = stdout.fileno()
+    except (OSError, ValueError, AttributeError):
+        return  # not a file (captured output)
+    null = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(null, descriptor)
+    os.close(null)
 
 
 def console_main() -> int:

@@ -13,7 +13,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from torsio.errors import ConfigError
+from torsio.errors import ConfigError, OutputError
 
 if TYPE_CHECKING:
     from torsio.config.configuration import Config
@@ -142,24 +142,30 @@ def write_and_print(
     results: Any,
     outputs: dict[str, str],
     summary: Callable[[Any, dict[str, str]], None],
-    written: dict[str, str] | None = None,
+    writers: dict[str, Callable[[str], object]] | None = None,
+    everything: Callable[[], dict[str, Any]] | None = None,
 ) -> int:
     """Write the files ``outputs`` names (``out``: ``results.save``, ``csv``:
-    ``results.to_csv``, ``plot``: ``results.plot``), then print ``results.to_dict()`` with
-    the paths written as one JSON object (``--json``) or ``summary(results, written)``.
-    Each of ``results.warnings`` (what limits the meaning of the result) goes to stderr
-    as ``torsio COMMAND: warning: ...``. ``written``: files the command wrote itself, by
-    option (reported with these). Returns the exit status, 0."""
+    ``results.to_csv``, ``plot``: ``results.plot``, others: ``writers[option](path)``),
+    then print ``results.to_dict()`` with the paths written as one JSON object
+    (``--json``) or ``summary(results, written)``. Each of ``results.warnings`` (what
+    limits the meaning of the result) goes to stderr as ``torsio COMMAND: warning: ...``.
+
+    A file that cannot be written (a full disk) loses nothing computed: the other files
+    are written, the results are printed as JSON on stdout (``everything()``, default
+    ``results.to_dict()``: all a file would have held) whatever ``--json`` says, and each
+    failure is named on stderr. Returns the exit status: 0, or 2 if a file failed.
+    """
     for text in getattr(results, "warnings", ()):
         print(f"torsio {args.command}: warning: {text}", file=sys.stderr)
-    written = dict(written or {})
-    if "out" in outputs:
-        written["out"] = str(results.save(outputs["out"]))
-    if "csv" in outputs:
-        written["csv"] = str(results.to_csv(outputs["csv"]))
-    if "plot" in outputs:
-        results.plot(outputs["plot"])
-        written["plot"] = outputs["plot"]
+    methods = {"out": "save", "csv": "to_csv", "plot": "plot"}
+    chosen = {k: (writers or {}).get(k) or getattr(results, methods[k]) for k in outputs}
+    written, failed = write_files(chosen, outputs)
+    if failed:
+        data = everything() if everything is not None else results.to_dict()
+        data.update(written)
+        print_json(data)
+        return report_failed_files(args, failed, "the results are on stdout as JSON")
     if args.json:
         data = results.to_dict()
         data.update(written)
@@ -167,6 +173,33 @@ def write_and_print(
     else:
         summary(results, written)
     return 0
+
+
+def write_files(
+    writers: dict[str, Callable[[str], object]], outputs: dict[str, str]
+) -> tuple[dict[str, str], dict[str, OutputError]]:
+    """Call ``writers[option](path)`` for each output file (by option, ``outputs``); a file
+    that cannot be written (:class:`~torsio.errors.OutputError`) does not stop the others.
+    Returns the paths written and the failures, by option."""
+    written: dict[str, str] = {}
+    failed: dict[str, OutputError] = {}
+    for option, write in writers.items():
+        try:
+            write(outputs[option])
+        except OutputError as exc:
+            failed[option] = exc
+        else:
+            written[option] = outputs[option]
+    return written, failed
+
+
+def report_failed_files(args: argparse.Namespace, failed: dict[str, OutputError], kept: str) -> int:
+    """Each file that could not be written on stderr as ``torsio COMMAND: error: --OPTION:
+    cannot write 'PATH': REASON; KEPT`` (``kept``: where the results went instead);
+    returns the exit status, 2."""
+    for option, exc in failed.items():
+        print(f"torsio {args.command}: error: --{option}: {exc}; {kept}", file=sys.stderr)
+    return 2
 
 
 def add_config_argument(parser: argparse.ArgumentParser) -> None:

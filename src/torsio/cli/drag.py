@@ -173,12 +173,9 @@ def run(args: argparse.Namespace) -> int:
         break_off=break_off(_with_friction(config.well, args.friction), config.string),
     )
     units = DisplayUnits(args.units)
-    written = {}
-    if "plot" in outputs:  # drawn here, in the units asked for
-        written["plot"] = outputs.pop("plot")
-        results.plot(written["plot"], units=units)
+    writers = {"plot": functools.partial(results.plot, units=units)}  # in the units asked
     return common.write_and_print(
-        args, results, outputs, functools.partial(_print_table, units=units), written
+        args, results, outputs, functools.partial(_print_table, units=units), writers
     )
 
 

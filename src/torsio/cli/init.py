@@ -35,15 +35,16 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Write the template; an existing file is kept unless ``--force``."""
-    from torsio.errors import ConfigError
+    from torsio.errors import ConfigError, OutputError
+    from torsio.output_files import write_text
 
     path = Path(args.path)
     if path.exists() and not args.force:
         raise ConfigError("PATH", f"{args.path!r} exists; give another path or --force")
     try:
-        path.write_text(template_text(), encoding="utf-8")
-    except OSError as exc:
-        raise ConfigError("PATH", f"cannot write {args.path!r}: {exc.strerror}") from None
+        write_text(path, template_text())
+    except OutputError as exc:
+        raise ConfigError("PATH", str(exc)) from None
     print(
         f"wrote {path}; try: torsio report {path}   or   "
         f'torsio simulate {path} --wob "100 kN" --rpm 60'

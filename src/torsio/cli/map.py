@@ -242,20 +242,28 @@ def _run(args: argparse.Namespace) -> int:
             result = severity_map(system, y, x, options, **run_on)
     except MapInterrupted as exc:
         if args.out is not None:
-            partial = _partial_path(Path(args.out))
-            exc.partial.save(partial)
-            print(
-                f"torsio map: {exc}; partial results written to {partial} (marked incomplete)",
-                file=sys.stderr,
-            )
+            print(f"torsio map: {exc}; {_save_partial(exc.partial, args.out)}", file=sys.stderr)
         raise KeyboardInterrupt from None
     except MapFailed as exc:  # the executor failed: keep what finished, then the error
         if args.out is not None:
-            partial = _partial_path(Path(args.out))
-            exc.partial.save(partial)
-            exc.args = (f"{exc}; partial results written to {partial} (marked incomplete)",)
+            exc.args = (f"{exc}; {_save_partial(exc.partial, args.out)}",)
         raise
     return common.write_and_print(args, result, outputs, _print_summary)
+
+
+def _save_partial(partial: Any, out: str) -> str:
+    """Write the points done beside ``out`` (``NAME.partial.SUFFIX``, marked incomplete);
+    says where they went: on stdout as JSON where the file cannot be written (a full
+    disk)."""
+    from torsio.errors import OutputError
+
+    path = _partial_path(Path(out))
+    try:
+        partial.save(path)
+    except OutputError as exc:
+        common.print_json(partial.to_dict())
+        return f"{exc}; the partial results are on stdout as JSON (marked incomplete)"
+    return f"partial results written to {path} (marked incomplete)"
 
 
 def axial_wob_range(config: Any) -> str:

@@ -33,27 +33,23 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the report (rich, or JSON with ``--json``)."""
-    from torsio.errors import ConfigError
+    from torsio.errors import ConfigError, OutputError
     from torsio.report.context import ReportContext
     from torsio.report.document import render, report_data
 
     if args.modes < 1:
         raise ConfigError("--modes", f"expected a whole number of modes >= 1, got {args.modes}")
-    common.check_outputs(args, ("html",))
+    outputs = common.check_outputs(args, ("html",))
     config = common.load(args)
     options = {**common.discretization_overrides(args), "modes": args.modes}
     ctx = ReportContext(config, **options)  # computed once, shared by every output
+    failed: dict[str, OutputError] = {}
     if args.html:
-        from pathlib import Path
-
+        from torsio.output_files import write_text
         from torsio.report.html import NO_FIGURES_NOTE, have_matplotlib, html_report
 
-        path = Path(args.html)
-        try:
-            path.write_text(html_report(ctx), encoding="utf-8")
-        except OSError as exc:
-            raise ConfigError("--html", f"cannot write {args.html!r}: {exc.strerror}") from None
-        if not have_matplotlib():
+        _, failed = common.write_files({"html": lambda p: write_text(p, html_report(ctx))}, outputs)
+        if not have_matplotlib() and not failed:
             import sys
 
             print(f"torsio report: {args.html} has no figures. {NO_FIGURES_NOTE}", file=sys.stderr)
@@ -61,4 +57,4 @@ def run(args: argparse.Namespace) -> int:
         common.print_json(report_data(ctx))
     else:
         render(ctx)
-    return 0
+    return common.report_failed_files(args, failed, "the report is on stdout") if failed else 0

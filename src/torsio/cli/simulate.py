@@ -107,15 +107,17 @@ def run(args: argparse.Namespace) -> int:
             f"engine cannot run this model ({fallback})",
             file=sys.stderr,
         )
-    written: dict[str, str] = {}
+    writers: dict[str, Any] = {}
     if "recording" in outputs:
         from torsio.calibration.recording import Recording
 
         name = Path(outputs["recording"]).name
-        Recording.from_transient(results, bit_speed=True, name=name).save(outputs["recording"])
-        written["recording"] = outputs["recording"]
+        recording = Recording.from_transient(results, bit_speed=True, name=name)
+        writers["recording"] = recording.save
     summary = functools.partial(_print_summary, units=DisplayUnits(args.units))
-    return common.write_and_print(args, results, outputs, summary, written)
+    return common.write_and_print(
+        args, results, outputs, summary, writers, lambda: results.to_dict(series=True)
+    )
 
 
 def _refuse_integrator_options(config: Any, args: argparse.Namespace, given: dict) -> None:

@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from torsio.errors import TorsioError
+from torsio.output_files import atomic_output, save_figure_file
 
 __all__ = ["pyplot", "save_figure"]
 
@@ -46,6 +47,9 @@ def save_figure(
 ) -> Path:
     """Save a figure (creating its folder), close it and return the path written.
 
+    The file is written whole or not at all (:mod:`torsio.output_files`; a failure is
+    an :class:`~torsio.errors.OutputError` naming the path).
+
     Parameters
     ----------
     figure : matplotlib Figure
@@ -78,9 +82,10 @@ def save_figure(
         buffer.seek(0)
         with Image.open(buffer) as image:
             indexed = image.convert("RGB").quantize(colors=256, dither=Image.Dither.NONE)
-            indexed.save(path, optimize=True)
+            with atomic_output(path, binary=True) as stream:  # whole or not at all
+                indexed.save(stream, format="PNG", optimize=True)
     else:
-        figure.savefig(path, dpi=dpi, bbox_inches="tight")
+        path = save_figure_file(figure, path, dpi=dpi, bbox_inches="tight")
     pyplot().close(figure)
     return path
 

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from torsio.errors import ConfigError
+from torsio.output_files import save_figure_file
 
 if TYPE_CHECKING:
     from torsio.analysis.map_results import SeverityMap
@@ -94,7 +95,7 @@ def plot_severity_map(
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="upper left", fontsize=8, framealpha=0.8)
     if path is not None:
-        ax.figure.savefig(path, dpi=120)
+        save_figure_file(ax.figure, path, dpi=120)  # whole or not at all (OutputError)
         if figure is not None:
             plt.close(figure)
     return ax

@@ -28,6 +28,7 @@ from torsio.model.discretize import StrategyA, StrategyB, StrategyC
 from torsio.model.drillstring import DrillString
 from torsio.model.lumped import LumpedModel
 from torsio.model.modal import modal_analysis
+from torsio.output_files import write_text
 from torsio.report import validation_page
 
 
@@ -446,7 +447,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     text = page()
     if args.write:
-        args.write.write_text(text, encoding="utf-8")
+        write_text(args.write, text)
     else:
         sys.stdout.write(text)
     return 0 if "FAILING" not in text else 1

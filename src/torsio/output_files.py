@@ -1,0 +1,116 @@
+"""Every file torsio writes, written whole or not at all.
+
+:func:`atomic_output` opens a temporary file beside the target (same folder, so the
+rename stays on one file system), hands it to the writer, flushes it to the disk
+(``fsync``) and renames it over the target (:func:`os.replace`). A write that fails (a
+full disk, a quota, an I/O error) or is interrupted removes the temporary file and leaves
+the target as it was: never a truncated file that looks complete. The failure is an
+:class:`~torsio.errors.OutputError` naming the path and the system's reason.
+
+Examples
+--------
+>>> import pathlib, tempfile
+>>> with tempfile.TemporaryDirectory() as folder:
+...     path = write_text(pathlib.Path(folder) / "note.txt", "rotary speed 60 rpm\\n")
+...     print(path.read_text(), end="")
+...     sorted(p.name for p in path.parent.iterdir())
+rotary speed 60 rpm
+['note.txt']
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import uuid
+from collections.abc import Iterator
+from pathlib import Path
+from typing import IO, Any
+
+from torsio.errors import OutputError
+
+__all__ = ["atomic_output", "save_figure_file", "write_bytes", "write_text"]
+
+
+@contextlib.contextmanager
+def atomic_output(path: str | os.PathLike[str], binary: bool = False) -> Iterator[IO[Any]]:
+    """A stream whose content becomes ``path`` only once it is all on the disk.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file to write (its folder must exist).
+    binary : bool
+        A bytes stream; else text in UTF-8 with newlines as written (``newline=""``,
+        what :mod:`csv` needs).
+
+    Raises
+    ------
+    OutputError
+        The file could not be written (the OS's reason named); the target is unchanged
+        and no temporary file is left.
+    """
+    target = Path(path)
+    folder = target.parent if str(target.parent) else Path(".")
+    temporary = folder / f".{target.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp"
+    try:
+        mode = "xb" if binary else "x"
+        encoding = None if binary else "utf-8"
+        with open(temporary, mode, encoding=encoding, newline=None if binary else "") as stream:
+            yield stream
+            stream.flush()
+            os.fsync(stream.fileno())
+        os.replace(temporary, target)
+    except OSError as exc:
+        _remove(temporary)
+        raise OutputError(target, exc.strerror or str(exc)) from exc
+    except BaseException:
+        _remove(temporary)
+        raise
+    _sync_folder(folder)
+
+
+def write_text(path: str | os.PathLike[str], text: str) -> Path:
+    """Write ``text`` (UTF-8) to ``path`` atomically (:func:`atomic_output`); the path."""
+    with atomic_output(path) as stream:
+        stream.write(text)
+    return Path(path)
+
+
+def write_bytes(path: str | os.PathLike[str], data: bytes) -> Path:
+    """Write ``data`` to ``path`` atomically (:func:`atomic_output`); the path."""
+    with atomic_output(path, binary=True) as stream:
+        stream.write(data)
+    return Path(path)
+
+
+def save_figure_file(figure: Any, path: str | os.PathLike[str], **savefig: Any) -> Path:
+    """A matplotlib figure written atomically to ``path`` in the format of its suffix
+    (``.png`` added when it has none, as matplotlib does); ``savefig``: matplotlib's
+    options (``dpi``, ...). Returns the path written."""
+    target = Path(path)
+    if not target.suffix:
+        target = target.with_name(target.name + ".png")
+    kind = target.suffix.lower().lstrip(".")
+    with atomic_output(target, binary=True) as stream:
+        figure.savefig(stream, format=kind, **savefig)
+    return target
+
+
+def _remove(path: Path) -> None:
+    with contextlib.suppress(OSError):
+        path.unlink(missing_ok=True)
+
+
+def _sync_folder(folder: Path) -> None:
+    """The rename on the disk too (where the platform lets a folder be synced)."""
+    try:
+        handle = os.open(folder, os.O_RDONLY)
+    except OSError:
+        return
+    try:
+        os.fsync(handle)
+    except OSError:
+        pass
+    finally:
+        os.close(handle)
