@@ -368,8 +368,11 @@ def simulate_axial(
         rebuilt at ``wob``. The growth rate is then that of the linearization with the
         contacts' damping (:mod:`torsio.axial.steady_friction`).
     """
+    typical, _ = run_times(assembly, None, None)
     duration, window = run_times(assembly, duration, window)
-    options = RunOptions(duration, window, start, perturbation, step, steps_per_period)
+    options = RunOptions(
+        duration, window, start, perturbation, step, steps_per_period, default_duration=typical
+    )
     setup: RunSetup | WaveRunSetup
     kind = getattr(top_drive, "name", "constant-speed") if top_drive is not None else None
     boundary = None

@@ -48,6 +48,7 @@ from numpy.typing import NDArray
 from torsio.axial import layouts as slot
 from torsio.axial import wave_kernel
 from torsio.axial.rgd import RGDBit
+from torsio.axial.run_budget import check_run_work
 from torsio.axial.run_setup import BitStart, KernelSetup, RunOptions, kernel_setup
 from torsio.axial.steady import steady_drilling
 from torsio.axial.wave_assembly import WaveDrillingAssembly
@@ -141,10 +142,11 @@ def wave_run_setup(
     """
     steady = steady_drilling(bit, wob, rpm)
     options.check()
-    grid = pipe_grid(
-        assembly, options.largest_step(bit, assembly.bha_mass, assembly.fastest_rate())
-    )
+    fastest = assembly.fastest_rate()
+    grid = pipe_grid(assembly, options.largest_step(bit, assembly.bha_mass, fastest))
     h = grid.step
+    nodes = int(grid.axial_offsets[-1] + grid.torsional_offsets[-1])
+    check_run_work(options, h, steady.delay, nodes, bit, assembly.bha_mass, fastest, "section")
     omega0, v0 = steady.bit_speed, steady.rop
     on_steady = options.start == "steady"
     axial_z, torsional_z = assembly.axial_impedances, assembly.torsional_impedances
