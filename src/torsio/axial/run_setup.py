@@ -139,10 +139,18 @@ class RunOptions:
     default_duration: float | None = None
 
     def check(self) -> None:
-        """A ConfigError unless ``start`` is one of :data:`STARTS` and 0 < window <= duration."""
+        """A ConfigError unless ``start`` is one of :data:`STARTS`, -1 < perturbation < 1 and
+        0 < window <= duration."""
         if self.start not in STARTS:
             raise ConfigError(
                 "simulation.start", f"{self.start!r} is not one of {', '.join(STARTS)}"
+            )
+        if not (-1 < self.perturbation < 1):
+            raise ConfigError(
+                "simulation.perturbation",
+                f"{self.perturbation!r}: the relative raise of the bit speed over Ω₀ on the "
+                "steady start; expected -1 < perturbation < 1 (1 already doubles the speed: "
+                "no longer a perturbation of steady drilling)",
             )
         if not (0 < self.window <= self.duration and math.isfinite(self.duration)):
             raise ConfigError(

@@ -36,6 +36,7 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import NDArray
 
+from torsio.analysis.limits import saturated_motor, warning_list
 from torsio.analysis.severity import default_times
 from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
@@ -51,6 +52,7 @@ from torsio.axial.run_setup import (
     run_setup,
     summarize,
 )
+from torsio.axial.run_warnings import run_warnings
 from torsio.axial.steady import SteadyDrilling
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_setup import WaveRunSetup, run_wave, wave_run_setup
@@ -174,7 +176,8 @@ class AxialTransient:
     warnings : tuple of str
         What limits the meaning of the run, as the torsional runs say it: a top drive at its
         torque limit or short of its set speed over the window
-        (:func:`torsio.analysis.limits.saturated_motor`).
+        (:func:`torsio.analysis.limits.saturated_motor`), and a window or an energy balance
+        that describe no drilling (:func:`torsio.axial.run_warnings.run_warnings`).
     energy : EnergyBalance or None
         The lumped chain's energy balance over the run
         (:mod:`torsio.axial.energy_balance`; None for the distributed pipe and a prescribed
@@ -434,18 +437,17 @@ def simulate_axial(
         string_contacts=contacts.at_wob(wob).describe() if contacts is not None else None,
         steady_friction=_steady_friction(setup),
     )
-    if boundary is None or boundary.held or not result.window_rows().any():
-        return result
-    from torsio.analysis.limits import saturated_motor, warning_list
-
-    in_window = result.window_rows()
-    motor = saturated_motor(
-        result.signal("motor_torque")[in_window],
-        boundary.max_torque,
-        float(result.signal("top_speed")[in_window].mean()),
-        boundary.set_speed,
-    )
-    return attrs.evolve(result, warnings=warning_list(motor))
+    texts = run_warnings(result.summary, bit, energy)
+    if boundary is not None and not boundary.held and result.window_rows().any():
+        in_window = result.window_rows()
+        motor = saturated_motor(
+            result.signal("motor_torque")[in_window],
+            boundary.max_torque,
+            float(result.signal("top_speed")[in_window].mean()),
+            boundary.set_speed,
+        )
+        texts = warning_list(motor, *texts)
+    return attrs.evolve(result, warnings=texts)
 
 
 def _growth_rate(
