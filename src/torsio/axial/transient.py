@@ -55,9 +55,10 @@ from torsio.axial.run_setup import (
 from torsio.axial.run_warnings import run_warnings
 from torsio.axial.steady import SteadyDrilling
 from torsio.axial.wave_assembly import WaveDrillingAssembly
-from torsio.axial.wave_setup import WaveRunSetup, run_wave, wave_run_setup
+from torsio.axial.wave_setup import WaveRunSetup, wave_chunk, wave_run_setup
 from torsio.errors import ConfigError, SolverError
 from torsio.model.lumped import chain_matrix
+from torsio.solvers.run_chunks import run_in_chunks
 
 __all__ = ["AxialTransient", "first_torsional_frequency", "run_times", "simulate_axial"]
 
@@ -86,48 +87,70 @@ def run_times(
     return float(duration), float(window)
 
 
+def _chain_chunk(
+    setup: RunSetup, settings: NDArray, stats: NDArray, samples: NDArray[np.float64]
+) -> None:
+    """One call of the lumped loop on ``setup`` with ``settings`` (its steps ``FIRST_STEP``
+    .. ``STEPS`` - 1), adding to ``stats`` and ``samples``."""
+    march(
+        setup.bit,
+        setup.torsional,
+        setup.axial,
+        settings,
+        setup.theta,
+        setup.omega,
+        setup.u,
+        setup.v,
+        setup.history,
+        setup.cursor,
+        stats,
+        samples,
+        setup.top.top,
+        setup.top_state,
+        setup.controller_state,
+        setup.top.a,
+        setup.top.b,
+        setup.top.c,
+        setup.top.d,
+        setup.top.w,
+        setup.contacts,
+        setup.contact_stuck,
+    )
+
+
 def run_kernel(
-    setup: RunSetup | WaveRunSetup, samples: NDArray[np.float64], sample_every: int
+    setup: RunSetup | WaveRunSetup,
+    samples: NDArray[np.float64],
+    sample_every: int,
+    progress: Any = None,
 ) -> NDArray:
-    """Run the compiled loop of ``setup``, lumped or distributed (its state arrays change);
-    the stats vector.
+    """Run the compiled loop of ``setup``, lumped or distributed (its state arrays change),
+    in chunks of bounded wall time (:func:`torsio.solvers.run_chunks.run_in_chunks`: a
+    signal stops the run between two chunks, within about 0.2 s); the stats vector.
+    ``progress(done, total)`` is called after every chunk.
 
     Raises SolverError when the history could not give the delay.
     """
+    settings = setup.settings.copy()
+    settings[slot.SAMPLE_EVERY] = sample_every
+    stats = np.zeros(len(slot.STATS))
+    chunk = wave_chunk if isinstance(setup, WaveRunSetup) else _chain_chunk
+    done = [0]
+
+    def advance(count: int) -> bool:
+        settings[slot.FIRST_STEP] = done[0]
+        settings[slot.STEPS] = done[0] + count
+        chunk(setup, settings, stats, samples)  # type: ignore[arg-type]
+        done[0] += count
+        return bool(stats[slot.FAILED])
+
+    run_in_chunks(setup.steps, advance, progress)
     if isinstance(setup, WaveRunSetup):
-        stats = run_wave(setup, samples, sample_every)
         state = [setup.axial_p, setup.torsional_p, setup.bha]
         samples[:, slot.TOP_DRIVE_SPEED] = setup.steady.bit_speed  # held at Ω₀
         samples[:, slot.MOTOR_TORQUE] = samples[:, slot.TOP_TORQUE]
         samples[:, slot.SURFACE_TORQUE] = samples[:, slot.TOP_TORQUE]
     else:
-        settings = setup.settings.copy()
-        settings[slot.SAMPLE_EVERY] = sample_every
-        stats = np.zeros(len(slot.STATS))
-        march(
-            setup.bit,
-            setup.torsional,
-            setup.axial,
-            settings,
-            setup.theta,
-            setup.omega,
-            setup.u,
-            setup.v,
-            setup.history,
-            setup.cursor,
-            stats,
-            samples,
-            setup.top.top,
-            setup.top_state,
-            setup.controller_state,
-            setup.top.a,
-            setup.top.b,
-            setup.top.c,
-            setup.top.d,
-            setup.top.w,
-            setup.contacts,
-            setup.contact_stuck,
-        )
         state = [setup.u, setup.theta, setup.top_state]
     if stats[slot.FAILED]:
         done = stats[slot.STEPS_DONE]

@@ -55,7 +55,7 @@ from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_pipe import junction_rows
 from torsio.model.wave_grid import choose_time_step
 
-__all__ = ["PipeGrid", "WaveRunSetup", "pipe_grid", "run_wave", "wave_run_setup"]
+__all__ = ["PipeGrid", "WaveRunSetup", "pipe_grid", "run_wave", "wave_chunk", "wave_run_setup"]
 
 
 def _offsets(cells: NDArray[np.int64]) -> NDArray[np.int64]:
@@ -182,11 +182,24 @@ def wave_run_setup(
 
 
 def run_wave(setup: WaveRunSetup, samples: NDArray[np.float64], sample_every: int) -> NDArray:
-    """Run the compiled loop on ``setup`` (its state arrays change); the stats vector
-    (:data:`torsio.axial.layouts.STATS`)."""
+    """Run the compiled loop on ``setup`` in one call (its state arrays change); the stats
+    vector (:data:`torsio.axial.layouts.STATS`). Long runs go in chunks instead:
+    :func:`torsio.axial.transient.run_kernel`."""
     settings = setup.settings.copy()
     settings[slot.SAMPLE_EVERY] = sample_every
     stats = np.zeros(len(slot.STATS))
+    wave_chunk(setup, settings, stats, samples)
+    return stats
+
+
+def wave_chunk(
+    setup: WaveRunSetup,
+    settings: NDArray[np.float64],
+    stats: NDArray[np.float64],
+    samples: NDArray[np.float64],
+) -> None:
+    """One call of the compiled loop on ``setup`` with ``settings`` (its steps
+    ``FIRST_STEP`` .. ``STEPS`` - 1), adding to ``stats`` and ``samples``."""
     grid = setup.grid
     wave_kernel.march(
         setup.bit,
@@ -205,4 +218,3 @@ def run_wave(setup: WaveRunSetup, samples: NDArray[np.float64], sample_every: in
         stats,
         samples,
     )
-    return stats
