@@ -57,6 +57,7 @@ __all__ = [
     "check_output_size",
     "check_rtol",
     "check_wave_steps",
+    "most_fixed_steps",
 ]
 
 RTOL_RANGE = (1e-13, 1e-2)
@@ -239,6 +240,17 @@ def check_law_time_scale(system: Any, wob: float, duration: float) -> None:
     )
 
 
+def most_fixed_steps(nodes: int, max_steps: int = MAX_WAVE_STEPS) -> float:
+    """The most steps a fixed-step run on ``nodes`` nodes may take: at most ``max_steps``
+    and at most :data:`MAX_WAVE_WORK` node-steps (the wave model's and the axial engine's
+    runs alike).
+
+    >>> most_fixed_steps(1), most_fixed_steps(100_000)
+    (2000000.0, 500000.0)
+    """
+    return min(float(max_steps), MAX_WAVE_WORK / max(1, int(nodes)))
+
+
 def check_wave_steps(
     grid: Any, duration: float, key: str = "simulation.duration", max_steps: int = MAX_WAVE_STEPS
 ) -> int:
@@ -270,7 +282,7 @@ def check_wave_steps(
             f"a run of {duration:g} s is shorter than one time step of the wave grid "
             f"({dt:g} s); expected a run of at least {dt:g} s",
         )
-    most = min(float(max_steps), MAX_WAVE_WORK / nodes)
+    most = most_fixed_steps(nodes, max_steps)
     if steps_float <= most + 0.5:
         return int(round(steps_float))
     longest = math.floor(most) * dt
@@ -309,7 +321,7 @@ def _deciding_grid_key(grid: Any, duration: float, max_steps: int) -> str | None
 
     dt = float(grid.time_step)
     default = WaveStrategy(rigid_bha=grid.rigid_bha).discretize(grid.string)
-    fits = min(float(max_steps), MAX_WAVE_WORK / default.dofs) * float(default.time_step)
+    fits = most_fixed_steps(default.dofs, max_steps) * float(default.time_step)
     if not dt < float(default.time_step) * (1 - 1e-9) or duration > fits:
         return None
     requested = grid.details.get("max_time_step_s")

@@ -39,12 +39,18 @@ __all__ = [
 
 
 def stuck_throughout(stick_fraction: float, stick_threshold: float) -> str | None:
-    """The warning for a bit that sticks at every sample of the window, else None."""
+    """The warning for a bit that sticks at every sample of the window, else None
+    (``stick_threshold`` 0: the axial engine's bit, stuck when its speed is 0)."""
     if stick_fraction < 1.0:
         return None
+    at_rest = (
+        "the bit speed 0 at every step"
+        if stick_threshold == 0.0
+        else f"|bit speed| < {stick_threshold:g} Omega at every sample"
+    )
     return (
-        f"the bit is stuck throughout the steady window (|bit speed| < {stick_threshold:g} "
-        "Omega at every sample): the string never breaks it free, and S_SS, which measures "
+        f"the bit is stuck throughout the steady window ({at_rest}): the string never "
+        "breaks it free, and S_SS, which measures "
         "the swing of the bit speed, does not measure stick-slip here; lower the weight on "
         "bit or raise the torque the top drive can give"
     )

@@ -88,9 +88,11 @@ def march(
     contacts,
     contact_stuck,
 ) -> None:  # pragma: no cover - compiled
-    """Advance the run ``settings[slot.STEPS]`` steps from the state (θ, ω, U, V) and the
-    top drive's (``top_state``, ``controller_state``) in place."""
+    """Advance the run from step ``settings[slot.FIRST_STEP]`` to ``settings[slot.STEPS]``
+    from the state (θ, ω, U, V) and the top drive's (``top_state``, ``controller_state``)
+    in place (``stats`` carried over from the steps before)."""
     h, steps = settings[slot.STEP], int(settings[slot.STEPS])
+    first = int(settings[slot.FIRST_STEP])
     top_speed, weight = settings[slot.TOP_SPEED], settings[slot.HOOK_WEIGHT]
     speed_hook, hook_speed = settings[slot.SPEED_HOOK] != 0.0, settings[slot.HOOK_SPEED]
     window_start, sample_every = int(settings[slot.WINDOW_START]), int(settings[slot.SAMPLE_EVERY])
@@ -110,10 +112,13 @@ def march(
         if contacts[slot.STATIC_FORCE, i] > 0.0:
             has_contacts = True
     v_start = np.zeros(na)
-    bit_step.start_window(stats)
-    friction_work = switches = top_work = hook_work = damper_work = bit_work = 0.0
-    row = 0
-    for step in range(steps):
+    if first == 0:
+        bit_step.start_window(stats)
+    friction_work, switches = stats[slot.FRICTION_WORK], stats[slot.CONTACT_SWITCHES]
+    top_work, hook_work = stats[slot.TOP_WORK], stats[slot.HOOK_WORK]
+    damper_work, bit_work = stats[slot.DAMPER_WORK], stats[slot.BIT_WORK]
+    row = (first + sample_every - 1) // sample_every if sample_every > 0 else 0
+    for step in range(first, steps):
         t = t_start + step * h
         sampled = sample_every > 0 and step % sample_every == 0 and row < samples.shape[0]
         if sampled:

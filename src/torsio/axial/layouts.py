@@ -170,10 +170,12 @@ RUN_SETTINGS = (
     "window_start",
     "sample_every",
     "start_time",
+    "first_step",
 )
-"""The head of both kernels' ``settings``: h [s], steps, Ω₀ [rad/s], W₀ [N], the hook (0
-weight, 1 speed), V_h [m/s], the window's first step, sample every (0: never), t at step 0
-[s]."""
+"""The head of both kernels' ``settings``: h [s], the step a call stops before, Ω₀ [rad/s],
+W₀ [N], the hook (0 weight, 1 speed), V_h [m/s], the window's first step, sample every (0:
+never), t at step 0 [s], the step a call starts at (a run goes in chunks of steps
+``first_step`` .. ``steps`` - 1: :func:`torsio.axial.transient.run_kernel`)."""
 
 (
     STEP,
@@ -185,6 +187,7 @@ weight, 1 speed), V_h [m/s], the window's first step, sample every (0: never), t
     WINDOW_START,
     SAMPLE_EVERY,
     START_TIME,
+    FIRST_STEP,
 ) = range(len(RUN_SETTINGS))
 
 CHAIN_SETTINGS = (

@@ -38,6 +38,7 @@ from numpy.typing import NDArray
 from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.rgd import RGDBit
+from torsio.axial.run_budget import check_run_work
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 from torsio.axial.steady_friction import steady_loads, steady_with_friction
 from torsio.axial.string_contacts import AxialContacts, contact_rows
@@ -124,6 +125,9 @@ class RunOptions:
     ``window`` at its end [s], its ``start`` (:data:`STARTS`; on the steady start the bit's
     speed raised by ``perturbation``, relative) and its step rule (``steps_per_period``, a
     given ``step`` [s] capping h; see the module docstring). :meth:`check` validates them.
+    ``default_duration`` [s] is the run length torsio would choose for the model (None: not
+    known): :func:`torsio.axial.run_budget.check_run_work` tells by it a long run from a fast
+    model.
     """
 
     duration: float
@@ -132,12 +136,21 @@ class RunOptions:
     perturbation: float = 1e-3
     step: float | None = None
     steps_per_period: int = DEFAULT_STEPS_PER_PERIOD
+    default_duration: float | None = None
 
     def check(self) -> None:
-        """A ConfigError unless ``start`` is one of :data:`STARTS` and 0 < window <= duration."""
+        """A ConfigError unless ``start`` is one of :data:`STARTS`, -1 < perturbation < 1 and
+        0 < window <= duration."""
         if self.start not in STARTS:
             raise ConfigError(
                 "simulation.start", f"{self.start!r} is not one of {', '.join(STARTS)}"
+            )
+        if not (-1 < self.perturbation < 1):
+            raise ConfigError(
+                "simulation.perturbation",
+                f"{self.perturbation!r}: the relative raise of the bit speed over Ω₀ on the "
+                "steady start; expected -1 < perturbation < 1 (1 already doubles the speed: "
+                "no longer a perturbation of steady drilling)",
             )
         if not (0 < self.window <= self.duration and math.isfinite(self.duration)):
             raise ConfigError(
@@ -371,6 +384,8 @@ def run_setup(
             f"{TOP_DRIVE_STEP_LIMIT:g}, a step of at most {TOP_DRIVE_STEP_LIMIT / top_rate:.6g} s "
             "(or more steps per period)",
         )
+    nodes = assembly.nodes + assembly.axial_dofs
+    check_run_work(options, h, delay, nodes, bit, assembly.bit_mass, fastest, "chain")
     omega0, v0 = steady.bit_speed, steady.rop
     if contacts is not None:  # each spring carries the bit's load and the friction below it
         angles, positions = assembly.steady_offsets(torques, forces)

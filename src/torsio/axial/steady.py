@@ -92,14 +92,19 @@ class SteadyDrilling:
         )
 
 
+def _deepest_weight(bit: RGDBit) -> float:
+    """The weight [N] at which the steady depth of cut per blade d0/n reaches the radius a."""
+    return bit.friction_weight + bit.cutting_weight_per_depth * bit.blades * bit.radius
+
+
 def steady_drilling(bit: RGDBit, wob: float, rpm: float) -> SteadyDrilling:
     """The steady drilling state of ``bit`` under weight ``wob`` [N] at ``rpm`` [rev/min].
 
     Raises
     ------
     ConfigError
-        ``wob`` at most the wear flats' weight σ a l (the bit does not cut), or ``rpm`` not
-        positive.
+        ``wob`` at most the wear flats' weight σ a l (the bit does not cut) or so large that
+        the depth of cut per blade d0/n exceeds the bit's radius a, or ``rpm`` not positive.
 
     Examples
     --------
@@ -122,6 +127,14 @@ def steady_drilling(bit: RGDBit, wob: float, rpm: float) -> SteadyDrilling:
         )
     speed = rpm * RPM_TO_RAD_S
     depth_of_cut = (wob - friction_weight) / bit.cutting_weight_per_depth
+    if depth_of_cut / bit.blades > bit.radius:
+        raise ConfigError(
+            "wob",
+            f"{wob!r} N gives a steady depth of cut d0 = (W0 - σ a l)/(ζ ε a) = "
+            f"{depth_of_cut:.4g} m per revolution, {depth_of_cut / bit.blades:.3g} m per blade: "
+            f"deeper than the bit's radius ({bit.radius:g} m), outside any bit's geometry; "
+            f"expected a weight on bit below {_deepest_weight(bit):.4g} N for this bit",
+        )
     rop = speed * depth_of_cut / (2 * math.pi)
     torque = bit.cutting_torque(depth_of_cut) + bit.friction_torque
     area = bit.hole_area

@@ -36,6 +36,7 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import NDArray
 
+from torsio.analysis.limits import saturated_motor, warning_list
 from torsio.analysis.severity import default_times
 from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
@@ -51,11 +52,13 @@ from torsio.axial.run_setup import (
     run_setup,
     summarize,
 )
+from torsio.axial.run_warnings import run_warnings
 from torsio.axial.steady import SteadyDrilling
 from torsio.axial.wave_assembly import WaveDrillingAssembly
-from torsio.axial.wave_setup import WaveRunSetup, run_wave, wave_run_setup
+from torsio.axial.wave_setup import WaveRunSetup, wave_chunk, wave_run_setup
 from torsio.errors import ConfigError, SolverError
 from torsio.model.lumped import chain_matrix
+from torsio.solvers.run_chunks import run_in_chunks
 from torsio.units import as_rpm, as_si
 
 __all__ = ["AxialTransient", "first_torsional_frequency", "run_times", "simulate_axial"]
@@ -85,48 +88,70 @@ def run_times(
     return float(duration), float(window)
 
 
+def _chain_chunk(
+    setup: RunSetup, settings: NDArray, stats: NDArray, samples: NDArray[np.float64]
+) -> None:
+    """One call of the lumped loop on ``setup`` with ``settings`` (its steps ``FIRST_STEP``
+    .. ``STEPS`` - 1), adding to ``stats`` and ``samples``."""
+    march(
+        setup.bit,
+        setup.torsional,
+        setup.axial,
+        settings,
+        setup.theta,
+        setup.omega,
+        setup.u,
+        setup.v,
+        setup.history,
+        setup.cursor,
+        stats,
+        samples,
+        setup.top.top,
+        setup.top_state,
+        setup.controller_state,
+        setup.top.a,
+        setup.top.b,
+        setup.top.c,
+        setup.top.d,
+        setup.top.w,
+        setup.contacts,
+        setup.contact_stuck,
+    )
+
+
 def run_kernel(
-    setup: RunSetup | WaveRunSetup, samples: NDArray[np.float64], sample_every: int
+    setup: RunSetup | WaveRunSetup,
+    samples: NDArray[np.float64],
+    sample_every: int,
+    progress: Any = None,
 ) -> NDArray:
-    """Run the compiled loop of ``setup``, lumped or distributed (its state arrays change);
-    the stats vector.
+    """Run the compiled loop of ``setup``, lumped or distributed (its state arrays change),
+    in chunks of bounded wall time (:func:`torsio.solvers.run_chunks.run_in_chunks`: a
+    signal stops the run between two chunks, within about 0.2 s); the stats vector.
+    ``progress(done, total)`` is called after every chunk.
 
     Raises SolverError when the history could not give the delay.
     """
+    settings = setup.settings.copy()
+    settings[slot.SAMPLE_EVERY] = sample_every
+    stats = np.zeros(len(slot.STATS))
+    chunk = wave_chunk if isinstance(setup, WaveRunSetup) else _chain_chunk
+    done = [0]
+
+    def advance(count: int) -> bool:
+        settings[slot.FIRST_STEP] = done[0]
+        settings[slot.STEPS] = done[0] + count
+        chunk(setup, settings, stats, samples)  # type: ignore[arg-type]
+        done[0] += count
+        return bool(stats[slot.FAILED])
+
+    run_in_chunks(setup.steps, advance, progress)
     if isinstance(setup, WaveRunSetup):
-        stats = run_wave(setup, samples, sample_every)
         state = [setup.axial_p, setup.torsional_p, setup.bha]
         samples[:, slot.TOP_DRIVE_SPEED] = setup.steady.bit_speed  # held at Ω₀
         samples[:, slot.MOTOR_TORQUE] = samples[:, slot.TOP_TORQUE]
         samples[:, slot.SURFACE_TORQUE] = samples[:, slot.TOP_TORQUE]
     else:
-        settings = setup.settings.copy()
-        settings[slot.SAMPLE_EVERY] = sample_every
-        stats = np.zeros(len(slot.STATS))
-        march(
-            setup.bit,
-            setup.torsional,
-            setup.axial,
-            settings,
-            setup.theta,
-            setup.omega,
-            setup.u,
-            setup.v,
-            setup.history,
-            setup.cursor,
-            stats,
-            samples,
-            setup.top.top,
-            setup.top_state,
-            setup.controller_state,
-            setup.top.a,
-            setup.top.b,
-            setup.top.c,
-            setup.top.d,
-            setup.top.w,
-            setup.contacts,
-            setup.contact_stuck,
-        )
         state = [setup.u, setup.theta, setup.top_state]
     if stats[slot.FAILED]:
         done = stats[slot.STEPS_DONE]
@@ -175,7 +200,8 @@ class AxialTransient:
     warnings : tuple of str
         What limits the meaning of the run, as the torsional runs say it: a top drive at its
         torque limit or short of its set speed over the window
-        (:func:`torsio.analysis.limits.saturated_motor`).
+        (:func:`torsio.analysis.limits.saturated_motor`), and a window or an energy balance
+        that describe no drilling (:func:`torsio.axial.run_warnings.run_warnings`).
     energy : EnergyBalance or None
         The lumped chain's energy balance over the run
         (:mod:`torsio.axial.energy_balance`; None for the distributed pipe and a prescribed
@@ -370,8 +396,11 @@ def simulate_axial(
         contacts' damping (:mod:`torsio.axial.steady_friction`).
     """
     wob, rpm = as_si(wob, "force", "wob"), as_rpm(rpm)  # "100 kN", "60 rpm" as in a file
+    typical, _ = run_times(assembly, None, None)
     duration, window = run_times(assembly, duration, window)
-    options = RunOptions(duration, window, start, perturbation, step, steps_per_period)
+    options = RunOptions(
+        duration, window, start, perturbation, step, steps_per_period, default_duration=typical
+    )
     setup: RunSetup | WaveRunSetup
     kind = getattr(top_drive, "name", "constant-speed") if top_drive is not None else None
     boundary = None
@@ -433,18 +462,17 @@ def simulate_axial(
         string_contacts=contacts.at_wob(wob).describe() if contacts is not None else None,
         steady_friction=_steady_friction(setup),
     )
-    if boundary is None or boundary.held or not result.window_rows().any():
-        return result
-    from torsio.analysis.limits import saturated_motor, warning_list
-
-    in_window = result.window_rows()
-    motor = saturated_motor(
-        result.signal("motor_torque")[in_window],
-        boundary.max_torque,
-        float(result.signal("top_speed")[in_window].mean()),
-        boundary.set_speed,
-    )
-    return attrs.evolve(result, warnings=warning_list(motor))
+    texts = run_warnings(result.summary, bit, energy)
+    if boundary is not None and not boundary.held and result.window_rows().any():
+        in_window = result.window_rows()
+        motor = saturated_motor(
+            result.signal("motor_torque")[in_window],
+            boundary.max_torque,
+            float(result.signal("top_speed")[in_window].mean()),
+            boundary.set_speed,
+        )
+        texts = warning_list(motor, *texts)
+    return attrs.evolve(result, warnings=texts)
 
 
 def _growth_rate(

@@ -64,8 +64,10 @@ def march(
     stats,
     samples,
 ) -> None:  # pragma: no cover - compiled
-    """Advance the run ``settings[slot.STEPS]`` steps from the state (the lines, ``bha``)."""
+    """Advance the run from step ``settings[slot.FIRST_STEP]`` to ``settings[slot.STEPS]``
+    from the state (the lines, ``bha``), ``stats`` carried over from the steps before."""
     h, steps = settings[slot.STEP], int(settings[slot.STEPS])
+    first = int(settings[slot.FIRST_STEP])
     top_speed, weight = settings[slot.TOP_SPEED], settings[slot.HOOK_WEIGHT]
     speed_hook, hook_speed = settings[slot.SPEED_HOOK] != 0.0, settings[slot.HOOK_SPEED]
     window_start, sample_every = int(settings[slot.WINDOW_START]), int(settings[slot.SAMPLE_EVERY])
@@ -82,9 +84,10 @@ def march(
     wf_max, tf_per_wf = bit[slot.FRICTION_WEIGHT], bit[slot.FRICTION_TORQUE_PER_WEIGHT]
     axial_end, torsional_end = axial_p.size - 1, torsional_p.size - 1
     delayed = np.zeros(2)
-    bit_step.start_window(stats)
-    row = 0
-    for step in range(steps):
+    if first == 0:
+        bit_step.start_window(stats)
+    row = (first + sample_every - 1) // sample_every if sample_every > 0 else 0
+    for step in range(first, steps):
         t = t_start + step * h
         u, v, phi, omega = (
             bha[slot.BHA_POSITION],

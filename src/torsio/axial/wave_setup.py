@@ -48,13 +48,14 @@ from numpy.typing import NDArray
 from torsio.axial import layouts as slot
 from torsio.axial import wave_kernel
 from torsio.axial.rgd import RGDBit
+from torsio.axial.run_budget import check_run_work
 from torsio.axial.run_setup import BitStart, KernelSetup, RunOptions, kernel_setup
 from torsio.axial.steady import steady_drilling
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_pipe import junction_rows
 from torsio.model.wave_grid import choose_time_step
 
-__all__ = ["PipeGrid", "WaveRunSetup", "pipe_grid", "run_wave", "wave_run_setup"]
+__all__ = ["PipeGrid", "WaveRunSetup", "pipe_grid", "run_wave", "wave_chunk", "wave_run_setup"]
 
 
 def _offsets(cells: NDArray[np.int64]) -> NDArray[np.int64]:
@@ -141,10 +142,11 @@ def wave_run_setup(
     """
     steady = steady_drilling(bit, wob, rpm)
     options.check()
-    grid = pipe_grid(
-        assembly, options.largest_step(bit, assembly.bha_mass, assembly.fastest_rate())
-    )
+    fastest = assembly.fastest_rate()
+    grid = pipe_grid(assembly, options.largest_step(bit, assembly.bha_mass, fastest))
     h = grid.step
+    nodes = int(grid.axial_offsets[-1] + grid.torsional_offsets[-1])
+    check_run_work(options, h, steady.delay, nodes, bit, assembly.bha_mass, fastest, "section")
     omega0, v0 = steady.bit_speed, steady.rop
     on_steady = options.start == "steady"
     axial_z, torsional_z = assembly.axial_impedances, assembly.torsional_impedances
@@ -180,11 +182,24 @@ def wave_run_setup(
 
 
 def run_wave(setup: WaveRunSetup, samples: NDArray[np.float64], sample_every: int) -> NDArray:
-    """Run the compiled loop on ``setup`` (its state arrays change); the stats vector
-    (:data:`torsio.axial.layouts.STATS`)."""
+    """Run the compiled loop on ``setup`` in one call (its state arrays change); the stats
+    vector (:data:`torsio.axial.layouts.STATS`). Long runs go in chunks instead:
+    :func:`torsio.axial.transient.run_kernel`."""
     settings = setup.settings.copy()
     settings[slot.SAMPLE_EVERY] = sample_every
     stats = np.zeros(len(slot.STATS))
+    wave_chunk(setup, settings, stats, samples)
+    return stats
+
+
+def wave_chunk(
+    setup: WaveRunSetup,
+    settings: NDArray[np.float64],
+    stats: NDArray[np.float64],
+    samples: NDArray[np.float64],
+) -> None:
+    """One call of the compiled loop on ``setup`` with ``settings`` (its steps
+    ``FIRST_STEP`` .. ``STEPS`` - 1), adding to ``stats`` and ``samples``."""
     grid = setup.grid
     wave_kernel.march(
         setup.bit,
@@ -203,4 +218,3 @@ def run_wave(setup: WaveRunSetup, samples: NDArray[np.float64], sample_every: in
         stats,
         samples,
     )
-    return stats

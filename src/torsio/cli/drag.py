@@ -173,7 +173,7 @@ def run(args: argparse.Namespace) -> int:
         break_off=break_off(_with_friction(config.well, args.friction), config.string),
     )
     units = DisplayUnits(args.units)
-    writers = {"plot": functools.partial(results.plot, units=units)}  # in the units asked
+    writers: dict[str, Any] = {"plot": functools.partial(results.plot, units=units)}
     return common.write_and_print(
         args, results, outputs, functools.partial(_print_table, units=units), writers
     )
