@@ -1,10 +1,13 @@
-"""What a new installation meets: no matplotlib, numba's cache folder, the first-compile note."""
+"""What a new installation meets: no matplotlib, numba's cache folder, the compile notes."""
 
 from __future__ import annotations
 
 import io
 import sys
+import time
+import types
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -76,23 +79,58 @@ def test_a_users_numba_cache_dir_is_kept(monkeypatch: pytest.MonkeyPatch, tmp_pa
     assert numba.config.CACHE_DIR == str(tmp_path)
 
 
-def test_first_compile_is_announced_once(monkeypatch: pytest.MonkeyPatch, tmp_path) -> None:
-    pytest.importorskip("numba")
-    monkeypatch.setenv("TORSIO_CACHE_DIR", str(tmp_path))
-    monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
-    monkeypatch.delenv("TORSIO_COMPILE_ANNOUNCED", raising=False)
-    monkeypatch.setattr(kernel_cache.atexit, "register", lambda function: None)
-    import torsio.solvers.batch  # noqa: F401  (the engine this process would have used)
-
+def _notes(delay: float, interval: float) -> tuple[io.StringIO, Any]:
+    """A fresh compile-notes listener writing to a string (not the process's own)."""
+    event = pytest.importorskip("numba.core.event")
     stream = io.StringIO()
-    assert kernel_cache.announce_first_compile(stream)
-    assert not kernel_cache.announce_first_compile(stream)  # once per process tree
-    assert stream.getvalue().count("compiling the batch engine once") == 1
-    # once the cache is marked, a new process says nothing
-    monkeypatch.delenv("TORSIO_COMPILE_ANNOUNCED")
-    kernel_cache._mark_cached()
-    assert kernel_cache.kernels_cached()
-    assert not kernel_cache.announce_first_compile(stream)
+    return stream, kernel_cache._compile_notes(event.Listener)(stream, delay, interval)
+
+
+def _compile_event(function: Any) -> Any:
+    """A stand-in for numba's ``numba:compile`` event of ``function``."""
+    return types.SimpleNamespace(data={"dispatcher": types.SimpleNamespace(py_func=function)})
+
+
+def test_a_long_compile_is_never_silent() -> None:
+    # the outermost compile prints its note, then a line every interval until it ends
+    stream, listener = _notes(delay=0.0, interval=0.02)
+    outer = _compile_event(test_a_long_compile_is_never_silent)
+    listener.on_start(outer)
+    listener.on_start(_compile_event(_notes))  # a function the kernel calls: no note of its own
+    time.sleep(0.2)
+    listener.on_end(outer)
+    listener.on_end(outer)
+    lines = stream.getvalue().splitlines()
+    name = f"{__name__}.test_a_long_compile_is_never_silent"
+    assert lines[0].startswith(f"torsio: compiling {name} with numba")
+    assert "(20 to 60 s for an engine" in lines[0]
+    assert all("still compiling" in line for line in lines[1:-1]) and len(lines) >= 4
+    assert lines[-1].startswith(f"torsio: compiled {name} in ")
+    assert "_notes" not in stream.getvalue()
+
+
+def test_a_short_compile_prints_nothing() -> None:
+    # a compile shorter than the delay (a cache load is not even a compile) says nothing
+    stream, listener = _notes(delay=30.0, interval=30.0)
+    listener.on_start(_compile_event(_notes))
+    listener.on_end(_compile_event(_notes))
+    assert stream.getvalue() == ""
+
+
+def test_numba_compiles_are_reported() -> None:
+    # numba broadcasts its compile event to the listener (numba.core.event's API)
+    numba = pytest.importorskip("numba")
+    from numba.core import event
+
+    stream, listener = _notes(delay=0.0, interval=60.0)
+
+    def add_one(x: float) -> float:
+        return x + 1.0
+
+    with event.install_listener("numba:compile", listener):
+        assert numba.njit(add_one)(1.0) == 2.0
+    assert f"torsio: compiling {__name__}.test_numba_compiles" in stream.getvalue()
+    assert "add_one in " in stream.getvalue().splitlines()[-1]
 
 
 def _stderr_of(code: str) -> str:
@@ -121,8 +159,8 @@ def test_light_commands_load_no_heavy_module(argv: list[str]) -> None:
 
 
 def test_a_map_loads_only_what_it_runs() -> None:
-    # a serial map through the CLI: the compiled engine's serial or parallel kernel (not
-    # both), and none of scipy's sparse matrices or integrators (the scipy engine's)
+    # a serial map through the CLI: the compiled engine's batch kernel (not the single run's
+    # either), and none of scipy's sparse matrices or integrators (the scipy engine's)
     code = (
         "import sys\n"
         "from torsio.cli import main\n"
@@ -131,8 +169,7 @@ def test_a_map_loads_only_what_it_runs() -> None:
         "from torsio.solvers import rodas_kernels\n"
         "loaded = [m for m in ('scipy.sparse', 'scipy.integrate', 'distributed')\n"
         "          if m in sys.modules]\n"
-        "kernels = [k for k in ('integrate_serial', 'integrate_parallel')\n"
-        "           if k in vars(rodas_kernels)]\n"
+        "kernels = [k for k in ('integrate_serial', 'run_chunk') if k in vars(rodas_kernels)]\n"
         "print('LOADED', loaded, 'KERNELS', len(kernels), file=sys.stderr)\n"
     )
     assert "LOADED [] KERNELS 1" in _stderr_of(code)

@@ -1,4 +1,4 @@
-"""Where numba keeps torsio's compiled kernels, and the note printed before the first compile.
+"""Where numba keeps torsio's compiled kernels, and the notes printed while numba compiles.
 
 numba compiles the batch engine once and caches the machine code. torsio points that
 cache to the user's cache folder, never into the installed package (a cache inside
@@ -18,9 +18,13 @@ forces): after an update of one of those, it would load the old machine code. A 
 per state of all the sources can never hold stale code; folders not written to for
 :data:`STALE_DAYS` days are removed.
 
-The first process that compiles prints one line to stderr (never to stdout, so
-``--json`` output stays clean): ``compiling the batch engine once (20 to 60 s); later
-runs start at once``.
+While numba compiles (a cache miss: the first run after an install or an update, or a
+law compiled for the first time), :func:`watch_compiles` says so on stderr (never on
+stdout, so ``--json`` output stays clean): ``compiling <kernel> with numba, once (20 to 60
+s for an engine; later runs load it at once)`` after :data:`NOTE_DELAY` seconds, then
+``still compiling <kernel> (N s)`` every :data:`NOTE_INTERVAL` seconds and ``compiled
+<kernel> in N s`` at the end, so that no command is silent for longer while it compiles.
+A kernel loaded from the cache takes tens of milliseconds and prints nothing.
 
 Examples
 --------
@@ -34,11 +38,11 @@ Examples
 
 from __future__ import annotations
 
-import atexit
 import hashlib
 import os
 import shutil
 import sys
+import threading
 import time
 from collections.abc import Mapping
 from pathlib import Path
@@ -49,11 +53,15 @@ from typing import Any, TextIO
 #: the first report on 2026-12-05's AMD EPYC 2.0 GHz); printed in the first-run note.
 FIRST_COMPILE_SECONDS = "20 to 60"
 
+#: Seconds a compile runs before its note is printed (a small law compiles in less).
+NOTE_DELAY = 2.0
+
+#: Seconds between two "still compiling" lines.
+NOTE_INTERVAL = 4.0
+
 #: Days after which a cache folder of other kernel sources (an older version, another
 #: installation) that nothing wrote to is removed.
 STALE_DAYS = 30
-
-_ANNOUNCED = "TORSIO_COMPILE_ANNOUNCED"  # set once the note is printed (seen by child processes)
 
 
 def user_cache_dir(environ: Mapping[str, str] | None = None, platform: str | None = None) -> Path:
@@ -157,60 +165,79 @@ def _sources_key() -> str:
     return key.hexdigest()[:16]
 
 
-def _stamp_path() -> Path:
-    """A file whose presence says: these sources were compiled into the cache."""
-    folder = Path(os.environ.get("NUMBA_CACHE_DIR") or _kernels_folder())
-    return folder / f"torsio-kernels-{_sources_key()}.stamp"
+_WATCHING: list[Any] = []  # the one listener of this process, once registered
 
 
-def kernels_cached() -> bool:
-    """Whether the batch engine of this installation was compiled into the cache before."""
-    try:
-        return _stamp_path().exists()
-    except OSError:  # pragma: no cover
-        return False
+def watch_compiles(
+    stream: TextIO | None = None, delay: float = NOTE_DELAY, interval: float = NOTE_INTERVAL
+) -> Any:
+    """Register (once per process) the listener that reports numba's compiles on ``stream``
+    (default stderr); return it. Without numba this does nothing and returns None.
 
-
-def _mark_cached() -> None:
-    engines = (
-        "torsio.solvers.batch",
-        "torsio.solvers.single_run",
-        "torsio.solvers.wave_march",
-        "torsio.axial.kernel",
-        "torsio.axial.wave_kernel",
-    )
-    if "numba" not in sys.modules or not any(name in sys.modules for name in engines):
-        return  # nothing was compiled (e.g. the process stopped on an error before a run)
-    try:
-        path = _stamp_path()
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.touch()
-    except OSError:  # pragma: no cover - a read-only cache: the note shows again, no harm
-        pass
-
-
-def announce_first_compile(stream: TextIO | Any = None) -> bool:
-    """Print the first-compile note to stderr once, if the kernels are not cached yet.
-
-    Returns True when the note was printed. The note is printed at most once per
-    process tree (worker processes inherit the marker); the cache is marked compiled
-    when the process that used the engine exits.
+    numba broadcasts a ``numba:compile`` event around each compile of a cache miss (its
+    event API, ``numba.core.event``); the outermost compile of a thread (a kernel with the
+    functions it calls) starts a timer thread that prints the notes of the module docstring.
     """
-    if os.environ.get(_ANNOUNCED) or kernels_cached():
-        return False
+    if _WATCHING:
+        return _WATCHING[0]
     try:
-        import importlib.util
+        from numba.core import event
+    except ImportError:  # pragma: no cover - numba is a dependency; the numpy engine remains
+        return None
+    listener = _compile_notes(event.Listener)(stream, delay, interval)
+    event.register("numba:compile", listener)
+    _WATCHING.append(listener)
+    return listener
 
-        if importlib.util.find_spec("numba") is None:  # pragma: no cover
-            return False
-    except (ImportError, ValueError):  # pragma: no cover
-        return False
-    os.environ[_ANNOUNCED] = "1"
-    atexit.register(_mark_cached)
-    print(
-        f"torsio: compiling the batch engine once ({FIRST_COMPILE_SECONDS} s); "
-        "later runs start at once",
-        file=sys.stderr if stream is None else stream,
-        flush=True,
-    )
-    return True
+
+def _compile_notes(base: type) -> type:
+    """The listener class, on numba's ``Listener`` base (imported only when numba is)."""
+
+    class CompileNotes(base):
+        """Notes on stderr while the outermost compile of a thread runs (see the module)."""
+
+        def __init__(self, stream: TextIO | None, delay: float, interval: float) -> None:
+            self.stream, self.delay, self.interval = stream, delay, interval
+            self.local = threading.local()
+
+        def say(self, text: str) -> None:
+            print(f"torsio: {text}", file=self.stream or sys.stderr, flush=True)
+
+        def on_start(self, event: Any) -> None:
+            depth = getattr(self.local, "depth", 0)
+            self.local.depth = depth + 1
+            if depth:
+                return  # a function the outer kernel calls: the outer note covers it
+            dispatcher = event.data["dispatcher"]
+            function = dispatcher.py_func
+            name = f"{function.__module__}.{function.__qualname__}"
+            done = threading.Event()
+            started = time.perf_counter()
+            said: list[bool] = []
+
+            def notes() -> None:
+                if done.wait(self.delay):
+                    return
+                said.append(True)
+                self.say(
+                    f"compiling {name} with numba, once ({FIRST_COMPILE_SECONDS} s for an "
+                    "engine; later runs load it at once)"
+                )
+                while not done.wait(self.interval):
+                    self.say(f"still compiling {name} ({time.perf_counter() - started:.0f} s)")
+
+            thread = threading.Thread(target=notes, name="torsio-compile-notes", daemon=True)
+            self.local.watch = (name, started, done, said, thread)
+            thread.start()
+
+        def on_end(self, event: Any) -> None:
+            self.local.depth -= 1
+            if self.local.depth:
+                return
+            name, started, done, said, thread = self.local.watch
+            done.set()
+            thread.join()
+            if said:
+                self.say(f"compiled {name} in {time.perf_counter() - started:.0f} s")
+
+    return CompileNotes

@@ -4,6 +4,6 @@ compiled batch engine (many runs)."""
 from torsio.kernel_cache import use_user_cache_dir
 
 # before any kernel module is imported: numba's cache goes to the user's cache folder
-# (never into the installed package); the kernel modules announce a first compile
-# (torsio.solvers.compiled), so importing an options module here announces nothing
+# (never into the installed package); torsio.solvers.compiled reports numba's compiles
+# on stderr while they run (torsio.kernel_cache.watch_compiles)
 use_user_cache_dir()

@@ -58,7 +58,7 @@ from torsio.solvers.batch_results import (
     BatchResults,
     batch_points,
 )
-from torsio.solvers.compiled import HAVE_NUMBA, numba
+from torsio.solvers.compiled import HAVE_NUMBA
 from torsio.solvers.law_kernels import LawKernel, law_kernel, python_law_kernel
 from torsio.solvers.layouts import (
     CHAIN_MASS_UPPER,
@@ -420,24 +420,39 @@ def _groups(model: BatchModel, rpm: np.ndarray) -> list[tuple[np.ndarray, np.nda
 
 
 def _run_compiled(arguments: tuple[Any, ...], threads: int | None) -> None:
+    """The compiled kernel over every point of ``arguments``, on several threads when there
+    are several; the kernel releases the GIL, so the threads run side by side, and one
+    compiled entry point serves one thread and many (no parallel kernel to compile).
+
+    Points differ 100x in cost, so a free thread takes the next piece of the points left:
+    a piece is an eighth of a thread's share of them (guided scheduling), down to one."""
     import threading
+    from concurrent.futures import ThreadPoolExecutor
 
     from torsio.solvers import rodas_kernels  # each entry point is loaded on first use
 
-    assert numba is not None
-    # numba's thread pool must not be entered from several threads at once (a thread pool
-    # executor, a Dask worker with several threads): only the main thread uses it
-    count = arguments[-1].shape[0]  # out: a row per point
-    if threads == 1 or count == 1 or threading.current_thread() is not threading.main_thread():
+    *shared, wob, omega, omega_set, out = arguments
+    count = out.shape[0]  # out: a row per point
+    workers = batch_threads(threads, count)
+    if workers == 1:
         rodas_kernels.integrate_serial(*arguments)
         return
-    previous_threads = numba.get_num_threads()
-    previous_chunk = numba.get_parallel_chunksize()
-    try:
-        if threads is not None:
-            numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
-        numba.set_parallel_chunksize(1)  # points differ 100x in cost: share them dynamically
-        rodas_kernels.integrate_parallel(*arguments)
-    finally:
-        numba.set_parallel_chunksize(previous_chunk)
-        numba.set_num_threads(previous_threads)
+    taken = [0]
+    taking = threading.Lock()
+
+    def work() -> None:
+        while True:
+            with taking:
+                start = taken[0]
+                stop = min(count, start + max(1, (count - start) // (8 * workers)))
+                taken[0] = stop
+            if start >= count:
+                return
+            piece = slice(start, stop)
+            rodas_kernels.integrate_serial(
+                *shared, wob[piece], omega[piece], omega_set[piece], out[piece]
+            )
+
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        for done in [pool.submit(work) for _ in range(workers)]:
+            done.result()

@@ -1,4 +1,4 @@
-"""numba for the kernels: ``njit``, ``prange`` and the kernels' explicit signatures.
+"""numba for the kernels: ``njit`` and the kernels' explicit signatures.
 
 numba is a dependency of torsio (``pyproject.toml``). Should it fail to import (a Python
 version or platform it has no build for yet, a broken installation), ``njit`` returns
@@ -10,22 +10,19 @@ from __future__ import annotations
 
 from typing import Any
 
-from torsio.kernel_cache import announce_first_compile
-
-announce_first_compile()  # on stderr, before the first kernel is compiled or loaded
+from torsio.kernel_cache import watch_compiles
 
 numba: Any
 njit: Any
-prange: Any
 try:  # a dependency; without an importable numba the numpy engine is used
     import numba
-    from numba import njit, prange
+    from numba import njit
 
     HAVE_NUMBA = True
+    watch_compiles()  # notes on stderr while a kernel compiles (before the first is decorated)
 except ImportError:  # pragma: no cover - exercised only without numba
     numba = None
     HAVE_NUMBA = False
-    prange = range
 
     def _identity(*args: Any, **kwargs: Any) -> Any:
         """Stands in for numba.njit: the functions run as plain Python (slowly)."""
@@ -35,7 +32,7 @@ except ImportError:  # pragma: no cover - exercised only without numba
 
     njit = _identity
 
-__all__ = ["HAVE_NUMBA", "kernel_signature", "njit", "numba", "prange", "run_signatures"]
+__all__ = ["HAVE_NUMBA", "kernel_signature", "njit", "numba", "run_signatures"]
 
 
 def kernel_signature() -> Any:

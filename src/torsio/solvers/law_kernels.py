@@ -79,9 +79,9 @@ def compile_law_function(function: Callable[..., float]) -> Any:
     """
     import numba
 
-    from torsio.kernel_cache import announce_first_compile
+    from torsio.kernel_cache import watch_compiles
 
-    announce_first_compile()
+    watch_compiles()
     try:
         try:
             return numba.njit(LAW_SIGNATURE, cache=True)(function)

@@ -3,7 +3,8 @@
 numba compiles each with an explicit signature (:func:`torsio.solvers.compiled.kernel_signature`,
 :func:`torsio.solvers.compiled.run_signatures`) and caches it on disk; loading a cached
 entry point costs tens of milliseconds, so each is built on first use (PEP 562): a map
-loads its batch kernel alone (:func:`integrate_parallel` or :func:`integrate_serial`), a
+loads its batch kernel alone (:func:`integrate_serial`, which releases the GIL: a map on
+several threads calls it from each, :func:`torsio.solvers.batch.simulate_lumped_batch`), a
 single run the two of :mod:`torsio.solvers.single_run` (:func:`run_start`,
 :func:`run_chunk`). The steps themselves are :mod:`torsio.solvers.rodas`.
 """
@@ -13,13 +14,12 @@ from __future__ import annotations
 import threading
 from typing import TYPE_CHECKING, Any
 
-from torsio.solvers.compiled import kernel_signature, njit, prange, run_signatures
+from torsio.solvers.compiled import kernel_signature, njit, run_signatures
 from torsio.solvers.rodas import advance, point, start
 
-__all__ = ["integrate_parallel", "integrate_serial", "run_chunk", "run_start"]
+__all__ = ["integrate_serial", "run_chunk", "run_start"]
 
 if TYPE_CHECKING:  # built by __getattr__ below
-    integrate_parallel: Any
     integrate_serial: Any
     run_chunk: Any
     run_start: Any
@@ -28,12 +28,6 @@ if TYPE_CHECKING:  # built by __getattr__ below
 def _serial(chain, top, torque, slope, p, settings, wob, omega, omega_set, out) -> None:
     """Every point in turn, without the GIL (arguments: :func:`kernel_signature`)."""
     for k in range(wob.size):
-        point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k)
-
-
-def _parallel(chain, top, torque, slope, p, settings, wob, omega, omega_set, out) -> None:
-    """Every point on numba's thread pool (dynamic sharing: set the chunk size to 1)."""
-    for k in prange(wob.size):
         point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k)
 
 
@@ -53,7 +47,6 @@ def _run_chunk(
 
 _ENTRY_POINTS = {
     "integrate_serial": (_serial, kernel_signature, 0, {"nogil": True}),
-    "integrate_parallel": (_parallel, kernel_signature, 0, {"parallel": True}),
     "run_start": (_start_run, run_signatures, 0, {"nogil": True}),
     "run_chunk": (_run_chunk, run_signatures, 1, {"nogil": True}),
 }
