@@ -100,7 +100,7 @@ def test_section_keys_in_a_configuration():
         ({"adjusted_weight": "10 lb/ft"}, "section[0].adjusted_weight", "between the body's"),
         ({"adjusted_weight": "1e6 kg/m"}, "section[0].adjusted_weight", "a solid bar's"),
         ({"tool_joint_od": "4 in"}, "section[0].tool_joint_od", "at least as wide"),
-        ({"adjusted_weight": "22 N"}, "section[0].adjusted_weight", ""),
+        ({"adjusted_weight": "22 N"}, "section[0].adjusted_weight", "not a linear density"),
     ],
 )  # fmt: skip
 def test_bad_values_name_the_key(extra, key, text):

@@ -172,6 +172,12 @@ class Section:
         return self.body_mass_per_length
 
     @property
+    def weighed_area(self) -> float:
+        """Cross-section [m²] whose steel the well's weight takes: the body's,
+        pi/4 (od^2 - id^2), here (drill pipe and HWDP: ``adjusted_weight`` / rho)."""
+        return math.pi / 4.0 * (self.od**2 - self.id**2)
+
+    @property
     def contact_radius(self) -> float:
         """Radius [m] at which the string touches the borehole: od/2 here (drill pipe and
         HWDP: their tool joints', ``tool_joint_od`` / 2)."""
@@ -297,6 +303,13 @@ class JointedPipe(Section):
     def mass_per_length(self) -> float:
         """``adjusted_weight`` [kg/m], else the body's."""
         return self.body_mass_per_length if self.adjusted_weight is None else self.adjusted_weight
+
+    @property
+    def weighed_area(self) -> float:
+        """``adjusted_weight`` / rho [m²], else the body's cross-section."""
+        if self.adjusted_weight is None:
+            return super().weighed_area
+        return self.adjusted_weight / self.material.density
 
     @property
     def contact_radius(self) -> float:

@@ -70,13 +70,13 @@ def cell_boundaries(
 def section_properties(string: DrillString, top: float, md: np.ndarray, mud: float) -> Any:
     """Buoyed weight per metre [N/m] and contact radius [m] of the section at each ``md``.
 
-    The buoyed weight is g m (1 - rho_mud / rho_steel), m the section's mass per length in
-    air (with the tool joints where given: ``adjusted_weight``); the contact radius is the
+    The buoyed weight is g A (rho_steel - rho_mud), A the section's steel cross-section
+    (with the tool joints where given: ``adjusted_weight`` / rho_steel); the contact radius is the
     tool joints' where given (``tool_joint_od`` / 2), else od / 2."""
     ends = top + np.cumsum([s.length for s in string.sections])
     index = np.minimum(np.searchsorted(ends, md, side="left"), len(ends) - 1)
     weight = np.array(
-        [GRAVITY * s.mass_per_length * (1.0 - mud / s.material.density) for s in string.sections]
+        [GRAVITY * s.weighed_area * (s.material.density - mud) for s in string.sections]
     )
     radius = np.array([s.contact_radius for s in string.sections])
     return weight[index], radius[index]
