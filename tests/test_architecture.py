@@ -141,6 +141,7 @@ def test_every_module_is_under_a_layer_rule_or_above_them():
     ruled = {p.split(".")[1] for p in LAYER_RULES} | {"cli", "examples"}
     edges = {"__main__", "errors", "units", "csv_rows", "hookspecs", "plugins", "kernel_cache"}
     edges |= {"display_units"}  # the units tables and plots are printed in, like units
+    edges |= {"output_files"}  # writing a file whole or not at all, like errors
     edges |= {"plotting"}
     assert top <= ruled | edges, sorted(top - ruled - edges)
 

@@ -167,6 +167,16 @@ class DrillingAssembly:
             frequencies.append(_node_frequencies(self.axial_stiffnesses, self.masses))
         return float(max(f.max() for f in frequencies))
 
+    def fastest_damping_rate(self) -> float:
+        """An upper bound [1/s] of the dampers' rates, the eigenvalues of M⁻¹C:
+        2 (c_i + c_i+1)/I_i and 2 (c_a,i + c_a,i+1)/m_i (Gershgorin's discs; a uniform chain
+        reaches it at its shortest wave). The explicit dampers' step keeps h times it at
+        most :data:`torsio.axial.run_setup.DAMPER_STEP`."""
+        rates = [2.0 * _node_rates(self.damping, self.inertias)]
+        if self.axial_stiffnesses.size:
+            rates.append(2.0 * _node_rates(self.axial_damping, self.masses))
+        return float(max(r.max() for r in rates))
+
     def steady_offsets(self, torque: Any, weight: Any) -> tuple[NDArray, NDArray]:
         """Node angles [rad] relative to the top and positions [m] relative to the bit in
         steady drilling: each torsional spring carries the bit torque, each axial spring
@@ -195,9 +205,14 @@ class DrillingAssembly:
 
 
 def _node_frequencies(springs: NDArray, inertias: NDArray) -> NDArray:
-    total = springs.copy()
-    total[:-1] += springs[1:]
-    return np.sqrt(total / inertias)
+    return np.sqrt(_node_rates(springs, inertias))
+
+
+def _node_rates(elements: NDArray, inertias: NDArray) -> NDArray:
+    """(e_i + e_i+1)/I_i: each node's share of its two elements (springs or dampers)."""
+    total = elements.copy()
+    total[:-1] += elements[1:]
+    return total / inertias
 
 
 def two_dof_assembly(

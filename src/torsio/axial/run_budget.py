@@ -27,6 +27,7 @@ import math
 from typing import Any
 
 from torsio.analysis.budget import MAX_WAVE_STEPS, MAX_WAVE_WORK, most_fixed_steps
+from torsio.axial.step_rule import DEFAULT_STEPS_PER_PERIOD, contact_frequency
 from torsio.errors import ConfigError
 
 __all__ = ["check_run_work"]
@@ -39,8 +40,6 @@ LIMITS = (
 
 def _model_key(bit: Any, mass: float, fastest: float, model_key: str) -> tuple:
     """(key, why) of the model's fastest frequency that sets the step rule."""
-    from torsio.axial.run_setup import contact_frequency
-
     contact = contact_frequency(bit, mass)
     if contact >= fastest:
         return "bit_rock", (
@@ -86,8 +85,6 @@ def check_run_work(
     past = 1.5 * delay / step
     if steps + past <= most:
         return int(math.ceil(steps - 1e-9))
-    from torsio.axial.run_setup import DEFAULT_STEPS_PER_PERIOD, contact_frequency
-
     rule_fastest = max(contact_frequency(bit, mass), fastest)
     rule_step = 2 * math.pi / (rule_fastest * options.steps_per_period)
     default_step = min(2 * math.pi / (rule_fastest * DEFAULT_STEPS_PER_PERIOD), delay)

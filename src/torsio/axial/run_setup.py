@@ -4,8 +4,10 @@ history before t = 0, and the summary of the window it returns.
 **Step rule.** h_max = 2π / (ω_fast × ``steps_per_period``), ω_fast the largest of the
 bit's axial contact frequency √(2 n ζ ε a / m_b) (where the axial roots cross the
 imaginary axis, docs/axial.md) and the chain's node frequencies; a given ``step`` caps it
-further. h = t_n0 / ⌈t_n0 / h_max⌉: a whole number of steps per steady delay
-t_n0 = 2π/(n Ω₀). With a top drive that is not held, ω_fast also counts the largest
+further. The bound δ of the dampers' rates caps it at h δ <= :data:`DAMPER_STEP`
+(:mod:`torsio.axial.step_rule`; fine elements with β dampers: δ = β ω² outgrows ω, and the
+explicit dampers would diverge). h = t_n0 / ⌈t_n0 / h_max⌉: a whole number of steps per
+steady delay t_n0 = 2π/(n Ω₀). With a top drive that is not held, ω_fast also counts the largest
 |λ| of the top node and its controller against the string's top spring
 (:func:`torsio.axial.top_drive.top_drive_rates`), and a step with |λ| h above
 :data:`TOP_DRIVE_STEP_LIMIT` is refused (``simulation.step``).
@@ -41,6 +43,7 @@ from torsio.axial.rgd import RGDBit
 from torsio.axial.run_budget import check_run_work
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 from torsio.axial.steady_friction import steady_loads, steady_with_friction
+from torsio.axial.step_rule import DAMPER_STEP, DEFAULT_STEPS_PER_PERIOD, contact_frequency
 from torsio.axial.string_contacts import AxialContacts, contact_rows
 from torsio.axial.top_drive import TopDriveArrays, steady_controller_state, top_drive_rates
 from torsio.errors import ConfigError
@@ -64,8 +67,6 @@ __all__ = [
     "summarize",
 ]
 
-DEFAULT_STEPS_PER_PERIOD = 100
-"""Steps per period of the fastest frequency the run resolves (docs/axial.md, convergence)."""
 
 STARTS = ("rest", "steady")
 
@@ -213,11 +214,6 @@ class RunSetup(KernelSetup):
     contacts: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros((3, 0)))
     contact_stuck: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(0))
     friction: Any = None
-
-
-def contact_frequency(bit: RGDBit, mass: float) -> float:
-    """√(2 n ζ ε a / m_b) [rad/s]: where the bit's axial roots cross (docs/axial.md)."""
-    return math.sqrt(2 * bit.blades * bit.cutting_weight_per_depth / mass)
 
 
 def past_times(step: float, delay: float) -> NDArray[np.float64]:
@@ -373,7 +369,8 @@ def run_setup(
     if top_drive is not None and driven:
         rates = top_drive_rates(top_drive, assembly.stiffnesses[0], assembly.damping[0])
         top_rate = float(np.abs(rates).max())
-    fastest = max(assembly.fastest_frequency(), top_rate)
+    dampers = 2 * math.pi * assembly.fastest_damping_rate() / options.steps_per_period
+    fastest = max(assembly.fastest_frequency(), top_rate, dampers / DAMPER_STEP)
     h_max = options.largest_step(bit, assembly.bit_mass, fastest)
     h = delay / math.ceil(delay / h_max - 1e-9)
     if top_rate * h > TOP_DRIVE_STEP_LIMIT:

@@ -42,6 +42,35 @@ from torsio.errors import ConfigError
 AXIAL_MODE_SHARE = 0.5
 """A mode whose axial share (:func:`axial_share`) is above this is called axial."""
 
+MAX_AUTO_DOFS = 200
+"""Degrees of freedom up to which a run finds its growth rate unless told not to. The
+linearization's cost grows steeply with the chain (the collocation order with its fastest
+frequency, then a Newton solve per candidate): the deviated-well chain of
+``rgd_deviated_well.toml`` took 0.05 s at 48 DOF, 1.5 s at 188 DOF and 40 s at 376 DOF
+(2026-12-05, 2-core AMD EPYC 2.0 GHz)."""
+
+
+def growth_rate_skipped(assembly: Any) -> str | None:
+    """Why a run does not find the growth rate of ``assembly`` unless asked: a lumped chain
+    of more than :data:`MAX_AUTO_DOFS` degrees of freedom; None when it does.
+
+    Examples
+    --------
+    >>> from torsio.axial.assembly import rgd_two_dof_example
+    >>> growth_rate_skipped(rgd_two_dof_example()) is None
+    True
+    """
+    if not isinstance(assembly, DrillingAssembly):
+        return None
+    dofs = assembly.nodes + assembly.axial_dofs
+    if dofs <= MAX_AUTO_DOFS:
+        return None
+    return (
+        f"growth rate not computed: the linearization of a {dofs}-DOF chain takes minutes "
+        f"(found unasked up to {MAX_AUTO_DOFS} DOF); ask for it with growth_rate=True "
+        "(torsio simulate --growth-rate), or take longer elements"
+    )
+
 
 @attrs.frozen(eq=False)
 class DrillingCase:

@@ -53,6 +53,7 @@ from torsio.axial.run_setup import (
     summarize,
 )
 from torsio.axial.run_warnings import run_warnings
+from torsio.axial.stability import growth_rate_skipped
 from torsio.axial.steady import SteadyDrilling
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_setup import WaveRunSetup, wave_chunk, wave_run_setup
@@ -353,7 +354,7 @@ def simulate_axial(
     steps_per_period: int = DEFAULT_STEPS_PER_PERIOD,
     samples: int = 4000,
     bit_rotation: BitRotation | None = None,
-    growth_rate: bool = True,
+    growth_rate: bool | None = None,
     top_drive: Any = None,
     string: Any = None,
     contacts: Any = None,
@@ -376,10 +377,12 @@ def simulate_axial(
         About how many rows of signals to keep (0: none; every step at most).
     bit_rotation : BitRotation, optional
         A prescribed bit rotation instead of the torsional chain (lumped assemblies only).
-    growth_rate : bool
+    growth_rate : bool, optional
         Compute the linear growth rate (any assembly; not with ``bit_rotation``, whose
-        torsional chain is not integrated). With a PI speed loop its top node is in the
-        linearization; with another controller the top is held there
+        torsional chain is not integrated); None (default): unless the chain is too large
+        (:func:`torsio.axial.stability.growth_rate_skipped`, then a warning says so). With
+        a PI speed loop its top node is in the linearization; with another controller the
+        top is held there
         (``stability_of_held_top`` says so).
     top_drive : top drive, optional
         Any registered top drive (:mod:`torsio.physics.top_drives`, plugins; e.g.
@@ -441,8 +444,8 @@ def simulate_axial(
     end_energy = _stored_energy(setup, setup.steps * setup.step)
     if start_energy is not None and end_energy is not None:
         energy = energy_balance(stats, start_energy, end_energy)
-    rate = None
-    if growth_rate and bit_rotation is None:
+    rate, skipped = None, growth_rate_skipped(assembly) if growth_rate is None else None
+    if (growth_rate or (growth_rate is None and not skipped)) and bit_rotation is None:
         rate = _growth_rate(assembly, bit, wob, rpm, boundary, contacts)
     result = AxialTransient(
         wob=float(wob),
@@ -462,7 +465,7 @@ def simulate_axial(
         string_contacts=contacts.at_wob(wob).describe() if contacts is not None else None,
         steady_friction=_steady_friction(setup),
     )
-    texts = run_warnings(result.summary, bit, energy)
+    texts = warning_list(*run_warnings(result.summary, bit, energy), skipped)
     if boundary is not None and not boundary.held and result.window_rows().any():
         in_window = result.window_rows()
         motor = saturated_motor(

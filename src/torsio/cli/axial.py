@@ -17,8 +17,8 @@ from torsio.errors import ConfigError
 SCHEME = "semi-implicit Euler, set-valued contacts at the velocity level (Moreau)"
 """The axial engine's fixed-step scheme (:mod:`torsio.axial.kernel`)."""
 
-NO_GROWTH_RATE = "n/a (the distributed pipe has no linearization; see torsio report)"
-"""The growth-rate row of a distributed pipe's run (the report gives its lumped twin's)."""
+NO_GROWTH_RATE = "not computed (--growth-rate asks for it)"
+"""The growth-rate row of a run that did not find it (too large a chain, --no-growth-rate)."""
 
 _SIMULATE_REFUSED = {
     "strategy": "--strategy",
@@ -85,6 +85,7 @@ def simulate(args: argparse.Namespace, config: Any) -> int:
         point["rpm"],
         **_times(args, config),
         **axial.run_options(),
+        growth_rate=args.growth_rate,
     )
     for text in run.warnings:
         print(f"torsio {args.command}: warning: {text}", file=sys.stderr)
@@ -163,11 +164,15 @@ def run_map(args: argparse.Namespace, config: Any, wob: Any, rpm: Any) -> int:
     import time
 
     from torsio.axial.maps import axial_map
+    from torsio.axial.stability import growth_rate_skipped
 
     _refuse(args, _MAP_REFUSED)
     if args.engine not in (None, "auto", "numba"):
         raise ConfigError("--engine", f"{args.engine!r}: the axial engine is compiled (numba)")
     axial = config.axial
+    skipped = growth_rate_skipped(axial.assembly)
+    if skipped is not None:  # the same at every point: said once
+        print(f"torsio map: warning: {skipped}", file=sys.stderr)
     start = time.perf_counter()
     grid = axial_map(
         axial.assembly,
@@ -176,7 +181,7 @@ def run_map(args: argparse.Namespace, config: Any, wob: Any, rpm: Any) -> int:
         rpm,
         **_times(args, config),
         **axial.run_options(),
-        growth_rate=True,
+        growth_rate=skipped is None,
         threads=args.threads,
         executor=args.workers if args.workers is not None else args.scheduler,
         timeout=args.timeout,

@@ -53,6 +53,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="write what a rig records of the run (time, top_rpm, surface_torque, bit_rpm): "
         "the CSV torsio fit reads",
     )
+    parser.add_argument(
+        "--growth-rate",
+        action=argparse.BooleanOptionalAction,
+        help="axial runs (the RGD bit): find the linear growth rate of steady drilling, or "
+        "not (default: on chains of up to 200 DOF; a larger one takes minutes)",
+    )
     common.add_units_argument(parser)
     common.add_json_argument(parser)
 
@@ -76,6 +82,12 @@ def run(args: argparse.Namespace) -> int:
             return axial.simulate(args, config)
         except ConfigError as exc:
             raise ConfigError(_option_name(exc.key), exc.message) from None
+    if args.growth_rate is not None:
+        raise ConfigError(
+            "--growth-rate",
+            "applies to axial runs (the RGD bit) only: a torsional run has no growth rate of "
+            "steady drilling (torsio report gives its linear stability); remove it",
+        )
     common.refuse_rpm_without_set_speed(
         config, args.rpm, "; remove --rpm, or change top_drive.torque"
     )

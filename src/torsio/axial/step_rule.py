@@ -1,0 +1,33 @@
+"""The constants and frequencies of the axial engine's step rule (:mod:`torsio.axial.run_setup`
+applies it, :mod:`torsio.axial.run_budget` checks the work it makes).
+
+Examples
+--------
+>>> from torsio.axial.rgd import rgd_example
+>>> round(contact_frequency(rgd_example(), 29981.3), 1)  # rad/s, the 2-DOF file's bit
+557.0
+"""
+
+from __future__ import annotations
+
+import math
+
+from torsio.axial.rgd import RGDBit
+
+__all__ = ["DAMPER_STEP", "DEFAULT_STEPS_PER_PERIOD", "contact_frequency"]
+
+DEFAULT_STEPS_PER_PERIOD = 100
+"""Steps per period of the fastest frequency the run resolves (docs/axial.md, convergence)."""
+
+DAMPER_STEP = 1.0
+"""The largest h δ, δ the bound of the dampers' rates (the eigenvalues of M⁻¹C,
+:meth:`~torsio.axial.assembly.DrillingAssembly.fastest_damping_rate`): half the bound
+h δ < 2 − (h ω)²/2 within which semi-implicit Euler keeps a damped mode x'' + δ x' + ω² x
+= 0 stable (its step matrix has determinant 1 − h δ and trace 2 − h δ − (h ω)²). The 4 m
+chain of ``rgd_deviated_well.toml`` with β = 0.01 s diverged at h δ = 2 and closes its
+energy balance at h δ = 1."""
+
+
+def contact_frequency(bit: RGDBit, mass: float) -> float:
+    """√(2 n ζ ε a / m_b) [rad/s]: where the bit's axial roots cross (docs/axial.md)."""
+    return math.sqrt(2 * bit.blades * bit.cutting_weight_per_depth / mass)
