@@ -22,6 +22,7 @@ from torsio.calibration.parameters import SystemFamily
 from torsio.calibration.recording import Recording
 from torsio.calibration.start import closed_form_start
 from torsio.cli import main
+from torsio.config.reading import load_config
 from torsio.config.top_drive import TopDriveConfig
 from torsio.errors import ConfigError
 from torsio.examples import deviated_well_config
@@ -314,3 +315,28 @@ def test_bad_fit_input_names_the_flag_or_the_recording(
     error = capsys.readouterr().err
     assert status == 2 and "Traceback" not in error
     assert f"torsio fit: error: {message}" in error
+
+
+def test_a_surface_casing_in_the_vertical_section_fits(tmp_path, capsys):
+    # issue 36, case 2: the casing ending at 400 m, inside the vertical section (kick-off at
+    # 500 m), was refused with a drag-spacing error; the fit recovers the open hole's sliding
+    # factor that made the recording (0.3, deviated_well.toml)
+    from importlib import resources
+
+    text = resources.files("torsio").joinpath("data/deviated_well.toml").read_text("utf-8")
+    assert "to_md = 1200.0" in text
+    source = tmp_path / "surface_casing.toml"
+    source.write_text(text.replace("to_md = 1200.0", "to_md = 400.0"), "utf-8")
+    config = load_config(source)
+    system = config.system(strategy="wave").with_top(SoftTorqueTopDrive(inertia=2900.0, ramp=5.0))
+    run = wave_response(
+        system.at(wob=0.0, rpm=120.0), duration=60.0, steady_window=6.0, output_step=0.01,
+        progress=False,
+    ).transient  # fmt: skip
+    record = tmp_path / "startup.csv"
+    Recording.from_transient(run, name=record.name).save(record)
+    argv = ["fit", str(source), "--recording", str(record), "--fit", "friction_dynamic",
+            "--no-profile", "--json"]  # fmt: skip
+    assert main(argv) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["parameters"]["friction_dynamic"] == pytest.approx(0.3, abs=1e-3)
