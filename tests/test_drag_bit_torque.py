@@ -88,3 +88,16 @@ def test_friction_override_applies_to_break_off_and_sliding(capsys):
     assert data["sliding_torque"] == pytest.approx(rotating, rel=1e-9)
     plain = _drag(capsys)  # without the override, the well's factors: 12.2 and 10.2 kN m
     assert plain["break_off_torque"] < 0.7 * data["break_off_torque"]
+
+
+def test_the_report_adds_the_same_torque_on_bit_as_drag(capsys, tmp_path):
+    # one torque on bit on bottom: the report's well section and torsio drag agree (in a
+    # vertical hole without friction both are the Tucker-Wang torque at [operation] rpm)
+    path = _vertical(tmp_path)
+    drag = _drag(capsys, path, "--wob", "80kN")
+    assert main(["report", path, "--json"]) == 0
+    well = json.loads(capsys.readouterr().out)["well"]
+    assert well["wob"] == 80e3  # deviated_well.toml's [operation] wob
+    assert well["bit_torque"] == pytest.approx(_tucker_wang(80e3, 100.0), rel=1e-12)
+    assert well["bit_torque_source"] == drag["bit_torque_source"] == "tucker-wang at 100 rpm"
+    assert well["surface_torque_on_bottom"] == drag["surface_torque_on_bottom"]

@@ -98,50 +98,13 @@ def _with_friction(well: Any, friction: float | None) -> Any:
     )
 
 
-def law_bit_torque(config: Any, wob: float, rpm: Any = None) -> tuple[float, str]:
-    """The torque on bit [N m] of the configured law at ``wob`` [N] and the operating rotary
-    speed (``rpm``, else ``[operation] rpm``), and where it comes from: Tucker-Wang (or any
-    rate law) at the bit turning steadily at that speed; the RGD bit's steady drilling state
-    (:func:`torsio.axial.steady.steady_drilling`). Off bottom (``wob`` 0): none.
-    """
-    from torsio.config.tables import parse_rpm
-    from torsio.errors import ConfigError
-    from torsio.units import RPM_TO_RAD_S
-
-    if wob == 0.0:
-        return 0.0, "off bottom"
-    if config.bit_rock is None:
-        raise ConfigError(
-            "bit_rock",
-            "the torque on bit on bottom comes from the bit-rock law, and the configuration "
-            "has none: add [bit_rock] or give --bit-torque",
-        )
-    if rpm is not None:
-        speed = parse_rpm(rpm, "--rpm")
-    elif config.operation.rpm is not None:
-        speed = float(config.operation.rpm)
-    else:
-        raise ConfigError(
-            "operation.rpm",
-            "the torque on bit on bottom is the law's at the rotary speed: give --rpm, set "
-            "[operation] rpm, or give --bit-torque",
-        )
-    if config.axial is not None:  # the RGD bit
-        from torsio.axial.steady import steady_drilling
-
-        state = steady_drilling(config.axial.bit, wob, speed)
-        return float(state.bit_torque), f"rgd steady drilling at {speed:g} rpm"
-    law = config.bit_law()
-    torque = float(law.torque(speed * RPM_TO_RAD_S, wob, config.bit_radius))
-    return torque, f"{law.name} at {speed:g} rpm"
-
-
 def run(args: argparse.Namespace) -> int:
     """Run ``torsio drag`` with parsed arguments; return the exit status."""
     import functools
 
     import attrs
 
+    from torsio.config.bit_torque import law_bit_torque
     from torsio.display_units import DisplayUnits
     from torsio.errors import ConfigError
     from torsio.well.break_off import break_off

@@ -34,12 +34,18 @@ def well_section(ctx: ReportContext) -> ReportSection | None:
     string = ctx.config.string
     if well is None or string is None:
         return None
+    from torsio.config.bit_torque import law_bit_torque
+    from torsio.errors import ConfigError
     from torsio.well.break_off import break_off
     from torsio.well.torque_drag import torque_drag
 
     survey = well.survey
     wob = float(ctx.config.operation.wob or 0.0)
-    drag = torque_drag(well, string, wob=wob)
+    try:  # the law's torque on bit at the operating point, as torsio drag adds it
+        bit_torque, source = law_bit_torque(ctx.config, wob)
+    except ConfigError as exc:  # no law or no rotary speed: said beside the torque
+        bit_torque, source = 0.0, f"none: no {exc.key}"
+    drag = torque_drag(well, string, wob=wob, bit_torque=bit_torque)
     start = break_off(well, string)
     along = np.linspace(0.0, survey.depth, 2001)  # the arcs between stations, every 1/2000
     inclination = math.degrees(float(np.max(survey.inclination(along))))
@@ -58,6 +64,8 @@ def well_section(ctx: ReportContext) -> ReportSection | None:
         "wob": wob,
         "hookload_on_bottom": drag.hookload_on_bottom,
         "surface_torque_on_bottom": drag.surface_torque_on_bottom,
+        "bit_torque": bit_torque,
+        "bit_torque_source": source,
         **start.to_dict(),
     }
     table = Table.grid(padding=(0, 2))
@@ -79,7 +87,8 @@ def well_section(ctx: ReportContext) -> ReportSection | None:
         (
             "surface torque",
             f"off bottom {drag.surface_torque_rotating / 1e3:.2f} kN m, on bottom "
-            f"{drag.surface_torque_on_bottom / 1e3:.2f} kN m (WOB {wob / 1e3:g} kN, no bit torque)",
+            f"{drag.surface_torque_on_bottom / 1e3:.2f} kN m (WOB {wob / 1e3:g} kN, bit "
+            f"{bit_torque / 1e3:.3g} kN m: {source})",
         ),
         (
             "break-off from rest",
