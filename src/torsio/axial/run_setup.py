@@ -50,7 +50,6 @@ from torsio.errors import ConfigError
 from torsio.physics.top_drive_boundary import TopDriveBoundary
 
 __all__ = [
-    "DEFAULT_STEPS_PER_PERIOD",
     "BitRotation",
     "BitStart",
     "KernelSetup",
@@ -58,7 +57,6 @@ __all__ = [
     "RunSetup",
     "WindowSummary",
     "bit_law_row",
-    "contact_frequency",
     "kernel_setup",
     "past_times",
     "run_settings",

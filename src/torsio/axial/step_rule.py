@@ -4,8 +4,8 @@ applies it, :mod:`torsio.axial.run_budget` checks the work it makes).
 Examples
 --------
 >>> from torsio.axial.rgd import rgd_example
->>> round(contact_frequency(rgd_example(), 29981.3), 1)  # rad/s, the 2-DOF file's bit
-557.0
+>>> round(contact_frequency(rgd_example(), 29981.3), 2)  # rad/s, on a 29 981.3 kg bit
+32.21
 """
 
 from __future__ import annotations

@@ -44,7 +44,6 @@ from torsio.axial.energy_balance import EnergyBalance, chain_energy, energy_bala
 from torsio.axial.kernel import march
 from torsio.axial.rgd import RGDBit
 from torsio.axial.run_setup import (
-    DEFAULT_STEPS_PER_PERIOD,
     BitRotation,
     RunOptions,
     RunSetup,
@@ -55,6 +54,7 @@ from torsio.axial.run_setup import (
 from torsio.axial.run_warnings import run_warnings
 from torsio.axial.stability import growth_rate_skipped
 from torsio.axial.steady import SteadyDrilling
+from torsio.axial.step_rule import DEFAULT_STEPS_PER_PERIOD
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_setup import WaveRunSetup, wave_chunk, wave_run_setup
 from torsio.errors import ConfigError, SolverError
