@@ -3,7 +3,7 @@
 Results stay in SI everywhere (JSON included); only what a person reads is converted,
 by a :class:`DisplayUnits` chosen with ``--units si|field``. Each quantity has one unit
 in each system, and one factor from SI; the factors are exact by definition
-(NIST SP 811, appendix B.8): 1 ft = 0.3048 m, 1 lbf = 4.4482216152605 N,
+(NIST SP 811, appendix B.8): 1 ft = 12 in = 0.3048 m, 1 lbf = 4.4482216152605 N,
 1 lb = 0.45359237 kg, 1 US gal = 3.785411784e-3 m^3, 1 rev = 2 pi rad.
 
 Examples
@@ -40,6 +40,7 @@ US_GALLON = 3.785411784e-3
 UNIT_SYSTEMS: dict[str, dict[str, tuple[str, float]]] = {
     "si": {
         "length": ("m", 1.0),
+        "diameter": ("mm", 1e3),
         "force": ("kN", 1e-3),
         "torque": ("kN m", 1e-3),
         "speed": ("rpm", 30.0 / math.pi),
@@ -48,6 +49,7 @@ UNIT_SYSTEMS: dict[str, dict[str, tuple[str, float]]] = {
     },
     "field": {
         "length": ("ft", 1.0 / FOOT),
+        "diameter": ("in", 12.0 / FOOT),
         "force": ("klbf", 1e-3 / POUND_FORCE),
         "torque": ("kft·lbf", 1e-3 / (FOOT * POUND_FORCE)),
         "speed": ("rpm", 30.0 / math.pi),

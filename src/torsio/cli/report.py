@@ -22,6 +22,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--modes", type=int, default=5, metavar="N", help="number of modes shown (default: 5)"
     )
+    common.add_units_argument(parser)
     common.add_json_argument(parser)
     parser.add_argument(
         "--html",
@@ -41,7 +42,7 @@ def run(args: argparse.Namespace) -> int:
         raise ConfigError("--modes", f"expected a whole number of modes >= 1, got {args.modes}")
     outputs = common.check_outputs(args, ("html",))
     config = common.load(args)
-    options = {**common.discretization_overrides(args), "modes": args.modes}
+    options = {**common.discretization_overrides(args), "modes": args.modes, "units": args.units}
     ctx = ReportContext(config, **options)  # computed once, shared by every output
     failed: dict[str, OutputError] = {}
     if args.html:

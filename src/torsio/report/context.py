@@ -16,6 +16,7 @@ from rich.table import Table
 from rich.text import Text
 
 from torsio.config.configuration import Config
+from torsio.display_units import DisplayUnits
 from torsio.errors import ConfigError
 from torsio.model.lumped import LumpedModel
 from torsio.model.modal import ModalComparison, ModalResults, modal_analysis
@@ -47,6 +48,10 @@ class ReportContext:
         Element counts overriding the file's (see :mod:`torsio.model.discretize`).
     modes : int
         How many modes to show (at most the model's degrees of freedom).
+    units : str
+        ``"si"`` (default) or ``"field"``: the units of the printed string, well, operating
+        point and critical-WOB lines (:class:`~torsio.display_units.DisplayUnits`); the
+        data (JSON) stay SI.
     """
 
     def __init__(
@@ -57,6 +62,7 @@ class ReportContext:
         dp_elements: int | None = None,
         bha_elements: int | None = None,
         modes: int = DEFAULT_MODES,
+        units: str = "si",
     ) -> None:
         if isinstance(modes, bool) or not isinstance(modes, int) or modes < 1:
             raise ConfigError("modes", f"expected a whole number of modes >= 1, got {modes!r}")
@@ -67,6 +73,7 @@ class ReportContext:
             "bha_elements": bha_elements,
         }
         self.requested_modes = modes
+        self.units = DisplayUnits(units)
         self.dynamics_note = ""
         """Why the dynamic sections are missing ('' when they are not)."""
         self.sections: list[ReportSection] | None = None
@@ -206,8 +213,9 @@ def _table(*columns: str, left: tuple[str, ...] = ()) -> Table:
     return table
 
 
-def _mm(value: float) -> str:
-    return f"{1000.0 * value:.4g}"
+def _diameter(value: float, units: DisplayUnits) -> str:
+    """A diameter [m] in mm (SI) or in (field), four significant digits."""
+    return units.number("diameter", value, ".4g")
 
 
 def _number(value: float, digits: int = 4, scientific: bool = False) -> str:

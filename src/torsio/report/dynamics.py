@@ -10,6 +10,7 @@ import numpy as np
 from rich.table import Table
 from rich.text import Text
 
+from torsio.display_units import DisplayUnits
 from torsio.report.context import ReportContext, ReportSection
 
 
@@ -42,10 +43,12 @@ def operation_section(ctx: ReportContext) -> ReportSection:
     table = Table.grid(padding=(0, 2))
     table.add_column(style="dim")
     table.add_column()
-    wob = "not set" if op.wob is None else f"{op.wob / 1000:.4g} kN"
+    units = ctx.units
+    wob = "not set" if op.wob is None else units.text("force", op.wob, ".4g")
     rpm = "not set" if op.omega is None else f"{op.rpm:.4g} rpm (Ω = {op.omega:.4g} rad/s)"
     rows = [("weight on bit", wob), ("surface speed", rpm)]
-    rows.append(("bit radius", "not set" if radius is None else f"{radius * 1000:.4g} mm"))
+    radius_text = "not set" if radius is None else units.text("diameter", radius, ".4g")
+    rows.append(("bit radius", radius_text))
     if law_data is None:
         rows.append(("bit-rock law", "none: no [bit_rock] table (modal analyses only)"))
     else:
@@ -56,7 +59,8 @@ def operation_section(ctx: ReportContext) -> ReportSection:
         if values and unit != "rad/s":
             rows.append(("in rad/s", ", ".join(f"{k} = {v:.4g}" for k, v in values.items())))
     if steady_torque is not None:
-        rows.append(("torque on bit", f"{steady_torque:.5g} N m at steady rotation (bit at Ω)"))
+        torque = units.text("torque", steady_torque, ".5g")
+        rows.append(("torque on bit", f"{torque} at steady rotation (bit at Ω)"))
     for label, value in rows:
         table.add_row(label, Text(value))
     return ReportSection("operation", "Operating point", data, table)
@@ -196,7 +200,8 @@ def critical_section(ctx: ReportContext) -> ReportSection | None:
     table = Table.grid(padding=(0, 2))
     table.add_column(style="dim")
     table.add_column()
-    text, style = margin_text(op.rpm, op.wob, critical, bound, (float(grid[0]), float(grid[-1])))
+    search = (float(grid[0]), float(grid[-1]))
+    text, style = margin_text(op.rpm, op.wob, critical, bound, search, ctx.units)
     table.add_row("operating point", Text(text, style=style))
     table.add_row(
         "criterion",
@@ -205,13 +210,19 @@ def critical_section(ctx: ReportContext) -> ReportSection | None:
     table.add_row("batch engine", Text(row.engine))
     if np.isfinite(linear):
         table.add_row(
-            "linear stability", Text(f"steady rotation unstable above {linear / 1e3:.4g} kN")
+            "linear stability",
+            Text(f"steady rotation unstable above {ctx.units.text('force', linear, '.4g')}"),
         )
     return ReportSection("critical", "Distance to the critical weight on bit", data, table)
 
 
 def margin_text(
-    rpm: float, wob: float, critical: float, bound: str | None, search: tuple[float, float]
+    rpm: float,
+    wob: float,
+    critical: float,
+    bound: str | None,
+    search: tuple[float, float],
+    units: DisplayUnits | None = None,
 ) -> tuple[str, str]:
     """The critical weight on bit and the operating point's distance to it, in words.
 
@@ -225,6 +236,8 @@ def margin_text(
         Where W_ob,cr lies when off the grid.
     search : (float, float)
         Smallest and largest weight on bit of the search [N].
+    units : DisplayUnits, optional
+        The units the forces are written in (default SI: kN).
 
     Returns
     -------
@@ -240,21 +253,26 @@ def margin_text(
     the critical WOB at 100 rpm is above 400 kN (no severe point up to there):
     more than 300 kN (300 %) above the operating 100 kN
     """
+    units = DisplayUnits() if units is None else units
+
+    def force(value: float) -> str:
+        return units.text("force", value, ".4g")
+
     head = f"the critical WOB at {rpm:.4g} rpm is"
-    operating = f"the operating {wob / 1e3:.4g} kN"
+    operating = f"the operating {force(wob)}"
 
     def amount(gap: float) -> str:
-        return f"{abs(gap) / 1e3:.4g} kN ({100.0 * abs(gap) / wob:.0f} %)"
+        return f"{force(abs(gap))} ({100.0 * abs(gap) / wob:.0f} %)"
 
     if bound == "above":
         return (
-            f"{head} above {search[1] / 1e3:.4g} kN (no severe point up to there): "
+            f"{head} above {force(search[1])} (no severe point up to there): "
             f"more than {amount(search[1] - wob)} above {operating}",
             "green",
         )
     if bound == "below":
         return (
-            f"{head} at or below {search[0] / 1e3:.4g} kN (severe over the whole search): "
+            f"{head} at or below {force(search[0])} (severe over the whole search): "
             f"at least {amount(wob - search[0])} below {operating}",
             "bold red",
         )
@@ -262,6 +280,6 @@ def margin_text(
         return f"{head} unresolved (a run of the search failed)", "yellow"
     side = "above" if critical > wob else "below"
     return (
-        f"{head} {critical / 1e3:.4g} kN: {amount(critical - wob)} {side} {operating}",
+        f"{head} {force(critical)}: {amount(critical - wob)} {side} {operating}",
         "green" if critical > wob else "bold red",
     )

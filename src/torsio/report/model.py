@@ -10,16 +10,26 @@ from rich.table import Table
 from rich.text import Text
 
 from torsio.config.configuration import Config
+from torsio.display_units import DisplayUnits
 from torsio.errors import ConfigError
 from torsio.model.continuum import ContinuumModes, continuum_modes
 from torsio.model.drillstring import DrillString
 from torsio.model.modal import ModalComparison
 from torsio.physics.damping import RayleighDamping
-from torsio.report.context import ReportContext, ReportSection, _ByWidth, _mm, _number, _table
+from torsio.report.context import (
+    ReportContext,
+    ReportSection,
+    _ByWidth,
+    _diameter,
+    _number,
+    _table,
+)
 
 
 # --- the drill-string ---------------------------------------------------------------------
-def string_table(string: DrillString | Config, wide: bool = True) -> Table:
+def string_table(
+    string: DrillString | Config, wide: bool = True, units: DisplayUnits | None = None
+) -> Table:
     """The drill-string as a table: geometry, J, inertia, stiffness, BHA membership.
 
     Parameters
@@ -29,6 +39,9 @@ def string_table(string: DrillString | Config, wide: bool = True) -> Table:
     wide : bool
         ``False`` gives a layout that fits 80 columns (kind under the name,
         OD/ID in one column, units under the headers).
+    units : DisplayUnits, optional
+        Diameters and lengths in mm and m (default) or, ``DisplayUnits("field")``, in in
+        and ft.
 
     Examples
     --------
@@ -42,14 +55,16 @@ def string_table(string: DrillString | Config, wide: bool = True) -> Table:
             raise ConfigError("chain", "a [chain] model has no drill-string sections to show")
         string = string.string
     sections = string.sections
+    units = DisplayUnits() if units is None else units
+    diameter, length = units.label("diameter"), units.label("length")
     if wide:
         table = _table(
             "#",
             "section",
             "kind",
-            "OD\n[mm]",
-            "ID\n[mm]",
-            "length\n[m]",
+            f"OD\n[{diameter}]",
+            f"ID\n[{diameter}]",
+            f"length\n[{length}]",
             "J\n[m⁴]",
             "inertia\n[kg m²]",
             "stiffness\n[N m/rad]",
@@ -60,8 +75,8 @@ def string_table(string: DrillString | Config, wide: bool = True) -> Table:
         table = _table(
             "#",
             "section",
-            "OD/ID\n[mm]",
-            "L\n[m]",
+            f"OD/ID\n[{diameter}]",
+            f"L\n[{length}]",
             "J\n[m⁴]",
             "I\n[kg m²]",
             "k\n[N m/rad]",
@@ -71,19 +86,21 @@ def string_table(string: DrillString | Config, wide: bool = True) -> Table:
     for i, s in enumerate(sections):
         stiffness = "rigid" if s.kind == "bit" else _number(s.stiffness)
         numbers = [
-            f"{s.length:.5g}",
+            units.number("length", s.length, ".5g"),
             _number(s.polar_moment, scientific=True),
             f"{s.inertia:.5g}",
             stiffness,
             "yes" if s.in_bha else "no",
         ]
         if wide:
-            table.add_row(str(i), Text(s.name or "-"), s.kind, _mm(s.od), _mm(s.id), *numbers)
+            od, id_ = _diameter(s.od, units), _diameter(s.id, units)
+            table.add_row(str(i), Text(s.name or "-"), s.kind, od, id_, *numbers)
         else:
             name = Text(s.name or s.kind)
             if s.name:
                 name.append(f"\n{s.kind}", style="dim")
-            table.add_row(str(i), name, f"{_mm(s.od)}/{_mm(s.id)}", *numbers)
+            od_id = f"{_diameter(s.od, units)}/{_diameter(s.id, units)}"
+            table.add_row(str(i), name, od_id, *numbers)
     return table
 
 
@@ -158,13 +175,13 @@ def string_section(ctx: ReportContext) -> ReportSection:
         f"drill pipes: I_DP = {string.drill_pipe_inertia:.5g} kg m², "
         f"k_DP = {string.drill_pipe_stiffness:.5g} N m/rad\n"
         f"BHA (bit included): I_BHA = {string.bha_inertia:.5g} kg m²; "
-        f"bit bottom at {bottom:.6g} m",
+        f"bit bottom at {ctx.units.text('length', bottom, '.6g')}",
         style="dim",
     )
     body = Group(
         _ByWidth(
-            lambda: string_table(ctx.config, wide=False),
-            lambda: string_table(ctx.config, wide=True),
+            lambda: string_table(ctx.config, wide=False, units=ctx.units),
+            lambda: string_table(ctx.config, wide=True, units=ctx.units),
         ),
         totals,
     )

@@ -71,28 +71,35 @@ def well_section(ctx: ReportContext) -> ReportSection | None:
     table = Table.grid(padding=(0, 2))
     table.add_column(style="dim")
     table.add_column()
+    units = ctx.units
     rows = [
         (
             "survey",
-            f"{data['survey_stations']} stations to md {data['survey_depth_md']:g} m, "
+            f"{data['survey_stations']} stations to md "
+            f"{units.text('length', data['survey_depth_md'], 'g')}, "
             f"inclination up to {inclination:.1f}°, dogleg up to "
             f"{data['max_dogleg_deg_per_30m']:.2f}°/30 m",
         ),
-        ("mud, normal force", f"{well.mud_density:g} kg/m³, {well.normal_force}"),
+        (
+            "mud, normal force",
+            f"{units.text('density', well.mud_density, '.4g')}, {well.normal_force}",
+        ),
         (
             "hookload",
-            f"pick-up {drag.hookload_trip_out / 1e3:.1f} kN, slack-off "
-            f"{drag.hookload_trip_in / 1e3:.1f} kN, rotating {drag.hookload_rotating / 1e3:.1f} kN",
+            f"pick-up {units.text('force', drag.hookload_trip_out, '.1f')}, slack-off "
+            f"{units.text('force', drag.hookload_trip_in, '.1f')}, "
+            f"rotating {units.text('force', drag.hookload_rotating, '.1f')}",
         ),
         (
             "surface torque",
-            f"off bottom {drag.surface_torque_rotating / 1e3:.2f} kN m, on bottom "
-            f"{drag.surface_torque_on_bottom / 1e3:.2f} kN m (WOB {wob / 1e3:g} kN, bit "
-            f"{bit_torque / 1e3:.3g} kN m: {source})",
+            f"off bottom {units.text('torque', drag.surface_torque_rotating, '.2f')}, on "
+            f"bottom {units.text('torque', drag.surface_torque_on_bottom, '.2f')} (WOB "
+            f"{units.text('force', wob, '.4g')}, bit {units.text('torque', bit_torque, '.3g')}: "
+            f"{source})",
         ),
         (
             "break-off from rest",
-            f"{start.torque / 1e3:.2f} kN m after a twist of {start.twist:.2f} rad "
+            f"{units.text('torque', start.torque, '.2f')} after a twist of {start.twist:.2f} rad "
             f"({start.twist / (2.0 * math.pi):.2f} turns) stored before the bit turns",
         ),
     ]
