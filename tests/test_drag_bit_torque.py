@@ -101,3 +101,9 @@ def test_the_report_adds_the_same_torque_on_bit_as_drag(capsys, tmp_path):
     assert well["bit_torque"] == pytest.approx(_tucker_wang(80e3, 100.0), rel=1e-12)
     assert well["bit_torque_source"] == drag["bit_torque_source"] == "tucker-wang at 100 rpm"
     assert well["surface_torque_on_bottom"] == drag["surface_torque_on_bottom"]
+
+
+def test_rpm_with_a_given_bit_torque_is_an_error(capsys):
+    # --rpm sets where the law's torque is taken; with --bit-torque it would be ignored
+    assert main(["drag", "--rpm", "60", "--bit-torque", "1000"]) == 2
+    assert "--rpm" in capsys.readouterr().err

@@ -49,3 +49,19 @@ def test_json_stays_si_whatever_units_say(capsys, path):
     si = _report(capsys, path, "--json")
     field = _report(capsys, path, "--json", "--units", "field")
     assert json.loads(si) == json.loads(field)
+
+
+def test_the_dogleg_and_the_axial_section_in_field_units(capsys, path):
+    # the dogleg per 100 ft (30.48 m) from the report's own per-30 m figure
+    assert main(["report", path, "--modes", "1", "--json"]) == 0
+    per_30m = json.loads(capsys.readouterr().out)["well"]["max_dogleg_deg_per_30m"]
+    assert f"dogleg up to {per_30m * 30.48 / 30.0:.2f}°/100 ft" in _report(
+        capsys, path, "--units", "field"
+    )
+    rgd = str(resources.files("torsio").joinpath("data/rgd_deviated_well.toml"))
+    assert main(["report", rgd, "--json"]) == 0
+    axial = json.loads(capsys.readouterr().out)["axial"]
+    text = _report(capsys, rgd, "--units", "field")
+    assert f"operating point {axial['wob_n'] / LBF / 1e3:.4g} klbf" in text
+    torque = axial["steady_state"]["bit_torque"] / (FOOT * LBF) / 1e3
+    assert f"steady bit torque {torque:.4g} kft·lbf" in text

@@ -73,6 +73,7 @@ def solver_info(run: Any) -> dict[str, Any]:
 def simulate(args: argparse.Namespace, config: Any) -> int:
     """``torsio simulate`` on an axial configuration; returns the exit status."""
     from torsio.axial.transient import simulate_axial
+    from torsio.display_units import DisplayUnits
 
     _refuse(args, _SIMULATE_REFUSED)
     axial = config.axial
@@ -95,11 +96,11 @@ def simulate(args: argparse.Namespace, config: Any) -> int:
     if args.json:
         common.print_json(data)
     else:
-        _print_run(data)
+        _print_run(data, DisplayUnits(args.units))
     return 0
 
 
-def _print_run(data: dict[str, Any]) -> None:
+def _print_run(data: dict[str, Any], units: Any) -> None:
     from rich.console import Console
     from rich.table import Table
 
@@ -112,7 +113,7 @@ def _print_run(data: dict[str, Any]) -> None:
     mse = data["mse_mean"]
     rate = data["growth_rate"]
     rows = [
-        ("weight on bit", f"{data['wob'] / 1e3:.4g} kN"),
+        ("weight on bit", units.text("force", data["wob"], ".4g")),
         ("rotary speed", f"{data['rpm']:.4g} rpm"),
         ("run / steady window", f"{data['duration']:.4g} s / last {data['steady_window']:.4g} s"),
         ("start", data["start"]),
@@ -124,7 +125,7 @@ def _print_run(data: dict[str, Any]) -> None:
         ("mean MSE", "none (the bit did not advance)" if mse is None else f"{mse / 1e6:.4g} MPa"),
         ("steady depth of cut", f"{steady['depth_of_cut'] * 1e3:.4g} mm/rev"),
         ("steady ROP", f"{steady['rop'] * 3600:.4g} m/h ({steady['rop']:.4g} m/s)"),
-        ("steady bit torque", f"{steady['bit_torque'] / 1e3:.4g} kN m"),
+        ("steady bit torque", units.text("torque", steady["bit_torque"], ".4g")),
         ("steady MSE", f"{steady['mse'] / 1e6:.4g} MPa"),
         (
             "growth rate (linear)",
@@ -141,16 +142,17 @@ def _print_run(data: dict[str, Any]) -> None:
     if contacts is not None:
         rows += [
             ("string contacts", f"{contacts['count']} nodes, break-off "
-             f"{contacts['static_torque'] / 1e3:.4g} kN m, sliding "
-             f"{contacts['sliding_torque'] / 1e3:.4g} kN m"),
-            ("string friction work", f"{data['string_friction_work'] / 1e6:.4g} MJ "
+             f"{units.text('torque', contacts['static_torque'], '.4g')}, sliding "
+             f"{units.text('torque', contacts['sliding_torque'], '.4g')}"),
+            ("string friction work", f"{units.energy(data['string_friction_work'])} "
              f"({data['contact_switches']} stick-slip switches)"),
         ]  # fmt: skip
     if data["top_speed_mean"] is not None:
         rows += [
             ("mean top speed", f"{data['top_speed_mean'] * 60 / (2 * 3.141592653589793):.4g} rpm"),
-            ("surface torque (window)", f"{data['surface_torque_min'] / 1e3:.4g} to "
-             f"{data['surface_torque_max'] / 1e3:.4g} kN m"),
+            ("surface torque (window)",
+             f"{units.number('torque', data['surface_torque_min'], '.4g')} to "
+             f"{units.text('torque', data['surface_torque_max'], '.4g')}"),
         ]  # fmt: skip
     for name, value in rows:
         table.add_row(name, value)
@@ -206,10 +208,11 @@ def run_map(args: argparse.Namespace, config: Any, wob: Any, rpm: Any) -> int:
 def _print_map(data: dict[str, Any]) -> None:
     from rich.console import Console
     from rich.table import Table
+    from rich.text import Text
 
     table = Table(title=f"Axial map: {len(data['rpm'])} x {len(data['wob'])} points")
     for name in ("rpm", "WOB [kN]", "S_SS", "stuck", "off bottom", "ROP [m/h]", "MSE [MPa]"):
-        table.add_column(name, justify="right")
+        table.add_column(Text(name), justify="right")  # Text: "[kN]" is a unit, not markup
     for i, rpm in enumerate(data["rpm"]):
         for j, wob in enumerate(data["wob"]):
             mse = data["mse"][i][j]

@@ -87,8 +87,8 @@ def add_units_argument(parser: argparse.ArgumentParser) -> None:
         "--units",
         choices=("si", "field"),
         default="si",
-        help="units of tables and plots: si (kN, kN m, m; default) or field (klbf, "
-        "kft·lbf, ft, ppg); JSON stays SI",
+        help="units of the printed tables (and of torsio drag's plot): si (kN, kN m, m; "
+        "default) or field (klbf, kft·lbf, ft, ppg); JSON stays SI",
     )
 
 

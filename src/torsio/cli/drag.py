@@ -123,6 +123,12 @@ def run(args: argparse.Namespace) -> int:
     config = _load(args)
     wob = _option(args.wob, "force", "--wob", config.operation.wob or 0.0)
     if args.bit_torque is not None:
+        if args.rpm is not None:
+            raise ConfigError(
+                "--rpm",
+                "sets where the bit law's torque on bit is taken, and --bit-torque gives that "
+                "torque: give one of them",
+            )
         bit_torque = _option(args.bit_torque, "torque", "--bit-torque", 0.0)
         source = "given (--bit-torque)"
     else:

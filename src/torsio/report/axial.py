@@ -27,6 +27,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Any
 
@@ -37,6 +38,7 @@ from rich.table import Table
 from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.linearization import axial_matrices
 from torsio.axial.wave_assembly import WaveDrillingAssembly
+from torsio.display_units import DisplayUnits
 from torsio.model.lumped import chain_matrix
 from torsio.report.context import ReportContext, ReportSection
 
@@ -222,7 +224,7 @@ def axial_section(ctx: ReportContext) -> ReportSection | None:
         data["steady_state"] = steady.to_dict()
         data["stability"] = _stability(axial, op.wob, op.rpm)
         data["stability_of_held_top"] = data["stability"]["held_top"]
-    return ReportSection("axial", "Axial dynamics (RGD bit)", data, _body(data))
+    return ReportSection("axial", "Axial dynamics (RGD bit)", data, _body(data, ctx.units))
 
 
 def assembly_summary(model: dict[str, Any]) -> str:
@@ -249,7 +251,8 @@ def _hz(values: list[float], boundaries: str) -> str:
     return ", ".join(f"{f:.4g}" for f in values) + f" Hz ({boundaries})"
 
 
-def _body(data: dict[str, Any]) -> Table:
+def _body(data: dict[str, Any], units: DisplayUnits) -> Table:
+    force, torque = (functools.partial(units.text, q) for q in ("force", "torque"))
     model = data["model"]
     table = Table.grid(padding=(0, 2))
     table.add_column(style="dim")
@@ -264,25 +267,25 @@ def _body(data: dict[str, Any]) -> Table:
     steady = data["steady_state"]
     if steady is not None:
         rows += [
-            ("operating point", f"{data['wob_n'] / 1e3:.4g} kN, {data['rpm']:.4g} rpm"),
+            ("operating point", f"{force(data['wob_n'], '.4g')}, {data['rpm']:.4g} rpm"),
             ("steady depth of cut", f"{steady['depth_of_cut'] * 1e3:.4g} mm/rev"),
             ("steady ROP", f"{steady['rop'] * 3600:.4g} m/h ({steady['rop']:.4g} m/s)"),
-            ("steady bit torque", f"{steady['bit_torque'] / 1e3:.4g} kN m"),
+            ("steady bit torque", torque(steady["bit_torque"], ".4g")),
             ("steady MSE", f"{steady['mse'] / 1e6:.4g} MPa"),
         ]
     contacts, friction = data.get("string_contacts"), data.get("steady_friction")
     if contacts is not None and friction is not None:
         rows += [
             ("string contacts", f"{contacts['count']} nodes ({contacts['normal_force']}), "
-             f"F_s {contacts['static_force'] / 1e3:.4g} kN, F_d "
-             f"{contacts['sliding_force'] / 1e3:.4g} kN, break-off "
-             f"{contacts['static_torque'] / 1e3:.4g} kN m, sliding "
-             f"{contacts['sliding_torque'] / 1e3:.4g} kN m"),
-            ("steady bit weight", f"{friction['bit_weight'] / 1e3:.5g} kN (hook "
-             f"{friction['hook_force'] / 1e3:.5g} kN, axial friction "
-             f"{friction['axial_friction'] / 1e3:.4g} kN)"),
-            ("steady surface torque", f"{friction['surface_torque'] / 1e3:.4g} kN m (friction "
-             f"{friction['friction_torque'] / 1e3:.4g} kN m)"),
+             f"F_s {force(contacts['static_force'], '.4g')}, F_d "
+             f"{force(contacts['sliding_force'], '.4g')}, break-off "
+             f"{torque(contacts['static_torque'], '.4g')}, sliding "
+             f"{torque(contacts['sliding_torque'], '.4g')}"),
+            ("steady bit weight", f"{force(friction['bit_weight'], '.5g')} (hook "
+             f"{force(friction['hook_force'], '.5g')}, axial friction "
+             f"{force(friction['axial_friction'], '.4g')})"),
+            ("steady surface torque", f"{torque(friction['surface_torque'], '.4g')} (friction "
+             f"{torque(friction['friction_torque'], '.4g')})"),
         ]  # fmt: skip
     stability = data["stability"]
     if stability is not None:

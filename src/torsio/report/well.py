@@ -18,6 +18,7 @@ Examples
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from rich.table import Table
@@ -77,8 +78,7 @@ def well_section(ctx: ReportContext) -> ReportSection | None:
             "survey",
             f"{data['survey_stations']} stations to md "
             f"{units.text('length', data['survey_depth_md'], 'g')}, "
-            f"inclination up to {inclination:.1f}°, dogleg up to "
-            f"{data['max_dogleg_deg_per_30m']:.2f}°/30 m",
+            f"inclination up to {inclination:.1f}°, dogleg up to {_dogleg(data, units)}",
         ),
         (
             "mud, normal force",
@@ -110,3 +110,11 @@ def well_section(ctx: ReportContext) -> ReportSection | None:
     for label, value in rows:
         table.add_row(label, Text(value))
     return ReportSection("well", "Well: torque and drag", data, table)
+
+
+def _dogleg(data: dict[str, Any], units: Any) -> str:
+    """The largest dogleg severity per 30 m (SI) or per 100 ft (field: 30.48 m)."""
+    per_30m = data["max_dogleg_deg_per_30m"]
+    if units.system == "field":
+        return f"{per_30m * 30.48 / 30.0:.2f}°/100 ft"
+    return f"{per_30m:.2f}°/30 m"
