@@ -444,10 +444,11 @@ def simulate_axial(
     end_energy = _stored_energy(setup, setup.steps * setup.step)
     if start_energy is not None and end_energy is not None:
         energy = energy_balance(stats, start_energy, end_energy)
-    asked = growth_rate is None and bit_rotation is None  # a prescribed rotation has none
-    rate, skipped = None, growth_rate_skipped(assembly) if asked else None
-    if (growth_rate or (growth_rate is None and not skipped)) and bit_rotation is None:
-        rate = _growth_rate(assembly, bit, wob, rpm, boundary, contacts)
+    rate, skipped = None, None  # a prescribed rotation has no growth rate
+    if bit_rotation is None:
+        skipped = growth_rate_skipped(assembly) if growth_rate is None else None
+        if growth_rate or (growth_rate is None and skipped is None):
+            rate = _growth_rate(assembly, bit, wob, rpm, boundary, contacts)
     result = AxialTransient(
         wob=float(wob),
         rpm=float(rpm),
