@@ -126,7 +126,8 @@ REFUSALS = [
     (BASE, "axial.steps_per_period", 3, "axial.steps_per_period"),
     (BASE, "axial.element_length", 100.0, "axial.element_length"),
     (BASE, "axial.hooks", "weight", "axial.hooks"),
-    (BASE, "bit_rock", {"law": "constant", "torque_on_bit": 5e3, "radius": 0.1}, "bit_rock.law"),
+    (BASE, "bit_rock", {"law": "rgd-bit", "radius": 0.1}, "bit_rock.law"),  # not registered
+    (BASE, "bit_rock", {"law": "constant", "radius": 0.1}, "bit_rock.torque_on_bit"),
     (BASE, "bit_rock.blades", 0, "bit_rock.blades"),
     (BASE, "bit_rock.blades", 2.5, "bit_rock.blades"),
     (BASE, "bit_rock.contact_stress", "60 m", "bit_rock.contact_stress"),

@@ -35,12 +35,14 @@ class PluginWarning(UserWarning):
 @lru_cache(maxsize=1)
 def plugin_manager() -> pluggy.PluginManager:
     """The process-wide plugin manager, built on first use."""
+    from torsio.axial import rgd
     from torsio.model import discretize, wave
     from torsio.physics import laws, top_drives
 
     manager = pluggy.PluginManager("torsio")
     manager.add_hookspecs(hookspecs)
     manager.register(laws, name="torsio.physics.laws")
+    manager.register(rgd, name="torsio.axial.rgd")
     manager.register(top_drives, name="torsio.physics.top_drives")
     manager.register(discretize, name="torsio.model.discretize")
     manager.register(wave, name="torsio.model.wave")
@@ -149,6 +151,23 @@ def get_bit_law(name: str) -> type[Any]:
     return laws[name]
 
 
+def axial_need(name: str) -> str:
+    """Why a model without axial dynamics refuses the law ``name`` that declares
+    ``needs_axial`` (the message of ``bit_rock.law``), and what would take it.
+
+    Examples
+    --------
+    >>> axial_need("rgd")[:36]
+    'the rgd law needs axial dynamics (it'
+    """
+    return (
+        f"the {name} law needs axial dynamics (it declares needs_axial: axial degrees of "
+        "freedom and the history of the bit's axial position): give [chain] masses (or, for "
+        "a [[section]] string, [material] youngs_modulus); the torsional engines take a law "
+        "with torque(speed, wob, radius)"
+    )
+
+
 def get_discretizer(name: str) -> type[Any]:
     """The discretizer class registered as ``name``; a clear error if there is none."""
     found = discretizers()
@@ -243,7 +262,7 @@ def bit_law_origin(name: str) -> str:
     'built-in'
     """
     owner = _collect_with_owners("torsio_bit_laws", "bit-rock law")[1].get(name)
-    if owner is None or owner.startswith("torsio."):
+    if owner is None or owner.startswith("torsio."):  # torsio.physics.laws, torsio.axial.rgd
         return "built-in"
     from importlib.metadata import entry_points
 
@@ -302,9 +321,13 @@ def build_bit_law(
     """
     import numpy as np
 
+    from torsio.physics.laws import law_capabilities
+
     law_class = get_bit_law(name)
     origin = bit_law_origin(name)
     what = f"bit-rock law {name!r} ({origin})"
+    if law_capabilities(law_class)["needs_axial"]:
+        raise ConfigError("bit_rock.law", axial_need(name))
     try:
         law = build_law(law_class, dict(parameters or {}), speed_unit)
     except ConfigError as exc:

@@ -11,6 +11,8 @@ scheme"), written once and called from the step loops of :mod:`torsio.axial.kern
   W_f ∈ [0, σ a l] consistent with it (drilling down, at rest, moving up);
 - :func:`forward_rotation`: the bit's new speed, never backwards, and the bit torque (the
   reaction while stuck);
+- :func:`law_rotation`: the same for a law of the torque alone
+  (:mod:`torsio.axial.torque_law`), its torque taken linearly implicit;
 - :func:`add_to_window`: the window's statistics (:data:`torsio.axial.layouts.STATS`);
 - :func:`sample_motion`, :func:`record_step`: a row of the bit's signals
   (:data:`torsio.axial.layouts.SAMPLE_COLUMNS`), its motion at the step's start, then what
@@ -76,6 +78,7 @@ __all__ = [
     "cutting_forces",
     "depth_of_cut",
     "forward_rotation",
+    "law_rotation",
     "record_step",
     "sample_motion",
     "start_window",
@@ -141,18 +144,40 @@ def forward_rotation(
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
+def law_rotation(
+    speed, torque, law_torque, law_slope, inverse_inertia, step
+) -> tuple[float, float]:  # pragma: no cover - compiled
+    """(Ω_b [rad/s], bit torque [N m]) after one step of ``step`` [s] from ``speed`` under
+    the smooth ``torque`` [N m] less a law's torque T(Ω_b) = ``law_torque`` [N m] of slope
+    ``law_slope`` [N m s/rad], linearly implicit in its rising part s = max(slope, 0):
+    Ω_b ← Ω_b + h (torque − T)/(I + h s); the bit torque T + s ΔΩ_b. A stiff smooth sign
+    (s h/I large) is then damped, not amplified; a falling slope stays explicit.
+    ``inverse_inertia`` [1/(kg m²)].
+
+    >>> law_rotation(1.0, 10.0, 10.0, 5.0, 0.5, 0.1)  # the string's torque holds the law's
+    (1.0, 10.0)
+    """
+    rising = max(law_slope, 0.0)
+    change = (
+        step * (torque - law_torque) * inverse_inertia / (1.0 + step * rising * inverse_inertia)
+    )
+    return speed + change, law_torque + rising * change
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
 def add_to_window(
-    stats, speed, velocity, depth, step, weight, torque
+    stats, speed, velocity, depth, on_bottom, step, weight, torque
 ) -> None:  # pragma: no cover - compiled
     """Add one step of the window to ``stats``: extremes of Ω_b and V_b, stuck and off-bottom
-    steps, the work (W V_b + T Ω_b) h [J], the integrals of T and W, the largest d."""
+    (not ``on_bottom``) steps, the work (W V_b + T Ω_b) h [J], the integrals of T and W, the
+    largest d."""
     stats[SPEED_MAX] = max(stats[SPEED_MAX], speed)
     stats[SPEED_MIN] = min(stats[SPEED_MIN], speed)
     stats[VELOCITY_MAX] = max(stats[VELOCITY_MAX], velocity)
     stats[VELOCITY_MIN] = min(stats[VELOCITY_MIN], velocity)
     if speed == 0.0:
         stats[STUCK] += 1.0
-    if not depth > 0.0:
+    if not on_bottom:
         stats[OFF_BOTTOM] += 1.0
     stats[COUNT] += 1.0
     stats[DEPTH_MAX] = max(stats[DEPTH_MAX], depth)
@@ -193,6 +218,7 @@ def record_step(
     speed,
     velocity,
     depth,
+    on_bottom,
     step,
     weight,
     torque,
@@ -200,11 +226,12 @@ def record_step(
     top_torque,
 ) -> int:  # pragma: no cover - compiled
     """What one step of ``step`` [s] leaves: its part of the window's statistics
-    (:func:`add_to_window`, when ``in_window``) and, when ``sampled``, the rest of row
+    (:func:`add_to_window`, when ``in_window``; ``on_bottom`` whether the bit touched the
+    rock) and, when ``sampled``, the rest of row
     ``row`` of ``samples``: d [m per rev], the bit's weight [N] and torque [N m], the delay
     t − t_n [s], the top torque [N m]. Returns the next row to sample."""
     if in_window:
-        add_to_window(stats, speed, velocity, depth, step, weight, torque)
+        add_to_window(stats, speed, velocity, depth, on_bottom, step, weight, torque)
     if not sampled:
         return row
     samples[row, DEPTH_OF_CUT] = depth

@@ -39,6 +39,14 @@ d·y, u = clip(u_free, ±max_torque), z ← z + h (a z + b y + w (u − u_free))
 The bit's part of steps 1-3 is :mod:`torsio.axial.bit_step`, shared with the distributed
 pipe's loop (:mod:`torsio.axial.wave_kernel`).
 
+A law of the torque alone (``bit[LAW_TORQUE]`` 1, :mod:`torsio.axial.torque_law`) takes no
+depth of cut: the rock is rigid at ``settings[ROCK_SURFACE]`` (the bit on bottom at U_b
+at or below it, down positive), step 2 gives the rock's reaction W (σ a l = inf: any
+weight), and in step 3 the bit turns under ``law_torque(law_parameters, Ω_b, W, a)`` with
+its slope ``law_slope`` (:func:`torsio.axial.bit_step.law_rotation`), numba functions of
+:data:`torsio.solvers.law_kernels.LAW_SIGNATURE` passed as first-class functions: the loop
+is compiled once (:func:`march_signature`) for every law.
+
 ``settings`` holds the entries named by :data:`torsio.axial.layouts.CHAIN_SETTINGS`, at
 those indices. The bit law
 ``bit``: [ζ ε a, ε a²/2, σ a l, μ γ a / 2, 2π/n, n] (:data:`torsio.axial.layouts.BIT_ROW`).
@@ -58,12 +66,30 @@ from torsio.axial import bit_step
 from torsio.axial import layouts as slot
 from torsio.axial.history import append
 from torsio.axial.string_friction import node_friction
-from torsio.solvers.compiled import njit
+from torsio.solvers.compiled import HAVE_NUMBA, njit
 
-__all__ = ["march"]
+__all__ = ["march", "march_signature"]
 
 
-@njit(cache=True, nogil=True, error_model="numpy")
+def march_signature() -> object:
+    """The explicit signature of :func:`march` (None without numba): every array float64
+    and contiguous (the matrices C-ordered), the two law functions of
+    :func:`torsio.solvers.law_kernels.law_type` before the law's parameters."""
+    if not HAVE_NUMBA:
+        return None
+    from numba import types
+
+    from torsio.solvers.law_kernels import law_type
+
+    vector, matrix, law = types.float64[::1], types.float64[:, ::1], law_type()
+    return types.void(
+        vector, matrix, matrix, vector, vector, vector, vector, vector, matrix, vector, vector,
+        matrix, vector, vector, vector, matrix, matrix, vector, vector, vector, matrix, vector,
+        law, law, vector,
+    )  # fmt: skip
+
+
+@njit(march_signature(), cache=True, nogil=True, error_model="numpy")
 def march(
     bit,
     torsional,
@@ -87,6 +113,9 @@ def march(
     ctrl_w,
     contacts,
     contact_stuck,
+    law_torque,
+    law_slope,
+    law_parameters,
 ) -> None:  # pragma: no cover - compiled
     """Advance the run from step ``settings[slot.FIRST_STEP]`` to ``settings[slot.STEPS]``
     from the state (θ, ω, U, V) and the top drive's (``top_state``, ``controller_state``)
@@ -100,6 +129,8 @@ def march(
     prescribed, amplitude = settings[slot.PRESCRIBED] != 0.0, settings[slot.AMPLITUDE]
     frequency = settings[slot.FREQUENCY]
     wf_max, tf_per_wf = bit[slot.FRICTION_WEIGHT], bit[slot.FRICTION_TORQUE_PER_WEIGHT]
+    torque_law, radius = bit[slot.LAW_TORQUE] != 0.0, bit[slot.BIT_RADIUS]
+    surface = settings[slot.ROCK_SURFACE]
     nt, na = theta.size, u.size
     bt, ba = nt - 1, na - 1
     delayed = np.zeros(2)
@@ -125,13 +156,17 @@ def march(
             bit_step.sample_motion(samples, row, t, theta[bt], omega[bt], u[ba], v[ba])
         if step == window_start:
             stats[slot.POSITION_START] = u[ba]
-        # 1. depth of cut
-        depth = bit_step.depth_of_cut(bit, history, cursor, theta[bt], u[ba], h, delayed)
-        if math.isnan(depth):
-            stats[slot.FAILED] = 1.0
-            stats[slot.STEPS_DONE] = step
-            return
-        on_bottom = depth > 0.0
+        # 1. depth of cut (none under a law of the torque alone: the rock is rigid)
+        if torque_law:
+            depth, on_bottom = 0.0, u[ba] >= surface
+            delayed[0] = math.nan
+        else:
+            depth = bit_step.depth_of_cut(bit, history, cursor, theta[bt], u[ba], h, delayed)
+            if math.isnan(depth):
+                stats[slot.FAILED] = 1.0
+                stats[slot.STEPS_DONE] = step
+                return
+            on_bottom = depth > 0.0
         wc, tc = bit_step.cutting_forces(bit, depth)
         if has_contacts:
             for i in range(na):
@@ -184,7 +219,12 @@ def march(
                 if i + 1 < nt:
                     torque -= torsional[1, i + 1] * (theta[i] - theta[i + 1])
                     torque -= torsional[2, i + 1] * (omega[i] - omega[i + 1])
-                if i == bt:
+                if i == bt and torque_law:
+                    omega[i], bit_torque = bit_step.law_rotation(
+                        omega[i], torque, law_torque(law_parameters, omega[i], wf, radius),
+                        law_slope(law_parameters, omega[i], wf, radius), torsional[0, i], h,
+                    )  # fmt: skip
+                elif i == bt:
                     omega[i], bit_torque = bit_step.forward_rotation(
                         omega[i], torque, tc, tf, torsional[0, i], h
                     )
@@ -250,8 +290,8 @@ def march(
             samples[row, slot.MOTOR_TORQUE] = motor
             samples[row, slot.SURFACE_TORQUE] = top_torque
         row = bit_step.record_step(
-            stats, samples, row, step >= window_start, sampled, omega[bt], v[ba], depth, h, wc + wf,
-            bit_torque, t - delayed[0], top_torque,
+            stats, samples, row, step >= window_start, sampled, omega[bt], v[ba], depth,
+            on_bottom, h, wc + wf, bit_torque, t - delayed[0], top_torque,
         )  # fmt: skip
     stats[slot.POSITION_END] = u[ba]
     stats[slot.STEPS_DONE] = steps

@@ -197,13 +197,15 @@ CHAIN_SETTINGS = (
     "amplitude",
     "frequency",
     "threshold_speed",
+    "rock_surface",
 )
 """The entries of the lumped chain's ``settings`` (:mod:`torsio.axial.kernel`): those of
 :data:`RUN_SETTINGS`, then U_h0 [m] (the hook's position at step 0), a prescribed bit
 rotation (0/1), its amplitude A and frequency f [rad/s], the string contacts' threshold
-speed [rad/s]."""
+speed [rad/s], the rigid rock's surface [m] under a law of the torque alone (the bit is on
+bottom at U_b >= it)."""
 
-HOOK_START, PRESCRIBED, AMPLITUDE, FREQUENCY, THRESHOLD_SPEED = range(
+HOOK_START, PRESCRIBED, AMPLITUDE, FREQUENCY, THRESHOLD_SPEED, ROCK_SURFACE = range(
     len(RUN_SETTINGS), len(CHAIN_SETTINGS)
 )
 
@@ -248,9 +250,13 @@ BIT_ROW = (
     "friction_torque_per_weight",
     "angle_per_blade",
     "blades",
+    "law_torque",
+    "bit_radius",
 )
 """The entries of ``bit``: ζ ε a [N/m], ε a²/2 [N m/m], σ a l [N], μ γ a/2 [m], 2π/n [rad],
-n."""
+n; 1 when the torque on bit is a law's ``torque(speed, wob, radius)`` (a law of the torque
+alone, the rock rigid: :mod:`torsio.axial.torque_law`; the lumped kernel only), 0 for the
+RGD bit; the bit radius a [m] that law takes."""
 
 (
     CUTTING_WEIGHT_PER_DEPTH,
@@ -259,4 +265,6 @@ n."""
     FRICTION_TORQUE_PER_WEIGHT,
     ANGLE_PER_BLADE,
     BLADES,
+    LAW_TORQUE,
+    BIT_RADIUS,
 ) = range(len(BIT_ROW))

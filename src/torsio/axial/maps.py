@@ -67,7 +67,7 @@ class AxialMap:
     wob, rpm : ndarray
         The grid [N], [rev/min].
     severity, axial_severity, stick_fraction, off_bottom_fraction : ndarray
-        As in :class:`torsio.axial.run_setup.WindowSummary`.
+        As in :class:`torsio.axial.window_summary.WindowSummary`.
     rop, mse : ndarray
         Mean ROP [m/s] and mean MSE [Pa] over the window (MSE inf where the bit did not
         advance).

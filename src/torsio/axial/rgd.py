@@ -44,6 +44,7 @@ from typing import Any
 import attrs
 
 from torsio.errors import ConfigError
+from torsio.hookspecs import hookimpl
 from torsio.units import to_si
 
 #: The keys of a ``[bit_rock]`` table with ``law = "rgd"``, their dimension for
@@ -151,6 +152,13 @@ class RGDBit:
     )
 
     name = "rgd"
+    description = (
+        "W = zeta eps a d + sigma a l, T = eps a^2 d / 2 + mu gamma a sigma a l / 2, "
+        "d = n (U(t) - U(t - t_n)) (Richard, Germay and Detournay 2007; a law with "
+        "memory, axial dynamics only)"
+    )
+    needs_axial = True  # axial DOFs and the history of the bit's axial position
+    gives = ("torque", "weight", "rate_of_penetration")
 
     @property
     def hole_area(self) -> float:
@@ -196,39 +204,40 @@ class RGDBit:
             self.cutting_torque(depth_of_cut) + self.friction_torque,
         )
 
-    def describe(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """The parameters by their ``[bit_rock]`` keys, plain data for reports and JSON."""
         return {"law": self.name, **attrs.asdict(self)}
 
+    @classmethod
+    def describe(cls) -> dict[str, Any]:
+        """The RGD bit as ``torsio laws`` lists it, as every law: name, description and the
+        ``[bit_rock]`` keys with their SI units and defaults (None: required).
 
-def law_description() -> dict[str, Any]:
-    """The RGD bit as ``torsio laws`` lists it: name, description, the ``[bit_rock]`` keys
-    with their SI units and defaults (None: required), and the engine that runs it.
+        >>> names = [p["name"] for p in RGDBit.describe()["parameters"]]
+        >>> names[0], names[1], len(names)
+        ('radius', 'blades', 8)
+        """
+        from torsio.units import SI_UNITS
 
-    >>> names = [p["name"] for p in law_description()["parameters"]]
-    >>> names[0], names[1], len(names)
-    ('radius', 'blades', 8)
-    """
-    from torsio.units import SI_UNITS
+        return {
+            "name": cls.name,
+            "description": cls.description,
+            "parameters": [
+                {
+                    "name": key,
+                    "unit": SI_UNITS[dimension],
+                    "default": 1.0 if key == "bit_geometry" else None,
+                    "description": _DESCRIPTIONS[key],
+                }
+                for key, (dimension, _, _) in RGD_KEYS.items()
+            ],
+        }
 
-    return {
-        "name": RGDBit.name,
-        "description": (
-            "W = zeta eps a d + sigma a l, T = eps a^2 d / 2 + mu gamma a sigma a l / 2, "
-            "d = n (U(t) - U(t - t_n)) (Richard, Germay and Detournay 2007; a law with "
-            "memory, axial dynamics only)"
-        ),
-        "parameters": [
-            {
-                "name": key,
-                "unit": SI_UNITS[dimension],
-                "default": 1.0 if key == "bit_geometry" else None,
-                "description": _DESCRIPTIONS[key],
-            }
-            for key, (dimension, _, _) in RGD_KEYS.items()
-        ],
-        "engine": "axial",
-    }
+
+@hookimpl
+def torsio_bit_laws() -> tuple[type[RGDBit], ...]:
+    """The RGD bit, registered like every bit-rock law (it declares ``needs_axial``)."""
+    return (RGDBit,)
 
 
 def rgd_from_table(table: Mapping[str, Any], *, prefix: str = "bit_rock.") -> RGDBit:

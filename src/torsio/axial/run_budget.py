@@ -8,7 +8,8 @@ budget of the wave model's runs (:func:`torsio.analysis.budget.most_fixed_steps`
 steps, that of the deviated well 201 459 steps of 24 nodes) and names the key that makes
 the work: a given step, the steps per period, the run's length, the rotary speed (the
 delay the history spans), or the model whose fastest frequency sets the step (the bit's
-contact frequency √(2 n ζ ε a / m_b), or the chain's node frequencies).
+contact frequency √(2 n ζ ε a / m_b), the chain's node frequencies, or the rate at rest of
+a law of the torque alone).
 
 Examples
 --------
@@ -48,6 +49,13 @@ def _model_key(bit: Any, mass: float, fastest: float, model_key: str) -> tuple:
             f"{bit.intrinsic_specific_energy:.3g} Pa, a = {bit.radius:g} m, bit mass m_b = "
             f"{mass:.3g} kg) sets the step; check bit_rock.intrinsic_specific_energy and the "
             "bit's mass (chain.masses, or the BHA's)"
+        )
+    if model_key == "bit_rock":  # a law of the torque alone (torsio.axial.torque_law)
+        return model_key, (
+            f"the bit-rock law's rate at rest (its slope at zero speed over the bit's "
+            f"inertia), {fastest:.3g} 1/s, sets the step; check the law's parameters (a "
+            "smooth sign's regularization speed), or expected fewer axial.steps_per_period "
+            "(at least 10) or a shorter simulation.duration"
         )
     return model_key, (
         f"the fastest node frequency of the model, {fastest:.3g} rad/s, sets the step; check "

@@ -19,6 +19,13 @@ instead). ``"rest"``: every node at rest, the torsional springs untwisted, the a
 springs carrying W₀, the hole's bottom flat (U before t = 0 at U(0)), the top turning at
 Ω₀ from t = 0.
 
+**A law of the torque alone** (:class:`~torsio.axial.torque_law.TorqueLawBit`): the steady
+state turns at Ω₀ under the law's torque at W₀ and rests axially; the rock's surface is the
+bit's position at t = 0, and no axial contact frequency enters the step rule; the law's
+rate at rest, its slope at zero speed over the bit's inertia
+(:meth:`~torsio.axial.torque_law.TorqueLawBit.rate`), counts in ω_fast like a frequency:
+``steps_per_period`` steps per 2π over it.
+
 Examples
 --------
 >>> from torsio.axial.assembly import rgd_two_dof_example
@@ -39,13 +46,13 @@ from numpy.typing import NDArray
 
 from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
-from torsio.axial.rgd import RGDBit
 from torsio.axial.run_budget import check_run_work
-from torsio.axial.steady import SteadyDrilling, steady_drilling
+from torsio.axial.steady import SteadyDrilling
 from torsio.axial.steady_friction import steady_loads, steady_with_friction
 from torsio.axial.step_rule import DAMPER_STEP, DEFAULT_STEPS_PER_PERIOD, contact_frequency
 from torsio.axial.string_contacts import AxialContacts, contact_rows
 from torsio.axial.top_drive import TopDriveArrays, steady_controller_state, top_drive_rates
+from torsio.axial.torque_law import AxialBit, TorqueLawBit, law_functions, steady_state
 from torsio.errors import ConfigError
 from torsio.physics.top_drive_boundary import TopDriveBoundary
 
@@ -55,14 +62,12 @@ __all__ = [
     "KernelSetup",
     "RunOptions",
     "RunSetup",
-    "WindowSummary",
     "bit_law_row",
     "kernel_setup",
     "past_times",
     "run_settings",
     "run_setup",
     "start_history",
-    "summarize",
 ]
 
 
@@ -157,7 +162,7 @@ class RunOptions:
                 f"expected 0 < window <= duration, got {self.window!r} and {self.duration!r}",
             )
 
-    def largest_step(self, bit: RGDBit, mass: float, fastest: float) -> float:
+    def largest_step(self, bit: AxialBit, mass: float, fastest: float) -> float:
         """h_max = 2π/(ω_fast × ``steps_per_period``) [s], ω_fast the larger of the bit's
         contact frequency on the ``mass`` [kg] (:func:`contact_frequency`) and ``fastest``
         [rad/s], capped by a given ``step``."""
@@ -212,6 +217,8 @@ class RunSetup(KernelSetup):
     contacts: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros((3, 0)))
     contact_stuck: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(0))
     friction: Any = None
+    law: Any = None
+    """The law's compiled torque and slope (:func:`torsio.axial.torque_law.law_functions`)."""
 
 
 def past_times(step: float, delay: float) -> NDArray[np.float64]:
@@ -244,9 +251,12 @@ def start_history(
     return history, np.array([0.0, past + 1.0])
 
 
-def bit_law_row(bit: RGDBit) -> NDArray[np.float64]:
-    """The kernels' bit row [ζ ε a, ε a²/2, σ a l, μ γ a/2, 2π/n, n]
-    (:data:`torsio.axial.layouts.BIT_ROW`)."""
+def bit_law_row(bit: AxialBit) -> NDArray[np.float64]:
+    """The kernels' bit row [ζ ε a, ε a²/2, σ a l, μ γ a/2, 2π/n, n, 0, a]
+    (:data:`torsio.axial.layouts.BIT_ROW`; a law of the torque alone's:
+    :meth:`~torsio.axial.torque_law.TorqueLawBit.row`)."""
+    if isinstance(bit, TorqueLawBit):
+        return bit.row()
     row = np.zeros(len(slot.BIT_ROW))
     row[slot.CUTTING_WEIGHT_PER_DEPTH] = bit.cutting_weight_per_depth
     row[slot.CUTTING_TORQUE_PER_DEPTH] = bit.cutting_torque_per_depth
@@ -254,6 +264,7 @@ def bit_law_row(bit: RGDBit) -> NDArray[np.float64]:
     row[slot.FRICTION_TORQUE_PER_WEIGHT] = bit.contact_friction * bit.bit_geometry * bit.radius / 2
     row[slot.ANGLE_PER_BLADE] = 2 * math.pi / bit.blades
     row[slot.BLADES] = float(bit.blades)
+    row[slot.BIT_RADIUS] = bit.radius
     return row
 
 
@@ -276,7 +287,7 @@ def run_settings(
 
 def kernel_setup(
     steady: SteadyDrilling,
-    bit: RGDBit,
+    bit: AxialBit,
     step: float,
     options: RunOptions,
     settings_size: int,
@@ -321,7 +332,7 @@ def kernel_setup(
 
 def run_setup(
     assembly: DrillingAssembly,
-    bit: RGDBit,
+    bit: AxialBit,
     wob: float,
     rpm: float,
     options: RunOptions,
@@ -342,7 +353,14 @@ def run_setup(
     """
     options.check()
     hook_force = float(wob)
-    if contacts is not None:
+    if isinstance(bit, TorqueLawBit) and (bit_rotation is not None or contacts is not None):
+        raise ConfigError(
+            "bit_rock.law",
+            f"{bit.name!r} is a law of the torque alone, whose axial motion rests on the rock: "
+            "a prescribed bit_rotation or friction along the string needs the RGD bit "
+            "(law = 'rgd'); expected neither",
+        )
+    if contacts is not None and not isinstance(bit, TorqueLawBit):  # refused above
         if bit_rotation is not None or assembly.axial_dofs != assembly.nodes:
             raise ConfigError(
                 "well",
@@ -354,7 +372,7 @@ def run_setup(
         hook_force = friction.hook_force
         torques, forces = steady_loads(steady, friction)
     else:
-        steady = steady_drilling(bit, wob, rpm)
+        steady = steady_state(bit, wob, rpm)
     delay = steady.delay
     driven = top_drive is not None and not top_drive.held
     if driven and bit_rotation is not None:
@@ -368,7 +386,9 @@ def run_setup(
         rates = top_drive_rates(top_drive, assembly.stiffnesses[0], assembly.damping[0])
         top_rate = float(np.abs(rates).max())
     dampers = 2 * math.pi * assembly.fastest_damping_rate() / options.steps_per_period
-    fastest = max(assembly.fastest_frequency(), top_rate, dampers / DAMPER_STEP)
+    chain_fastest = max(assembly.fastest_frequency(), top_rate, dampers / DAMPER_STEP)
+    law_rate = bit.rate(wob, assembly.inertias[-1]) if isinstance(bit, TorqueLawBit) else 0.0
+    fastest = max(chain_fastest, law_rate)
     h_max = options.largest_step(bit, assembly.bit_mass, fastest)
     h = delay / math.ceil(delay / h_max - 1e-9)
     if top_rate * h > TOP_DRIVE_STEP_LIMIT:
@@ -380,7 +400,8 @@ def run_setup(
             "(or more steps per period)",
         )
     nodes = assembly.nodes + assembly.axial_dofs
-    check_run_work(options, h, delay, nodes, bit, assembly.bit_mass, fastest, "chain")
+    what = "bit_rock" if law_rate > chain_fastest else "chain"
+    check_run_work(options, h, delay, nodes, bit, assembly.bit_mass, fastest, what)
     omega0, v0 = steady.bit_speed, steady.rop
     if contacts is not None:  # each spring carries the bit's load and the friction below it
         angles, positions = assembly.steady_offsets(torques, forces)
@@ -419,6 +440,7 @@ def run_setup(
     settings[slot.THRESHOLD_SPEED] = contacts.threshold_speed if contacts is not None else 0.0
     settings[slot.PRESCRIBED] = 1.0 if bit_rotation is not None else 0.0
     settings[slot.AMPLITUDE], settings[slot.FREQUENCY] = rotation.amplitude, rotation.frequency
+    settings[slot.ROCK_SURFACE] = u[-1]
     return RunSetup(
         **attrs.asdict(kernel, recurse=False),
         torsional=assembly.torsional_rows(),
@@ -433,52 +455,5 @@ def run_setup(
         contacts=rows,
         contact_stuck=np.full(assembly.nodes, 0.0 if on_steady else 1.0),
         friction=friction if contacts is not None else None,
-    )
-
-
-@attrs.frozen
-class WindowSummary:
-    """What a run gives over its window (docs/axial.md, "Outputs").
-
-    severity: S_SS = (max Ω_b − min Ω_b)/(2 Ω₀); axial_severity: (max V_b − min V_b)/(2 V₀);
-    stick_fraction, off_bottom_fraction: of the window's steps; rop_mean [m/s]: the bit's
-    advance over the window's length; mse_mean [Pa]: the work on the bit ∫(W V + T Ω) dt
-    over the volume drilled π a² ΔU (inf when the bit did not advance); torque_mean [N m],
-    weight_mean [N]; depth_of_cut_max [m per rev], the largest depth of cut (a check: the
-    law holds only while d stays within the cutters' height).
-    """
-
-    severity: float
-    axial_severity: float
-    stick_fraction: float
-    off_bottom_fraction: float
-    rop_mean: float
-    mse_mean: float
-    torque_mean: float
-    weight_mean: float
-    bit_speed_min: float
-    bit_speed_max: float
-    depth_of_cut_max: float
-
-
-def summarize(stats: NDArray, setup: KernelSetup, bit: RGDBit) -> WindowSummary:
-    """The window summary of a kernel's ``stats`` (:data:`torsio.axial.layouts.STATS`), the
-    lumped or the distributed one (``setup.step`` and ``setup.steady`` are read)."""
-    s = dict(zip(slot.STATS, stats, strict=True))
-    count = s["window_steps"]
-    length = count * setup.step
-    advance = s["position_end"] - s["position_start"]
-    steady = setup.steady
-    return WindowSummary(
-        severity=float((s["bit_speed_max"] - s["bit_speed_min"]) / (2 * steady.bit_speed)),
-        axial_severity=float((s["axial_speed_max"] - s["axial_speed_min"]) / (2 * steady.rop)),
-        stick_fraction=float(s["stuck_steps"] / count),
-        off_bottom_fraction=float(s["off_bottom_steps"] / count),
-        rop_mean=float(advance / length),
-        mse_mean=float(s["work"] / (bit.hole_area * advance)) if advance > 0 else math.inf,
-        torque_mean=float(s["torque_integral"] / length),
-        weight_mean=float(s["weight_integral"] / length),
-        bit_speed_min=float(s["bit_speed_min"]),
-        bit_speed_max=float(s["bit_speed_max"]),
-        depth_of_cut_max=float(s["depth_of_cut_max"]),
+        law=law_functions(bit),
     )

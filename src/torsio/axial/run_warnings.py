@@ -41,7 +41,7 @@ def depth_beyond_geometry(depth: float, blades: int, radius: float) -> str | Non
 
 def run_warnings(summary: Any, bit: Any, energy: Any) -> tuple[str, ...]:
     """The warnings of a run's window ``summary``
-    (:class:`~torsio.axial.run_setup.WindowSummary`) with the RGD ``bit`` and its ``energy``
+    (:class:`~torsio.axial.window_summary.WindowSummary`) with the RGD ``bit`` and its ``energy``
     balance (:class:`~torsio.axial.energy_balance.EnergyBalance`, None: not known)."""
     upward = None
     if summary.rop_mean < 0:

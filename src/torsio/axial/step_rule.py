@@ -11,8 +11,10 @@ Examples
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
-from torsio.axial.rgd import RGDBit
+if TYPE_CHECKING:
+    from torsio.axial.torque_law import AxialBit
 
 __all__ = ["DAMPER_STEP", "DEFAULT_STEPS_PER_PERIOD", "contact_frequency"]
 
@@ -28,6 +30,7 @@ chain of ``rgd_deviated_well.toml`` with β = 0.01 s diverged at h δ = 2 and cl
 energy balance at h δ = 1."""
 
 
-def contact_frequency(bit: RGDBit, mass: float) -> float:
-    """√(2 n ζ ε a / m_b) [rad/s]: where the bit's axial roots cross (docs/axial.md)."""
+def contact_frequency(bit: AxialBit, mass: float) -> float:
+    """√(2 n ζ ε a / m_b) [rad/s]: where the bit's axial roots cross (docs/axial.md); 0 for
+    a law of the torque alone (ζ ε a = 0: the rock does not yield)."""
     return math.sqrt(2 * bit.blades * bit.cutting_weight_per_depth / mass)

@@ -7,6 +7,8 @@ scheme of :mod:`torsio.axial.kernel`, and returns :class:`AxialTransient`: the w
 S_SS, axial severity, stuck and off-bottom fractions, mean ROP and MSE, the bit's
 signals, and the growth rate of the linearization of steady drilling
 (:func:`torsio.axial.stability.drilling_stability`; not with a prescribed bit rotation).
+A law of the torque alone (:mod:`torsio.axial.torque_law`: Tucker-Wang, a plugin's) runs on
+a lumped chain the same way, resting axially on the rock, and has no growth rate here.
 
 Default run length and window as torsio's other runs
 (:func:`torsio.analysis.severity.default_times`): 40 and 15 periods of the first torsional
@@ -42,21 +44,15 @@ from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.energy_balance import EnergyBalance, chain_energy, energy_balance
 from torsio.axial.kernel import march
-from torsio.axial.rgd import RGDBit
-from torsio.axial.run_setup import (
-    BitRotation,
-    RunOptions,
-    RunSetup,
-    WindowSummary,
-    run_setup,
-    summarize,
-)
+from torsio.axial.run_setup import BitRotation, RunOptions, RunSetup, run_setup
 from torsio.axial.run_warnings import run_warnings
 from torsio.axial.stability import growth_rate_skipped
 from torsio.axial.steady import SteadyDrilling
 from torsio.axial.step_rule import DEFAULT_STEPS_PER_PERIOD
+from torsio.axial.torque_law import AxialBit, TorqueLawBit
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_setup import WaveRunSetup, wave_chunk, wave_run_setup
+from torsio.axial.window_summary import WindowSummary, summarize
 from torsio.errors import ConfigError, SolverError
 from torsio.model.lumped import chain_matrix
 from torsio.solvers.run_chunks import run_in_chunks
@@ -117,6 +113,9 @@ def _chain_chunk(
         setup.top.w,
         setup.contacts,
         setup.contact_stuck,
+        setup.law.torque,
+        setup.law.slope,
+        setup.law.parameters,
     )
 
 
@@ -342,7 +341,7 @@ def _stored_energy(setup: RunSetup | WaveRunSetup, time: float) -> float | None:
 
 def simulate_axial(
     assembly: DrillingAssembly | WaveDrillingAssembly,
-    bit: RGDBit,
+    bit: AxialBit,
     wob: float,
     rpm: float,
     *,
@@ -418,6 +417,9 @@ def simulate_axial(
         from torsio.axial.top_drive import top_boundary
 
         boundary = top_boundary(top_drive, assembly, rpm, string)
+    torque_law = isinstance(bit, TorqueLawBit)
+    if torque_law and growth_rate:
+        raise ConfigError("growth_rate", f"{bit.name!r}: {TorqueLawBit.NO_GROWTH_RATE}")
     if isinstance(assembly, WaveDrillingAssembly):
         if bit_rotation is not None:
             raise ConfigError(
@@ -445,7 +447,7 @@ def simulate_axial(
     if start_energy is not None and end_energy is not None:
         energy = energy_balance(stats, start_energy, end_energy)
     rate, skipped = None, None  # a prescribed rotation has no growth rate
-    if bit_rotation is None:
+    if bit_rotation is None and not torque_law:
         skipped = growth_rate_skipped(assembly) if growth_rate is None else None
         if growth_rate or (growth_rate is None and skipped is None):
             rate = _growth_rate(assembly, bit, wob, rpm, boundary, contacts)
@@ -481,7 +483,7 @@ def simulate_axial(
 
 
 def _growth_rate(
-    assembly: Any, bit: RGDBit, wob: float, rpm: float, boundary: Any, contacts: Any
+    assembly: Any, bit: Any, wob: float, rpm: float, boundary: Any, contacts: Any
 ) -> float:
     """The growth rate of steady drilling: a chain's linearization (with its ``contacts``'
     damping), or a distributed pipe's characteristic equation from its lumped twin's roots

@@ -139,8 +139,8 @@ def march(
             history, cursor, t + h, bha[slot.BHA_ANGLE], omega_new, bha[slot.BHA_POSITION], v_new
         )
         row = bit_step.record_step(
-            stats, samples, row, step >= window_start, sampled, omega_new, v_new, depth, h, wc + wf,
-            bit_torque, t - delayed[0], top_torque,
+            stats, samples, row, step >= window_start, sampled, omega_new, v_new, depth,
+            depth > 0.0, h, wc + wf, bit_torque, t - delayed[0], top_torque,
         )  # fmt: skip
     stats[slot.POSITION_END] = bha[slot.BHA_POSITION]
     stats[slot.STEPS_DONE] = steps

@@ -47,12 +47,13 @@ from numpy.typing import NDArray
 
 from torsio.axial import layouts as slot
 from torsio.axial import wave_kernel
-from torsio.axial.rgd import RGDBit
 from torsio.axial.run_budget import check_run_work
 from torsio.axial.run_setup import BitStart, KernelSetup, RunOptions, kernel_setup
 from torsio.axial.steady import steady_drilling
+from torsio.axial.torque_law import AxialBit, TorqueLawBit
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_pipe import junction_rows
+from torsio.errors import ConfigError
 from torsio.model.wave_grid import choose_time_step
 
 __all__ = ["PipeGrid", "WaveRunSetup", "pipe_grid", "run_wave", "wave_chunk", "wave_run_setup"]
@@ -135,11 +136,18 @@ class WaveRunSetup(KernelSetup):
 
 
 def wave_run_setup(
-    assembly: WaveDrillingAssembly, bit: RGDBit, wob: float, rpm: float, options: RunOptions
+    assembly: WaveDrillingAssembly, bit: AxialBit, wob: float, rpm: float, options: RunOptions
 ) -> WaveRunSetup:
     """The grid, the initial state and the history of a run (see the module docstring) at
-    ``wob`` [N] and ``rpm`` [rev/min], set up as ``options`` say.
+    ``wob`` [N] and ``rpm`` [rev/min], set up as ``options`` say; the RGD bit only (a law of
+    the torque alone runs on a lumped chain, a ConfigError naming ``bit_rock.law``).
     """
+    if isinstance(bit, TorqueLawBit):
+        raise ConfigError(
+            "bit_rock.law",
+            f"{bit.name!r} is a law of the torque alone: it runs on a lumped chain only "
+            "(expected a DrillingAssembly, or law = 'rgd' on the distributed pipe)",
+        )
     steady = steady_drilling(bit, wob, rpm)
     options.check()
     fastest = assembly.fastest_rate()

@@ -48,6 +48,10 @@ _MAP_REFUSED = {
 }
 
 
+TORQUE_LAW_GROWTH_RATE = "none for a law of the torque alone (torsio report: the chain's)"
+"""The growth-rate row of a law of the torque alone, whose axial motion rests on the rock."""
+
+
 def _refuse(args: argparse.Namespace, flags: dict[str, str]) -> None:
     for name, flag in flags.items():
         if getattr(args, name, None) is not None:
@@ -77,6 +81,13 @@ def simulate(args: argparse.Namespace, config: Any) -> int:
 
     _refuse(args, _SIMULATE_REFUSED)
     axial = config.axial
+    if args.growth_rate and not axial.bit.needs_axial:
+        raise ConfigError(
+            "--growth-rate",
+            f"the {axial.bit.name} law is a law of the torque alone: its axial motion rests on "
+            "the rock, and the linear stability is the torsional chain's (torsio report); "
+            "remove it",
+        )
     point = config.operating_point(args.wob, args.rpm)
     common.warn_small_bare_wob(args.wob)
     run = simulate_axial(
@@ -93,6 +104,7 @@ def simulate(args: argparse.Namespace, config: Any) -> int:
     data = run.to_dict()
     data["solver"] = solver_info(run)
     data["model"] = axial.assembly.describe()
+    data["bit"] = axial.bit.to_dict()
     if args.json:
         common.print_json(data)
     else:
@@ -107,29 +119,36 @@ def _print_run(data: dict[str, Any], units: Any) -> None:
     from torsio.report.axial import assembly_summary
 
     steady = data["steady_state"]
-    table = Table(title=f"Axial-torsional run: {assembly_summary(data['model'])}, RGD bit")
+    law = data["bit"]["law"]
+    table = Table(title=f"Axial-torsional run: {assembly_summary(data['model'])}, {law} bit")
     table.add_column("quantity")
     table.add_column("value", justify="right")
     mse = data["mse_mean"]
     rate = data["growth_rate"]
+    axial = data["axial_severity"]
+    drilling = [  # the RGD bit's own; a law of the torque alone rests on the rock
+        ("mean ROP", f"{data['rop_mean'] * 3600:.4g} m/h ({data['rop_mean']:.4g} m/s)"),
+        ("mean MSE", "none (the bit did not advance)" if mse is None else f"{mse / 1e6:.4g} MPa"),
+        ("steady depth of cut", f"{steady['depth_of_cut'] * 1e3:.4g} mm/rev"),
+        ("steady ROP", f"{steady['rop'] * 3600:.4g} m/h ({steady['rop']:.4g} m/s)"),
+    ]
+    resting = [("axial motion", "at rest on the rock (a law of the torque alone)")]
+    steady_mse = [("steady MSE", f"{steady['mse'] / 1e6:.4g} MPa")] if steady["rop"] > 0 else []
     rows = [
         ("weight on bit", units.text("force", data["wob"], ".4g")),
         ("rotary speed", f"{data['rpm']:.4g} rpm"),
         ("run / steady window", f"{data['duration']:.4g} s / last {data['steady_window']:.4g} s"),
         ("start", data["start"]),
         ("S_SS (Eq. 12)", f"{data['severity']:.4f}"),
-        ("axial severity", f"{data['axial_severity']:.4f}"),
+        ("axial severity", "none (no rate of penetration)" if axial is None else f"{axial:.4f}"),
         ("stuck fraction", f"{data['stick_fraction']:.3f}"),
         ("off-bottom fraction", f"{data['off_bottom_fraction']:.3f}"),
-        ("mean ROP", f"{data['rop_mean'] * 3600:.4g} m/h ({data['rop_mean']:.4g} m/s)"),
-        ("mean MSE", "none (the bit did not advance)" if mse is None else f"{mse / 1e6:.4g} MPa"),
-        ("steady depth of cut", f"{steady['depth_of_cut'] * 1e3:.4g} mm/rev"),
-        ("steady ROP", f"{steady['rop'] * 3600:.4g} m/h ({steady['rop']:.4g} m/s)"),
+        *(drilling if steady["rop"] > 0 else resting),
         ("steady bit torque", units.text("torque", steady["bit_torque"], ".4g")),
-        ("steady MSE", f"{steady['mse'] / 1e6:.4g} MPa"),
+        *steady_mse,
         (
             "growth rate (linear)",
-            NO_GROWTH_RATE
+            (NO_GROWTH_RATE if steady["rop"] > 0 else TORQUE_LAW_GROWTH_RATE)
             if rate is None
             else f"{rate:.4g} 1/s ({'unstable' if rate > 0 else 'stable'})",
         ),
@@ -172,7 +191,7 @@ def run_map(args: argparse.Namespace, config: Any, wob: Any, rpm: Any) -> int:
     if args.engine not in (None, "auto", "numba"):
         raise ConfigError("--engine", f"{args.engine!r}: the axial engine is compiled (numba)")
     axial = config.axial
-    skipped = growth_rate_skipped(axial.assembly)
+    skipped = growth_rate_skipped(axial.assembly) if axial.bit.needs_axial else None
     if skipped is not None:  # the same at every point: said once
         print(f"torsio map: warning: {skipped}", file=sys.stderr)
     start = time.perf_counter()
@@ -183,7 +202,7 @@ def run_map(args: argparse.Namespace, config: Any, wob: Any, rpm: Any) -> int:
         rpm,
         **_times(args, config),
         **axial.run_options(),
-        growth_rate=skipped is None,
+        growth_rate=skipped is None and axial.bit.needs_axial,
         threads=args.threads,
         executor=args.workers if args.workers is not None else args.scheduler,
         timeout=args.timeout,

@@ -1,5 +1,6 @@
-"""``torsio laws``: the registered bit-rock laws and their parameters (plugins included),
-and the RGD bit of the axial engine (a law with memory, :mod:`torsio.axial.rgd`)."""
+"""``torsio laws``: every bit-rock law registered through the hook ``torsio_bit_laws()``
+(built-in, the RGD bit of :mod:`torsio.axial.rgd` included, and plugins), its parameters and
+what it declares it needs and gives (:func:`torsio.physics.laws.law_capabilities`)."""
 
 from __future__ import annotations
 
@@ -8,6 +9,7 @@ import inspect
 from typing import Any
 
 from torsio.cli import common
+from torsio.physics.laws import law_capabilities
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -23,7 +25,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def describe(cls: type[Any]) -> dict[str, Any]:
-    """``name``, ``description`` and ``parameters`` of a law class (any plugin's)."""
+    """``name``, ``description``, ``parameters`` and ``class`` of a law class (any plugin's),
+    what it declares (``needs_axial``, ``gives``) and the ``engine`` that takes it alone:
+    ``"axial"`` for a law that needs axial dynamics, else ``"torsional"`` (such a law also
+    runs on an axial chain, ``[chain] masses``)."""
     if hasattr(cls, "describe"):
         data = dict(cls.describe())
     else:  # a law that does not subclass BitRockLaw: its keyword parameters, units unknown
@@ -35,6 +40,8 @@ def describe(cls: type[Any]) -> dict[str, Any]:
         }
     data.setdefault("parameters", [])
     data["class"] = f"{cls.__module__}.{cls.__qualname__}"
+    data.update(law_capabilities(cls))
+    data["engine"] = "axial" if data["needs_axial"] else "torsional"
     return data
 
 
@@ -70,11 +77,9 @@ def _parameter_row(parameter: dict[str, Any]) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``torsio laws`` with parsed arguments; return the exit status."""
-    from torsio.axial.rgd import law_description
     from torsio.plugins import bit_laws
 
-    laws = [{**describe(cls), "engine": "torsional"} for _, cls in sorted(bit_laws().items())]
-    laws.append(law_description())
+    laws = [describe(cls) for _, cls in sorted(bit_laws().items())]
     if args.json:
         common.print_json({"laws": laws})
         return 0
@@ -83,14 +88,22 @@ def run(args: argparse.Namespace) -> int:
     from rich.table import Table
 
     table = Table(title="Bit-rock laws (parameters in the rad/s reading; speed_unit='rpm' also)")
-    table.caption = "rgd: the axial engine's law (axial dynamics only; docs/axial.md)"
+    table.caption = escape(
+        "needs axial: axial dynamics only ([chain] masses; docs/axial.md); the others run on "
+        "every model, an axial chain included"
+    )
     table.add_column("name")
     table.add_column("parameters")
     table.add_column("law")
+    table.add_column("needs / gives")
     for law in laws:
         parameters = [_parameter_row(p) for p in law["parameters"]]
+        needs = "axial" if law["needs_axial"] else "-"
         table.add_row(
-            escape(law["name"]), escape("\n".join(parameters)), escape(law.get("description", ""))
+            escape(law["name"]),
+            escape("\n".join(parameters)),
+            escape(law.get("description", "")),
+            escape(f"{needs} / {', '.join(law['gives'])}"),
         )
     Console().print(table)
     return 0

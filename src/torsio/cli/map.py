@@ -268,7 +268,10 @@ def _save_partial(partial: Any, out: str) -> str:
 
 def axial_wob_range(config: Any) -> str:
     """The default --wob of an axial map: 1.1 to 2 times the weight the wear flats carry
-    (σ a l, below which the RGD bit does not cut), 5 points."""
+    (σ a l, below which the RGD bit does not cut), 5 points; a law of the torque alone's
+    is that of the torsional maps (:data:`DEFAULT_WOB`)."""
+    if not config.axial.bit.needs_axial:
+        return DEFAULT_WOB
     friction = config.axial.bit.friction_weight
     return f"{1.1 * friction:.6g}:{2 * friction:.6g}:5"
 

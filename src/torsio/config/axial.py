@@ -1,8 +1,11 @@
 """Axial dynamics from a configuration: the assembly, the RGD bit and the run options.
 
 A configuration has axial dynamics when ``[chain]`` gives ``masses`` (each node also moves
-axially) or a ``[[section]]`` string has ``[bit_rock] law = "rgd"`` (its axial data from
-E, ρ and the sections: :func:`axial_sections`, read once). Either needs the RGD bit.
+axially) or a ``[[section]]`` string has a law that declares ``needs_axial``, ``[bit_rock]
+law = "rgd"`` (its axial data from E, ρ and the sections: :func:`axial_sections`, read
+once). On ``[chain] masses`` any registered law runs: the RGD bit, or a law of the torque
+alone (Tucker-Wang, a plugin's), whose axial motion rests on the rock under the weight on
+bit (:class:`~torsio.axial.torque_law.TorqueLawBit`).
 :func:`chain_axial` and :func:`string_axial` build an :class:`AxialConfig` that
 :func:`torsio.axial.transient.simulate_axial` and :func:`torsio.axial.maps.axial_map` run:
 a lumped chain (:func:`lumped_chain`, elements of at most ``[axial] element_length``), or
@@ -32,6 +35,7 @@ import numpy as np
 
 from torsio.axial.assembly import HOOKS, DrillingAssembly
 from torsio.axial.rgd import RGDBit, rgd_from_table
+from torsio.axial.torque_law import AxialBit, TorqueLawBit
 from torsio.axial.wave_assembly import (
     DEFAULT_ELEMENT_LENGTH,
     PipeSection,
@@ -39,6 +43,7 @@ from torsio.axial.wave_assembly import (
     lumped_pipe,
 )
 from torsio.config.chain import ChainConfig, _values
+from torsio.config.configuration import BitRockConfig
 from torsio.config.tables import _positive_number, _string, _table
 from torsio.errors import ConfigError
 from torsio.model.drillstring import DrillString
@@ -49,6 +54,7 @@ __all__ = [
     "AXIAL_SIMULATION_KEYS",
     "AxialConfig",
     "AxialSections",
+    "axial_law_from_table",
     "axial_sections",
     "chain_axial",
     "lumped_chain",
@@ -61,12 +67,6 @@ AXIAL_SIMULATION_KEYS = {"start", "perturbation", "step"}
 """``[simulation]`` keys of the axial engine only."""
 TORSIONAL_ONLY_SIMULATION_KEYS = ("method", "rtol", "atol", "output_step", "stick_threshold")
 """``[simulation]`` keys the fixed-step axial engine has no use for (refused)."""
-RGD_REFUSAL = (
-    "the rgd law needs axial dynamics: give [chain] masses (or, for a [[section]] string, "
-    "[material] youngs_modulus); the torsional engines take a law with "
-    "torque(speed, wob, radius)"
-)
-"""Why the torsional engines refuse ``law = "rgd"`` (the message of ``bit_rock.law``)."""
 
 
 @attrs.frozen(eq=False)
@@ -78,8 +78,9 @@ class AxialConfig:
     assembly : DrillingAssembly or WaveDrillingAssembly
         The lumped nodes that turn and move axially, the bit on the last one; or the
         distributed pipe above the rigid BHA (``[discretization] strategy = "wave"``).
-    bit : RGDBit
-        The RGD bit of ``[bit_rock]``.
+    bit : RGDBit or TorqueLawBit
+        The RGD bit of ``[bit_rock]``, or (``[chain] masses`` only) a law of the torque
+        alone on the bit's radius.
     start : str
         ``"rest"`` or ``"steady"`` (``[simulation] start``).
     perturbation : float
@@ -103,7 +104,7 @@ class AxialConfig:
     """
 
     assembly: DrillingAssembly | WaveDrillingAssembly
-    bit: RGDBit
+    bit: AxialBit
     start: str = "rest"
     perturbation: float = 1e-3
     step: float | None = None
@@ -197,16 +198,42 @@ def _simulation_options(table: Mapping[str, Any]) -> dict[str, Any]:
     return options
 
 
-def _bit(table: Mapping[str, Any], given: str) -> RGDBit:
-    raw = table.get("bit_rock")
-    law = raw.get("law") if isinstance(raw, Mapping) else None
-    if law != "rgd":
+def needs_axial(law: str) -> bool:
+    """Whether the registered law ``law`` declares ``needs_axial`` (an unknown name is a
+    ConfigError naming ``bit_rock.law`` and the registered laws)."""
+    from torsio.physics.laws import law_capabilities
+    from torsio.plugins import get_bit_law
+
+    return bool(law_capabilities(get_bit_law(law))["needs_axial"])
+
+
+def axial_law_from_table(raw: Mapping[str, Any]) -> RGDBit:
+    """The bit of a ``[bit_rock]`` table whose law declares ``needs_axial``: the RGD bit
+    (:func:`torsio.axial.rgd.rgd_from_table`), the one such law the axial engine runs."""
+    law = raw.get("law")
+    if law != RGDBit.name:
         raise ConfigError(
             "bit_rock.law",
-            f"axial dynamics ({given}) need the RGD bit: law = 'rgd', got {law!r}",
+            f"{law!r} declares needs_axial, but the axial engine runs the cutting and wear "
+            f"flats of the RGD bit only; expected law = 'rgd' or a law of the torque alone",
         )
-    assert isinstance(raw, Mapping)
     return rgd_from_table(raw)
+
+
+def _bit(table: Mapping[str, Any], bit_rock: BitRockConfig | None, given: str) -> AxialBit:
+    """The bit of axial dynamics (``given`` says what gave them): the RGD bit, or any other
+    law on its ``[bit_rock] radius`` as a law of the torque alone."""
+    raw = table.get("bit_rock")
+    if bit_rock is None or not isinstance(raw, Mapping):
+        raise ConfigError(
+            "bit_rock",
+            f"missing: axial dynamics ({given}) need a bit-rock law (e.g. law = 'rgd', or "
+            "'tucker-wang' with its parameters and radius)",
+        )
+    if needs_axial(bit_rock.law):
+        return axial_law_from_table(raw)
+    assert bit_rock.radius is not None  # required with [chain] (config/reading.py)
+    return TorqueLawBit(bit_rock.build(), bit_rock.radius)
 
 
 def _dampers(table: Mapping[str, Any], springs: np.ndarray) -> np.ndarray:
@@ -228,8 +255,11 @@ def _damping_beta(table: Mapping[str, Any]) -> float:
     return _positive_number(raw.get("beta", 0.0), "damping.beta", "time")
 
 
-def chain_axial(table: Mapping[str, Any], chain: ChainConfig) -> AxialConfig | None:
-    """The axial dynamics of a ``[chain]`` file (None without ``masses``)."""
+def chain_axial(
+    table: Mapping[str, Any], chain: ChainConfig, bit_rock: BitRockConfig | None = None
+) -> AxialConfig | None:
+    """The axial dynamics of a ``[chain]`` file (None without ``masses``), with the bit of
+    its ``bit_rock`` (the parsed ``[bit_rock]``)."""
     raw = table["chain"]
     if "masses" not in raw:
         for key in ("axial_stiffnesses", "axial_dampings"):
@@ -265,7 +295,8 @@ def chain_axial(table: Mapping[str, Any], chain: ChainConfig) -> AxialConfig | N
         hook=options["hook"],
     )
     return AxialConfig(
-        assembly, _bit(table, "[chain] masses"), steps_per_period=options["steps_per_period"],
+        assembly, _bit(table, bit_rock, "[chain] masses"),
+        steps_per_period=options["steps_per_period"],
         **_simulation_options(table),
     )  # fmt: skip
 
@@ -426,7 +457,8 @@ def _wave_pipe(
 
 
 def string_axial(table: Mapping[str, Any], string: DrillString) -> AxialConfig | None:
-    """The axial dynamics of a ``[[section]]`` file (None unless ``law = "rgd"``).
+    """The axial dynamics of a ``[[section]]`` file (None unless its law declares
+    ``needs_axial``: ``law = "rgd"``; a law of the torque alone keeps a string torsional).
 
     With ``[discretization] strategy = "wave"`` the distributed pipe
     (:class:`~torsio.axial.wave_assembly.WaveDrillingAssembly`, one section per pipe
@@ -435,14 +467,15 @@ def string_axial(table: Mapping[str, Any], string: DrillString) -> AxialConfig |
     ``[axial] element_length`` [m].
     """
     raw = table.get("bit_rock")
-    law = raw.get("law") if isinstance(raw, Mapping) else None
-    if law != "rgd":
+    law = raw.get("law", "tucker-wang") if isinstance(raw, Mapping) else None
+    if not (isinstance(law, str) and needs_axial(law)):
         _refuse_axial_tables(table, "[bit_rock] law = 'rgd' and [material] youngs_modulus")
         return None
+    assert isinstance(raw, Mapping)
     options = _axial_table(table)
     sections = axial_sections(table, string)
     discretization = table.get("discretization", {})
-    bit = _bit(table, "law = 'rgd'")
+    bit = axial_law_from_table(raw)
     run = {"steps_per_period": options["steps_per_period"], **_simulation_options(table)}
     if isinstance(discretization, Mapping) and discretization.get("strategy") == "wave":
         pipe = _wave_pipe(table, sections, options["hook"])

@@ -58,11 +58,9 @@ class BitRockConfig:
 
     def build(self) -> Any:
         """The bit-rock law object (looked up among the registered laws), built once: the
-        validation on reading the file builds it, every System of the table reuses it."""
-        if self.law == "rgd":
-            from torsio.config.axial import RGD_REFUSAL
-
-            raise ConfigError("bit_rock.law", RGD_REFUSAL)
+        validation on reading the file builds it, every System of the table reuses it. A
+        law that declares ``needs_axial`` (the RGD bit) is refused by key: the System is
+        torsional only."""
         if not self._built:
             from torsio.plugins import build_bit_law
 

@@ -41,9 +41,14 @@ from typing import Any
 
 import attrs
 
-from torsio.axial.rgd import rgd_from_table
 from torsio.axial.wave_assembly import WaveDrillingAssembly
-from torsio.config.axial import AXIAL_SIMULATION_KEYS, chain_axial, string_axial
+from torsio.config.axial import (
+    AXIAL_SIMULATION_KEYS,
+    axial_law_from_table,
+    chain_axial,
+    needs_axial,
+    string_axial,
+)
 from torsio.config.axial_well import with_well
 from torsio.config.chain import parse_chain
 from torsio.config.configuration import (
@@ -252,7 +257,7 @@ def _chain_config(table: Mapping[str, Any], name: str, source: str) -> Config:
         simulation=_simulation(table.get("simulation", {})),
         source=source,
         chain=chain,
-        axial=chain_axial(table, chain),
+        axial=chain_axial(table, chain, bit_rock),
     )
 
 
@@ -268,10 +273,10 @@ def _bit_rock(raw: Any) -> BitRockConfig:
     speed_unit = _string(raw.get("speed_unit", "rad/s"), "bit_rock.speed_unit")
     parameters = {k: v for k, v in raw.items() if k not in ("law", "radius", "speed_unit")}
     config = BitRockConfig(law, radius, speed_unit, parameters)
-    if law == "rgd":  # the axial engine's bit (config/axial.py), no torque(speed, wob, radius)
+    if needs_axial(law):  # the RGD bit: built by config/axial.py
         if "speed_unit" in raw:
-            raise ConfigError("bit_rock.speed_unit", "the rgd law has no speed unit; remove it")
-        rgd_from_table(raw)
+            raise ConfigError("bit_rock.speed_unit", f"the {law} law has no speed unit; remove it")
+        axial_law_from_table(raw)
         return config
     config.build()  # validates the law name and its parameters now, naming the key
     return config

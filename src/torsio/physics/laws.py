@@ -27,7 +27,7 @@ from typing import Any, ClassVar
 import attrs
 import numpy as np
 
-from torsio.errors import ConfigError
+from torsio.errors import ConfigError, PluginError
 from torsio.hookspecs import hookimpl
 from torsio.physics.law_slope import central_difference
 
@@ -69,12 +69,15 @@ class BitRockLaw:
 
     Subclasses set ``name``, ``parameters`` (a dict of :class:`Parameter`) and
     implement ``torque``. Validated parameters become attributes in the rad/s
-    reading.
+    reading. ``needs_axial`` and ``gives`` are the law's declared capabilities
+    (:func:`law_capabilities`): a law of the torque alone needs no axial motion.
     """
 
     name: ClassVar[str] = ""
     description: ClassVar[str] = ""
     parameters: ClassVar[Mapping[str, Parameter]] = {}
+    needs_axial: ClassVar[bool] = False
+    gives: ClassVar[tuple[str, ...]] = ("torque",)
 
     def __init__(self, *, speed_unit: str = "rad/s", **values: Any) -> None:
         if speed_unit not in SPEED_UNITS:
@@ -263,6 +266,43 @@ class ConstantTorque(BitRockLaw):
             compile_law_function(constant_slope),
             np.array([self.torque_on_bit]),
         )
+
+
+LAW_OUTPUTS = ("torque", "weight", "rate_of_penetration")
+"""What a law may declare it gives (``gives``): the torque on bit [N m], and with axial
+dynamics the weight on bit [N] and the rate of penetration [m/s] of its own."""
+
+
+def law_capabilities(law: Any) -> dict[str, Any]:
+    """What a law class (or object) declares it needs and gives, with the defaults of a law
+    that declares nothing (the plugin contract: only ``name``, keyword parameters and
+    ``torque(speed, wob, radius)``).
+
+    ``needs_axial``: the law needs axial degrees of freedom and the history of the bit's
+    axial position (absent: False); ``gives``: what it computes, among :data:`LAW_OUTPUTS`
+    (absent: ``("torque",)``, the torque of ``torque(speed, wob, radius)`` at the weight on
+    bit it is given).
+
+    Examples
+    --------
+    >>> law_capabilities(TuckerWang)
+    {'needs_axial': False, 'gives': ['torque']}
+    >>> class Plain:  # a plugin law written from the contract alone
+    ...     name = "plain"
+    >>> law_capabilities(Plain)["needs_axial"]
+    False
+    """
+    needs_axial = getattr(law, "needs_axial", False)
+    gives = getattr(law, "gives", ("torque",))
+    name = getattr(law, "name", None) or getattr(law, "__name__", repr(law))
+    if not isinstance(needs_axial, bool):
+        raise PluginError(f"law {name!r}: needs_axial must be True or False, got {needs_axial!r}")
+    if isinstance(gives, str) or not set(gives) <= set(LAW_OUTPUTS) or "torque" not in gives:
+        raise PluginError(
+            f"law {name!r}: gives must list the torque and any of {', '.join(LAW_OUTPUTS)}, "
+            f"got {gives!r}"
+        )
+    return {"needs_axial": needs_axial, "gives": list(gives)}
 
 
 BUILTIN_LAWS: tuple[type[BitRockLaw], ...] = (TuckerWang, ConstantTorque)

@@ -37,6 +37,7 @@ from rich.table import Table
 
 from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.linearization import axial_matrices
+from torsio.axial.torque_law import TorqueLawBit
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.display_units import DisplayUnits
 from torsio.model.lumped import chain_matrix
@@ -197,7 +198,7 @@ def axial_section(ctx: ReportContext) -> ReportSection | None:
     count = ctx.requested_modes
     data: dict[str, Any] = {
         "model": assembly.describe(),
-        "bit": axial.bit.describe(),
+        "bit": axial.bit.to_dict(),
         "torsional_frequencies_hz": torsional_frequencies(assembly, count)[:count],
         "axial_frequencies_hz": axial_frequencies(assembly, count)[:count],
         "wob_n": op.wob,
@@ -210,6 +211,12 @@ def axial_section(ctx: ReportContext) -> ReportSection | None:
     }
     if op.wob is None or op.rpm is None:
         data["note"] = "no [operation] wob and rpm: no steady state"
+    elif isinstance(axial.bit, TorqueLawBit):  # a law of the torque alone
+        data["steady_state"] = axial.bit.steady(op.wob, op.rpm).to_dict()
+        data["note"] = (
+            f"the {axial.bit.name} law is a law of the torque alone: the bit rests on the rock "
+            "under the weight on bit (no rate of penetration); no growth rate of drilling"
+        )
     elif op.wob <= axial.bit.friction_weight:
         data["note"] = (
             f"the weight on bit is at most sigma a l = {axial.bit.friction_weight:.6g} N: "
@@ -224,7 +231,8 @@ def axial_section(ctx: ReportContext) -> ReportSection | None:
         data["steady_state"] = steady.to_dict()
         data["stability"] = _stability(axial, op.wob, op.rpm)
         data["stability_of_held_top"] = data["stability"]["held_top"]
-    return ReportSection("axial", "Axial dynamics (RGD bit)", data, _body(data, ctx.units))
+    title = f"Axial dynamics ({'RGD' if axial.bit.needs_axial else axial.bit.name} bit)"
+    return ReportSection("axial", title, data, _body(data, ctx.units))
 
 
 def assembly_summary(model: dict[str, Any]) -> str:
@@ -268,11 +276,15 @@ def _body(data: dict[str, Any], units: DisplayUnits) -> Table:
     if steady is not None:
         rows += [
             ("operating point", f"{force(data['wob_n'], '.4g')}, {data['rpm']:.4g} rpm"),
-            ("steady depth of cut", f"{steady['depth_of_cut'] * 1e3:.4g} mm/rev"),
-            ("steady ROP", f"{steady['rop'] * 3600:.4g} m/h ({steady['rop']:.4g} m/s)"),
-            ("steady bit torque", torque(steady["bit_torque"], ".4g")),
-            ("steady MSE", f"{steady['mse'] / 1e6:.4g} MPa"),
         ]
+        if steady["rop"] > 0:
+            rows += [
+                ("steady depth of cut", f"{steady['depth_of_cut'] * 1e3:.4g} mm/rev"),
+                ("steady ROP", f"{steady['rop'] * 3600:.4g} m/h ({steady['rop']:.4g} m/s)"),
+            ]
+        rows.append(("steady bit torque", torque(steady["bit_torque"], ".4g")))
+        if steady["rop"] > 0:
+            rows.append(("steady MSE", f"{steady['mse'] / 1e6:.4g} MPa"))
     contacts, friction = data.get("string_contacts"), data.get("steady_friction")
     if contacts is not None and friction is not None:
         rows += [
