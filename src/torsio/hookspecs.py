@@ -29,7 +29,10 @@ def torsio_bit_laws() -> Iterable[type[Any]]:
     parameter), and has ``torque(speed, wob, radius)``: torque on bit [N m] for
     bit speed [rad/s], weight on bit [N] and bit radius [m], broadcasting over
     numpy arrays. Subclassing :class:`torsio.physics.laws.BitRockLaw` gives the
-    parameter description, validation and dimensionless form for free.
+    parameter description, validation and dimensionless form for free. Optionally a
+    class declares ``needs_axial`` (True: it needs axial dynamics and has no such
+    ``torque``; absent: False) and ``gives`` (what it computes; absent: the torque):
+    :func:`torsio.physics.laws.law_capabilities`.
     """
     raise NotImplementedError
 
