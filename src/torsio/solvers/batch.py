@@ -134,7 +134,7 @@ class BatchModel:
         chain = pack_chain(dynamics)
         return cls(
             chain,
-            pack_top(dynamics.top, chain),
+            pack_top(dynamics.top, chain, dynamics),
             system,
             dynamics.has_top_node and not math.isfinite(dynamics.set_speed),
             first_natural_frequency(system.model),  # once per model, kept with it
@@ -274,6 +274,7 @@ def simulate_lumped_batch(
     the weights run side by side on ``options.threads`` threads, the points of each in
     turn (:func:`torsio.solvers.batch_options.batch_threads`)."""
     points = batch_points(system, wob, rpm)
+    _refuse_varying_set_speed(system.top.boundary(system))
     contacts = system.model.contacts
     if contacts is not None and contacts.depends_on_wob:  # one chain per weight
         weights = np.unique(points.wob)
@@ -358,6 +359,26 @@ def simulate_lumped_batch(
         elapsed,
         out[:, OUT_ENDED].copy(),
         steady,
+    )
+
+
+def _refuse_varying_set_speed(boundary: Any) -> None:
+    """A clear error for a set speed that changes in time on the lumped batch engines.
+
+    A batch (a map) starts each point from rest at its own set speed and reads S_SS over
+    the steady window; a ramp to the point's speed or a recorded speed has no point's
+    speed to follow there (single runs take either: :func:`torsio.analysis.transient.simulate`).
+    """
+    if not boundary.varying:
+        return
+    if boundary.ramp > 0.0:
+        key, what = "top_drive.ramp", f"a ramp of {boundary.ramp:g} s; set ramp = 0 for a map"
+    else:
+        key, what = "top_drive.kind", "a top speed that follows a table (a recording)"
+    raise ConfigError(
+        key,
+        "the lumped batch engines (maps) start every point at its own constant set speed, "
+        f"got {what} (a single run, torsio simulate, takes a set speed that changes in time)",
     )
 
 

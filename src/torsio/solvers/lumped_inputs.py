@@ -15,7 +15,7 @@ import numpy as np
 from torsio.errors import ConfigError
 from torsio.solvers import layouts as slot
 
-__all__ = ["pack_chain", "pack_top", "run_settings", "step_limits"]
+__all__ = ["pack_chain", "pack_table", "pack_top", "run_settings", "step_limits"]
 
 
 def pack_chain(dynamics: Any) -> np.ndarray:
@@ -37,13 +37,18 @@ def pack_chain(dynamics: Any) -> np.ndarray:
     return chain
 
 
-def pack_top(boundary: Any, chain: np.ndarray) -> np.ndarray:
-    """The top drive (a ``TopDriveBoundary``) packed for the kernel; all zero when held.
+def pack_top(boundary: Any, chain: np.ndarray, dynamics: Any = None) -> np.ndarray:
+    """The top drive (a ``TopDriveBoundary``) packed for the kernel; when held, only the
+    top spring and damper k_t, c_t of ``dynamics`` (a ``Dynamics``; none: zero), through
+    which a set speed that changes in time drives node 0.
 
     ConfigError for a controller of more than :data:`~torsio.solvers.layouts.MAX_STATES` states.
     """
     top = np.zeros(slot.TOP_SIZE)
     if boundary.held:
+        if dynamics is not None:  # a chain's top spring and damper tie node 0 alone
+            top[slot.TOP_K_PIPE] = dynamics.top_spring[0]
+            top[slot.TOP_C_PIPE] = dynamics.top_damper[0]
         return top
     m = boundary.states
     if m > slot.MAX_STATES:
@@ -71,6 +76,16 @@ def pack_top(boundary: Any, chain: np.ndarray) -> np.ndarray:
     top[slot.TOP_C : slot.TOP_C + m] = boundary.c
     top[slot.TOP_W : slot.TOP_W + m] = boundary.w
     return top
+
+
+def pack_table(dynamics: Any) -> np.ndarray:
+    """The set speed against time for the kernel, (``TABLE_ROWS``, k): the description's
+    table with the held top's twist, or one point at the constant set speed (NaN: none)."""
+    if dynamics.speed_table is not None:
+        return np.ascontiguousarray(dynamics.speed_table, dtype=float)
+    table = np.zeros((slot.TABLE_ROWS, 1))
+    table[slot.TABLE_SPEED] = dynamics.set_speed
+    return table
 
 
 def step_limits(first_frequency: float, max_step: float | None = None) -> tuple[float, float]:
