@@ -270,16 +270,46 @@ def test_a_recorded_top_is_held_past_the_record_and_says_so():
     assert any("outlasts the recording short.csv" in text for text in results.warnings)
 
 
-def test_a_map_refuses_a_set_speed_that_changes_in_time_by_key():
-    system = builtin_config().system(strategy="A")
-    ramped = system.with_top(PITopDrive(inertia=2900.0, kp=5000.0, ki=1000.0, ramp=10.0))
-    with pytest.raises(ConfigError, match=r"top_drive\.ramp: .*maps.*ramp of 10 s"):
-        simulate_batch(ramped, wob=[100e3], rpm=[60.0])
+def test_a_map_of_ramped_start_ups_agrees_with_scipy_and_single_runs(tmp_path):
+    # independent engine: the scipy batch engine (Radau from rest, the same description)
+    # against the compiled batch kernel, each point ramped to its own set speed over 5 s;
+    # and the compiled single run of a point (the same kernel, sampled): S_SS within the
+    # integrators' tolerance (rtol 1e-8), the single run to 1e-9
+    config = load_config(_ritto_with(tmp_path, PI_RAMP))
+    system = config.system(strategy="C")
+    points = {"wob": [100e3, 175e3], "rpm": [100.0, 60.0]}
+    options = {"duration": 40.0, "steady_window": 15.0, "rtol": 1e-8, "atol": 1e-10}
+    compiled = simulate_batch(system, **points, engine="compiled", steady_tolerance=0.0,
+                              **options)  # fmt: skip
+    reference = simulate_batch(system, **points, engine="scipy", **options)
+    assert compiled.ok.all() and reference.ok.all()
+    assert np.max(np.abs(compiled.severity - reference.severity)) < 1e-4
+    single = simulate(system.at(wob=175e3, rpm=60.0), method="RODAS4", progress=False, **options)
+    assert single.severity == pytest.approx(compiled.severity[1], rel=1e-9)
+    assert compiled.severity[1] > 1.0 > 0.01 > compiled.severity[0]  # stick-slip, and none
+    # the early end on a steady cycle waits for the ramp's end, then reads S_SS to its
+    # tolerance (torsio.solvers.cycles: 1e-3 S_SS units by default)
+    early = simulate_batch(system, **points, engine="compiled", **options)
+    assert np.all(early.ended > 5.0)
+    assert np.max(np.abs(early.severity - compiled.severity)) < 1e-3
+
+
+def test_a_map_refuses_a_recorded_top_and_numpy_a_ramp_by_key():
     record = Recording(time=[0.0, 4.0], top_speed=[0.0, 6.0], surface_torque=[0.0, 0.0],
                        name="rig.csv")  # fmt: skip
-    recorded = system.with_top(RecordedTopDrive(recording=record))
-    with pytest.raises(ConfigError, match=r"top_drive\.kind: .*maps.*recording"):
-        simulate_batch(recorded, wob=[100e3], rpm=[60.0])
+    for strategy in ("A", "wave"):
+        system = builtin_config().system(strategy=strategy)
+        system = attrs.evolve(system, damping=RayleighDamping(alpha=0.35))  # wave: alpha only
+        recorded = system.with_top(RecordedTopDrive(recording=record))
+        with pytest.raises(ConfigError, match=r"top_drive\.kind: .*follows a table"):
+            simulate_batch(recorded, wob=[100e3], rpm=[60.0])
+    ramped = (
+        builtin_config()
+        .system(strategy="A")
+        .with_top(PITopDrive(inertia=2900.0, kp=5000.0, ki=1000.0, ramp=10.0))
+    )
+    with pytest.raises(ConfigError, match=r"top_drive\.ramp: the numpy batch engine"):
+        simulate_batch(ramped, wob=[100e3], rpm=[60.0], engine="numpy")
 
 
 def test_a_held_top_that_changes_speed_needs_lumped_mass():

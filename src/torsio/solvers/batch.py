@@ -20,7 +20,7 @@ Engines
 ``"numpy"``
     :mod:`torsio.solvers.numpy_engine`: the same method vectorized with numpy
     across the batch; works with any law (its vectorized ``torque``). Slower; ``"auto"``
-    uses it for a law numba cannot compile, and without numba.
+    uses it for a law numba cannot compile, and without numba. It takes no ramp.
 ``"scipy"``
     One :func:`scipy.integrate.solve_ivp` run per point (:mod:`torsio.solvers.reference`).
 ``"auto"``
@@ -238,7 +238,10 @@ def simulate_batch(
     rpm : array_like or None
         Surface rotary (set) speeds [rpm], > 0; broadcast against ``wob``. None (and
         only None) for a top drive without a set speed (``torque``): its speed follows
-        from the torque balance and S_SS is relative to its mean over the window.
+        from the torque balance and S_SS is relative to its mean over the window. A top
+        drive's ``ramp`` raises each point's set speed from 0 to its own over the ramp (a
+        start-up; a steady cycle is looked for from the ramp's end on); a top that follows
+        a recording is refused (``top_drive.kind``).
     options : BatchOptions, optional
         How the points are integrated and read (:class:`torsio.solvers.batch_options.
         BatchOptions`: duration, steady window, tolerances, step limits, ``engine`` (see
@@ -274,7 +277,6 @@ def simulate_lumped_batch(
     the weights run side by side on ``options.threads`` threads, the points of each in
     turn (:func:`torsio.solvers.batch_options.batch_threads`)."""
     points = batch_points(system, wob, rpm)
-    _refuse_varying_set_speed(system.top.boundary(system))
     contacts = system.model.contacts
     if contacts is not None and contacts.depends_on_wob:  # one chain per weight
         weights = np.unique(points.wob)
@@ -284,6 +286,14 @@ def simulate_lumped_batch(
     rtol, atol, engine, threads = options.rtol, options.atol, options.engine, options.threads
     duration, steady_window = run_times(system, options.duration, options.steady_window)
     name, kernel = resolve_engine(engine, system.law)
+    ramp = float(system.top.boundary(system).ramp)  # each point's, to its own set speed
+    if name == "numpy" and ramp > 0.0:
+        raise ConfigError(
+            "top_drive.ramp",
+            f"the numpy batch engine starts every point at its set speed, got a ramp of "
+            f"{ramp:g} s; use engine='compiled' (numba) or 'scipy' for a map of start-ups, "
+            "or ramp = 0",
+        )
     if name == "scipy" and getattr(system.model, "contacts", None) is not None:
         raise ConfigError(
             "engine",
@@ -297,7 +307,16 @@ def simulate_lumped_batch(
     steady = 0.0 if torque_driven else options.steady_tolerance
     radius = model.bit_radius if model is not None else 0.0
     settings = run_settings(
-        duration, steady_window, rtol, atol, steps, options.max_steps, radius, steady, omega1
+        duration,
+        steady_window,
+        rtol,
+        atol,
+        steps,
+        options.max_steps,
+        radius,
+        steady,
+        omega1,
+        ramp=ramp,
     )
     start = time.perf_counter()
     out = np.zeros((wob_arr.size, OUT_COLUMNS))
@@ -359,26 +378,6 @@ def simulate_lumped_batch(
         elapsed,
         out[:, OUT_ENDED].copy(),
         steady,
-    )
-
-
-def _refuse_varying_set_speed(boundary: Any) -> None:
-    """A clear error for a set speed that changes in time on the lumped batch engines.
-
-    A batch (a map) starts each point from rest at its own set speed and reads S_SS over
-    the steady window; a ramp to the point's speed or a recorded speed has no point's
-    speed to follow there (single runs take either: :func:`torsio.analysis.transient.simulate`).
-    """
-    if not boundary.varying:
-        return
-    if boundary.ramp > 0.0:
-        key, what = "top_drive.ramp", f"a ramp of {boundary.ramp:g} s; set ramp = 0 for a map"
-    else:
-        key, what = "top_drive.kind", "a top speed that follows a table (a recording)"
-    raise ConfigError(
-        key,
-        "the lumped batch engines (maps) start every point at its own constant set speed, "
-        f"got {what} (a single run, torsio simulate, takes a set speed that changes in time)",
     )
 
 

@@ -74,10 +74,11 @@ MAX_STATES = 3
 # --- the lumped engine: a run's settings -----------------------------------------------
 # t_end, start of the steady window [s], rtol, atol, first and largest step [s], accepted
 # steps allowed, bit radius [m], steady-cycle tolerance [S_SS units] (0: run to t_end),
-# omega_1 [rad/s], the contacts' switches allowed (more: the run chatters)
+# omega_1 [rad/s], the contacts' switches allowed (more: the run chatters), the time over
+# which a batch point's set speed ramps from 0 to its own [s] (0: none)
 (RUN_T_END, RUN_WINDOW_START, RUN_RTOL, RUN_ATOL, RUN_FIRST_STEP, RUN_MAX_STEP,
  RUN_MAX_STEPS, RUN_BIT_RADIUS, RUN_STEADY_TOLERANCE, RUN_OMEGA_1, RUN_MAX_SWITCHES,
- RUN_SIZE) = field_starts(*(1,) * 11)  # fmt: skip
+ RUN_RAMP, RUN_SIZE) = field_starts(*(1,) * 12)  # fmt: skip
 
 # --- the lumped engine: a point's results ----------------------------------------------
 # bit speed max and min over the window [rad/s], accepted and rejected steps, status

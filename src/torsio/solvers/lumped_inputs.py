@@ -111,11 +111,13 @@ def run_settings(
     steady_tolerance: float,
     first_frequency: float,
     max_switches: int | None = None,
+    ramp: float = 0.0,
 ) -> np.ndarray:
     """A run's settings for the kernel: run length and steady window [s], tolerances,
     (first, largest) step [s] (:func:`step_limits`), accepted steps allowed, bit radius [m],
     steady-cycle tolerance [S_SS units] (0: run to the end), omega_1 [rad/s], the contacts'
-    switches allowed (default: as many as the accepted steps)."""
+    switches allowed (default: as many as the accepted steps), the time [s] over which each
+    point of a batch ramps its set speed from 0 (0: none)."""
     settings = np.zeros(slot.RUN_SIZE)
     settings[slot.RUN_T_END] = t_end
     settings[slot.RUN_WINDOW_START] = t_end - window
@@ -127,4 +129,5 @@ def run_settings(
     settings[slot.RUN_STEADY_TOLERANCE] = steady_tolerance
     settings[slot.RUN_OMEGA_1] = first_frequency
     settings[slot.RUN_MAX_SWITCHES] = max_steps if max_switches is None else max_switches
+    settings[slot.RUN_RAMP] = ramp
     return settings

@@ -55,7 +55,13 @@ from torsio.solvers.chain_kernel import (
 )
 from torsio.solvers.compiled import njit
 from torsio.solvers.cycles import extremes_of_cubic, hermite, integral_of_cubic, track_cycle
-from torsio.solvers.set_speed import next_table_time, table_rate, table_speed, table_twist
+from torsio.solvers.set_speed import (
+    fill_twists,
+    next_table_time,
+    table_rate,
+    table_speed,
+    table_twist,
+)
 
 __all__ = [
     "GAMMA",
@@ -179,6 +185,7 @@ def advance(
     max_switches, instant, h_resume = settings[slot.RUN_MAX_SWITCHES], 0, 0.0
     track = settings[slot.RUN_STEADY_TOLERANCE] > 0.0
     varying = table.shape[1] > 1
+    ramp_end = table[slot.TABLE_TIME, table.shape[1] - 1]
     set_speed, twist = table_speed(table, 0.0), 0.0  # a constant set speed (psi = 0)
     force_rate = 0.0  # d/dt of node 0's force and of z' of the set speed's change
     fz_rate = small[slot.SMALL_SET_RATE, slot.FIRST_BLOCK : slot.SECOND_BLOCK]
@@ -436,8 +443,12 @@ def advance(
                 )
                 if has_top:
                     top_integral += h * integral_of_cubic(top0, v[0], h * top_acc0, h * acc[0], lo)
-            if track and track_cycle(
-                cycle, t, h, bit0, bit_acc0, phi0, v0, acc0, phi, v, acc, cross, cycle_settings
+            if (
+                track
+                and t >= ramp_end
+                and track_cycle(  # a cycle once the table is over
+                    cycle, t, h, bit0, bit_acc0, phi0, v0, acc0, phi, v, acc, cross, cycle_settings
+                )
             ):  # on a steady cycle: its extremes are those of the rest of the window
                 vmax = max(vmax, cycle[slot.CYCLE_MAX])
                 vmin = min(vmin, cycle[slot.CYCLE_MIN])
@@ -472,12 +483,15 @@ def advance(
 
 @njit(cache=True, nogil=True, error_model="numpy")
 def point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k) -> None:
-    """Point k from rest at its constant set speed, with its own zeroed work space (allocated
-    outside the step loop)."""
+    """Point k from rest at its set speed (ramped from 0 over ``RUN_RAMP``), with its own
+    zeroed work space (allocated outside the step loop)."""
     vectors = np.zeros((slot.VECTOR_ROWS, chain.shape[1]))
     small = np.zeros((slot.SMALL_ROWS, slot.SMALL_COLUMNS))
-    table = np.zeros((slot.TABLE_ROWS, 1))
-    table[slot.TABLE_SPEED, 0] = omega_set[k]
+    ramp = settings[slot.RUN_RAMP]
+    table = np.zeros((slot.TABLE_ROWS, 2 if ramp > 0.0 else 1))
+    table[slot.TABLE_TIME, table.shape[1] - 1] = ramp
+    table[slot.TABLE_SPEED, table.shape[1] - 1] = omega_set[k]
+    fill_twists(table, omega[k])
     for i in range(chain.shape[1]):
         vectors[slot.VEC_V, i] = -omega[k]  # start-up from rest: theta' = 0, controller states 0
     start(chain, top, torque, p, settings, wob[k], omega[k], table, vectors, small)

@@ -37,6 +37,7 @@ from torsio.solvers.compiled import njit
 from torsio.solvers.layouts import TABLE_ROWS, TABLE_SPEED, TABLE_TIME, TABLE_TWIST
 
 __all__ = [
+    "fill_twists",
     "next_table_time",
     "table_at",
     "table_rate",
@@ -111,17 +112,30 @@ def table_twist(table, time, reference):  # type: ignore[no-untyped-def,unused-i
     return twists[low] + (time - times[low]) * (mean - reference)
 
 
+@njit(cache=True, nogil=True, _nrt=False, error_model="numpy")
+def fill_twists(table, reference):  # type: ignore[no-untyped-def,unused-ignore]
+    """Write the row ``TABLE_TWIST`` of ``table``: psi at each of its times for Omega_ref =
+    ``reference`` [rad/s] (the trapezoidal rule, exact for the linear pieces)."""
+    times = table[TABLE_TIME]
+    speeds = table[TABLE_SPEED]
+    twists = table[TABLE_TWIST]
+    twists[0] = 0.0
+    for i in range(1, times.size):
+        mean = 0.5 * (speeds[i] + speeds[i - 1])
+        twists[i] = twists[i - 1] + (times[i] - times[i - 1]) * (mean - reference)
+    at_zero = table_twist(table, 0.0, reference)  # psi(0) = 0
+    for i in range(times.size):
+        twists[i] -= at_zero
+
+
 def twist_table(table: Any, reference: float) -> np.ndarray:
-    """``table`` (rows time [s], set speed [rad/s]) with the row ``TABLE_TWIST``: psi at
-    each time for Omega_ref = ``reference`` [rad/s] (the trapezoidal rule, exact for the
-    linear pieces), shape (``TABLE_ROWS``, k), C-contiguous for the kernels."""
+    """``table`` (rows time [s], set speed [rad/s]) with the row ``TABLE_TWIST``
+    (:func:`fill_twists`) for Omega_ref = ``reference`` [rad/s], shape (``TABLE_ROWS``, k),
+    C-contiguous for the kernels."""
     table = np.asarray(table, dtype=float)
-    times, speeds = table[TABLE_TIME], table[TABLE_SPEED]
-    out = np.zeros((TABLE_ROWS, times.size))
-    out[TABLE_TIME], out[TABLE_SPEED] = times, speeds
-    pieces = np.diff(times) * (0.5 * (speeds[1:] + speeds[:-1]) - reference)
-    out[TABLE_TWIST, 1:] = np.cumsum(pieces)
-    out[TABLE_TWIST] -= table_twist(out, 0.0, reference)  # psi(0) = 0
+    out = np.zeros((TABLE_ROWS, table.shape[1]))
+    out[TABLE_TIME], out[TABLE_SPEED] = table[TABLE_TIME], table[TABLE_SPEED]
+    fill_twists(out, float(reference))
     return out
 
 
