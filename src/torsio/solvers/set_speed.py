@@ -47,7 +47,7 @@ __all__ = [
 ]
 
 
-@njit(cache=True, nogil=True, _nrt=False, error_model="numpy", inline="always")
+@njit(cache=True, nogil=True, _nrt=False, error_model="numpy")
 def _segment(times, time):  # type: ignore[no-untyped-def,unused-ignore]
     """The index i of the table's segment [times[i], times[i + 1]) that holds ``time``
     (bisection; 0 before the table's second point, the last index from its last on)."""
@@ -65,7 +65,7 @@ def _segment(times, time):  # type: ignore[no-untyped-def,unused-ignore]
     return low
 
 
-@njit(cache=True, nogil=True, _nrt=False, error_model="numpy", inline="always")
+@njit(cache=True, nogil=True, _nrt=False, error_model="numpy")
 def table_rate(table, time):  # type: ignore[no-untyped-def,unused-ignore]
     """d Omega_set / dt [rad/s^2] on the table's segment from ``time`` on (0 before the
     first point and from the last on)."""
@@ -79,7 +79,7 @@ def table_rate(table, time):  # type: ignore[no-untyped-def,unused-ignore]
     return (speeds[low + 1] - speeds[low]) / (times[low + 1] - times[low])
 
 
-@njit(cache=True, nogil=True, _nrt=False, error_model="numpy", inline="always")
+@njit(cache=True, nogil=True, _nrt=False, error_model="numpy")
 def table_speed(table, time):  # type: ignore[no-untyped-def,unused-ignore]
     """The speed of ``table`` (rows time [s], speed [rad/s]) at ``time``: linear between its
     points, constant beyond them.
@@ -99,7 +99,7 @@ def table_speed(table, time):  # type: ignore[no-untyped-def,unused-ignore]
     return speeds[low] + share * (speeds[low + 1] - speeds[low])
 
 
-@njit(cache=True, nogil=True, _nrt=False, error_model="numpy", inline="always")
+@njit(cache=True, nogil=True, _nrt=False, error_model="numpy")
 def table_twist(table, time, reference):  # type: ignore[no-untyped-def,unused-ignore]
     """psi(t) [rad] of a :func:`twist_table` built for Omega_ref = ``reference`` [rad/s] at
     ``time``: the integral of the set speed less the reference from 0 to ``time``
@@ -152,7 +152,7 @@ def table_at(table: Any, time: Any, reference: float) -> tuple[Any, Any]:
     return speeds[()], twists[()]
 
 
-@njit(cache=True, nogil=True, _nrt=False, error_model="numpy", inline="always")
+@njit(cache=True, nogil=True, _nrt=False, error_model="numpy")
 def next_table_time(table, time):  # type: ignore[no-untyped-def,unused-ignore]
     """The first time [s] of the table after ``time`` (inf: none), where the set speed's
     slope may jump: a step of a lumped engine ends there."""
