@@ -15,7 +15,7 @@ import pytest
 
 from torsio.analysis.wave import wave_response
 from torsio.errors import ConfigError
-from torsio.examples import builtin_config, deviated_well_config
+from torsio.examples import deviated_well_config
 from torsio.physics.damping import RayleighDamping
 from torsio.physics.top_drive_boundary import TopDriveBoundary
 from torsio.physics.top_drives import PITopDrive, SoftTorqueTopDrive
@@ -91,13 +91,6 @@ def test_a_slow_ramped_start_up_breaks_the_bit_free_at_the_break_off_torque():
     angle *= system.model.time_step
     assert tr.surface_torque[moved - 1] == pytest.approx(reference.torque, rel=5e-3)
     assert angle[moved - 1] == pytest.approx(reference.twist, rel=5e-3)
-
-
-def test_a_ramp_is_refused_on_the_lumped_engines_by_key():
-    top = PITopDrive(inertia=2900.0, kp=5000.0, ki=1000.0, ramp=10.0)
-    system = builtin_config().system(strategy="A").with_top(top)
-    with pytest.raises(ConfigError, match=r"top_drive\.ramp.*wave"):
-        system.dynamics()
 
 
 @pytest.mark.parametrize("value", [-1.0, float("inf"), "ten"])

@@ -18,7 +18,10 @@ with
 * P_drag = theta'^T D theta'                      drag on absolute rotation [W]
 * P_bit = T_bit theta_N'                          work at the bit [W]
 
-(multiply the absolute equation by theta'^T and use [K] 1 = k_t). For Rayleigh
+(multiply the absolute equation by theta'^T and use [K] 1 = k_t). A held top whose set
+speed changes in time (a ramp, a recording) turns psi(t) ahead of Omega_ref t: then
+P_in = Omega_set(t) T_s, and phi, v are taken about it (phi - psi 1, v - psi' 1) in
+E_pot, T_s and P_rel. For Rayleigh
 damping C_rel = beta [K] and D = alpha [I]: the alpha part damps absolute
 rotation, so steady rotation at Omega already costs alpha Omega^2 1^T [I] 1. For
 a model's own chain damping D is its diagonal drag, ``diag([C] 1 - c_t)``.
@@ -203,12 +206,14 @@ def energy_balance(results: Any) -> EnergyBalance:
     z, twists, relative = dynamics.split(states)
     speeds = relative + dynamics.reference_speed
     if dynamics.has_top_node:
-        motor = np.asarray(dynamics.motor_torque(z, twists, relative)[0], dtype=float)
+        motor = np.asarray(dynamics.motor_torque(z, twists, relative, time_grid)[0], float)
         power_in = motor * speeds[0]
         kinetic_top = 0.5 * dynamics.top.inertia * speeds[0] ** 2
     else:
-        power_in = dynamics.reference_speed * np.asarray(dynamics.pipe_torque(twists, relative))
+        set_speed, psi = dynamics.set_speed_at(time_grid)
+        power_in = set_speed * np.asarray(dynamics.pipe_torque(twists, relative, time_grid))
         kinetic_top = np.zeros(time_grid.shape)
+        twists, relative = twists - psi, relative - (set_speed - dynamics.reference_speed)
     power_relative = np.einsum("it,ij,jt->t", relative, relative_damping, relative)
     power_drag = np.einsum("it,ij,jt->t", speeds, drag, speeds)
     power_bit = np.asarray(dynamics.bit_torque(speeds[-1]), dtype=float) * speeds[-1]

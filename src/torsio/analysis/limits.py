@@ -30,6 +30,7 @@ from torsio.units import RPM_TO_RAD_S
 
 __all__ = [
     "SATURATION_FRACTION",
+    "past_the_record",
     "saturated_motor",
     "short_window",
     "stuck_points",
@@ -75,6 +76,13 @@ def short_window(steady_window: float, period: float) -> str | None:
         f"mode ({period:.4g} s): S_SS may miss the extremes of a stick-slip cycle; give a "
         "window of several periods (--window, simulation.steady_window)"
     )
+
+
+def past_the_record(top: Any, duration: float) -> str | None:
+    """A top that follows a recording says when a run of ``duration`` [s] outlasts it
+    (:meth:`torsio.physics.recorded_top.RecordedTopDrive.past_the_record`; else None)."""
+    past = getattr(top, "past_the_record", None)
+    return None if past is None else past(duration)
 
 
 def warning_list(*texts: str | None) -> tuple[str, ...]:

@@ -56,7 +56,13 @@ from torsio.analysis.budget import (
 )
 from torsio.analysis.contact_summary import contact_summary
 from torsio.analysis.grid_check import TWIN_TRAVEL_TIME_TOLERANCE, with_grid_check
-from torsio.analysis.limits import saturated_motor, short_window, stuck_throughout, warning_list
+from torsio.analysis.limits import (
+    past_the_record,
+    saturated_motor,
+    short_window,
+    stuck_throughout,
+    warning_list,
+)
 from torsio.analysis.severity import (
     DEFAULT_SAMPLES_PER_PERIOD,
     DEFAULT_STICK_THRESHOLD,
@@ -280,13 +286,16 @@ def simulate_lumped(
             f"t = {bad:.6g} s (bit speed {bit_speed[int(np.argmin(np.isfinite(bit_torque)))]:.6g}"
             " rad/s)"
         )
-    surface_torque = np.asarray(dynamics.pipe_torque(twists_by_node, relative_by_node), float)
+    surface_torque = np.asarray(
+        dynamics.pipe_torque(twists_by_node, relative_by_node, time_grid), float
+    )
     motor_torque = np.broadcast_to(
-        np.asarray(dynamics.motor_torque(z, twists_by_node, relative_by_node)[0], float),
+        np.asarray(dynamics.motor_torque(z, twists_by_node, relative_by_node, time_grid)[0], float),
         bit_speed.shape,
     ).copy()
     first = 1 if dynamics.has_top_node else 0  # the model's own nodes
-    top_speed = speeds_by_node[0].copy() if first else np.full(bit_speed.shape, reference)
+    held_speed = dynamics.set_speed_at(time_grid)[0]  # a held top's
+    top_speed = speeds_by_node[0].copy() if first else np.array(held_speed, dtype=float)
     mean_top_speed = float(top_speed[in_window].mean())
     omega = dynamics.set_speed if math.isfinite(dynamics.set_speed) else mean_top_speed
     # a torque-driven top that did not turn: no speed to read S_SS against (a mean speed
@@ -343,6 +352,7 @@ def simulate_lumped(
             saturated_motor(
                 motor_torque[in_window], dynamics.top.max_torque, mean_top_speed, dynamics.set_speed
             ),
+            past_the_record(system.top, run),
         ),
     )
 

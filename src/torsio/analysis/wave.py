@@ -38,7 +38,7 @@ import numpy as np
 
 from torsio.analysis.budget import check_law_time_scale, check_output_size, check_wave_steps
 from torsio.analysis.contact_summary import contact_summary
-from torsio.analysis.limits import short_window, stuck_throughout, warning_list
+from torsio.analysis.limits import past_the_record, short_window, stuck_throughout, warning_list
 from torsio.analysis.severity import DEFAULT_DURATION_PERIODS, DEFAULT_WINDOW_PERIODS, check_window
 from torsio.analysis.simulation_options import SimulationOptions, check_window_samples
 from torsio.analysis.transient_results import TransientResults
@@ -122,12 +122,6 @@ class WaveResponse:
         """The characteristic grid."""
         model: WaveModel = self.transient.system.model
         return model
-
-
-def _past_the_record(top: Any, duration: float) -> str | None:
-    """A top that follows a recording says when the run outlasts it (else None)."""
-    past = getattr(top, "past_the_record", None)
-    return None if past is None else past(duration)
 
 
 def _depths(grid: WaveModel) -> np.ndarray:
@@ -346,7 +340,7 @@ def wave_response(
             no_friction,
             stuck_throughout(stick, threshold),
             short_window(float(steady_window), period),
-            _past_the_record(system.top, duration),
+            past_the_record(system.top, duration),
         ),
     }
     return WaveResponse(_transient_results(values), run, _depths(grid), energy)

@@ -14,15 +14,16 @@ dampers only) and ``drag`` the damping of each node's absolute rotation::
 turning at Omega_ref). The top drive's controller (:mod:`torsio.physics.top_drives`)
 adds m <= 3 states z and the motor torque u; its outputs are the speed error
 e = Omega_set - Omega_0 and the pipe torque T_pipe = k_1 (phi_0 - phi_1) + c_1 (v_0 - v_1).
+A set speed that changes in time (:mod:`torsio.solvers.set_speed`) is read at each time,
+Omega_ref its last value; a held top, psi(t) ahead of Omega_ref t, adds k_t psi + c_t psi'.
 
 The first-order state for scipy is ``y = [z_0 .. z_{m-1}, phi_0, v_0, ..., phi_{n-1}, v_{n-1}]``
 (controller states first, so the Jacobian of a lumped-mass chain stays banded).
 Everything that integrates, linearizes or balances energy derives from this
 object: :meth:`Dynamics.rhs`, :meth:`Dynamics.jacobian`, :meth:`Dynamics.linearized`.
 
-Consistent (or mixed) mass with a top drive that has inertia is refused: the
-first element's mass coupling to the top drive is not part of a model built for
-a held top.
+Consistent (or mixed) mass with a top drive that has inertia, or a held top whose speed
+changes, is refused: the first element's mass coupling to the top is not in the model.
 
 Examples
 --------
@@ -101,6 +102,10 @@ class Dynamics:
         :mod:`torsio.solvers.contact_events`) add it by the state of each contact; steady
         rotation (:meth:`steady_state`) takes their sliding torque, and the linearization
         none (a sliding contact's torque has no slope).
+    speed_table : ndarray or None
+        The set speed against time with the held top's twist psi, rows ``TABLE_*`` of
+        :mod:`torsio.solvers.layouts` (:func:`torsio.solvers.set_speed.twist_table`), or
+        None for a constant set speed.
     """
 
     mass_matrix: np.ndarray
@@ -116,6 +121,7 @@ class Dynamics:
     wob: float
     radius: float
     contacts: Any = attrs.field(default=None, repr=False)
+    speed_table: np.ndarray | None = attrs.field(default=None, repr=False, eq=False)
     _bands: Any = attrs.field(init=False, default=None, repr=False)
     _inverse_mass: Any = attrs.field(init=False, default=None, repr=False)
 
@@ -135,14 +141,11 @@ class Dynamics:
         model = system.model
         n = model.dofs
         top = system.top.boundary(system)
-        if top.varying:
-            key = "top_drive.ramp" if top.ramp > 0.0 else "top_drive.kind"
-            raise ConfigError(
-                key,
-                "a set speed that changes in time (a ramp or a recorded speed) runs on the "
-                'distributed model (discretization.strategy = "wave"); the lumped engines '
-                "take a constant set speed",
-            )
+        table = None  # a constant set speed; else its table with the held top's twist
+        if top.varying:  # numba only then: the table is read by the kernels' function
+            from torsio.solvers.set_speed import twist_table
+
+            table = twist_table(top.set_speed_table(), float(top.set_speed))
         damping = np.asarray(system.damping_matrix, dtype=float)
         top_damper = np.asarray(system.top_damping, dtype=float)
         top_spring = np.asarray(model.top_stiffness, dtype=float)
@@ -152,26 +155,20 @@ class Dynamics:
         relative = damping - np.diag(drag)
         common = (top, system.law, float(system.wob), float(system.bit_radius))
         contacts, _ = carried_contacts(getattr(model, "contacts", None))
-        if top.held:
-            return cls(
-                mass,
-                stiffness,
-                relative,
-                drag,
-                np.zeros(n),
-                top_spring,
-                top_damper,
-                float(top.set_speed),
-                *common,
-                contacts,
-            )
-        if not model.has_lumped_mass:
+        if not model.has_lumped_mass and (top.varying or not top.held):
+            what = "acceleration" if top.held else f"inertia ({system.top.name!r})"
             raise ConfigError(
                 "discretization.strategy",
-                f"a top drive with inertia ({getattr(system.top, 'name', system.top)!r}) needs a "
-                f"lumped-mass model; {model.strategy!r} has consistent mass, whose first element "
-                "couples the top drive's inertia to the first node (use strategy A, B or C)",
+                f"the top's {what} needs a lumped-mass model; {model.strategy!r} has consistent "
+                "mass, whose first element would couple it to the first node (use strategy A, "
+                "B or C)",
             )
+        if top.held:
+            speed = float(top.set_speed)  # a table's last speed
+            return cls(
+                mass, stiffness, relative, drag, np.zeros(n), top_spring, top_damper, speed,
+                *common, contacts, table,
+            )  # fmt: skip
         if np.count_nonzero(top_spring[1:]) or np.count_nonzero(top_damper[1:]):
             raise ConfigError(
                 "stiffness", "a top drive with inertia needs a chain tied to the top at node 1 only"
@@ -184,10 +181,8 @@ class Dynamics:
         speed = float(top.set_speed)
         if not math.isfinite(speed):
             sliding = 0.0 if contacts is None else contacts.dynamic_total  # friction at speed
-            speed = _balance_speed(
-                float(top.u0) - sliding, float(drag.sum()), system.law, system.wob,
-                system.bit_radius,
-            )  # fmt: skip
+            speed = top.balance_speed(sliding, float(drag.sum()), system.law, system.wob,
+                                      system.bit_radius)  # fmt: skip
         zeros = np.zeros(n + 1)
         if contacts is not None:  # none at the top drive's node
             contacts = attrs.evolve(
@@ -195,7 +190,10 @@ class Dynamics:
                 static=np.concatenate([[0.0], contacts.static]),
                 dynamic=np.concatenate([[0.0], contacts.dynamic]),
             )
-        return cls(mass, stiffness, relative, drag, zeros, zeros, zeros, speed, *common, contacts)
+        return cls(
+            mass, stiffness, relative, drag, zeros, zeros, zeros, speed, *common, contacts,
+            table,
+        )  # fmt: skip
 
     # --- chain bands ----------------------------------------------------------------------
     @property
@@ -308,25 +306,42 @@ class Dynamics:
         """d T_bit / d speed [N m s/rad] at absolute bit speed [rad/s]."""
         return bit_slope(self.law, bit_speed, self.wob, self.radius)
 
-    def pipe_torque(self, phi: np.ndarray, v: np.ndarray) -> np.ndarray:
-        """Torque the string takes from the top [N m] (phi, v: node-first arrays)."""
+    def set_speed_at(self, time: Any = None) -> Any:
+        """(Omega_set [rad/s] (NaN: none), a held top's psi [rad]) at ``time`` [s] (float or
+        array; None only for a constant set speed, :func:`~torsio.solvers.set_speed.table_at`)."""
+        if self.speed_table is None:
+            return np.full(np.shape(time), self.set_speed)[()], np.zeros(np.shape(time))[()]
+        from torsio.solvers.set_speed import table_at
+
+        return table_at(self.speed_table, time, self.reference_speed)
+
+    def pipe_torque(self, phi: np.ndarray, v: np.ndarray, time: Any = None) -> np.ndarray:
+        """Torque the string takes from the top [N m] (phi, v: node-first arrays) at
+        ``time`` [s] (needed, with the shape of a sample, when the set speed changes)."""
         if self.has_top_node:
             k1, c1 = -self.stiffness_matrix[0, 1], -self.relative_damping_matrix[0, 1]
             return np.asarray(k1 * (phi[0] - phi[1]) + c1 * (v[0] - v[1]))
-        return np.asarray(-(self.top_spring @ phi) - self.top_damper @ v)
+        torque = -(self.top_spring @ phi) - self.top_damper @ v
+        if self.speed_table is not None:  # the top ahead of Omega_ref t by psi
+            speed, psi = self.set_speed_at(time)
+            relative = speed - self.reference_speed
+            torque += self.top_spring.sum() * psi + self.top_damper.sum() * relative
+        return np.asarray(torque)
 
-    def motor_torque(self, z: np.ndarray, phi: np.ndarray, v: np.ndarray) -> tuple[Any, Any]:
+    def motor_torque(
+        self, z: np.ndarray, phi: np.ndarray, v: np.ndarray, time: Any = None
+    ) -> tuple[Any, Any]:
         """(u, u_free): the (limited) motor torque and the controller's demand [N m].
 
-        Node-first arrays; ``z`` shape (m, ...). For a held top both are the pipe torque.
+        Node-first arrays; ``z`` shape (m, ...); ``time`` [s] as for :meth:`pipe_torque`.
+        For a held top both are the pipe torque.
         """
         if not self.has_top_node:
-            torque = self.pipe_torque(phi, v)
+            torque = self.pipe_torque(phi, v, time)
             return torque, torque
         top = self.top
-        error = (
-            top.set_speed - (self.reference_speed + v[0]) if math.isfinite(top.set_speed) else 0.0
-        )
+        set_speed = self.set_speed_at(time)[0]
+        error = set_speed - (self.reference_speed + v[0]) if math.isfinite(top.set_speed) else 0.0
         pipe = self.pipe_torque(phi, v)
         free = top.u0 + top.d[0] * error + top.d[1] * pipe
         if top.states:
@@ -334,8 +349,8 @@ class Dynamics:
         limited = np.clip(free, -top.max_torque, top.max_torque)
         return limited, free
 
-    def _outputs(self, phi: np.ndarray, v: np.ndarray) -> np.ndarray:
-        error = self.top.set_speed - (self.reference_speed + v[0])
+    def _outputs(self, phi: np.ndarray, v: np.ndarray, time: Any = None) -> np.ndarray:
+        error = self.set_speed_at(time)[0] - (self.reference_speed + v[0])
         return np.array([error, float(self.pipe_torque(phi, v))])
 
     # --- first-order equations ------------------------------------------------------------
@@ -352,13 +367,17 @@ class Dynamics:
             elastic = self.stiffness_matrix @ phi + self.relative_damping_matrix @ v
         force = self.applied - elastic - self.drag * (self.reference_speed + v)
         force[-1] -= float(self.bit_torque(self.reference_speed + v[-1]))
+        time = t if self.speed_table is not None else None
+        if time is not None and not self.has_top_node:  # the held top's own motion
+            speed, twist = self.set_speed_at(time)
+            force += self.top_spring * twist + self.top_damper * (speed - self.reference_speed)
         dy = np.empty_like(y)
         if self.has_top_node:
             top = self.top
-            u, free = self.motor_torque(z, phi, v)
+            u, free = self.motor_torque(z, phi, v, time)
             force[0] += float(u)
             if m:
-                outputs = self._outputs(phi, v)
+                outputs = self._outputs(phi, v, time)
                 dy[:m] = top.a @ z + top.b @ outputs + top.w * (float(u) - float(free))
         dy[m::2] = v
         dy[m + 1 :: 2] = self._solve_mass(force)
@@ -409,11 +428,11 @@ class Dynamics:
         jac[rows, :m] = inverse @ controller_force
         return jac
 
-    def _saturated(self, y: np.ndarray) -> bool:
+    def _saturated(self, y: np.ndarray, time: float) -> bool:
         if not self.has_top_node or not math.isfinite(self.top.max_torque):
             return False
         m = self.states
-        u, free = self.motor_torque(y[:m], y[m::2], y[m + 1 :: 2])
+        u, free = self.motor_torque(y[:m], y[m::2], y[m + 1 :: 2], time)
         return bool(float(u) != float(free))
 
     def jacobian(self, t: float, y: np.ndarray) -> scipy.sparse.csc_matrix:
@@ -421,7 +440,7 @@ class Dynamics:
         import scipy.sparse  # the scipy integrators only: a map does not load it
 
         slope = float(self.bit_slope(self.reference_speed + y[-1]))
-        return scipy.sparse.csc_matrix(self.jacobian_matrix(slope, self._saturated(y)))
+        return scipy.sparse.csc_matrix(self.jacobian_matrix(slope, self._saturated(y, t)))
 
     @property
     def jacobian_bands(self) -> tuple[int, int] | None:
@@ -441,7 +460,8 @@ class Dynamics:
 
     # --- steady rotation ------------------------------------------------------------------
     def steady_state(self) -> np.ndarray:
-        """The state of steady rotation at Omega_ref (v = 0), unsaturated controller.
+        """The state of steady rotation at Omega_ref (v = 0), unsaturated controller, once
+        the set speed is constant (a held top then psi ahead of Omega_ref t).
 
         Twists from the static balance; for a top-drive node, phi_0 = 0 and the
         controller states hold the motor torque the balance needs.
@@ -455,6 +475,8 @@ class Dynamics:
         y = np.zeros(self.size)
         stiffness = self.stiffness_matrix
         if not self.has_top_node:
+            if self.speed_table is not None:  # the top's final twist
+                load += self.top_spring * self.set_speed_at(math.inf)[1]
             y[0::2] = np.linalg.solve(stiffness, load)
             return y
         top = self.top
@@ -475,26 +497,3 @@ class Dynamics:
         """The Jacobian about steady rotation (unsaturated), state order of :meth:`rhs`."""
         s = float(self.bit_slope(self.reference_speed)) if bit_slope is None else bit_slope
         return self.jacobian_matrix(s)
-
-
-def _balance_speed(torque: float, drag: float, law: Any, wob: float, radius: float) -> float:
-    """The lowest speed [rad/s] where a constant motor torque balances drag and the bit."""
-
-    def excess(speed: float) -> float:
-        return torque - drag * speed - float(np.asarray(law.torque(speed, wob, radius)))
-
-    grid = np.concatenate([[0.0], np.geomspace(1e-3, 1e4, 2001)])
-    values = np.array([excess(w) for w in grid])
-    change = np.flatnonzero((values[:-1] > 0) & (values[1:] <= 0))
-    if change.size == 0:
-        raise ConfigError(
-            "top_drive.torque",
-            f"the motor torque {torque:g} N m is balanced by no speed between 0 and 1e4 rad/s "
-            "(drag and torque on bit stay below it, or above it at rest)",
-        )
-    i = int(change[0])
-    if values[i + 1] == 0.0:
-        return float(grid[i + 1])
-    import scipy.optimize  # a torque-driven top drive only
-
-    return float(scipy.optimize.brentq(excess, grid[i], grid[i + 1], xtol=1e-13, rtol=1e-14))

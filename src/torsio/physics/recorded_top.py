@@ -6,8 +6,9 @@ the file's folder) or, from Python, a :class:`~torsio.calibration.recording.Reco
 The top turns at the recorded top-drive speed, linear between samples and constant after
 the last one (time counted from the first sample), whatever the rig's controller did:
 a calibration against the record then needs no model of the controller. The set speed
-(for S_SS) is the last recorded speed. The wave model only (a set speed that changes in
-time).
+(for S_SS) is the last recorded speed. It runs on every model, the wave model and the
+lumped strategies (a set speed that changes in time, docs/top_drives.md); maps refuse it
+(no set speed per point).
 
 Examples
 --------

@@ -107,6 +107,35 @@ class TopDriveBoundary:
             return np.array([[0.0, float(self.ramp)], [0.0, speed]])
         return np.array([[0.0], [speed]])
 
+    def balance_speed(
+        self, friction: float, drag: float, law: Any, wob: float, radius: float
+    ) -> float:
+        """The lowest speed [rad/s] where the constant motor torque ``u0`` balances a
+        friction torque [N m], a drag [N m s/rad] and the bit (a torque-driven top drive).
+
+        ConfigError (``top_drive.torque``) when no speed between 0 and 1e4 rad/s does.
+        """
+        torque = float(self.u0) - friction
+
+        def excess(speed: float) -> float:
+            return torque - drag * speed - float(np.asarray(law.torque(speed, wob, radius)))
+
+        grid = np.concatenate([[0.0], np.geomspace(1e-3, 1e4, 2001)])
+        values = np.array([excess(w) for w in grid])
+        change = np.flatnonzero((values[:-1] > 0) & (values[1:] <= 0))
+        if change.size == 0:
+            raise ConfigError(
+                "top_drive.torque",
+                f"the motor torque {torque:g} N m is balanced by no speed between 0 and 1e4 "
+                "rad/s (drag and torque on bit stay below it, or above it at rest)",
+            )
+        i = int(change[0])
+        if values[i + 1] == 0.0:
+            return float(grid[i + 1])
+        import scipy.optimize  # a torque-driven top drive only
+
+        return float(scipy.optimize.brentq(excess, grid[i], grid[i + 1], xtol=1e-13, rtol=1e-14))
+
     def transfer(self, s: complex) -> np.ndarray:
         """H(s) = c (s I - a)^-1 b + d: motor torque per unit (e, T_pipe), shape (2,)."""
         m = self.states

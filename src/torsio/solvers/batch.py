@@ -20,7 +20,7 @@ Engines
 ``"numpy"``
     :mod:`torsio.solvers.numpy_engine`: the same method vectorized with numpy
     across the batch; works with any law (its vectorized ``torque``). Slower; ``"auto"``
-    uses it for a law numba cannot compile, and without numba.
+    uses it for a law numba cannot compile, and without numba. It takes no ramp.
 ``"scipy"``
     One :func:`scipy.integrate.solve_ivp` run per point (:mod:`torsio.solvers.reference`).
 ``"auto"``
@@ -134,7 +134,7 @@ class BatchModel:
         chain = pack_chain(dynamics)
         return cls(
             chain,
-            pack_top(dynamics.top, chain),
+            pack_top(dynamics.top, chain, dynamics),
             system,
             dynamics.has_top_node and not math.isfinite(dynamics.set_speed),
             first_natural_frequency(system.model),  # once per model, kept with it
@@ -238,7 +238,10 @@ def simulate_batch(
     rpm : array_like or None
         Surface rotary (set) speeds [rpm], > 0; broadcast against ``wob``. None (and
         only None) for a top drive without a set speed (``torque``): its speed follows
-        from the torque balance and S_SS is relative to its mean over the window.
+        from the torque balance and S_SS is relative to its mean over the window. A top
+        drive's ``ramp`` raises each point's set speed from 0 to its own over the ramp (a
+        start-up; a steady cycle is looked for from the ramp's end on); a top that follows
+        a recording is refused (``top_drive.kind``).
     options : BatchOptions, optional
         How the points are integrated and read (:class:`torsio.solvers.batch_options.
         BatchOptions`: duration, steady window, tolerances, step limits, ``engine`` (see
@@ -283,6 +286,14 @@ def simulate_lumped_batch(
     rtol, atol, engine, threads = options.rtol, options.atol, options.engine, options.threads
     duration, steady_window = run_times(system, options.duration, options.steady_window)
     name, kernel = resolve_engine(engine, system.law)
+    ramp = float(system.top.boundary(system).ramp)  # each point's, to its own set speed
+    if name == "numpy" and ramp > 0.0:
+        raise ConfigError(
+            "top_drive.ramp",
+            f"the numpy batch engine starts every point at its set speed, got a ramp of "
+            f"{ramp:g} s; use engine='compiled' (numba) or 'scipy' for a map of start-ups, "
+            "or ramp = 0",
+        )
     if name == "scipy" and getattr(system.model, "contacts", None) is not None:
         raise ConfigError(
             "engine",
@@ -296,7 +307,16 @@ def simulate_lumped_batch(
     steady = 0.0 if torque_driven else options.steady_tolerance
     radius = model.bit_radius if model is not None else 0.0
     settings = run_settings(
-        duration, steady_window, rtol, atol, steps, options.max_steps, radius, steady, omega1
+        duration,
+        steady_window,
+        rtol,
+        atol,
+        steps,
+        options.max_steps,
+        radius,
+        steady,
+        omega1,
+        ramp=ramp,
     )
     start = time.perf_counter()
     out = np.zeros((wob_arr.size, OUT_COLUMNS))

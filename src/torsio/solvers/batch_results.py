@@ -85,6 +85,14 @@ def batch_points(system: Any, wob: Any, rpm: Any) -> BatchPoints:
     if isinstance(wob, BatchPoints) and rpm is None:
         return wob
     boundary = system.top.boundary(system)
+    if boundary.speed_table is not None:
+        raise ConfigError(
+            "top_drive.kind",
+            f"a batch (a map) runs every point at its own set speed, and the top drive "
+            f"{getattr(system.top, 'name', system.top)!r} follows a table of speeds (a "
+            "recording); map with a speed-controlled top drive (a single run, torsio "
+            "simulate, follows the table)",
+        )
     torque_driven = not boundary.held and not math.isfinite(boundary.set_speed)
     if torque_driven != (rpm is None):
         raise ConfigError(

@@ -1,10 +1,11 @@
 """The chain's forces, mass solve and top-drive elimination, for :mod:`torsio.solvers.rodas`.
 
 The compiled form of :mod:`torsio.physics.dynamics`: the chain's torques in twist
-coordinates (motor and bit included), the LU factors of the tridiagonal [I], and the
-elimination of the top drive's controller states from the step's linear system (see the
-documentation of :mod:`torsio.solvers.rodas`). No allocation and no reference counting:
-these run inside the step loop.
+coordinates (motor and bit included, and their time derivative for a set speed that
+changes in time), the LU factors of the tridiagonal [I], and the elimination of the top
+drive's controller states from the step's linear system (see the documentation of
+:mod:`torsio.solvers.rodas`); the run's carried scalars. No allocation and no reference
+counting: these run inside the step loop.
 """
 
 from __future__ import annotations
@@ -13,6 +14,10 @@ import numpy as np
 
 from torsio.solvers.compiled import njit
 from torsio.solvers.layouts import (
+    CARRY_ERR_ACCEPTED,
+    CARRY_H,
+    CARRY_H_ACCEPTED,
+    CARRY_LAST_REJECTED,
     CARRY_REJECTED,
     CARRY_STATUS,
     CARRY_STEPS,
@@ -54,6 +59,8 @@ from torsio.solvers.layouts import (
     TOP_W,
     WINDOW_BIT_MAX,
     WINDOW_BIT_MIN,
+    WINDOW_DONE,
+    WINDOW_NEXT_SAMPLE,
     WINDOW_TOP_INTEGRAL,
 )
 
@@ -65,12 +72,22 @@ __all__ = [
     "mass_factors",
     "sample_state",
     "saturated",
+    "set_speed_rates",
+    "store_carry",
+    "store_window",
 ]
 
 
 @njit(cache=True, error_model="numpy", _nrt=False, inline="always")
-def forces(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, fv, fz) -> float:
-    """fv = chain forces (motor and bit included), fz = z'; returns the bit speed."""
+def forces(
+    chain, top, torque, p, wob, radius, omega, set_speed, top_twist, phi, v, z, fv, fz
+) -> float:  # fmt: skip
+    """fv = chain forces (motor and bit included), fz = z'; returns the bit speed.
+
+    ``set_speed``: Omega_set [rad/s] now (NaN: none); ``top_twist``: a held top's psi [rad]
+    now, its angle beyond Omega_ref t (:mod:`torsio.solvers.set_speed`), which with the
+    top's speed less Omega_ref drives node 0 through the top spring and damper (no force
+    at a constant set speed)."""
     n = phi.size
     for i in range(n):
         fv[i] = (
@@ -88,7 +105,7 @@ def forces(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, fv, 
     fv[n - 1] -= torque(p, bit_speed, wob, radius)
     if top[TOP_HAS_NODE] != 0.0:
         m = int(top[TOP_STATES])
-        error = omega_set - (omega + v[0]) if omega_set == omega_set else 0.0
+        error = set_speed - (omega + v[0]) if set_speed == set_speed else 0.0
         pipe = top[TOP_K_PIPE] * (phi[0] - phi[1]) + top[TOP_C_PIPE] * (v[0] - v[1])
         free = top[TOP_U0] + top[TOP_KP] * error + top[TOP_PIPE_GAIN] * pipe
         for j in range(m):
@@ -101,7 +118,26 @@ def forces(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, fv, 
             for q in range(m):
                 s += top[TOP_A + MAX_STATES * j + q] * z[q]
             fz[j] = s
+    else:
+        fv[0] += top[TOP_K_PIPE] * top_twist + top[TOP_C_PIPE] * (set_speed - omega)
     return bit_speed
+
+
+@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+def set_speed_rates(top, omega, set_speed, rate, saturated, fz_rate) -> float:
+    """d/dt at a fixed state of the forces a set speed changing at ``rate`` [rad/s^2] puts
+    on node 0 (returned, [N m/s]) and of z' (into ``fz_rate``): the time derivative
+    RODAS4 takes for a non-autonomous system. A held top: k_t (Omega_set - Omega_ref) +
+    c_t rate; a controller: its gains on the speed error e, times the rate."""
+    if top[TOP_HAS_NODE] == 0.0:
+        return top[TOP_K_PIPE] * (set_speed - omega) + top[TOP_C_PIPE] * rate
+    if set_speed != set_speed:  # no set speed
+        rate = 0.0
+    for j in range(int(top[TOP_STATES])):
+        fz_rate[j] = (
+            top[TOP_B + 2 * j] - (top[TOP_W + j] * top[TOP_KP] if saturated else 0.0)
+        ) * rate
+    return 0.0 if saturated else top[TOP_KP] * rate
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
@@ -181,10 +217,10 @@ def controller_solve(top, g, saturated, q, zy, gains, work) -> None:
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
-def saturated(top, omega, omega_set, phi, v, z) -> bool:
+def saturated(top, omega, set_speed, phi, v, z) -> bool:
     if top[TOP_HAS_NODE] == 0.0 or not top[TOP_MAX_TORQUE] < np.inf:
         return False
-    error = omega_set - (omega + v[0]) if omega_set == omega_set else 0.0
+    error = set_speed - (omega + v[0]) if set_speed == set_speed else 0.0
     pipe = top[TOP_K_PIPE] * (phi[0] - phi[1]) + top[TOP_C_PIPE] * (v[0] - v[1])
     free = top[TOP_U0] + top[TOP_KP] * error + top[TOP_PIPE_GAIN] * pipe
     for j in range(int(top[TOP_STATES])):
@@ -215,3 +251,32 @@ def finish_run(settings, omega, has_top, small, out) -> None:
     mean = window[WINDOW_TOP_INTEGRAL] / (t_end - t_window) if has_top else 0.0
     out[OUT_TOP_SPEED_MEAN] = omega + mean
     out[OUT_ENDED] = carry[CARRY_T]
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def store_carry(
+    carry, t, h, h_accepted, err_accepted, last_rejected, steps, rejected, status
+) -> None:
+    """The stepper's state between two :func:`advance` calls into its row ``carry``:
+    time [s], next step [s], last accepted step [s] and its error norm, whether the last
+    step was rejected, the accepted and rejected step counts and the run's status."""
+    carry[CARRY_T] = t
+    carry[CARRY_H] = h
+    carry[CARRY_H_ACCEPTED] = h_accepted
+    carry[CARRY_ERR_ACCEPTED] = err_accepted
+    carry[CARRY_LAST_REJECTED] = 1.0 if last_rejected else 0.0
+    carry[CARRY_STEPS] = steps
+    carry[CARRY_REJECTED] = rejected
+    carry[CARRY_STATUS] = status
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def store_window(window, bit_max, bit_min, top_integral, next_sample, done) -> None:
+    """What the steady window has read so far into its row ``window``: the bit speed's
+    extremes [rad/s], the integral of the top speed [rad], the next output sample, and
+    whether the window is done."""
+    window[WINDOW_BIT_MAX] = bit_max
+    window[WINDOW_BIT_MIN] = bit_min
+    window[WINDOW_TOP_INTEGRAL] = top_integral
+    window[WINDOW_NEXT_SAMPLE] = next_sample
+    window[WINDOW_DONE] = 1.0 if done else 0.0

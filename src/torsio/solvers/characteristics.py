@@ -66,6 +66,7 @@ from typing import Any
 
 from torsio.solvers import layouts as slot
 from torsio.solvers.compiled import njit
+from torsio.solvers.set_speed import table_speed
 from torsio.solvers.wave_bit import _solve_bit
 from torsio.solvers.wave_buffers import (
     _advance,
@@ -118,35 +119,6 @@ except ImportError:  # pragma: no cover - exercised only without numba
 
 RECORD_CHANNELS = ("bit_speed", "bit_torque", "surface_torque", "top_speed", "motor_torque")
 """Columns of the recorded time series: rad/s, N m, N m, rad/s, N m."""
-
-
-@njit(cache=True, nogil=True, _nrt=False, error_model="numpy", inline="always")
-def table_speed(table, time):  # type: ignore[no-untyped-def,unused-ignore]
-    """The speed of ``table`` (rows time [s], speed [rad/s]) at ``time``: linear between its
-    points, constant beyond them.
-
-    >>> import numpy as np
-    >>> ramp, step = np.array([[0.0, 2.0], [0.0, 6.0]]), np.array([[0.0], [3.0]])
-    >>> table_speed(ramp, 0.5), table_speed(step, 9.0)
-    (1.5, 3.0)
-    """
-    times = table[slot.TABLE_TIME]
-    speeds = table[slot.TABLE_SPEED]
-    last = times.size - 1
-    if time <= times[0]:
-        return speeds[0]
-    if time >= times[last]:
-        return speeds[last]
-    low = 0
-    high = last
-    while high - low > 1:
-        middle = (low + high) // 2
-        if times[middle] <= time:
-            low = middle
-        else:
-            high = middle
-    share = (time - times[low]) / (times[high] - times[low])
-    return speeds[low] + share * (speeds[high] - speeds[low])
 
 
 @njit(_MARCH_SIGNATURE, cache=True, nogil=True, _nrt=False, error_model="numpy")

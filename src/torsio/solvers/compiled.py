@@ -69,10 +69,10 @@ def kernel_signature() -> Any:
 def run_signatures() -> tuple[Any, Any]:
     """Explicit signatures of a single run's two kernels (None, None without numba).
 
-    ``run_start(chain, top, torque, parameters, settings, wob, Omega_ref, Omega_set,
+    ``run_start(chain, top, torque, parameters, settings, wob, Omega_ref, table,
     vectors, small)`` and ``run_chunk(chain, top, torque, slope, parameters, settings, wob,
-    Omega_ref, Omega_set, vectors, small, grid, samples, stop)``
-    (:mod:`torsio.solvers.rodas`).
+    Omega_ref, table, vectors, small, grid, samples, stop)``, ``table`` the set speed
+    against time (``TABLE_ROWS``, k) (:mod:`torsio.solvers.rodas`).
     """
     if not HAVE_NUMBA:
         return None, None
@@ -82,7 +82,7 @@ def run_signatures() -> tuple[Any, Any]:
 
     vector, matrix, f8 = types.float64[::1], types.float64[:, ::1], types.float64
     law = law_type()
-    start = types.void(matrix, vector, law, vector, vector, f8, f8, f8, matrix, matrix)
+    start = types.void(matrix, vector, law, vector, vector, f8, f8, matrix, matrix, matrix)
     chunk = types.void(
         matrix,
         vector,
@@ -92,7 +92,7 @@ def run_signatures() -> tuple[Any, Any]:
         vector,
         f8,
         f8,
-        f8,
+        matrix,
         matrix,
         matrix,
         vector,

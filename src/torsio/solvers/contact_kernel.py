@@ -131,11 +131,12 @@ def zero_stuck(chain, state, x) -> None:
 
 @njit(cache=True, error_model="numpy", _nrt=False)
 def restart(
-    chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, f0v, f0z, mpiv, mlow, acc,
-    state, contacts,
+    chain, top, torque, p, wob, radius, omega, set_speed, top_twist, phi, v, z, f0v, f0z, mpiv,
+    mlow, acc, state, contacts,
 ) -> None:  # fmt: skip
-    """The forces (friction included) and accelerations at a state, in the present states."""
-    forces(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, f0v, f0z)
+    """The forces (friction included) and accelerations at a state, in the present states
+    (the set speed and the held top's twist at its time: :func:`chain_kernel.forces`)."""
+    forces(chain, top, torque, p, wob, radius, omega, set_speed, top_twist, phi, v, z, f0v, f0z)
     if contacts:
         add_friction(chain, state, f0v)
     accelerations(chain, mpiv, mlow, f0v, acc)
@@ -248,12 +249,13 @@ def cubic_crossing(chain, state, omega, i, k, u0, u1, d0, d1, start, end, tolera
 
 @njit(cache=True, error_model="numpy", _nrt=False)
 def check_step(
-    chain, top, torque, p, wob, radius, omega, omega_set, v, f0v, aphi, av, az, kphi, kv, kz,
-    acc, phi1, v1, z1, f1, fz1, state, pending, h, h_min,
+    chain, top, torque, p, wob, radius, omega, set_speed, top_twist, v, f0v, aphi, av, az, kphi,
+    kv, kz, acc, phi1, v1, z1, f1, fz1, state, pending, h, h_min,
 ) -> float:  # fmt: skip
     """A step of length h that passed the error test, from (v, f0v, acc: speeds, forces and
     accelerations at its start) to (aphi + kphi, av + kv, az + kz), written into (phi1, v1,
-    z1), its forces without friction into (f1, fz1). Returns 1.0 to accept it
+    z1), its forces without friction into (f1, fz1), with the set speed and the held top's
+    twist at its end. Returns 1.0 to accept it
     (``pending``: the switch due at its end per node, 1 speed or holding torque, 2
     threshold), the fraction of the step to retry it with (a margin falls through minus
     its tolerance; a half where one rising from its switch comes back through it), or
@@ -266,7 +268,7 @@ def check_step(
         pending[i] = 0.0
     for i in range(z1.size):
         z1[i] = az[i] + kz[i]
-    forces(chain, top, torque, p, wob, radius, omega, omega_set, phi1, v1, z1, f1, fz1)
+    forces(chain, top, torque, p, wob, radius, omega, set_speed, top_twist, phi1, v1, z1, f1, fz1)
     instant = False
     theta = 1.0
     for i in range(n):

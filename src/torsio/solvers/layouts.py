@@ -58,10 +58,11 @@ MAX_STATES = 3
  CHAIN_DAMPING_UPPER, CHAIN_DRAG, CHAIN_APPLIED, CHAIN_CONTACT_STATIC, CHAIN_CONTACT_DYNAMIC,
  CHAIN_CONTACT_THRESHOLD, CHAIN_ROWS) = field_starts(*(1,) * 11)  # fmt: skip
 
-# --- the lumped engine: the top drive (all zero for a held top) -------------------------
+# --- the lumped engine: the top drive (a held top: only its spring and damper) ----------
 # 1.0 with a top-drive node; m, the controller states (at most MAX_STATES); the constant
 # motor torque u0 [N m]; the |u| limit [N m]; the model's top spring [N m/rad] and damper
-# [N m s/rad] (the pipe torque of y); kp of [top_drive], the motor torque per unit speed
+# [N m s/rad] (the pipe torque of y; for a held top, k_t and c_t, through which a set
+# speed that changes in time drives node 0); kp of [top_drive], the motor torque per unit speed
 # error [N m s/rad] (TopDriveBoundary.kp, d[0]); the motor torque per unit pipe torque [-]
 # (TopDriveBoundary.pipe_gain, d[1]); a (m x m in a MAX_STATES square, row-major), b
 # (MAX_STATES x 2), c and w (MAX_STATES each)
@@ -73,10 +74,11 @@ MAX_STATES = 3
 # --- the lumped engine: a run's settings -----------------------------------------------
 # t_end, start of the steady window [s], rtol, atol, first and largest step [s], accepted
 # steps allowed, bit radius [m], steady-cycle tolerance [S_SS units] (0: run to t_end),
-# omega_1 [rad/s], the contacts' switches allowed (more: the run chatters)
+# omega_1 [rad/s], the contacts' switches allowed (more: the run chatters), the time over
+# which a batch point's set speed ramps from 0 to its own [s] (0: none)
 (RUN_T_END, RUN_WINDOW_START, RUN_RTOL, RUN_ATOL, RUN_FIRST_STEP, RUN_MAX_STEP,
  RUN_MAX_STEPS, RUN_BIT_RADIUS, RUN_STEADY_TOLERANCE, RUN_OMEGA_1, RUN_MAX_SWITCHES,
- RUN_SIZE) = field_starts(*(1,) * 11)  # fmt: skip
+ RUN_RAMP, RUN_SIZE) = field_starts(*(1,) * 12)  # fmt: skip
 
 # --- the lumped engine: a point's results ----------------------------------------------
 # bit speed max and min over the window [rad/s], accepted and rejected steps, status
@@ -103,10 +105,12 @@ CROSS_TWIST, CROSS_RATE, CROSS_ROWS = field_starts(1, 1)
 # the stages' controller increments; z and the stage's argument; z' and z' at the step's
 # start; the mass-matrix term; the elimination's Q and Z_y; its gains (G_e, G_T, r);
 # the 3 x 6 Gauss-Jordan work; the cycle tracker's state and settings; z and z' at the
-# step's start; the carried scalars; the contacts' carried scalars
+# step's start; the carried scalars; the contacts' carried scalars; the time derivatives
+# of z' and of node 0's force of a set speed that changes in time (first block; the
+# force [N m/s] in column SECOND_BLOCK)
 (SMALL_K_Z, SMALL_Z, SMALL_F_Z, SMALL_U_Z, SMALL_Q, SMALL_GAINS, SMALL_SOLVE, SMALL_CYCLE,
- SMALL_CYCLE_SETTINGS, SMALL_START, SMALL_CARRY, SMALL_WINDOW, SMALL_FRICTION,
- SMALL_ROWS) = field_starts(6, 1, 1, 1, MAX_STATES, 1, MAX_STATES, 1, 1, 1, 1, 1, 1)  # fmt: skip
+ SMALL_CYCLE_SETTINGS, SMALL_START, SMALL_CARRY, SMALL_WINDOW, SMALL_FRICTION, SMALL_SET_RATE,
+ SMALL_ROWS) = field_starts(6, 1, 1, 1, MAX_STATES, 1, MAX_STATES, 1, 1, 1, 1, 1, 1, 1)  # fmt: skip
 FIRST_BLOCK, SECOND_BLOCK, BLOCKS_END = field_starts(MAX_STATES, MAX_STATES)
 """Columns of the two blocks of controller states in a short row (and their end)."""
 SMALL_COLUMNS = BLOCKS_END + 2
@@ -222,8 +226,10 @@ BUFFER_P, BUFFER_M, BUFFER_ROWS = field_starts(1, 1)
 # / Z' [rad/s]; the kept state has two columns past the nodes: the bit's and the top's speed
 NODE_SPEED, NODE_TORQUE, NODE_ROWS = field_starts(1, 1)
 CROSS_BIT, CROSS_TOP, CROSS_EXTRA = field_starts(1, 1)
-# the set-speed table (TopArrays.speed_table): rows time [s], set speed [rad/s]
-TABLE_TIME, TABLE_SPEED, TABLE_ROWS = field_starts(1, 1)
+# the set-speed table (solvers/set_speed.py; TopArrays.speed_table): rows time [s], set
+# speed [rad/s], and for the lumped engines the held top's twist psi [rad] (the integral
+# of the set speed less Omega_ref from t = 0)
+TABLE_TIME, TABLE_SPEED, TABLE_TWIST, TABLE_ROWS = field_starts(1, 1, 1)
 # the contacts' table: C_s, C_d [N m], the speed of the last step [rad/s], the node
 (CONTACT_STATIC, CONTACT_DYNAMIC, CONTACT_SPEED, CONTACT_NODE, CONTACT_ROWS) = field_starts(
     1, 1, 1, 1

@@ -15,7 +15,7 @@ import numpy as np
 from torsio.errors import ConfigError
 from torsio.solvers import layouts as slot
 
-__all__ = ["pack_chain", "pack_top", "run_settings", "step_limits"]
+__all__ = ["pack_chain", "pack_table", "pack_top", "run_settings", "step_limits"]
 
 
 def pack_chain(dynamics: Any) -> np.ndarray:
@@ -37,13 +37,18 @@ def pack_chain(dynamics: Any) -> np.ndarray:
     return chain
 
 
-def pack_top(boundary: Any, chain: np.ndarray) -> np.ndarray:
-    """The top drive (a ``TopDriveBoundary``) packed for the kernel; all zero when held.
+def pack_top(boundary: Any, chain: np.ndarray, dynamics: Any = None) -> np.ndarray:
+    """The top drive (a ``TopDriveBoundary``) packed for the kernel; when held, only the
+    top spring and damper k_t, c_t of ``dynamics`` (a ``Dynamics``; none: zero), through
+    which a set speed that changes in time drives node 0.
 
     ConfigError for a controller of more than :data:`~torsio.solvers.layouts.MAX_STATES` states.
     """
     top = np.zeros(slot.TOP_SIZE)
     if boundary.held:
+        if dynamics is not None:  # a chain's top spring and damper tie node 0 alone
+            top[slot.TOP_K_PIPE] = dynamics.top_spring[0]
+            top[slot.TOP_C_PIPE] = dynamics.top_damper[0]
         return top
     m = boundary.states
     if m > slot.MAX_STATES:
@@ -73,6 +78,16 @@ def pack_top(boundary: Any, chain: np.ndarray) -> np.ndarray:
     return top
 
 
+def pack_table(dynamics: Any) -> np.ndarray:
+    """The set speed against time for the kernel, (``TABLE_ROWS``, k): the description's
+    table with the held top's twist, or one point at the constant set speed (NaN: none)."""
+    if dynamics.speed_table is not None:
+        return np.ascontiguousarray(dynamics.speed_table, dtype=float)
+    table = np.zeros((slot.TABLE_ROWS, 1))
+    table[slot.TABLE_SPEED] = dynamics.set_speed
+    return table
+
+
 def step_limits(first_frequency: float, max_step: float | None = None) -> tuple[float, float]:
     """(first step, largest step) [s] of a RODAS4 run on a model of first natural frequency
     omega_1 [rad/s]: 1e-3 of the first natural period, at most the largest step, which is
@@ -96,11 +111,13 @@ def run_settings(
     steady_tolerance: float,
     first_frequency: float,
     max_switches: int | None = None,
+    ramp: float = 0.0,
 ) -> np.ndarray:
     """A run's settings for the kernel: run length and steady window [s], tolerances,
     (first, largest) step [s] (:func:`step_limits`), accepted steps allowed, bit radius [m],
     steady-cycle tolerance [S_SS units] (0: run to the end), omega_1 [rad/s], the contacts'
-    switches allowed (default: as many as the accepted steps)."""
+    switches allowed (default: as many as the accepted steps), the time [s] over which each
+    point of a batch ramps its set speed from 0 (0: none)."""
     settings = np.zeros(slot.RUN_SIZE)
     settings[slot.RUN_T_END] = t_end
     settings[slot.RUN_WINDOW_START] = t_end - window
@@ -112,4 +129,5 @@ def run_settings(
     settings[slot.RUN_STEADY_TOLERANCE] = steady_tolerance
     settings[slot.RUN_OMEGA_1] = first_frequency
     settings[slot.RUN_MAX_SWITCHES] = max_steps if max_switches is None else max_switches
+    settings[slot.RUN_RAMP] = ramp
     return settings

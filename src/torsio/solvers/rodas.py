@@ -49,19 +49,29 @@ from torsio.solvers.chain_kernel import (
     mass_factors,
     sample_state,
     saturated,
+    set_speed_rates,
+    store_carry,
+    store_window,
 )
 from torsio.solvers.compiled import njit
 from torsio.solvers.cycles import extremes_of_cubic, hermite, integral_of_cubic, track_cycle
+from torsio.solvers.set_speed import (
+    fill_twists,
+    next_table_time,
+    table_rate,
+    table_speed,
+    table_twist,
+)
 
 __all__ = [
     "GAMMA",
     "RODAS_A",
+    "RODAS_ALPHA",
     "RODAS_C",
+    "RODAS_D",
     "advance",
     "point",
     "start",
-    "store_carry",
-    "store_window",
 ]
 
 # --- RODAS4 (Hairer and Wanner, Solving ODEs II, Sec. IV.7; rodas.f, METH = 1) --------------
@@ -85,14 +95,20 @@ RODAS_C[5, :5] = (
     -6.058818238834054,
 )
 # y_new = (argument of stage 6) + k6 and the embedded error estimate is k6 itself.
+# A set speed that changes in time: stage i is evaluated at t + RODAS_ALPHA[i] h and takes
+# h RODAS_D[i] df/dt (rodas.f: C2, C3, C4 and D1 .. D4; D5 = D6 = 0)
+RODAS_ALPHA = np.array([0.0, 0.386, 0.21, 0.63, 1.0, 1.0])
+RODAS_D = np.array([0.25, -0.1043, 0.1035, -0.03620000000000023, 0.0, 0.0])
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
-def start(chain, top, torque, p, settings, wob, omega, omega_set, vectors, small) -> None:
+def start(chain, top, torque, p, settings, wob, omega, table, vectors, small) -> None:
     """Prepare a run from the state (phi, v, z) already in the work space, at t = 0.
 
-    ``vectors`` and ``small``: the work space (:mod:`torsio.solvers.layouts`), zero but for
-    the state; the run's scalars are carried in rows ``SMALL_CARRY`` and ``SMALL_WINDOW``.
+    ``table``: the set speed against time (rows ``TABLE_*``, :mod:`torsio.solvers.set_speed`;
+    one column for a constant set speed, NaN: none). ``vectors`` and ``small``: the work
+    space (:mod:`torsio.solvers.layouts`), zero but for the state; the run's scalars are
+    carried in rows ``SMALL_CARRY`` and ``SMALL_WINDOW``.
     """
     n = chain.shape[1]
     mpiv, mlow = vectors[slot.VEC_MASS_PIVOTS], vectors[slot.VEC_MASS_LOWER]
@@ -104,7 +120,8 @@ def start(chain, top, torque, p, settings, wob, omega, omega_set, vectors, small
     phi, v, state = vectors[slot.VEC_PHI], vectors[slot.VEC_V], vectors[slot.VEC_CONTACT_STATE]
     contacts = contact.start_contacts(chain, omega, v, state)
     small[slot.SMALL_FRICTION, slot.FRICTION_ANY] = 1.0 if contacts else 0.0
-    contact.restart(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z, f0v, f0z,
+    set0, twist0 = table_speed(table, 0.0), table_twist(table, 0.0, omega)
+    contact.restart(chain, top, torque, p, wob, radius, omega, set0, twist0, phi, v, z, f0v, f0z,
                     mpiv, mlow, vectors[slot.VEC_ACC], state, contacts)  # fmt: skip
     t_end = settings[slot.RUN_T_END]
     cycle_settings = small[slot.SMALL_CYCLE_SETTINGS, : slot.CYCLE_SETTINGS_SIZE]
@@ -119,41 +136,16 @@ def start(chain, top, torque, p, settings, wob, omega, omega_set, vectors, small
 
 
 @njit(cache=True, error_model="numpy", _nrt=False)
-def store_carry(
-    carry, t, h, h_accepted, err_accepted, last_rejected, steps, rejected, status
-) -> None:
-    """The stepper's state between two :func:`advance` calls into its row ``carry``:
-    time [s], next step [s], last accepted step [s] and its error norm, whether the last
-    step was rejected, the accepted and rejected step counts and the run's status."""
-    carry[slot.CARRY_T] = t
-    carry[slot.CARRY_H] = h
-    carry[slot.CARRY_H_ACCEPTED] = h_accepted
-    carry[slot.CARRY_ERR_ACCEPTED] = err_accepted
-    carry[slot.CARRY_LAST_REJECTED] = 1.0 if last_rejected else 0.0
-    carry[slot.CARRY_STEPS] = steps
-    carry[slot.CARRY_REJECTED] = rejected
-    carry[slot.CARRY_STATUS] = status
-
-
-@njit(cache=True, error_model="numpy", _nrt=False)
-def store_window(window, bit_max, bit_min, top_integral, next_sample, done) -> None:
-    """What the steady window has read so far into its row ``window``: the bit speed's
-    extremes [rad/s], the integral of the top speed [rad], the next output sample, and
-    whether the window is done."""
-    window[slot.WINDOW_BIT_MAX] = bit_max
-    window[slot.WINDOW_BIT_MIN] = bit_min
-    window[slot.WINDOW_TOP_INTEGRAL] = top_integral
-    window[slot.WINDOW_NEXT_SAMPLE] = next_sample
-    window[slot.WINDOW_DONE] = 1.0 if done else 0.0
-
-
-@njit(cache=True, error_model="numpy", _nrt=False)
 def advance(
-    chain, top, torque, slope, p, settings, wob, omega, omega_set, vectors, small, grid,
+    chain, top, torque, slope, p, settings, wob, omega, table, vectors, small, grid,
     samples, stop,
 ) -> None:  # fmt: skip
     """RODAS4 steps from the carried state until t_end, a steady cycle, a failure, or (with
     an output grid) until the samples up to index ``stop`` are written.
+
+    A set speed that changes in time (``table`` of more than one point, see :func:`start`)
+    enters each stage at its time with the stage's df/dt term, and no step crosses a point
+    of the table (where the speed's slope may jump).
 
     ``grid`` (times [s], ascending, within [0, t_end]) and ``samples`` (grid.size, 2n + m):
     the state ``[z, phi_0, v_0, ...]`` at each grid time, from the cubic Hermite interpolant
@@ -192,6 +184,11 @@ def advance(
     work, switches = friction[slot.FRICTION_WORK], int(friction[slot.FRICTION_SWITCHES])
     max_switches, instant, h_resume = settings[slot.RUN_MAX_SWITCHES], 0, 0.0
     track = settings[slot.RUN_STEADY_TOLERANCE] > 0.0
+    varying = table.shape[1] > 1
+    ramp_end = table[slot.TABLE_TIME, table.shape[1] - 1]
+    set_speed, twist = table_speed(table, 0.0), 0.0  # a constant set speed (psi = 0)
+    force_rate = 0.0  # d/dt of node 0's force and of z' of the set speed's change
+    fz_rate = small[slot.SMALL_SET_RATE, slot.FIRST_BLOCK : slot.SECOND_BLOCK]
     dense = grid.size > 0
     cycle = small[slot.SMALL_CYCLE, : slot.CYCLE_SIZE]
     cycle_settings = small[slot.SMALL_CYCLE_SETTINGS, : slot.CYCLE_SETTINGS_SIZE]
@@ -233,6 +230,8 @@ def advance(
             break
         if t + h > t_end:
             h = t_end - t
+        if varying:  # the step ends at the table's next point
+            h = min(h, next_table_time(table, t + tiny) - t)
         g = GAMMA * h
         bit_stuck = contacts and contact.is_stuck(chain, state, n - 1)
         s = 0.0 if bit_stuck else slope(p, omega + v[n - 1], wob, radius)
@@ -241,8 +240,11 @@ def advance(
             break
         diag0 = 0.0
         extra01 = 0.0
+        limited = False
+        if varying:
+            set_speed = table_speed(table, t)
         if has_top:  # eliminate the controller increments into rows 0 and 1
-            limited = saturated(top, omega, omega_set, phi, v, z)
+            limited = saturated(top, omega, set_speed, phi, v, z)
             controller_solve(top, g, limited, q, zy, gains, solve_work)
             extra01 = gains[slot.GAIN_PIPE] * (g * k1 + c1)
             diag0 = gains[slot.GAIN_E] - extra01
@@ -273,6 +275,9 @@ def advance(
             rejected += 1
             last_rejected = True
             continue
+        if varying:
+            rate = table_rate(table, t)
+            force_rate = set_speed_rates(top, omega, set_speed, rate, limited, fz_rate)
         for stage in range(6):
             # argument y0 + sum_j a_ij k_j and mass-matrix term sum_j c_ij k_j / h
             for i in range(n):
@@ -301,7 +306,11 @@ def advance(
                 for i in range(m):
                     fz[i] = f0z[i]
             else:
-                forces(chain, top, torque, p, wob, radius, omega, omega_set, aphi, av, az, fv, fz)
+                if varying:
+                    time = t + RODAS_ALPHA[stage] * h
+                    set_speed, twist = table_speed(table, time), table_twist(table, time, omega)
+                forces(chain, top, torque, p, wob, radius, omega, set_speed, twist, aphi, av, az,
+                       fv, fz)  # fmt: skip
                 if contacts:
                     contact.add_friction(chain, state, fv)
                 for i in range(n):
@@ -312,6 +321,10 @@ def advance(
                     fv[i + 1] += mu[i] * uv[i]
                 for i in range(m):
                     fz[i] += uz[i]
+            if varying:  # the stage's h d_i df/dt
+                fv[0] += h * RODAS_D[stage] * force_rate
+                for i in range(m):
+                    fz[i] += h * RODAS_D[stage] * fz_rate[i]
             # speeds: A x = f_v - g [K] f_phi (+ top-drive terms); twists: k_phi = g (f_phi + x)
             for i in range(n):
                 x[i] = fv[i] - g * kd[i] * fphi[i]
@@ -360,16 +373,21 @@ def advance(
             continue
         factor = max(1.0 / 6.0, min(5.0, math.sqrt(math.sqrt(err)) / 0.9))
         h_new = h / factor
+        if varying:  # the set speed and the top's twist at the step's end
+            set_speed, twist = table_speed(table, t + h), table_twist(table, t + h, omega)
         if err <= 1.0 and contacts:
             theta = contact.check_step(
-                chain, top, torque, p, wob, radius, omega, omega_set, v, f0v, aphi, av, az,
-                kphi[5], kv[5], kz[5], acc, uphi, uv, uz, fv, fz, state, pending, h, 100.0 * tiny,
+                chain, top, torque, p, wob, radius, omega, set_speed, twist, v, f0v, aphi, av,
+                az, kphi[5], kv[5], kz[5], acc, uphi, uv, uz, fv, fz, state, pending, h,
+                100.0 * tiny,
             )  # fmt: skip
             if theta < 0.0:  # a contact switches at the step's start: retry in its new state
                 switches += contact.switch(chain, state, omega, v, f0v, pending)
                 instant += 1
-                contact.restart(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z,
-                                f0v, f0z, mpiv, mlow, acc, state, contacts)  # fmt: skip
+                if varying:
+                    set_speed, twist = table_speed(table, t), table_twist(table, t, omega)
+                contact.restart(chain, top, torque, p, wob, radius, omega, set_speed, twist, phi,
+                                v, z, f0v, f0z, mpiv, mlow, acc, state, contacts)  # fmt: skip
                 bit_acc0, top_acc0 = acc[n - 1], acc[0]
                 continue
             if theta < 1.0:  # retry the step up to the located switch
@@ -403,8 +421,8 @@ def advance(
             if contacts:  # the forces at the step's end are check_step's
                 contact.restart_at_end(chain, fv, fz, f0v, f0z, mpiv, mlow, acc, state)
             else:
-                contact.restart(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z,
-                                f0v, f0z, mpiv, mlow, acc, state, contacts)  # fmt: skip
+                contact.restart(chain, top, torque, p, wob, radius, omega, set_speed, twist, phi,
+                                v, z, f0v, f0z, mpiv, mlow, acc, state, contacts)  # fmt: skip
             t_new = t + h
             while next_sample < grid.size and grid[next_sample] <= t_new:
                 position = (grid[next_sample] - t) / h
@@ -425,8 +443,12 @@ def advance(
                 )
                 if has_top:
                     top_integral += h * integral_of_cubic(top0, v[0], h * top_acc0, h * acc[0], lo)
-            if track and track_cycle(
-                cycle, t, h, bit0, bit_acc0, phi0, v0, acc0, phi, v, acc, cross, cycle_settings
+            if (
+                track
+                and t >= ramp_end
+                and track_cycle(  # a cycle once the table is over
+                    cycle, t, h, bit0, bit_acc0, phi0, v0, acc0, phi, v, acc, cross, cycle_settings
+                )
             ):  # on a steady cycle: its extremes are those of the rest of the window
                 vmax = max(vmax, cycle[slot.CYCLE_MAX])
                 vmin = min(vmin, cycle[slot.CYCLE_MIN])
@@ -437,8 +459,8 @@ def advance(
             made = contact.switch(chain, state, omega, v, f0v, pending) if contacts else 0
             if made:  # the switches at the step's end
                 switches += made
-                contact.restart(chain, top, torque, p, wob, radius, omega, omega_set, phi, v, z,
-                                f0v, f0z, mpiv, mlow, acc, state, contacts)  # fmt: skip
+                contact.restart(chain, top, torque, p, wob, radius, omega, set_speed, twist, phi,
+                                v, z, f0v, f0z, mpiv, mlow, acc, state, contacts)  # fmt: skip
             instant = 0
             bit_acc0 = acc[n - 1]
             top_acc0 = acc[0]
@@ -461,12 +483,18 @@ def advance(
 
 @njit(cache=True, nogil=True, error_model="numpy")
 def point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k) -> None:
-    """Point k from rest, with its own zeroed work space (allocated outside the step loop)."""
+    """Point k from rest at its set speed (ramped from 0 over ``RUN_RAMP``), with its own
+    zeroed work space (allocated outside the step loop)."""
     vectors = np.zeros((slot.VECTOR_ROWS, chain.shape[1]))
     small = np.zeros((slot.SMALL_ROWS, slot.SMALL_COLUMNS))
+    ramp = settings[slot.RUN_RAMP]
+    table = np.zeros((slot.TABLE_ROWS, 2 if ramp > 0.0 else 1))
+    table[slot.TABLE_TIME, table.shape[1] - 1] = ramp
+    table[slot.TABLE_SPEED, table.shape[1] - 1] = omega_set[k]
+    fill_twists(table, omega[k])
     for i in range(chain.shape[1]):
         vectors[slot.VEC_V, i] = -omega[k]  # start-up from rest: theta' = 0, controller states 0
-    start(chain, top, torque, p, settings, wob[k], omega[k], omega_set[k], vectors, small)
-    advance(chain, top, torque, slope, p, settings, wob[k], omega[k], omega_set[k], vectors,
-             small, np.zeros(0), np.zeros((0, 1)), 0)  # fmt: skip
+    start(chain, top, torque, p, settings, wob[k], omega[k], table, vectors, small)
+    advance(chain, top, torque, slope, p, settings, wob[k], omega[k], table, vectors, small,
+            np.zeros(0), np.zeros((0, 1)), 0)  # fmt: skip
     finish_run(settings, omega[k], top[slot.TOP_HAS_NODE] != 0.0, small, out[k])

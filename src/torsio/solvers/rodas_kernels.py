@@ -31,17 +31,17 @@ def _serial(chain, top, torque, slope, p, settings, wob, omega, omega_set, out) 
         point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k)
 
 
-def _start_run(chain, top, torque, p, settings, wob, omega, omega_set, vectors, small) -> None:
+def _start_run(chain, top, torque, p, settings, wob, omega, table, vectors, small) -> None:
     """A single run: prepare it from the state in the work space (:func:`start`)."""
-    start(chain, top, torque, p, settings, wob, omega, omega_set, vectors, small)
+    start(chain, top, torque, p, settings, wob, omega, table, vectors, small)
 
 
 def _run_chunk(
-    chain, top, torque, slope, p, settings, wob, omega, omega_set, vectors, small, grid,
+    chain, top, torque, slope, p, settings, wob, omega, table, vectors, small, grid,
     samples, stop,
 ) -> None:  # fmt: skip
     """A single run: advance it until the output sample ``stop`` is written (:func:`advance`)."""
-    advance(chain, top, torque, slope, p, settings, wob, omega, omega_set, vectors, small,
+    advance(chain, top, torque, slope, p, settings, wob, omega, table, vectors, small,
             grid, samples, stop)  # fmt: skip
 
 

@@ -50,7 +50,7 @@ from torsio.solvers.layouts import (
     WINDOW_BIT_MIN,
     WINDOW_NEXT_SAMPLE,
 )
-from torsio.solvers.lumped_inputs import run_settings, step_limits
+from torsio.solvers.lumped_inputs import pack_table, run_settings, step_limits
 from torsio.solvers.run_chunks import CHUNK_SECONDS, run_in_chunks
 
 __all__ = [
@@ -166,11 +166,11 @@ def integrate_compiled(
     out = np.zeros((samples, y0.size))
     grid = np.ascontiguousarray(time_grid, dtype=float)
     omega = float(dynamics.reference_speed)
-    omega_set = float(dynamics.set_speed)  # NaN for a top drive without a set speed
+    table = pack_table(dynamics)  # the set speed against time (NaN: none)
     law = (kernel.torque, kernel.slope, kernel.parameters)
     wob = float(system.wob)
     start = time.perf_counter()
-    run_start(model.chain, top, kernel.torque, kernel.parameters, settings, wob, omega, omega_set,
+    run_start(model.chain, top, kernel.torque, kernel.parameters, settings, wob, omega, table,
               vectors, small)  # fmt: skip
 
     def written() -> int:
@@ -179,7 +179,7 @@ def integrate_compiled(
     def advance(count: int) -> bool:
         """The next ``count`` samples (or more, if a step covers them); True: it ended."""
         stop = written() + count
-        run_chunk(model.chain, top, *law, settings, wob, omega, omega_set, vectors, small,
+        run_chunk(model.chain, top, *law, settings, wob, omega, table, vectors, small,
                   grid, out, stop)  # fmt: skip
         return written() < stop  # the end of the run, or a failure (the status says)
 

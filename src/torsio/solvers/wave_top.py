@@ -28,6 +28,7 @@ import attrs
 import numpy as np
 
 from torsio.solvers.layouts import COEF_STATES, COEF_U0, TABLE_SPEED, TABLE_TIME
+from torsio.solvers.set_speed import table_speed
 
 
 @attrs.frozen(eq=False)
@@ -73,7 +74,7 @@ class TopArrays:
 
     def set_speed_at(self, time: float) -> float:
         """The set speed [rad/s] at ``time`` [s]: linear in the table, constant beyond it."""
-        return float(np.interp(time, self.speed_table[TABLE_TIME], self.speed_table[TABLE_SPEED]))
+        return float(table_speed(self.speed_table, time))
 
 
 def held_top(speed: float, table: np.ndarray | None = None) -> TopArrays:
