@@ -87,7 +87,7 @@ RODAS_C[5, :5] = (
 # y_new = (argument of stage 6) + k6 and the embedded error estimate is k6 itself.
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit(cache=True, nogil=True, error_model="numpy", _nrt=False)
 def start(chain, top, torque, p, settings, wob, omega, omega_set, vectors, small) -> None:
     """Prepare a run from the state (phi, v, z) already in the work space, at t = 0.
 
@@ -147,7 +147,7 @@ def store_window(window, bit_max, bit_min, top_integral, next_sample, done) -> N
     window[slot.WINDOW_DONE] = 1.0 if done else 0.0
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit(cache=True, nogil=True, error_model="numpy", _nrt=False)
 def advance(
     chain, top, torque, slope, p, settings, wob, omega, omega_set, vectors, small, grid,
     samples, stop,
@@ -459,14 +459,17 @@ def advance(
     friction[slot.FRICTION_SWITCHES] = switches
 
 
-@njit(cache=True, nogil=True, error_model="numpy")
+@njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k) -> None:
-    """Point k from rest, with its own zeroed work space (allocated outside the step loop)."""
+    """Point k from rest, with its own zeroed work space (allocated outside the step loop).
+
+    ``stop`` is passed as an int64, the type a single run passes: a literal 0 would make
+    numba compile :func:`advance` a second time for the literal's own type."""
     vectors = np.zeros((slot.VECTOR_ROWS, chain.shape[1]))
     small = np.zeros((slot.SMALL_ROWS, slot.SMALL_COLUMNS))
     for i in range(chain.shape[1]):
         vectors[slot.VEC_V, i] = -omega[k]  # start-up from rest: theta' = 0, controller states 0
     start(chain, top, torque, p, settings, wob[k], omega[k], omega_set[k], vectors, small)
     advance(chain, top, torque, slope, p, settings, wob[k], omega[k], omega_set[k], vectors,
-             small, np.zeros(0), np.zeros((0, 1)), 0)  # fmt: skip
+             small, np.zeros(0), np.zeros((0, 1)), np.int64(0))  # fmt: skip
     finish_run(settings, omega[k], top[slot.TOP_HAS_NODE] != 0.0, small, out[k])
