@@ -9,8 +9,14 @@ cache to the user's cache folder, never into the installed package (a cache insi
   cache folder: ``~/.cache/torsio/numba`` (Linux), ``~/Library/Caches/torsio/numba``
   (macOS), ``%LOCALAPPDATA%\\torsio\\Cache\\numba`` (Windows); in it, one folder per
   state of the kernel sources (``kernels-<key>``, the key a hash of torsio's and numba's
-  versions and of every kernel source file's size and time: ``solvers/``, ``axial/`` and
-  ``physics/laws.py``).
+  versions and of the contents of every kernel source file: ``solvers/``, ``axial/`` and
+  ``physics/laws.py``), and in that a folder per subpackage (``solvers``, ``axial``,
+  ``physics``).
+
+Neither depends on where the package is installed: a regular install (``pip install .``)
+and an editable one (``pip install -e .``, the README's second command) of the same
+sources load each other's kernels (numba's own locator would file them under a hash of
+the installed folder's path).
 
 numba checks a cached function against its own source file only, not against the files
 of the functions it calls and compiles in (the kernel's cycle tracker, the chain's
@@ -38,6 +44,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import os
 import shutil
@@ -116,6 +123,7 @@ def use_user_cache_dir() -> None:
     except OSError:  # read-only home: numba falls back to its own locations
         return
     config.CACHE_DIR = str(folder)
+    _locate_by_content(folder)
     stale = time.time() - STALE_DAYS * 86400.0
     for old in folder.parent.glob("kernels-*"):  # earlier states, other installations
         try:
@@ -133,9 +141,7 @@ def _kernels_folder() -> Path:
 def kernel_sources() -> list[Path]:
     """The files numba compiles torsio's kernels from (and the constants they read):
     ``solvers/``, ``axial/`` and ``physics/laws.py``."""
-    import torsio
-
-    package = Path(torsio.__file__).resolve().parent
+    package = _package()
     sources = [
         *sorted((package / "solvers").glob("*.py")),
         *sorted((package / "axial").glob("*.py")),
@@ -145,7 +151,9 @@ def kernel_sources() -> list[Path]:
 
 
 def _sources_key() -> str:
-    """A hash of torsio's, Python's and numba's versions and the kernel sources' stamps."""
+    """A hash of torsio's, Python's and numba's versions and of the kernel sources' contents
+    (not their paths or times: a regular and an editable install of the same sources share
+    the folder)."""
     import torsio
 
     key = hashlib.sha1()
@@ -156,13 +164,97 @@ def _sources_key() -> str:
         key.update(numba.__version__.encode())
     except ImportError:  # pragma: no cover
         pass
+    package = _package()
     for source in kernel_sources():
         try:
-            stat = source.stat()
+            digest = _content_hash(str(source))
         except OSError:
             continue
-        key.update(f"{source} {stat.st_mtime_ns} {stat.st_size}".encode())
+        key.update(f"{source.relative_to(package).as_posix()} {digest}".encode())
     return key.hexdigest()[:16]
+
+
+def _package() -> Path:
+    """The folder of the torsio package in use (installed, or the sources of an editable one)."""
+    import torsio
+
+    return Path(torsio.__file__).resolve().parent
+
+
+def _content_hash(path: str) -> str:
+    """SHA-256 of a file's bytes, read once per state of the file (its time and size)."""
+    stat = os.stat(path)
+    return _hash_of(path, stat.st_mtime_ns, stat.st_size)
+
+
+@functools.cache
+def _hash_of(path: str, mtime_ns: int, size: int) -> str:
+    """:func:`_content_hash` of the file's state ``(mtime_ns, size)``."""
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def _locate_by_content(folder: Path) -> None:
+    """Make numba cache torsio's compiled functions in ``folder``/<subpackage>, checked
+    against their files' contents.
+
+    numba's own locator files a function under a hash of its source folder's absolute path
+    (``site-packages/torsio/solvers`` after ``pip install .``, ``src/torsio/solvers`` after
+    ``pip install -e .``), so the README's second command would compile every kernel again.
+    This locator, put first in numba's list, files torsio's functions by their place in the
+    package; the other packages' functions keep numba's locators.
+    """
+    from numba.core import caching
+
+    impl: Any = getattr(caching, "CacheImpl", None) or getattr(caching, "_CacheImpl", None)
+    base: Any = getattr(caching, "_CacheLocator", None)
+    if impl is None or base is None:  # pragma: no cover - a numba without these internals
+        return
+    classes = impl._locator_classes
+    if not any(getattr(cls, "torsio_folder", None) == folder for cls in classes):
+        classes[:] = [c for c in classes if not hasattr(c, "torsio_folder")]
+        classes.insert(0, _package_locator(base, folder, _package()))
+
+
+def _package_locator(base: type, folder: Path, package: Path) -> type:
+    """The locator class of :func:`_locate_by_content`, on numba's ``_CacheLocator``."""
+
+    class PackageLocator(base):
+        """torsio's functions in ``folder``/<subpackage>, stamped with their file's hash."""
+
+        torsio_folder = folder
+
+        def __init__(self, py_func: Any, py_file: str, place: Path) -> None:
+            self._py_file = py_file
+            self._lineno = py_func.__code__.co_firstlineno
+            self._cache_path = str(folder / place)
+
+        def get_cache_path(self) -> str:
+            return self._cache_path
+
+        def get_source_stamp(self) -> str:
+            return _content_hash(self._py_file)
+
+        def get_disambiguator(self) -> str:
+            return str(self._lineno)
+
+        @classmethod
+        def from_function(cls, py_func: Any, py_file: str) -> Any:
+            from numba.core import config
+
+            if getattr(config, "CACHE_DIR", None) != str(folder):  # another folder chosen since
+                return None
+            try:
+                place = Path(py_file).resolve().parent.relative_to(package)
+            except (OSError, ValueError):  # not one of torsio's files
+                return None
+            locator = cls(py_func, py_file, place)
+            try:
+                locator.ensure_cache_path()
+            except OSError:
+                return None
+            return locator
+
+    return PackageLocator
 
 
 _WATCHING: list[Any] = []  # the one listener of this process, once registered
