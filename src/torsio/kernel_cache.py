@@ -26,11 +26,13 @@ per state of all the sources can never hold stale code; folders not written to f
 
 While numba compiles (a cache miss: the first run after an install or an update, or a
 law compiled for the first time), :func:`watch_compiles` says so on stderr (never on
-stdout, so ``--json`` output stays clean): ``compiling <kernel> with numba, once (20 to 60
-s for an engine; later runs load it at once)`` after :data:`NOTE_DELAY` seconds, then
-``still compiling <kernel> (N s)`` every :data:`NOTE_INTERVAL` seconds and ``compiled
-<kernel> in N s`` at the end, so that no command is silent for longer while it compiles.
-A kernel loaded from the cache takes tens of milliseconds and prints nothing.
+stdout, so ``--json`` output stays clean): ``compiling <kernel> (<what>) with numba, once:
+about N s on a 2 GHz core; later runs load it at once`` as an entry point of
+:data:`COMPILE_ESTIMATES` starts (any other compile, a law's, after :data:`NOTE_DELAY`
+seconds, so that one that ends sooner says nothing), then ``still compiling <kernel> (N
+s)`` every :data:`NOTE_INTERVAL` seconds and ``compiled <kernel> in N s`` at the end, so
+that no command is silent for longer while it compiles. A kernel loaded from the cache
+takes tens of milliseconds and prints nothing.
 
 Examples
 --------
@@ -55,10 +57,22 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any, TextIO
 
-#: Seconds the first compile of the engine takes on a 2-core machine, by the processor
-#: (numba 0.68, Python 3.11: 15-25 s on 2026-12-01's, 48 s for the first map and 65 s for
-#: the first report on 2026-12-05's AMD EPYC 2.0 GHz); printed in the first-run note.
-FIRST_COMPILE_SECONDS = "20 to 60"
+#: The compiled entry points, with what each is and the CPU seconds of its first compile
+#: (numba 0.68.1, Python 3.11, one core of a 2-core AMD EPYC 2.0 GHz, 2026-12-06;
+#: ``python benchmarks/cold_start.py --functions``), printed as its note's estimate when
+#: it starts. A kernel that another compiles with it (the lumped step loop within the
+#: batch loop of a first map) prints its own note as well.
+COMPILE_ESTIMATES: dict[str, tuple[str, float]] = {
+    "torsio.solvers.rodas.advance": ("the lumped engine's step loop", 13.0),
+    "torsio.solvers.rodas.start": ("the lumped engine's start of a run", 1.0),
+    "torsio.solvers.rodas_kernels._serial": ("the lumped engine's batch loop", 3.0),
+    "torsio.solvers.characteristics._march": ("the wave model's stepping", 6.0),
+    "torsio.axial.kernel.march": ("the axial-torsional chain's stepping", 4.0),
+    "torsio.axial.wave_kernel.march": ("the axial-torsional wave model's stepping", 3.0),
+}
+
+#: The estimate of any other compile (a law's functions, a plugin's).
+OTHER_COMPILE = "seconds"
 
 #: Seconds a compile runs before its note is printed (a small law compiles in less).
 NOTE_DELAY = 2.0
@@ -298,23 +312,26 @@ def _compile_notes(base: type) -> type:
         def on_start(self, event: Any) -> None:
             depth = getattr(self.local, "depth", 0)
             self.local.depth = depth + 1
-            if depth:
-                return  # a function the outer kernel calls: the outer note covers it
-            dispatcher = event.data["dispatcher"]
-            function = dispatcher.py_func
+            function = event.data["dispatcher"].py_func
             name = f"{function.__module__}.{function.__qualname__}"
+            known = COMPILE_ESTIMATES.get(name)
+            if depth:  # a function the outer kernel calls: the outer note covers it,
+                if known:  # but a kernel of its own says what it adds
+                    self.say(_start_note(name, known))
+                return
             done = threading.Event()
             started = time.perf_counter()
             said: list[bool] = []
+            if known:  # at once, with its estimate
+                said.append(True)
+                self.say(_start_note(name, known))
 
             def notes() -> None:
-                if done.wait(self.delay):
-                    return
-                said.append(True)
-                self.say(
-                    f"compiling {name} with numba, once ({FIRST_COMPILE_SECONDS} s for an "
-                    "engine; later runs load it at once)"
-                )
+                if not said:  # a law compiles in less than the delay: no note
+                    if done.wait(self.delay):
+                        return
+                    said.append(True)
+                    self.say(_start_note(name, None))
                 while not done.wait(self.interval):
                     self.say(f"still compiling {name} ({time.perf_counter() - started:.0f} s)")
 
@@ -333,3 +350,14 @@ def _compile_notes(base: type) -> type:
                 self.say(f"compiled {name} in {time.perf_counter() - started:.0f} s")
 
     return CompileNotes
+
+
+def _start_note(name: str, known: tuple[str, float] | None) -> str:
+    """The note of a compile that starts: what it is and how long it takes."""
+    if known is None:
+        return f"compiling {name} with numba, once ({OTHER_COMPILE}; later runs load it at once)"
+    what, seconds = known
+    return (
+        f"compiling {name} ({what}) with numba, once: about {seconds:.0f} s on a 2 GHz core; "
+        "later runs load it at once"
+    )
