@@ -210,6 +210,23 @@ def test_a_map_loads_only_what_it_runs() -> None:
     assert "LOADED [] KERNELS 1" in _stderr_of(code)
 
 
+def test_a_lumped_run_loads_no_wave_kernel() -> None:
+    # the wave model's stepping compiles as its module is imported (5 s on a first run):
+    # `torsio simulate` of a lumped model does not import it, nor its batch kernel
+    code = (
+        "import sys\n"
+        "from torsio.cli import main\n"
+        "main(['simulate', '--strategy', 'A', '--duration', '20', '--json'])\n"
+        "from torsio.solvers import rodas_kernels\n"
+        "wave = [m for m in ('torsio.solvers.characteristics', 'torsio.analysis.wave')\n"
+        "        if m in sys.modules]\n"
+        "kernels = sorted(k for k in ('integrate_serial', 'run_chunk', 'run_start')\n"
+        "                 if k in vars(rodas_kernels))\n"
+        "print('WAVE', wave, 'KERNELS', kernels, file=sys.stderr)\n"
+    )
+    assert "WAVE [] KERNELS ['run_chunk', 'run_start']" in _stderr_of(code)
+
+
 def test_console_script_returns_the_status_and_freezes_the_collector() -> None:
     # the console script is main() then gc.freeze(): the exit does not scan numba's
     # registries again; the status and the output are main's
