@@ -103,10 +103,45 @@ def test_a_long_compile_is_never_silent() -> None:
     lines = stream.getvalue().splitlines()
     name = f"{__name__}.test_a_long_compile_is_never_silent"
     assert lines[0].startswith(f"torsio: compiling {name} with numba")
-    assert "(20 to 60 s for an engine" in lines[0]
+    assert f"with numba, once ({kernel_cache.OTHER_COMPILE}; later runs" in lines[0]
     assert all("still compiling" in line for line in lines[1:-1]) and len(lines) >= 4
     assert lines[-1].startswith(f"torsio: compiled {name} in ")
     assert "_notes" not in stream.getvalue()
+
+
+def test_an_entry_point_says_its_estimate_as_it_starts(monkeypatch) -> None:
+    # the estimates of kernel_cache.COMPILE_ESTIMATES are printed at once, for a kernel
+    # compiled within another too (the step loop in a first map's batch loop)
+    outer, inner = test_a_long_compile_is_never_silent, _notes
+    estimates = {
+        f"{__name__}.{outer.__qualname__}": ("the batch loop", 3.0),
+        f"{__name__}.{inner.__qualname__}": ("the step loop", 13.0),
+    }
+    monkeypatch.setattr(kernel_cache, "COMPILE_ESTIMATES", estimates)
+    stream, listener = _notes(delay=30.0, interval=30.0)
+    listener.on_start(_compile_event(outer))
+    listener.on_start(_compile_event(inner))
+    lines = stream.getvalue().splitlines()
+    listener.on_end(_compile_event(inner))
+    listener.on_end(_compile_event(outer))
+    assert lines == [
+        f"torsio: compiling {__name__}.{outer.__qualname__} (the batch loop) with numba, "
+        "once: about 3 s on a 2 GHz core; later runs load it at once",
+        f"torsio: compiling {__name__}.{inner.__qualname__} (the step loop) with numba, "
+        "once: about 13 s on a 2 GHz core; later runs load it at once",
+    ]
+    assert stream.getvalue().splitlines()[-1].startswith(f"torsio: compiled {__name__}.test_a")
+
+
+def test_every_estimate_names_a_compiled_function() -> None:
+    # a renamed kernel would lose its note's estimate: each name is a function of torsio
+    import importlib
+
+    pytest.importorskip("numba")
+    for name in kernel_cache.COMPILE_ESTIMATES:
+        module, _, qualname = name.rpartition(".")
+        function = getattr(importlib.import_module(module), qualname)
+        assert callable(function), name
 
 
 def test_a_short_compile_prints_nothing() -> None:
@@ -173,6 +208,23 @@ def test_a_map_loads_only_what_it_runs() -> None:
         "print('LOADED', loaded, 'KERNELS', len(kernels), file=sys.stderr)\n"
     )
     assert "LOADED [] KERNELS 1" in _stderr_of(code)
+
+
+def test_a_lumped_run_loads_no_wave_kernel() -> None:
+    # the wave model's stepping compiles as its module is imported (5 s on a first run):
+    # `torsio simulate` of a lumped model does not import it, nor its batch kernel
+    code = (
+        "import sys\n"
+        "from torsio.cli import main\n"
+        "main(['simulate', '--strategy', 'A', '--duration', '20', '--json'])\n"
+        "from torsio.solvers import rodas_kernels\n"
+        "wave = [m for m in ('torsio.solvers.characteristics', 'torsio.analysis.wave')\n"
+        "        if m in sys.modules]\n"
+        "kernels = sorted(k for k in ('integrate_serial', 'run_chunk', 'run_start')\n"
+        "                 if k in vars(rodas_kernels))\n"
+        "print('WAVE', wave, 'KERNELS', kernels, file=sys.stderr)\n"
+    )
+    assert "WAVE [] KERNELS ['run_chunk', 'run_start']" in _stderr_of(code)
 
 
 def test_console_script_returns_the_status_and_freezes_the_collector() -> None:

@@ -9,8 +9,14 @@ cache to the user's cache folder, never into the installed package (a cache insi
   cache folder: ``~/.cache/torsio/numba`` (Linux), ``~/Library/Caches/torsio/numba``
   (macOS), ``%LOCALAPPDATA%\\torsio\\Cache\\numba`` (Windows); in it, one folder per
   state of the kernel sources (``kernels-<key>``, the key a hash of torsio's and numba's
-  versions and of every kernel source file's size and time: ``solvers/``, ``axial/`` and
-  ``physics/laws.py``).
+  versions and of the contents of every kernel source file: ``solvers/``, ``axial/`` and
+  ``physics/laws.py``), and in that a folder per subpackage (``solvers``, ``axial``,
+  ``physics``).
+
+Neither depends on where the package is installed: a regular install (``pip install .``)
+and an editable one (``pip install -e .``, the README's second command) of the same
+sources load each other's kernels (numba's own locator would file them under a hash of
+the installed folder's path).
 
 numba checks a cached function against its own source file only, not against the files
 of the functions it calls and compiles in (the kernel's cycle tracker, the chain's
@@ -20,11 +26,13 @@ per state of all the sources can never hold stale code; folders not written to f
 
 While numba compiles (a cache miss: the first run after an install or an update, or a
 law compiled for the first time), :func:`watch_compiles` says so on stderr (never on
-stdout, so ``--json`` output stays clean): ``compiling <kernel> with numba, once (20 to 60
-s for an engine; later runs load it at once)`` after :data:`NOTE_DELAY` seconds, then
-``still compiling <kernel> (N s)`` every :data:`NOTE_INTERVAL` seconds and ``compiled
-<kernel> in N s`` at the end, so that no command is silent for longer while it compiles.
-A kernel loaded from the cache takes tens of milliseconds and prints nothing.
+stdout, so ``--json`` output stays clean): ``compiling <kernel> (<what>) with numba, once:
+about N s on a 2 GHz core; later runs load it at once`` as an entry point of
+:data:`COMPILE_ESTIMATES` starts (any other compile, a law's, after :data:`NOTE_DELAY`
+seconds, so that one that ends sooner says nothing), then ``still compiling <kernel> (N
+s)`` every :data:`NOTE_INTERVAL` seconds and ``compiled <kernel> in N s`` at the end, so
+that no command is silent for longer while it compiles. A kernel loaded from the cache
+takes tens of milliseconds and prints nothing.
 
 Examples
 --------
@@ -38,6 +46,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import os
 import shutil
@@ -48,10 +57,22 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any, TextIO
 
-#: Seconds the first compile of the engine takes on a 2-core machine, by the processor
-#: (numba 0.68, Python 3.11: 15-25 s on 2026-12-01's, 48 s for the first map and 65 s for
-#: the first report on 2026-12-05's AMD EPYC 2.0 GHz); printed in the first-run note.
-FIRST_COMPILE_SECONDS = "20 to 60"
+#: The compiled entry points, with what each is and the CPU seconds of its first compile
+#: (numba 0.68.1, Python 3.11, one core of a 2-core AMD EPYC 2.0 GHz, 2026-12-06;
+#: ``python benchmarks/cold_start.py --functions``), printed as its note's estimate when
+#: it starts. A kernel that another compiles with it (the lumped step loop within the
+#: batch loop of a first map) prints its own note as well.
+COMPILE_ESTIMATES: dict[str, tuple[str, float]] = {
+    "torsio.solvers.rodas.advance": ("the lumped engine's step loop", 13.0),
+    "torsio.solvers.rodas.start": ("the lumped engine's start of a run", 1.0),
+    "torsio.solvers.rodas_kernels._serial": ("the lumped engine's batch loop", 3.0),
+    "torsio.solvers.characteristics._march": ("the wave model's stepping", 6.0),
+    "torsio.axial.kernel.march": ("the axial-torsional chain's stepping", 4.0),
+    "torsio.axial.wave_kernel.march": ("the axial-torsional wave model's stepping", 3.0),
+}
+
+#: The estimate of any other compile (a law's functions, a plugin's).
+OTHER_COMPILE = "seconds"
 
 #: Seconds a compile runs before its note is printed (a small law compiles in less).
 NOTE_DELAY = 2.0
@@ -116,6 +137,7 @@ def use_user_cache_dir() -> None:
     except OSError:  # read-only home: numba falls back to its own locations
         return
     config.CACHE_DIR = str(folder)
+    _locate_by_content(folder)
     stale = time.time() - STALE_DAYS * 86400.0
     for old in folder.parent.glob("kernels-*"):  # earlier states, other installations
         try:
@@ -133,9 +155,7 @@ def _kernels_folder() -> Path:
 def kernel_sources() -> list[Path]:
     """The files numba compiles torsio's kernels from (and the constants they read):
     ``solvers/``, ``axial/`` and ``physics/laws.py``."""
-    import torsio
-
-    package = Path(torsio.__file__).resolve().parent
+    package = _package()
     sources = [
         *sorted((package / "solvers").glob("*.py")),
         *sorted((package / "axial").glob("*.py")),
@@ -145,7 +165,9 @@ def kernel_sources() -> list[Path]:
 
 
 def _sources_key() -> str:
-    """A hash of torsio's, Python's and numba's versions and the kernel sources' stamps."""
+    """A hash of torsio's, Python's and numba's versions and of the kernel sources' contents
+    (not their paths or times: a regular and an editable install of the same sources share
+    the folder)."""
     import torsio
 
     key = hashlib.sha1()
@@ -156,13 +178,97 @@ def _sources_key() -> str:
         key.update(numba.__version__.encode())
     except ImportError:  # pragma: no cover
         pass
+    package = _package()
     for source in kernel_sources():
         try:
-            stat = source.stat()
+            digest = _content_hash(str(source))
         except OSError:
             continue
-        key.update(f"{source} {stat.st_mtime_ns} {stat.st_size}".encode())
+        key.update(f"{source.relative_to(package).as_posix()} {digest}".encode())
     return key.hexdigest()[:16]
+
+
+def _package() -> Path:
+    """The folder of the torsio package in use (installed, or the sources of an editable one)."""
+    import torsio
+
+    return Path(torsio.__file__).resolve().parent
+
+
+def _content_hash(path: str) -> str:
+    """SHA-256 of a file's bytes, read once per state of the file (its time and size)."""
+    stat = os.stat(path)
+    return _hash_of(path, stat.st_mtime_ns, stat.st_size)
+
+
+@functools.cache
+def _hash_of(path: str, mtime_ns: int, size: int) -> str:
+    """:func:`_content_hash` of the file's state ``(mtime_ns, size)``."""
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def _locate_by_content(folder: Path) -> None:
+    """Make numba cache torsio's compiled functions in ``folder``/<subpackage>, checked
+    against their files' contents.
+
+    numba's own locator files a function under a hash of its source folder's absolute path
+    (``site-packages/torsio/solvers`` after ``pip install .``, ``src/torsio/solvers`` after
+    ``pip install -e .``), so the README's second command would compile every kernel again.
+    This locator, put first in numba's list, files torsio's functions by their place in the
+    package; the other packages' functions keep numba's locators.
+    """
+    from numba.core import caching
+
+    impl: Any = getattr(caching, "CacheImpl", None) or getattr(caching, "_CacheImpl", None)
+    base: Any = getattr(caching, "_CacheLocator", None)
+    if impl is None or base is None:  # pragma: no cover - a numba without these internals
+        return
+    classes = impl._locator_classes
+    if not any(getattr(cls, "torsio_folder", None) == folder for cls in classes):
+        classes[:] = [c for c in classes if not hasattr(c, "torsio_folder")]
+        classes.insert(0, _package_locator(base, folder, _package()))
+
+
+def _package_locator(base: type, folder: Path, package: Path) -> type:
+    """The locator class of :func:`_locate_by_content`, on numba's ``_CacheLocator``."""
+
+    class PackageLocator(base):
+        """torsio's functions in ``folder``/<subpackage>, stamped with their file's hash."""
+
+        torsio_folder = folder
+
+        def __init__(self, py_func: Any, py_file: str, place: Path) -> None:
+            self._py_file = py_file
+            self._lineno = py_func.__code__.co_firstlineno
+            self._cache_path = str(folder / place)
+
+        def get_cache_path(self) -> str:
+            return self._cache_path
+
+        def get_source_stamp(self) -> str:
+            return _content_hash(self._py_file)
+
+        def get_disambiguator(self) -> str:
+            return str(self._lineno)
+
+        @classmethod
+        def from_function(cls, py_func: Any, py_file: str) -> Any:
+            from numba.core import config
+
+            if getattr(config, "CACHE_DIR", None) != str(folder):  # another folder chosen since
+                return None
+            try:
+                place = Path(py_file).resolve().parent.relative_to(package)
+            except (OSError, ValueError):  # not one of torsio's files
+                return None
+            locator = cls(py_func, py_file, place)
+            try:
+                locator.ensure_cache_path()
+            except OSError:
+                return None
+            return locator
+
+    return PackageLocator
 
 
 _WATCHING: list[Any] = []  # the one listener of this process, once registered
@@ -206,23 +312,26 @@ def _compile_notes(base: type) -> type:
         def on_start(self, event: Any) -> None:
             depth = getattr(self.local, "depth", 0)
             self.local.depth = depth + 1
-            if depth:
-                return  # a function the outer kernel calls: the outer note covers it
-            dispatcher = event.data["dispatcher"]
-            function = dispatcher.py_func
+            function = event.data["dispatcher"].py_func
             name = f"{function.__module__}.{function.__qualname__}"
+            known = COMPILE_ESTIMATES.get(name)
+            if depth:  # a function the outer kernel calls: the outer note covers it,
+                if known:  # but a kernel of its own says what it adds
+                    self.say(_start_note(name, known))
+                return
             done = threading.Event()
             started = time.perf_counter()
             said: list[bool] = []
+            if known:  # at once, with its estimate
+                said.append(True)
+                self.say(_start_note(name, known))
 
             def notes() -> None:
-                if done.wait(self.delay):
-                    return
-                said.append(True)
-                self.say(
-                    f"compiling {name} with numba, once ({FIRST_COMPILE_SECONDS} s for an "
-                    "engine; later runs load it at once)"
-                )
+                if not said:  # a law compiles in less than the delay: no note
+                    if done.wait(self.delay):
+                        return
+                    said.append(True)
+                    self.say(_start_note(name, None))
                 while not done.wait(self.interval):
                     self.say(f"still compiling {name} ({time.perf_counter() - started:.0f} s)")
 
@@ -241,3 +350,14 @@ def _compile_notes(base: type) -> type:
                 self.say(f"compiled {name} in {time.perf_counter() - started:.0f} s")
 
     return CompileNotes
+
+
+def _start_note(name: str, known: tuple[str, float] | None) -> str:
+    """The note of a compile that starts: what it is and how long it takes."""
+    if known is None:
+        return f"compiling {name} with numba, once ({OTHER_COMPILE}; later runs load it at once)"
+    what, seconds = known
+    return (
+        f"compiling {name} ({what}) with numba, once: about {seconds:.0f} s on a 2 GHz core; "
+        "later runs load it at once"
+    )

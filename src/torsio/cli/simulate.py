@@ -136,11 +136,12 @@ def _refuse_integrator_options(config: Any, args: argparse.Namespace, given: dic
     """The wave model has no integrator: --method/--rtol/--atol are errors, the file's a note."""
     import sys
 
-    from torsio.analysis.wave import INTEGRATOR_OPTIONS, integrator_note, refuse_integrator_options
-
     strategy = common.discretization_overrides(args).get("strategy")
     if (strategy or config.discretization.strategy) != "wave" or config.chain is not None:
         return
+    # only now: importing the wave model's stepping compiles it (seconds, on a first run)
+    from torsio.analysis.wave import INTEGRATOR_OPTIONS, integrator_note, refuse_integrator_options
+
     refuse_integrator_options(
         {_option_name(f"simulation.{k}"): given[k] for k in INTEGRATOR_OPTIONS}
     )

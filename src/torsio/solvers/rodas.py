@@ -101,7 +101,7 @@ RODAS_ALPHA = np.array([0.0, 0.386, 0.21, 0.63, 1.0, 1.0])
 RODAS_D = np.array([0.25, -0.1043, 0.1035, -0.03620000000000023, 0.0, 0.0])
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit(cache=True, nogil=True, error_model="numpy", _nrt=False)
 def start(chain, top, torque, p, settings, wob, omega, table, vectors, small) -> None:
     """Prepare a run from the state (phi, v, z) already in the work space, at t = 0.
 
@@ -135,7 +135,7 @@ def start(chain, top, torque, p, settings, wob, omega, table, vectors, small) ->
     store_window(small[slot.SMALL_WINDOW], -np.inf, np.inf, 0.0, 0, n == 0)
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit(cache=True, nogil=True, error_model="numpy", _nrt=False)
 def advance(
     chain, top, torque, slope, p, settings, wob, omega, table, vectors, small, grid,
     samples, stop,
@@ -481,10 +481,13 @@ def advance(
     friction[slot.FRICTION_SWITCHES] = switches
 
 
-@njit(cache=True, nogil=True, error_model="numpy")
+@njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k) -> None:
     """Point k from rest at its set speed (ramped from 0 over ``RUN_RAMP``), with its own
-    zeroed work space (allocated outside the step loop)."""
+    zeroed work space (allocated outside the step loop).
+
+    ``stop`` is passed as an int64, the type a single run passes: a literal 0 would make
+    numba compile :func:`advance` a second time for the literal's own type."""
     vectors = np.zeros((slot.VECTOR_ROWS, chain.shape[1]))
     small = np.zeros((slot.SMALL_ROWS, slot.SMALL_COLUMNS))
     ramp = settings[slot.RUN_RAMP]
@@ -496,5 +499,5 @@ def point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k)
         vectors[slot.VEC_V, i] = -omega[k]  # start-up from rest: theta' = 0, controller states 0
     start(chain, top, torque, p, settings, wob[k], omega[k], table, vectors, small)
     advance(chain, top, torque, slope, p, settings, wob[k], omega[k], table, vectors, small,
-            np.zeros(0), np.zeros((0, 1)), 0)  # fmt: skip
+            np.zeros(0), np.zeros((0, 1)), np.int64(0))  # fmt: skip
     finish_run(settings, omega[k], top[slot.TOP_HAS_NODE] != 0.0, small, out[k])

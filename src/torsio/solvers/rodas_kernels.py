@@ -6,7 +6,9 @@ entry point costs tens of milliseconds, so each is built on first use (PEP 562):
 loads its batch kernel alone (:func:`integrate_serial`, which releases the GIL: a map on
 several threads calls it from each, :func:`torsio.solvers.batch.simulate_lumped_batch`), a
 single run the two of :mod:`torsio.solvers.single_run` (:func:`run_start`,
-:func:`run_chunk`). The steps themselves are :mod:`torsio.solvers.rodas`.
+:func:`run_chunk`: :func:`torsio.solvers.rodas.start` and :func:`torsio.solvers.rodas.advance`
+themselves). The step loop, :func:`~torsio.solvers.rodas.advance`, is compiled once for
+both: the batch kernel links the single run's compiled copy, or the reverse.
 """
 
 from __future__ import annotations
@@ -26,32 +28,23 @@ if TYPE_CHECKING:  # built by __getattr__ below
 
 
 def _serial(chain, top, torque, slope, p, settings, wob, omega, omega_set, out) -> None:
-    """Every point in turn, without the GIL (arguments: :func:`kernel_signature`)."""
+    """Every point in turn, without the GIL (arguments: :func:`kernel_signature`; numba
+    inlines :func:`point` here, so the batch is one compiled function over :func:`advance`)."""
     for k in range(wob.size):
         point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k)
 
 
-def _start_run(chain, top, torque, p, settings, wob, omega, table, vectors, small) -> None:
-    """A single run: prepare it from the state in the work space (:func:`start`)."""
-    start(chain, top, torque, p, settings, wob, omega, table, vectors, small)
-
-
-def _run_chunk(
-    chain, top, torque, slope, p, settings, wob, omega, table, vectors, small, grid,
-    samples, stop,
-) -> None:  # fmt: skip
-    """A single run: advance it until the output sample ``stop`` is written (:func:`advance`)."""
-    advance(chain, top, torque, slope, p, settings, wob, omega, table, vectors, small,
-            grid, samples, stop)  # fmt: skip
-
-
 _ENTRY_POINTS = {
-    "integrate_serial": (_serial, kernel_signature, 0, {"nogil": True}),
-    "run_start": (_start_run, run_signatures, 0, {"nogil": True}),
-    "run_chunk": (_run_chunk, run_signatures, 1, {"nogil": True}),
+    "integrate_serial": (_serial, kernel_signature, 0),
+    "run_start": (start, run_signatures, 0),
+    "run_chunk": (advance, run_signatures, 1),
 }
-"""Each entry point: its Python function, the signature (the function giving it and, for
-the single run's pair, its index) and numba's flags."""
+"""Each entry point: its function and its signature (the function giving it and, for the
+single run's pair, its index). A single run calls :func:`start` and :func:`advance`
+themselves, each compiled with its explicit signature and the flags of its decorator (a
+wrapper around each would compile the whole step loop once more): numba caches them under
+the same key as the batch's calls of them, so whichever comes first compiles them and the
+other loads them."""
 
 _BUILD_LOCK = threading.Lock()
 
@@ -62,8 +55,32 @@ def __getattr__(name: str) -> Any:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     with _BUILD_LOCK:
         if name not in globals():
-            function, signature, index, flags = _ENTRY_POINTS[name]
+            function, signature, index = _ENTRY_POINTS[name]
             chosen = signature()
             chosen = chosen[index] if isinstance(chosen, tuple) else chosen
-            globals()[name] = njit(chosen, cache=True, error_model="numpy", **flags)(function)
+            if chosen is None:  # without numba: plain Python
+                globals()[name] = function
+            else:
+                globals()[name] = _compiled(function, chosen)
     return globals()[name]
+
+
+def _compiled(function: Any, signature: Any) -> Any:
+    """``function`` (a step function of :mod:`torsio.solvers.rodas` with the flags of its
+    decorator, or a plain function) compiled or loaded for ``signature``'s arguments.
+
+    numba keys its cache on the signature as given: the arguments alone, as numba compiles
+    a call from compiled code, so that the batch's calls of :func:`start` and
+    :func:`advance` load what a single run compiled, and the reverse. Compiling is then
+    disabled, so that a call from Python converts its arguments (a law's compiled functions
+    to their function type) instead of compiling another specialization.
+    """
+    if hasattr(function, "py_func"):
+        flags = {k: v for k, v in function.targetoptions.items() if k != "nopython"}
+        function = function.py_func
+    else:
+        flags = {"nogil": True, "error_model": "numpy"}
+    entry = njit(cache=True, **flags)(function)
+    entry.compile(tuple(signature.args))
+    entry.disable_compile()
+    return entry
