@@ -94,9 +94,8 @@ RODAS_C[5, :5] = (
     16.31930543123136,
     -6.058818238834054,
 )
-# y_new = (argument of stage 6) + k6 and the embedded error estimate is k6 itself.
-# A set speed that changes in time: stage i is evaluated at t + RODAS_ALPHA[i] h and takes
-# h RODAS_D[i] df/dt (rodas.f: C2, C3, C4 and D1 .. D4; D5 = D6 = 0)
+# y_new = (argument of stage 6) + k6, the embedded error estimate k6. A set speed changing in
+# time: stage i at t + RODAS_ALPHA[i] h takes h RODAS_D[i] df/dt (rodas.f: C2-C4, D1-D4)
 RODAS_ALPHA = np.array([0.0, 0.386, 0.21, 0.63, 1.0, 1.0])
 RODAS_D = np.array([0.25, -0.1043, 0.1035, -0.03620000000000023, 0.0, 0.0])
 
@@ -483,11 +482,9 @@ def advance(
 
 @njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k) -> None:
-    """Point k from rest at its set speed (ramped from 0 over ``RUN_RAMP``), with its own
-    zeroed work space (allocated outside the step loop).
-
-    ``stop`` is passed as an int64, the type a single run passes: a literal 0 would make
-    numba compile :func:`advance` a second time for the literal's own type."""
+    """Point k from rest at its set speed (ramped over ``RUN_RAMP``), with its own zeroed
+    work space; ``stop`` an int64 as a single run passes it (a literal 0 would compile
+    :func:`advance` a second time for the literal's own type)."""
     vectors = np.zeros((slot.VECTOR_ROWS, chain.shape[1]))
     small = np.zeros((slot.SMALL_ROWS, slot.SMALL_COLUMNS))
     ramp = settings[slot.RUN_RAMP]
