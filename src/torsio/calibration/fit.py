@@ -4,15 +4,18 @@
 its top held at the recorded speed (``top="recorded"``, the default: the fit then does
 not rest on a model of the rig's controller) or driven by the configured top drive
 (``top="configured"``), and changes the named parameters
-(:mod:`torsio.calibration.parameters`) by least squares (scipy.optimize.least_squares,
-trust-region reflective with finite differences), starting from the closed forms
-(:mod:`torsio.calibration.start`).
+(:mod:`torsio.calibration.parameters`) in two stages: a global one over the admissible
+box (:mod:`torsio.calibration.global_stage`: the closed forms of
+:mod:`torsio.calibration.start`, the configured values and a scan of each non-smooth
+parameter as candidate starts), then a local one from the best of them
+(:mod:`torsio.calibration.local_stage`: a line search of each non-smooth parameter, then
+least squares).
 
-Uncertainty (:mod:`torsio.calibration.uncertainty`): one standard deviation from the
-Jacobian, s^2 (J^T J)^-1 with s^2 the residual variance inflated by the residual's
-correlation time; and a profile of the misfit along each parameter (the others following
-their conditional best values), which gives the interval the data allow where the misfit
-is not smooth (the break-free moment) and reveals a parameter the data do not pin down.
+Uncertainty (:mod:`torsio.calibration.uncertainty`): the statistical part from the
+Jacobian and a profile of the misfit along each parameter (the residual variance inflated
+by its correlation time), the model-form part from the spread between the recordings'
+own values, and the discretization part from a finer grid's torque
+(:mod:`torsio.calibration.profile`).
 
 Examples
 --------
@@ -31,16 +34,21 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+import attrs
 import numpy as np
-from scipy.optimize import least_squares
 
-from torsio.calibration.fit_results import FitResults, RecordingFit
-from torsio.calibration.objectives import OBJECTIVES, model_torque, residuals
-from torsio.calibration.parameters import SystemFamily
+from torsio.calibration.fit_results import Alternative, FitResults, RecordingFit
+from torsio.calibration.global_stage import global_fit
+from torsio.calibration.local_stage import admissible_floor
+from torsio.calibration.objectives import OBJECTIVES, Misfit
+from torsio.calibration.parameters import TWIN_GRIDS, SystemFamily
 from torsio.calibration.recording import RPM, Recording, read_recording
-from torsio.calibration.search import NON_SMOOTH, line_search
 from torsio.calibration.start import closed_form_start, corrected_start
-from torsio.calibration.uncertainty import jacobian_correlation, parameter_uncertainty
+from torsio.calibration.uncertainty import (
+    jacobian_correlation,
+    parameter_uncertainty,
+    residual_scale,
+)
 from torsio.errors import ConfigError
 from torsio.physics.recorded_top import RecordedTopDrive
 
@@ -49,83 +57,20 @@ __all__ = ["TOPS", "fit_recordings"]
 START_STEPS = 1
 """Newton steps of the closed forms on the model's own torques before the least squares."""
 
-SPEED_SMOOTHING = 0.0
-"""Default window [s] of the recorded speed's smoothing (see :func:`fit_recordings`)."""
+SPEED_SMOOTHING = 0.2
+"""Default window [s] of the recorded speed's smoothing (see :func:`fit_recordings`): the
+record's noise on the speed is not motion of the top, and held at the noisy speed the model
+reads mu_s low (measured in docs/calibration.md: -0.008 of 0.33 with 1 % speed noise, none
+with the speed smoothed over 0.2 s, which keeps a ramp and is short against the string's
+first torsional period, seconds)."""
+
+DRAG_SPACING = 1
+"""Default cells between the drag nodes of a fit's wave grid: contacts on every node (the
+wave model's default, 4, lumps each node's friction on every fourth and reads mu_s 3 %
+low against finer grids: docs/calibration.md)."""
 
 TOPS = ("recorded", "configured")
 """What drives the top in the fit: the recorded speed, or the configured top drive."""
-
-DIFF_STEP = 5e-3
-"""Relative step of the finite-difference Jacobian (a step wider than the misfit's
-fine structure at the break-free moment)."""
-
-
-class _Misfit:
-    """Residuals of a parameter vector over every recording, counting the runs."""
-
-    def __init__(
-        self,
-        family: Any,
-        recordings: Sequence[Recording],
-        names: Sequence[str],
-        tops: Sequence[Any],
-        rpms: Sequence[float],
-        wob: float,
-        objective: str,
-    ) -> None:
-        self.family, self.recordings, self.names = family, recordings, tuple(names)
-        self.tops, self.rpms, self.wob, self.objective = tops, rpms, wob, objective
-        self.runs = 0
-
-    def models(self, x: np.ndarray) -> list[np.ndarray]:
-        system = self.family.system(dict(zip(self.names, map(float, x), strict=True)))
-        torques = []
-        for record, top, rpm in zip(self.recordings, self.tops, self.rpms, strict=True):
-            torque, _ = model_torque(system.with_top(top).at(wob=self.wob, rpm=rpm), record)
-            torques.append(torque)
-        self.runs += len(self.recordings)
-        return torques
-
-    def split(self, x: np.ndarray) -> list[np.ndarray]:
-        return [
-            residuals(self.objective, torque, record)
-            for torque, record in zip(self.models(x), self.recordings, strict=True)
-        ]
-
-    def __call__(self, x: np.ndarray) -> np.ndarray:
-        return np.concatenate(self.split(x))
-
-
-def _lower_bound(family: SystemFamily, name: str, names: Sequence[str]) -> float:
-    """The least value a fit tries: a static factor not below a held sliding one."""
-    dynamic = name.replace("friction_static", "friction_dynamic")
-    if dynamic != name and dynamic not in names:
-        return float(family.values[dynamic])
-    return family.lower_bound(name)
-
-
-def _search_non_smooth(misfit: _Misfit, x: np.ndarray, lower: np.ndarray) -> np.ndarray:
-    """Each non-smooth parameter searched alone over [start / 2, 2 start] (a static factor
-    not below the sliding one of its stretch), the others held."""
-    x = x.copy()
-    for k, name in enumerate(misfit.names):
-        if name.split(".")[-1] not in NON_SMOOTH:
-            continue
-        floor = lower[k]
-        dynamic = name.replace("friction_static", "friction_dynamic")
-        if dynamic != name:
-            floor = max(floor, misfit.family.values[dynamic])
-            if dynamic in misfit.names:
-                floor = max(floor, x[misfit.names.index(dynamic)])
-
-        def cost(value: float, k: int = k) -> float:
-            trial = x.copy()
-            trial[k] = value
-            return float(np.sum(misfit(trial) ** 2))
-
-        bracket = (max(0.5 * x[k], floor), max(2.0 * x[k], 2.0 * floor))
-        x[k], _ = line_search(cost, float(min(max(x[k], bracket[0]), bracket[1])), bracket)
-    return x
 
 
 def _recordings(recordings: Sequence[Any], said: list[str]) -> list[Recording]:
@@ -158,26 +103,6 @@ def _tops(config: Any, recordings: Sequence[Recording], top: str, smoothing: flo
     if top == "configured":
         return [config.top_drive.build()] * len(recordings)
     raise ConfigError("top", f"unknown top {top!r}; expected one of {', '.join(TOPS)}")
-
-
-def _pairs(names: Sequence[str]) -> list[tuple[int, int]]:
-    """(static, sliding) indices of the factors of a stretch fitted together."""
-    pairs = []
-    for k, name in enumerate(names):
-        dynamic = name.replace("friction_static", "friction_dynamic")
-        if dynamic != name and dynamic in names:
-            pairs.append((k, list(names).index(dynamic)))
-    return pairs
-
-
-def _gaps(pairs: list[tuple[int, int]], size: int) -> np.ndarray:
-    """The matrix A of y = A x: each fitted static factor replaced by its excess over the
-    sliding one, mu_s - mu_d >= 0, so that a box bound keeps the fit in the admissible
-    set mu_d <= mu_s (the one a configuration accepts)."""
-    matrix = np.eye(size)
-    for static, dynamic in pairs:
-        matrix[static, dynamic] = -1.0
-    return matrix
 
 
 def _not_at_rest(
@@ -262,6 +187,46 @@ def _final_rpm(record: Recording, top: str) -> float:
     )
 
 
+SPEED_TWIN_SAMPLES = 10
+"""The smoothed-speed twin's window, in sample intervals of the record (at least twice the
+fit's own window): :func:`_twin_records`."""
+
+
+def _twin_records(
+    config: Any,
+    family: SystemFamily,
+    misfit: Misfit,
+    top: str,
+    smoothing: float,
+    best: np.ndarray,
+) -> list[tuple[str, list[Recording]]]:
+    """The twins of the fitted model (:mod:`torsio.calibration.profile`), by name, each as
+    the records with its surface torque at ``best``: the finer and the coarser grid
+    (:meth:`SystemFamily.twins`) and, with the top held at the recorded speed, that speed
+    smoothed over :data:`SPEED_TWIN_SAMPLES` sample intervals (at least twice ``smoothing``):
+    a record's noise on the speed is not motion of the top, and the fit should not rest on
+    it."""
+    records, names = misfit.recordings, misfit.names
+    others = [
+        (name, twin, misfit.tops) for name, twin in zip(TWIN_GRIDS, family.twins(), strict=True)
+    ]
+    if top == "recorded":
+        interval = max(float(np.median(np.diff(r.time))) for r in records)
+        window = max(SPEED_TWIN_SAMPLES * interval, 2.0 * smoothing)
+        others.append(("smoothed speed", family, _tops(config, records, top, window)))
+    twins = []
+    for name, grid, tops in others:
+        runs = Misfit(grid, records, names, tops, misfit.rpms, misfit.wob, misfit.objective)
+        torques = runs.models(best)
+        misfit.runs += runs.runs
+        twin = [
+            attrs.evolve(r, surface_torque=t, name=f"{r.name} ({name})")
+            for r, t in zip(records, torques, strict=True)
+        ]
+        twins.append((name, twin))
+    return twins
+
+
 def fit_recordings(
     config: Any,
     recordings: Sequence[Recording | str | Path],
@@ -316,7 +281,7 @@ def fit_recordings(
         raise ConfigError(
             "objective", f"unknown objective {objective!r}; expected one of {', '.join(OBJECTIVES)}"
         )
-    family = SystemFamily(config, **discretization)
+    family = SystemFamily(config, **{"drag_spacing": DRAG_SPACING, **discretization})
     names = family.check(names)
     if not (isinstance(speed_smoothing, int | float) and speed_smoothing >= 0.0):
         raise ConfigError(
@@ -329,38 +294,23 @@ def fit_recordings(
     if len(rpms) != len(records):
         raise ConfigError("rpm", f"expected one set speed per recording ({len(records)})")
     _not_at_rest(family, records, names, said)
-    misfit = _Misfit(family, records, names, tops, rpms, wob, objective)
+    misfit = Misfit(family, records, names, tops, rpms, wob, objective)
     start = closed_form_start(family, records, names)
     for _ in range(START_STEPS):
         models = misfit.models(np.array([start[n] for n in names]))
         start = corrected_start(family, records, models, start)
-    lower = np.array([_lower_bound(family, n, names) for n in names])
-    x0 = np.maximum(np.array([start[n] for n in names]), lower + 1e-6)
-    x0 = _search_non_smooth(misfit, x0, lower)
-    pairs = _pairs(names)
-    gaps = _gaps(pairs, len(names))
-    lower_gaps = lower.copy()
-    lower_gaps[[static for static, _ in pairs]] = 0.0
-    y0 = np.maximum(gaps @ x0, lower_gaps)
-    solution = least_squares(
-        lambda y: misfit(np.linalg.solve(gaps, y)),
-        y0,
-        bounds=(lower_gaps, np.inf),
-        x_scale=np.where(np.abs(y0) > 0.0, np.abs(y0), np.abs(x0)),
-        diff_step=DIFF_STEP,
-        method="trf",
-        xtol=1e-8,
-        ftol=1e-10,
-        gtol=1e-10,
-        max_nfev=60,
-    )
-    best = np.linalg.solve(gaps, solution.x)
-    jacobian = solution.jac @ gaps  # d r / d x = d r / d y  d y / d x
-    for static, dynamic in pairs:  # the profile stays in the admissible set too
-        lower[static] = max(lower[static], best[dynamic])
+    upper = np.array([family.upper_bound(n) for n in names])
+    configured = np.array([family.values[n] for n in names])
+    fit, others = global_fit(misfit, np.array([start[n] for n in names]), configured, upper)
+    best = fit.values
+    bounds = (admissible_floor(family, names, best), upper)
     parts = misfit.split(best)
-    spread = parameter_uncertainty(misfit, best, jacobian, parts, lower=lower, profile=profile)
+    twins = _twin_records(config, family, misfit, top, speed_smoothing, best) if profile else []
+    spread = parameter_uncertainty(
+        misfit, best, fit.jacobian, parts, bounds=bounds, profile=profile, twins=twins
+    )
     models = misfit.models(best)
+    scale = residual_scale(parts, len(names))
     fits = tuple(
         RecordingFit(
             name=r.name,
@@ -378,13 +328,18 @@ def fit_recordings(
         start=tuple(float(start[n]) for n in names),
         configured=tuple(float(family.values[n]) for n in names),
         uncertainty=spread,
-        correlation=jacobian_correlation(jacobian),
+        correlation=jacobian_correlation(fit.jacobian),
         residual=float(np.sqrt(np.mean(allsamples**2))),
         recordings=fits,
         objective=objective,
         top=top,
         runs=misfit.runs,
         seconds=clock.perf_counter() - started,
-        message=str(solution.message),
+        message=fit.message,
+        alternatives=tuple(
+            Alternative(tuple(float(v) for v in other.values), (other.cost - fit.cost) / scale)
+            for other in others
+            if not np.allclose(other.values, best, rtol=1e-3, atol=0.0)
+        ),
         warnings=tuple(said),
     )

@@ -25,7 +25,21 @@ import numpy as np
 
 from torsio.calibration.uncertainty import ParameterSpread
 
-__all__ = ["FitResults", "RecordingFit"]
+__all__ = ["NEARLY_AS_GOOD", "Alternative", "FitResults", "RecordingFit"]
+
+NEARLY_AS_GOOD = 4.0
+"""An alternative minimum whose misfit exceeds the fit's by at most this chi^2 (two sigma)
+is nearly as good: the data do not choose between them."""
+
+
+@attrs.frozen
+class Alternative:
+    """Another minimum of the misfit the global stage found: its values (the fit's
+    ``names`` order) and how much worse it fits, in chi^2 (the misfit's rise over s^2 tau,
+    :mod:`torsio.calibration.uncertainty`)."""
+
+    values: tuple[float, ...]
+    delta_chi2: float
 
 
 @attrs.frozen(eq=False)
@@ -76,6 +90,8 @@ class FitResults:
     warnings : tuple of str
         What limits the meaning of the fit (spikes left out, a record that cannot inform a
         parameter); the command line prints each on stderr.
+    alternatives : tuple of Alternative
+        The other minima the global stage found (:mod:`torsio.calibration.global_stage`).
     """
 
     names: tuple[str, ...]
@@ -92,6 +108,7 @@ class FitResults:
     message: str
     correlation: np.ndarray | None = None
     warnings: tuple[str, ...] = ()
+    alternatives: tuple[Alternative, ...] = ()
 
     def __repr__(self) -> str:
         fitted = ", ".join(
@@ -128,13 +145,31 @@ class FitResults:
                 )
             elif spread.method == "profile":
                 notes.append(f"{name}: the misfit is not smooth there; its sigma is the profile's")
+            if spread.profile is not None:
+                notes.append(
+                    f"{name}: sigma {spread.sigma:.2g} = statistical "
+                    f"{spread.sigma_statistical:.2g}, between recordings "
+                    f"{spread.sigma_recordings:.2g}, grid {spread.sigma_grid:.2g}, speed record "
+                    f"{spread.sigma_speed_record:.2g} (in quadrature)"
+                )
+        for other in self.alternatives:
+            if other.delta_chi2 <= NEARLY_AS_GOOD:
+                values = ", ".join(
+                    f"{n} {v:.4g}" for n, v in zip(self.names, other.values, strict=True)
+                )
+                notes.append(
+                    f"a second minimum nearly as good (chi^2 {other.delta_chi2:.2g} above): "
+                    f"{values}; the data do not choose between them"
+                )
         return notes
 
     def to_dict(self) -> dict[str, Any]:
         """Plain data for JSON: ``parameters``, ``uncertainty`` (one sigma), ``residual``
         (RMS surface torque, N m), ``recordings``, and ``start``, ``interval``,
         ``identifiable``, ``uncertainty_method``, ``interval_method`` (how each two-sigma
-        interval was found), ``objective``, ``top``, ``notes``,
+        interval was found), ``uncertainty_parts`` (the statistical, between-recordings
+        and grid parts of each sigma, and each recording's own value), ``alternatives``
+        (other minima: values and chi^2 above the fit), ``objective``, ``top``, ``notes``,
         ``correlation`` (name to name, from the Jacobian; None if not computed) and
         ``warnings``."""
         spreads = dict(zip(self.names, self.uncertainty, strict=True))
@@ -157,6 +192,23 @@ class FitResults:
             "identifiable": {n: s.identifiable for n, s in spreads.items()},
             "uncertainty_method": {n: s.method for n, s in spreads.items()},
             "interval_method": {n: s.interval_method for n, s in spreads.items()},
+            "uncertainty_parts": {
+                n: {
+                    "statistical": s.sigma_statistical,
+                    "recordings": s.sigma_recordings,
+                    "grid": s.sigma_grid,
+                    "speed_record": s.sigma_speed_record,
+                    "recording_values": list(s.recording_values),
+                }
+                for n, s in spreads.items()
+            },
+            "alternatives": [
+                {
+                    "parameters": dict(zip(self.names, a.values, strict=True)),
+                    "delta_chi2": a.delta_chi2,
+                }
+                for a in self.alternatives
+            ],
             "objective": self.objective,
             "top": self.top,
             "runs": self.runs,

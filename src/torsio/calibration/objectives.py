@@ -19,6 +19,7 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -26,7 +27,7 @@ import numpy as np
 from torsio.analysis.wave import wave_response
 from torsio.errors import ConfigError
 
-__all__ = ["OBJECTIVES", "model_torque", "residuals", "torque_features"]
+__all__ = ["OBJECTIVES", "Misfit", "model_torque", "residuals", "torque_features"]
 
 OBJECTIVES = ("torque", "features")
 """The objectives a fit may take (module documentation)."""
@@ -72,3 +73,50 @@ def residuals(objective: str, model: np.ndarray, recording: Any) -> np.ndarray:
     raise ConfigError(
         "objective", f"unknown objective {objective!r}; expected one of {', '.join(OBJECTIVES)}"
     )
+
+
+class Misfit:
+    """Residuals of a parameter vector over every recording, counting the runs.
+
+    ``family`` makes the system of a parameter vector (:class:`~torsio.calibration.
+    parameters.SystemFamily`); each recording is run with its top drive ``tops[i]`` at
+    the set speed ``rpms[i]`` [rpm] and weight on bit ``wob`` [N].
+    """
+
+    def __init__(
+        self,
+        family: Any,
+        recordings: Sequence[Any],
+        names: Sequence[str],
+        tops: Sequence[Any],
+        rpms: Sequence[float],
+        wob: float,
+        objective: str,
+    ) -> None:
+        self.family, self.recordings, self.names = family, recordings, tuple(names)
+        self.tops, self.rpms, self.wob, self.objective = tops, rpms, wob, objective
+        self.runs = 0
+
+    def models(self, x: np.ndarray) -> list[np.ndarray]:
+        """The model's surface torque at each record's times [N m]."""
+        system = self.family.system(dict(zip(self.names, map(float, x), strict=True)))
+        torques = []
+        for record, top, rpm in zip(self.recordings, self.tops, self.rpms, strict=True):
+            torque, _ = model_torque(system.with_top(top).at(wob=self.wob, rpm=rpm), record)
+            torques.append(torque)
+        self.runs += len(self.recordings)
+        return torques
+
+    def split(self, x: np.ndarray) -> list[np.ndarray]:
+        """The residuals of each recording [N m]."""
+        return [
+            residuals(self.objective, torque, record)
+            for torque, record in zip(self.models(x), self.recordings, strict=True)
+        ]
+
+    def __call__(self, x: np.ndarray) -> np.ndarray:
+        return np.concatenate(self.split(x))
+
+    def cost(self, x: np.ndarray) -> float:
+        """The sum of squared residuals [N^2 m^2]."""
+        return float(np.sum(self(x) ** 2))

@@ -40,19 +40,31 @@ from typing import Any
 import attrs
 import numpy as np
 
+from torsio.analysis.grid_check import TWIN_TRAVEL_TIME_TOLERANCE
 from torsio.errors import ConfigError
 from torsio.model.contacts import StringContacts
 from torsio.physics.damping import RayleighDamping
 from torsio.well.string_contacts import string_contacts
 from torsio.well.wellbore import HoleSection
 
-__all__ = ["PARAMETER_UNITS", "SystemFamily"]
+__all__ = ["PARAMETER_UNITS", "PHYSICAL_RANGES", "TWIN_GRIDS", "SystemFamily"]
 
 PARAMETER_UNITS = {"threshold_speed": "rad/s", "alpha": "1/s"}
 """Units of the fittable parameters that have one (friction factors are pure numbers)."""
 
-LOWER_BOUNDS = {"threshold_speed": 1e-3}
-"""Lower bound of a parameter in a fit (0 where absent)."""
+PHYSICAL_RANGES = {
+    "friction_static": (0.0, 1.0),
+    "friction_dynamic": (0.0, 1.0),
+    "threshold_speed": (1e-3, 10.0),
+    "alpha": (0.0, 10.0),
+}
+"""The range a fit searches each parameter in, by the last part of its name (the global
+stage scans it, the profile stops at its ends, and a parameter whose data allow the whole
+of it is not identifiable). Friction factors of pipe in a well are 0.25 to 0.40 in
+water-based mud (Johancsik, Friesen and Dawson 1984, from field measurements), lower in
+oil-based mud; 1 is their ceiling here; a threshold speed from 1e-3 rad/s to 10 rad/s
+(0.01 to 95 rpm); mass-proportional damping up to 10 1/s (the default wave model's
+alpha is 0.35 1/s)."""
 
 
 def _unit_well(well: Any, zone: int) -> Any:
@@ -68,6 +80,13 @@ def _unit_well(well: Any, zone: int) -> Any:
         sections.append(HoleSection(section.to_md, factor, factor, section.name))
     unit = 1.0 if default else 0.0
     return attrs.evolve(well, friction_static=unit, friction_dynamic=unit, hole=tuple(sections))
+
+
+TWIN_GRIDS = ("finer grid", "coarser grid")
+"""The names of :meth:`SystemFamily.twins`, in order."""
+
+FINER_STEP = 0.25
+"""The finer twin's time step, relative to the fit's grid (:meth:`SystemFamily.twins`)."""
 
 
 class SystemFamily:
@@ -93,6 +112,7 @@ class SystemFamily:
                 "does not run; fit a copy with a torsional [bit_rock] law (e.g. tucker-wang: "
                 "the fit is off bottom by default, where the law gives no torque)",
             )
+        self.discretization = dict(discretization)
         strategy = discretization.pop("strategy", "wave")
         self.config = config
         self.base = config.system(strategy=strategy, **discretization)
@@ -143,7 +163,26 @@ class SystemFamily:
 
     def lower_bound(self, name: str) -> float:
         """The smallest value a fit may try [the parameter's unit]."""
-        return LOWER_BOUNDS.get(name, 0.0)
+        return PHYSICAL_RANGES[name.split(".")[-1]][0]
+
+    def upper_bound(self, name: str) -> float:
+        """The largest value a fit may try [the parameter's unit]."""
+        return PHYSICAL_RANGES[name.split(".")[-1]][1]
+
+    def twins(self) -> tuple[SystemFamily, SystemFamily]:
+        """The same family on a finer and on a coarser grid, from which the fit reads its
+        own grid's discretization error (:mod:`torsio.calibration.profile`): a quarter of the
+        time step with contacts on every node (``drag_spacing = 1``), and twice the time step
+        (the coarse twin of :mod:`torsio.analysis.grid_check`, its travel-time tolerance
+        :data:`~torsio.analysis.grid_check.TWIN_TRAVEL_TIME_TOLERANCE`)."""
+        step = float(self.base.model.time_step)
+        finer = {**self.discretization, "time_step": FINER_STEP * step, "drag_spacing": 1}
+        coarser = {
+            **self.discretization,
+            "time_step": 2.0 * step,
+            "travel_time_tolerance": TWIN_TRAVEL_TIME_TOLERANCE,
+        }
+        return SystemFamily(self.config, **finer), SystemFamily(self.config, **coarser)
 
     def _zone_factors(self, values: Mapping[str, float], kind: str) -> list[float]:
         factors = []

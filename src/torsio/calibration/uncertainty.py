@@ -1,23 +1,32 @@
-"""How well a fit pins its parameters down: the Jacobian and a profile of the misfit.
+"""How well a fit pins its parameters down: the statistics of the misfit, the spread
+between recordings and the grid.
 
 With residuals r (n of them, p parameters) and their Jacobian J at the best fit:
 
 * the residual variance is s^2 = |r|^2 / (n - p), times the residual's integrated
   correlation time tau = 1 + 2 sum_k rho_k (in samples, summed while the autocorrelation
-  rho_k is positive): a residual that is not white noise (a model error, a slow drift)
-  carries fewer independent samples than it has;
+  rho_k is positive): a residual that is not white noise carries fewer independent samples
+  than it has (n / tau of them);
 * one standard deviation from the Jacobian: sqrt(diag(s^2 tau (J^T J)^-1));
-* the profile: the misfit chi^2(t) = (|r(p(t))|^2 - |r_min|^2) / (s^2 tau) along the path
-  p(t) on which parameter k moves by t and the others follow their conditional best
-  values (linearized: the k-th column of (J^T J)^-1 scaled to 1 in k); where chi^2 = 1 and
-  4 are the one- and two-sigma bounds (the interval the data allow). Where the profile's
-  one-sigma half-width and the Jacobian's differ by more than :data:`SMOOTH_TOLERANCE`,
-  the misfit is not smooth there and the larger of the two is the stated sigma;
-* no sigma is stated below :data:`RESOLUTION` times the value.
+* the profile (:mod:`torsio.calibration.profile`): chi^2(t) = (S(t) - S_min) / (s^2 tau)
+  along the path on which parameter k moves by t and the others follow their conditional
+  best values; where chi^2 = 1 and 4 are the statistical one- and two-sigma bounds. Where
+  the profile's one-sigma half-width and the Jacobian's differ by more than
+  :data:`SMOOTH_TOLERANCE`, the misfit is not smooth there and the larger of the two is the
+  statistical sigma;
+* the model-form part: the standard deviation of the recordings' own values (each
+  recording's least misfit along the path; none with one recording);
+* the discretization part: how far the least misfit against a twin grid's torque lies
+  from the fit (the larger of the finer and the coarser twin);
+* the speed record's part: likewise against the top held at the smoothed recorded speed
+  (the record's noise on the speed is not motion of the top);
+* the stated sigma is the four in quadrature, and the two-sigma interval is the
+  statistical one widened on each side by twice the other three in quadrature, within the
+  admissible range; no sigma is stated below :data:`RESOLUTION` times the value.
 
-A parameter is **weakly identifiable** when its two-sigma interval is open (chi^2 stays
-below 4 as far as the search went, :data:`PROFILE_DOUBLINGS` doublings of the step) or
-wider than +-:data:`WEAK_FRACTION` of its value.
+A parameter is **not identifiable** from the data when the statistical two-sigma interval
+reaches an end of its admissible range (the profile is flat up to it: the data allow
+anything beyond) or the interval's half-width exceeds :data:`WEAK_FRACTION` of its value.
 
 Examples
 --------
@@ -31,10 +40,14 @@ True
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 import attrs
 import numpy as np
+
+from torsio.calibration.parameters import TWIN_GRIDS
+from torsio.calibration.profile import Profile, Twins, profile_parameter
 
 __all__ = [
     "INTERVAL_METHODS",
@@ -42,10 +55,10 @@ __all__ = [
     "correlation_time",
     "jacobian_correlation",
     "parameter_uncertainty",
+    "residual_scale",
 ]
 
 SMOOTH_TOLERANCE = 0.3
-PROFILE_DOUBLINGS = 10
 WEAK_FRACTION = 0.25
 RESOLUTION = 1e-4
 """The least relative sigma stated: the model's own resolution against a record. Measured:
@@ -57,11 +70,15 @@ INTERVAL_METHODS = {
     "profile": (
         "profile: where the misfit along the parameter (the others at their conditional best "
         "values) rises by 4 s^2 tau from its least, s^2 the residual variance and tau the "
-        "residuals' integrated correlation time (n / tau independent samples)"
+        "residuals' integrated correlation time (n / tau independent samples), widened by "
+        "twice the spread between the recordings' own values, twice the larger shift a grid "
+        "of a quarter or of twice the time step makes (discretization) and twice the shift the "
+        "smoothed speed record makes, in quadrature"
     ),
     "jacobian": (
         "jacobian: the value +- 2 sqrt(s^2 tau (J^T J)^-1), s^2 the residual variance and tau "
-        "the residuals' integrated correlation time (n / tau independent samples)"
+        "the residuals' integrated correlation time (n / tau independent samples); no "
+        "model-form or discretization part (not profiled)"
     ),
 }
 """How a two-sigma interval was found, by its kind (``ParameterSpread.interval_method``)."""
@@ -74,15 +91,29 @@ class ParameterSpread:
     Attributes
     ----------
     sigma : float
-        The stated one standard deviation.
+        The stated one standard deviation (the parts below in quadrature).
     sigma_jacobian, sigma_profile : float
         From the Jacobian, and the profile's one-sigma half-width (NaN: not profiled).
     interval : tuple of float
         The two-sigma interval the data allow.
     method : str
-        ``"jacobian"`` (the misfit is smooth there) or ``"profile"``.
+        ``"jacobian"`` (the misfit is smooth there) or ``"profile"``: which gave the
+        statistical part.
     identifiable : bool
-        False: weakly identifiable from the data (module documentation).
+        False: the data do not pin it down (module documentation).
+    sigma_recordings : float
+        The model-form part: the spread of the recordings' own values (0: one recording
+        or not profiled).
+    sigma_grid : float
+        The discretization part: the larger shift a finer or a coarser grid makes (0: not
+        profiled).
+    sigma_speed_record : float
+        The speed record's part: the shift the top held at the smoothed recorded speed
+        makes (0: not profiled, or the configured top drive).
+    recording_values : tuple of float
+        Each recording's own value (empty: not profiled).
+    profile : Profile or None
+        The misfit along the parameter (:mod:`torsio.calibration.profile`).
     """
 
     sigma: float
@@ -91,12 +122,23 @@ class ParameterSpread:
     interval: tuple[float, float]
     method: str
     identifiable: bool
+    sigma_recordings: float = 0.0
+    sigma_grid: float = 0.0
+    sigma_speed_record: float = 0.0
+    recording_values: tuple[float, ...] = ()
+    profile: Profile | None = attrs.field(default=None, eq=False, repr=False)
 
     @property
     def interval_method(self) -> str:
         """How :attr:`interval` was found (:data:`INTERVAL_METHODS`): from the profile of
         the misfit when it was profiled, else from the Jacobian."""
         return INTERVAL_METHODS["profile" if np.isfinite(self.sigma_profile) else "jacobian"]
+
+    @property
+    def sigma_statistical(self) -> float:
+        """The statistical part of :attr:`sigma` (the misfit's curvature or profile)."""
+        rest = self.sigma_recordings**2 + self.sigma_grid**2 + self.sigma_speed_record**2
+        return float(np.sqrt(max(self.sigma**2 - rest, 0.0)))
 
 
 def correlation_time(residual: np.ndarray) -> float:
@@ -113,16 +155,32 @@ def correlation_time(residual: np.ndarray) -> float:
     return max(1.0, 1.0 + 2.0 * float(np.sum(acf[1:end])))
 
 
-def _crossing(points: list[tuple[float, float]], level: float) -> float | None:
-    """|t| where chi^2 first reaches ``level`` along one side (linear in sqrt(chi^2))."""
-    previous = (0.0, 0.0)
-    for t, chi2 in points:
-        if chi2 >= level:
-            a, b = np.sqrt(max(previous[1], 0.0)), np.sqrt(chi2)
-            fraction = (np.sqrt(level) - a) / (b - a) if b > a else 1.0
-            return abs(previous[0] + fraction * (t - previous[0]))
-        previous = (t, chi2)
-    return None
+def residual_scale(parts: Sequence[np.ndarray], count: int) -> float:
+    """s^2 tau [N^2 m^2], the unit of chi^2: the residual variance of ``parts`` (one array
+    per recording) with ``count`` fitted parameters, times their correlation time (averaged
+    over the recordings, weighted by their lengths)."""
+    r = np.concatenate(parts)
+    tau = float(np.average([correlation_time(x) for x in parts], weights=[x.size for x in parts]))
+    return max(float(np.dot(r, r)) / max(r.size - count, 1), 1e-12) * tau
+
+
+def _crossing(values: np.ndarray, chi2: np.ndarray, centre: float, level: float) -> list[Any]:
+    """The distances from ``centre`` below and above it where chi^2 first reaches
+    ``level`` (linear in sqrt(chi^2) between points; None: not reached)."""
+    found: list[Any] = []
+    for side in (values < centre, values > centre):
+        points = sorted(zip(np.abs(values[side] - centre), chi2[side], strict=True))
+        previous = (0.0, 0.0)
+        distance = None
+        for t, c in points:
+            if c >= level:
+                a, b = np.sqrt(max(previous[1], 0.0)), np.sqrt(c)
+                fraction = (np.sqrt(level) - a) / (b - a) if b > a else 1.0
+                distance = float(previous[0] + fraction * (t - previous[0]))
+                break
+            previous = (t, c)
+        found.append(distance)
+    return found
 
 
 def jacobian_correlation(jacobian: np.ndarray) -> np.ndarray:
@@ -145,79 +203,90 @@ def jacobian_correlation(jacobian: np.ndarray) -> np.ndarray:
 
 
 def parameter_uncertainty(
-    misfit: Callable[[np.ndarray], np.ndarray],
+    misfit: Any,
     best: np.ndarray,
     jacobian: np.ndarray,
     parts: Sequence[np.ndarray],
     *,
-    lower: np.ndarray,
+    bounds: tuple[np.ndarray, np.ndarray],
     profile: bool = True,
+    twins: Twins = (),
 ) -> tuple[ParameterSpread, ...]:
     """The spread of every parameter of a least-squares fit (module documentation).
 
-    ``misfit(x)`` gives the residual vector; ``parts`` are the residuals at ``best`` per
-    recording (their correlation times are averaged, weighted by their lengths).
+    ``misfit`` is the fit's :class:`~torsio.calibration.objectives.Misfit`; ``parts`` are
+    the residuals at ``best`` per recording (their correlation times are averaged,
+    weighted by their lengths); ``bounds`` the admissible (lower, upper) values; ``twins``
+    the twins of the model (:mod:`torsio.calibration.profile`).
     """
-    r = np.concatenate(parts)
-    n, p = r.size, best.size
-    rss = float(np.dot(r, r))
-    tau = float(np.average([correlation_time(x) for x in parts], weights=[x.size for x in parts]))
-    scale = max(rss / max(n - p, 1), 1e-12) * tau
-    jtj = jacobian.T @ jacobian
-    covariance = np.linalg.pinv(jtj) * scale
+    p = best.size
+    scale = residual_scale(parts, p)
+    covariance = np.linalg.pinv(jacobian.T @ jacobian) * scale
     sigma_j = np.sqrt(np.maximum(np.diag(covariance), 0.0))
     spreads = []
     for k in range(p):
+        floor = RESOLUTION * abs(best[k])
+        if not profile:
+            spreads.append(_jacobian_spread(float(best[k]), float(sigma_j[k]), bounds, k))
+            continue
         path = np.zeros(p)
         path[k] = 1.0
         if covariance[k, k] > 0.0:
             path = covariance[:, k] / covariance[k, k]
-        step = sigma_j[k] if sigma_j[k] > 0.0 else 1e-3 * abs(best[k]) + 1e-9
-        sides: dict[float, list[tuple[float, float]]] = {-1.0: [], 1.0: []}
-        if profile:
-            for sign in sides:
-                t = step
-                for _ in range(PROFILE_DOUBLINGS + 1):
-                    x = np.maximum(best + sign * t * path, lower)
-                    chi2 = (float(np.sum(misfit(x) ** 2)) - rss) / scale
-                    sides[sign].append((sign * t, chi2))
-                    if chi2 >= 4.0 or x[k] <= lower[k]:
-                        break
-                    t *= 2.0
-        spreads.append(_spread(best[k], sigma_j[k], sides, lower[k], profile))
+        along = profile_parameter(
+            misfit, best, path, k, bounds, scale, max(float(sigma_j[k]), floor), twins
+        )
+        spreads.append(_spread(float(best[k]), float(sigma_j[k]), along, bounds, k))
     return tuple(spreads)
+
+
+def _jacobian_spread(
+    value: float, sigma_j: float, bounds: tuple[np.ndarray, np.ndarray], k: int
+) -> ParameterSpread:
+    sigma_j = max(sigma_j, RESOLUTION * abs(value))
+    interval = (max(value - 2 * sigma_j, bounds[0][k]), min(value + 2 * sigma_j, bounds[1][k]))
+    weak = not np.isfinite(sigma_j) or 2 * sigma_j > WEAK_FRACTION * abs(value)
+    return ParameterSpread(sigma_j, sigma_j, np.nan, interval, "jacobian", not weak)
 
 
 def _spread(
     value: float,
     sigma_j: float,
-    sides: dict[float, list[tuple[float, float]]],
-    lower: float,
-    profiled: bool,
+    along: Profile,
+    bounds: tuple[np.ndarray, np.ndarray],
+    k: int,
 ) -> ParameterSpread:
-    sigma_j = max(sigma_j, RESOLUTION * abs(value))
-    if not profiled:
-        interval = (max(value - 2 * sigma_j, lower), value + 2 * sigma_j)
-        weak = not np.isfinite(sigma_j) or 2 * sigma_j > WEAK_FRACTION * abs(value)
-        return ParameterSpread(sigma_j, sigma_j, np.nan, interval, "jacobian", not weak)
-    ones = [_crossing(points, 1.0) for points in sides.values()]
-    twos = [_crossing(points, 4.0) for points in sides.values()]
-    reach = [abs(points[-1][0]) for points in sides.values()]
-    one = [o if o is not None else r for o, r in zip(ones, reach, strict=True)]
-    two = [t if t is not None else r for t, r in zip(twos, reach, strict=True)]
-    sigma_p = float(np.mean(one))
-    smooth = abs(sigma_p - sigma_j) <= SMOOTH_TOLERANCE * max(sigma_j, 1e-300)
     floor = RESOLUTION * abs(value)
-    sigma = max(sigma_j if smooth else max(sigma_p, sigma_j), floor)
-    two = [max(t, 2.0 * floor) for t in two]
-    interval = (max(value - two[0], lower), value + two[1])
-    open_ended = any(t is None for t in twos)
+    sigma_j = max(sigma_j, floor)
+    low_end, high_end = value - along.values[0], along.values[-1] - value
+    ones = _crossing(along.values, along.chi2, value, 1.0)
+    twos = _crossing(along.values, along.chi2, value, 4.0)
+    one = [o if o is not None else e for o, e in zip(ones, (low_end, high_end), strict=True)]
+    two = [t if t is not None else e for t, e in zip(twos, (low_end, high_end), strict=True)]
+    sigma_p = float(np.mean(one))
+    smooth = abs(sigma_p - sigma_j) <= SMOOTH_TOLERANCE * sigma_j
+    statistical = max(sigma_j if smooth else max(sigma_p, sigma_j), floor)
+    recordings = along.recording_values
+    form = float(np.std(recordings, ddof=1)) if len(recordings) > 1 else 0.0
+    shifts = {name: abs(v - value) for name, v in along.twin_values.items()}
+    grid = max((shifts[name] for name in TWIN_GRIDS if name in shifts), default=0.0)
+    speed = shifts.get("smoothed speed", 0.0)
+    widening = 4.0 * (form**2 + grid**2 + speed**2)
+    low = value - np.sqrt(max(two[0], 2 * floor) ** 2 + widening)
+    high = value + np.sqrt(max(two[1], 2 * floor) ** 2 + widening)
+    interval = (float(max(low, bounds[0][k])), float(min(high, bounds[1][k])))
+    open_ended = along.open_low or along.open_high or None in twos
     weak = open_ended or (interval[1] - interval[0]) / 2 > WEAK_FRACTION * abs(value)
     return ParameterSpread(
-        float(sigma),
+        float(np.sqrt(statistical**2 + form**2 + grid**2 + speed**2)),
         float(sigma_j),
         sigma_p,
-        (float(interval[0]), float(interval[1])),
+        interval,
         "jacobian" if smooth else "profile",
         not weak,
+        sigma_recordings=form,
+        sigma_grid=float(grid),
+        sigma_speed_record=float(speed),
+        recording_values=tuple(float(v) for v in recordings),
+        profile=along,
     )

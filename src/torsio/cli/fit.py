@@ -18,7 +18,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "Fit parameters of CONFIG (its keys: friction_static, friction_dynamic, "
         "hole[i].friction_static, hole[i].friction_dynamic, threshold_speed, alpha) to "
         "recordings of top-drive speed and surface torque (CSV: time,top_rpm,surface_torque), "
-        "on the wave model, by least squares from the closed forms of break-off and sliding "
+        "on the wave model: a global stage over the admissible range, then least squares "
         "(docs/calibration.md).",
     )
     parser.add_argument("config", metavar="CONFIG", help="TOML configuration file with [well]")
@@ -59,7 +59,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "--speed-smoothing",
         metavar="T",
         help="smooth the recorded speed over a centred window (s or with units) before it "
-        "drives the top (default 0: as recorded); against noise on the speed record",
+        "drives the top (default 0.2 s; 0: as recorded); against noise on the speed record",
     )
     parser.add_argument("--plot", metavar="FILE", help="record against model (needs matplotlib)")
     common.add_json_argument(parser)
