@@ -313,6 +313,13 @@ STARTUP_ROWS = "".join(f"{0.1 * i:.1f},{min(12 * i, 120)},{100 * i}\n" for i in 
             "recording: rig.csv: 2 samples over 0.001 s; a fit needs at least 11 samples",
         ),
         (STARTUP_ROWS, (), "rgd_deviated_well.toml", "bit_rock.law: a fit runs the torsional"),
+        # 0 means no smoothing (taken); a negative window is not a window
+        (
+            STARTUP_ROWS,
+            ("--speed-smoothing", "-0.1"),
+            "deviated_well.toml",
+            "--speed-smoothing: expected a finite time >= 0, got '-0.1'",
+        ),
     ],
 )
 def test_bad_fit_input_names_the_flag_or_the_recording(
@@ -322,6 +329,19 @@ def test_bad_fit_input_names_the_flag_or_the_recording(
     error = capsys.readouterr().err
     assert status == 2 and "Traceback" not in error
     assert f"torsio fit: error: {message}" in error
+
+
+def test_the_grid_of_a_fit_is_the_callers_then_the_files_then_contacts_on_every_node():
+    from torsio.calibration.fit import DRAG_SPACING, _grid
+
+    config = deviated_well_config()  # [discretization] strategy = "wave", no drag_spacing
+    assert _grid(config, {}) == {"drag_spacing": DRAG_SPACING}
+    assert _grid(config, {"drag_spacing": 4}) == {"drag_spacing": 4}
+    lumped_every_fourth = attrs.evolve(
+        config,
+        discretization=attrs.evolve(config.discretization, options={"drag_spacing": 4}),
+    )
+    assert _grid(lumped_every_fourth, {}) == {}  # the file's 4 is kept by config.system
 
 
 def test_a_surface_casing_in_the_vertical_section_fits(tmp_path, capsys):

@@ -73,6 +73,17 @@ TOPS = ("recorded", "configured")
 """What drives the top in the fit: the recorded speed, or the configured top drive."""
 
 
+def _grid(config: Any, discretization: dict[str, Any]) -> dict[str, Any]:
+    """The wave grid of the fit: the caller's options, then the file's, then contacts on
+    every node (:data:`DRAG_SPACING`)."""
+    grid = dict(discretization)
+    given = config.discretization
+    in_file = given.strategy == "wave" and "drag_spacing" in given.options
+    if "drag_spacing" not in grid and not in_file:
+        grid["drag_spacing"] = DRAG_SPACING
+    return grid
+
+
 def _recordings(recordings: Sequence[Any], said: list[str]) -> list[Recording]:
     """The recordings read, each spike of their torque replaced by the record linear
     between its neighbours (a spike would otherwise drive the fit: the closed-form start
@@ -281,7 +292,7 @@ def fit_recordings(
         raise ConfigError(
             "objective", f"unknown objective {objective!r}; expected one of {', '.join(OBJECTIVES)}"
         )
-    family = SystemFamily(config, **{"drag_spacing": DRAG_SPACING, **discretization})
+    family = SystemFamily(config, **_grid(config, discretization))
     names = family.check(names)
     if not (isinstance(speed_smoothing, int | float) and speed_smoothing >= 0.0):
         raise ConfigError(

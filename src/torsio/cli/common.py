@@ -230,8 +230,11 @@ def discretization_overrides(args: argparse.Namespace) -> dict[str, Any]:
     }
 
 
-def parse_time(value: str | None, key: str) -> float | None:
-    """A time option: a bare number in s, or a string with units ("5 min"); None stays None."""
+def parse_time(value: str | None, key: str, *, allow_zero: bool = False) -> float | None:
+    """A time option: a bare number in s, or a string with units ("5 min"); None stays None.
+
+    ``allow_zero`` admits 0 (an option whose 0 means "none", such as a smoothing window).
+    """
     from torsio.units import to_si
 
     if value is None:
@@ -240,8 +243,9 @@ def parse_time(value: str | None, key: str) -> float | None:
         number = float(value)
     except ValueError:
         number = to_si(value, "time", key=key)
-    if not (math.isfinite(number) and number > 0):
-        raise ConfigError(key, f"expected a positive finite time, got {value!r}")
+    if not (math.isfinite(number) and (number > 0 or (allow_zero and number == 0))):
+        expected = "a finite time >= 0" if allow_zero else "a positive finite time"
+        raise ConfigError(key, f"expected {expected}, got {value!r}")
     return number
 
 

@@ -81,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
         raise ConfigError("well", f"{args.config} has no [well] table: nothing to fit friction to")
     wob = 0.0 if args.wob is None else check_wob(to_si(args.wob, "force", key="--wob"), "--wob")
     recordings = [read_recording(path) for path in args.recording]
-    window = common.parse_time(args.speed_smoothing, "--speed-smoothing")
+    window = common.parse_time(args.speed_smoothing, "--speed-smoothing", allow_zero=True)
     if window is not None and args.top != "recorded":
         raise ConfigError("--speed-smoothing", "smooths the recorded speed: needs --top recorded")
     results = fit_recordings(
