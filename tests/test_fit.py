@@ -175,7 +175,7 @@ def test_smoothing_the_recorded_speed_takes_out_the_bias_its_noise_drives(noisy)
         fit_recordings(deviated_well_config(), noisy, names, speed_smoothing=-1.0, **GRID)
 
 
-def test_a_parameter_the_data_cannot_pin_down_is_reported_with_its_interval(noisy):
+def test_a_parameter_the_data_cannot_pin_down_is_reported_with_its_interval(noisy, tmp_path):
     # the first 2.5 s of a start-up: the torque has not reached the static friction of the
     # string anywhere below the top (the bit moves after 3.9 s), so the record bounds mu_s
     # from below only; the data allow anything from the sliding factor (0.3) upward
@@ -194,6 +194,25 @@ def test_a_parameter_the_data_cannot_pin_down_is_reported_with_its_interval(nois
     assert results.to_dict()["identifiable"] == {"friction_static": False}
     assert results.to_dict()["interval_method"]["friction_static"].startswith("profile: ")
     assert any("weakly identifiable" in note and f"{low:.4g}" in note for note in results.notes())
+    _check_the_figure(results, tmp_path / "fit.png")
+
+
+def _check_the_figure(results, path) -> None:
+    # what the figure draws is the results' own data: the record's peak (the break-over,
+    # objectives.break_over) and the stated two-sigma interval shaded on the profile
+    pytest.importorskip("matplotlib")
+    figure = results.plot(path)
+    assert path.stat().st_size > 0
+    torque_axis, profile_axis = figure.axes
+    record = results.recordings[0]
+    peak = int(np.argmax(record.surface_torque))
+    marked = [ln for ln in torque_axis.lines if ln.get_marker() == "v"][0]
+    assert marked.get_xdata()[0] == record.time[peak]
+    assert marked.get_ydata()[0] == pytest.approx(record.surface_torque[peak] / 1e3, rel=1e-12)
+    (shaded,) = profile_axis.patches
+    low, high = results.uncertainty[0].interval  # axvspan: a rectangle from low, high - low wide
+    assert (shaded.get_x(), shaded.get_width()) == pytest.approx((low, high - low), rel=1e-12)
+    assert profile_axis.get_title() == "friction_static: not identifiable"
 
 
 def test_torsio_fit_json_has_the_contract_keys(clean, tmp_path, capsys):

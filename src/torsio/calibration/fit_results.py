@@ -239,25 +239,11 @@ class FitResults:
         ]
 
     def plot(self, path: str | Path | None = None, ax: Any = None) -> Any:
-        """Record against model: surface torque [kN m] against time, one panel per
-        recording (or all on ``ax``); ``path`` writes the figure (format by suffix).
-        Returns the figure. Needs matplotlib (``pip install 'torsio[plot]'``)."""
-        from torsio.plotting.figures import pyplot, save_figure
+        """Record against model, surface torque [kN m] against time with each break-over
+        marked, one panel per recording, and below them each parameter's profile with its
+        interval (:mod:`torsio.plotting.fit_plots`); on ``ax``, the torques alone. ``path``
+        writes the figure (format by suffix). Returns the figure. Needs matplotlib
+        (``pip install 'torsio[plot]'``)."""
+        from torsio.plotting.fit_plots import plot_fit
 
-        if ax is None:
-            count = len(self.recordings)
-            figure, grid = pyplot().subplots(count, 1, figsize=(8, 3 * count), squeeze=False)
-            axes = list(grid[:, 0])
-        else:
-            figure, axes = ax.figure, [ax] * len(self.recordings)
-        for axis, record in zip(axes, self.recordings, strict=True):
-            axis.plot(record.time, record.surface_torque / 1e3, lw=0.8, label=record.name)
-            axis.plot(record.time, record.model_torque / 1e3, lw=1.0, ls="--", label="model")
-            axis.set_xlabel("time [s]")
-            axis.set_ylabel("surface torque [kN m]")
-            axis.legend(loc="lower right")
-        fitted = ", ".join(f"{n} = {v:.4g}" for n, v in self.parameters.items())
-        axes[0].set_title(f"fit ({self.objective}): {fitted}")
-        if path is not None:
-            save_figure(figure, path)
-        return figure
+        return plot_fit(self, path, ax)

@@ -3,7 +3,9 @@
 Each sample draws the fitted parameters from a joint normal distribution: the fitted
 values, each parameter's stated sigma, and the correlation between them from the fit's
 Jacobian (:class:`~torsio.calibration.fit_results.FitResults`; independent where the fit
-gives none), each draw kept within its two-sigma interval and at least its lower bound;
+gives none), each draw kept within its two-sigma interval and at least its lower bound; a
+parameter the data do not pin down is drawn uniformly over the whole interval they allow,
+and one the user fixes is held there (:func:`parameter_draws`);
 the configuration with those values runs a severity map
 (:func:`torsio.analysis.maps.severity_map`, on any of its executors), and the probability
 of severe stick-slip at a point is the fraction of samples whose S_SS there exceeds the
@@ -19,6 +21,7 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 import attrs
@@ -33,7 +36,13 @@ if TYPE_CHECKING:
     from torsio.calibration.fit_results import FitResults
     from torsio.config.configuration import Config
 
-__all__ = ["SeverityProbability", "parameter_draws", "severe_fraction", "severity_probability"]
+__all__ = [
+    "SeverityProbability",
+    "distribution",
+    "parameter_draws",
+    "severe_fraction",
+    "severity_probability",
+]
 
 
 def severe_fraction(severity: np.ndarray, threshold: float) -> np.ndarray:
@@ -65,6 +74,8 @@ class SeverityProbability:
         The parameter values of each sample.
     threshold : float
         S_SS above which a point is severe.
+    distribution : dict of str to str
+        How each parameter was drawn (:func:`distribution`).
     """
 
     wob: np.ndarray
@@ -73,10 +84,11 @@ class SeverityProbability:
     severity: np.ndarray
     samples: tuple[dict[str, float], ...]
     threshold: float
+    distribution: dict[str, str] = attrs.field(factory=dict)
 
     def to_dict(self) -> dict[str, Any]:
         """Plain data: ``wob``, ``rpm``, ``probability`` (``[i][j]`` at ``rpm[i]``,
-        ``wob[j]``), ``severity`` per sample, ``samples``, ``threshold``."""
+        ``wob[j]``), ``severity`` per sample, ``samples``, ``threshold``, ``distribution``."""
         return {
             "wob": self.wob.tolist(),
             "rpm": self.rpm.tolist(),
@@ -84,31 +96,70 @@ class SeverityProbability:
             "severity": self.severity.tolist(),
             "samples": [dict(s) for s in self.samples],
             "threshold": self.threshold,
+            "distribution": dict(self.distribution),
         }
 
 
-def parameter_draws(fit: Any, family: Any, count: int, seed: int) -> list[dict[str, float]]:
-    """``count`` draws of the fitted parameters (module documentation): standard normals
-    correlated by the Cholesky factor of the fit's correlation, scaled by each sigma."""
+def parameter_draws(
+    fit: Any, family: Any, count: int, seed: int, fixed: Mapping[str, float] | None = None
+) -> list[dict[str, float]]:
+    """``count`` draws of the fitted parameters (module documentation).
+
+    An identifiable parameter: a standard normal correlated with the other identifiable
+    ones by the Cholesky factor of the fit's correlation, scaled by its sigma, kept within
+    its two-sigma interval. A parameter the data do not pin down (``identifiable`` false):
+    uniform over the interval the data allow, independent of the others, since a normal
+    around a point the data did not choose would claim a knowledge they do not give. A
+    parameter in ``fixed``: that value in every draw (the user's choice).
+    """
+    fixed = dict(fixed or {})
+    for name, value in fixed.items():
+        if name not in fit.names:
+            raise ConfigError(
+                "fixed", f"{name!r} was not fitted; expected one of {', '.join(fit.names)}"
+            )
+        floor = family.lower_bound(name)
+        if not (isinstance(value, int | float) and np.isfinite(value) and value >= floor):
+            raise ConfigError(f"fixed.{name}", f"expected a finite value >= {floor}, got {value!r}")
     rng = np.random.default_rng(seed)
-    size = len(fit.names)
+    spreads = dict(zip(fit.names, fit.uncertainty, strict=True))
+    normal = [k for k, n in enumerate(fit.names) if n not in fixed and spreads[n].identifiable]
     correlation = getattr(fit, "correlation", None)
     if correlation is None:
-        correlation = np.eye(size)
-    eigenvalues, vectors = np.linalg.eigh(np.asarray(correlation, dtype=float))
-    factor = vectors * np.sqrt(np.maximum(eigenvalues, 0.0))  # factor @ factor.T = correlation
+        correlation = np.eye(len(fit.names))
+    kept = np.asarray(correlation, dtype=float)[np.ix_(normal, normal)]
+    eigenvalues, vectors = np.linalg.eigh(kept)
+    factor = vectors * np.sqrt(np.maximum(eigenvalues, 0.0))  # factor @ factor.T = kept
     draws = []
     for _ in range(count):
-        normals = factor @ rng.normal(size=size)
+        normals = dict(zip(normal, factor @ rng.normal(size=len(normal)), strict=True))
         values = {}
-        for k, (name, value, spread) in enumerate(
-            zip(fit.names, fit.values, fit.uncertainty, strict=True)
-        ):
-            low, high = spread.interval
-            drawn = float(np.clip(value + spread.sigma * normals[k], low, high))
+        for k, (name, value) in enumerate(zip(fit.names, fit.values, strict=True)):
+            low, high = spreads[name].interval
+            if name in fixed:
+                drawn = float(fixed[name])
+            elif k in normals:
+                drawn = float(np.clip(value + spreads[name].sigma * normals[k], low, high))
+            else:
+                drawn = float(rng.uniform(low, high))
             values[name] = max(drawn, family.lower_bound(name))
         draws.append(values)
     return draws
+
+
+def distribution(fit: Any, fixed: Mapping[str, float] | None = None) -> dict[str, str]:
+    """How :func:`parameter_draws` draws each parameter, in words."""
+    fixed = dict(fixed or {})
+    said = {}
+    for name, value, spread in zip(fit.names, fit.values, fit.uncertainty, strict=True):
+        low, high = spread.interval
+        if name in fixed:
+            said[name] = f"fixed at {fixed[name]:.6g}"
+        elif spread.identifiable:
+            said[name] = f"normal {value:.6g} +- {spread.sigma:.2g}, within [{low:.6g}, {high:.6g}]"
+        else:
+            said[name] = f"uniform over [{low:.6g}, {high:.6g}] (not identifiable)"
+    return said
 
 
 def severity_probability(
@@ -121,6 +172,7 @@ def severity_probability(
     samples: int = 16,
     seed: int = 0,
     executor: Any = None,
+    fixed: Mapping[str, float] | None = None,
     **values: Any,
 ) -> SeverityProbability:
     """The probability of severe stick-slip over ``rpm`` x ``wob`` from ``fit``.
@@ -142,11 +194,14 @@ def severity_probability(
         Seed of the draws (the result is reproducible).
     executor
         Any executor :func:`~torsio.analysis.maps.severity_map` takes.
+    fixed : mapping of str to float, optional
+        Values to hold fitted parameters at (a parameter the data do not pin down is
+        otherwise drawn over the whole interval they allow: :func:`parameter_draws`).
     """
     if isinstance(samples, bool) or not isinstance(samples, int | np.integer) or samples < 1:
         raise ConfigError("samples", f"expected a whole number of samples >= 1, got {samples!r}")
     family = SystemFamily(config)
-    draws = parameter_draws(fit, family, int(samples), seed)
+    draws = parameter_draws(fit, family, int(samples), seed, fixed)
     maps = [
         severity_map(
             family.system(draw), wob, rpm, options, executor=executor, progress=False, **values
@@ -162,4 +217,5 @@ def severity_probability(
         severity=severity,
         samples=tuple(draws),
         threshold=threshold,
+        distribution=distribution(fit, fixed),
     )

@@ -27,10 +27,33 @@ import numpy as np
 from torsio.analysis.wave import wave_response
 from torsio.errors import ConfigError
 
-__all__ = ["OBJECTIVES", "Misfit", "model_torque", "residuals", "torque_features"]
+__all__ = [
+    "OBJECTIVES",
+    "Misfit",
+    "break_over",
+    "model_torque",
+    "residuals",
+    "sliding_part",
+    "torque_features",
+]
 
 OBJECTIVES = ("torque", "features")
 """The objectives a fit may take (module documentation)."""
+
+
+SLIDING_PART = 0.25
+"""The last part of a start-up's record where the string slides (a fraction of its span)."""
+
+
+def sliding_part(time: np.ndarray) -> np.ndarray:
+    """Mask of the samples in the record's last :data:`SLIDING_PART`, where it slides."""
+    time = np.asarray(time, dtype=float)
+    return time >= time[-1] - SLIDING_PART * (time[-1] - time[0])
+
+
+def break_over(torque: np.ndarray) -> int:
+    """Index of a start-up's break-over: the peak of its surface torque."""
+    return int(np.argmax(torque))
 
 
 def torque_features(time: np.ndarray, torque: np.ndarray) -> np.ndarray:
@@ -40,9 +63,8 @@ def torque_features(time: np.ndarray, torque: np.ndarray) -> np.ndarray:
     time = np.asarray(time, dtype=float)
     torque = np.asarray(torque, dtype=float)
     span = time[-1] - time[0]
-    tail = time >= time[-1] - 0.25 * span
-    peak = int(np.argmax(torque))
-    sliding = float(np.mean(torque[tail]))
+    peak = break_over(torque)
+    sliding = float(np.mean(torque[sliding_part(time)]))
     return np.array([sliding, float(torque[peak]), (time[peak] - time[0]) * sliding / span])
 
 

@@ -38,6 +38,8 @@ from typing import Any
 
 import numpy as np
 
+from torsio.calibration.objectives import break_over, sliding_part
+
 __all__ = ["closed_form_start"]
 
 KINDS = {"friction_static": "static", "friction_dynamic": "dynamic"}
@@ -53,8 +55,8 @@ def _zone(family: Any, name: str) -> int:
 
 def _levels(record: Any) -> dict[str, tuple[float, float]]:
     """(torque [N m], top speed [rad/s]) of the record's sliding and break-over."""
-    tail = record.time >= record.time[-1] - 0.25 * record.duration
-    peak = int(np.argmax(record.surface_torque))
+    tail = sliding_part(record.time)
+    peak = break_over(record.surface_torque)
     return {
         "dynamic": (
             float(np.mean(record.surface_torque[tail])),
@@ -149,5 +151,5 @@ class _RecordView:
     """A record's times and top speed with the torque ``torque`` (for :func:`_levels`)."""
 
     def __init__(self, record: Any, torque: np.ndarray) -> None:
-        self.time, self.top_speed, self.duration = record.time, record.top_speed, record.duration
+        self.time, self.top_speed = record.time, record.top_speed
         self.surface_torque = torque

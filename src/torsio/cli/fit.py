@@ -61,7 +61,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="smooth the recorded speed over a centred window (s or with units) before it "
         "drives the top (default 0.2 s; 0: as recorded); against noise on the speed record",
     )
-    parser.add_argument("--plot", metavar="FILE", help="record against model (needs matplotlib)")
+    parser.add_argument(
+        "--plot",
+        metavar="FILE",
+        help="record against model with the break-overs, and each parameter's profile "
+        "with its interval (needs matplotlib)",
+    )
     common.add_json_argument(parser)
 
 
