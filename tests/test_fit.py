@@ -386,3 +386,39 @@ def test_a_surface_casing_in_the_vertical_section_fits(tmp_path, capsys):
     assert main(argv) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["parameters"]["friction_dynamic"] == pytest.approx(0.3, abs=1e-3)
+
+
+def test_torsio_fit_runs_on_a_lumped_strategy(clean, tmp_path, capsys):
+    # the recordings are the wave model's; fitted on strategy C (10 drill-pipe elements,
+    # contacts on every node). The chain's node capacities add up to the torque-and-drag
+    # sliding torque exactly (well.string_contacts.node_contacts), so the sliding level
+    # reads the open hole's mu_d (0.3, deviated_well.toml) within the 0.01
+    paths = []
+    for record in clean:
+        record.save(tmp_path / record.name)
+        paths += ["--recording", str(tmp_path / record.name)]
+    source = tmp_path / "well.toml"
+    from importlib import resources
+
+    source.write_text(
+        resources.files("torsio").joinpath("data/deviated_well.toml").read_text("utf-8")
+    )
+    fitted = ["--fit", "friction_dynamic", "--strategy", "C", "--dp-elements", "10"]
+    status = main(["fit", str(source), *paths, *fitted, "--no-profile", "--json"])
+    assert status == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["parameters"]["friction_dynamic"] == pytest.approx(0.3, abs=0.01)
+
+
+@pytest.mark.slow  # about 40 s on 2 quiet cores: 370 runs of the chain, 60 the continuum's
+def test_a_lumped_fit_widens_its_intervals_by_what_the_lumping_misreads(noisy):
+    # on strategy C with 10 drill-pipe elements the chain reads the wave model's start-ups
+    # (truth 0.35 / 0.3, deviated_well.toml) differently from the continuum: the continuum,
+    # reading the same records along the profile, is the lumping's part of each interval,
+    # and the stated two-sigma intervals hold the truth
+    results = fit_recordings(deviated_well_config(), noisy, NAMES, strategy="C", dp_elements=10)
+    for name, spread in zip(results.names, results.uncertainty, strict=True):
+        low, high = spread.interval
+        assert low <= TRUTH[name] <= high, (name, spread)
+        assert "continuum" in spread.profile.twin_values
+    assert results.uncertainty[0].sigma_grid > 0.01  # mu_s: the lumping's misreading

@@ -42,6 +42,7 @@ from torsio.calibration.global_stage import global_fit
 from torsio.calibration.local_stage import admissible_floor
 from torsio.calibration.objectives import OBJECTIVES, Misfit
 from torsio.calibration.parameters import TWIN_GRIDS, SystemFamily
+from torsio.calibration.profile import grid_twin, reader_twin
 from torsio.calibration.recording import RPM, Recording, read_recording
 from torsio.calibration.start import closed_form_start, corrected_start
 from torsio.calibration.uncertainty import (
@@ -74,12 +75,13 @@ TOPS = ("recorded", "configured")
 
 
 def _grid(config: Any, discretization: dict[str, Any]) -> dict[str, Any]:
-    """The wave grid of the fit: the caller's options, then the file's, then contacts on
-    every node (:data:`DRAG_SPACING`)."""
+    """The grid of the fit: the caller's options, then the file's, then (on the wave
+    model) contacts on every node (:data:`DRAG_SPACING`)."""
     grid = dict(discretization)
     given = config.discretization
     in_file = given.strategy == "wave" and "drag_spacing" in given.options
-    if "drag_spacing" not in grid and not in_file:
+    wave = grid.get("strategy", "wave") == "wave"
+    if wave and "drag_spacing" not in grid and not in_file:
         grid["drag_spacing"] = DRAG_SPACING
     return grid
 
@@ -148,8 +150,8 @@ MIN_SAMPLES = 11
 """The fewest samples of a recording a fit takes (the spike check's window)."""
 
 MIN_STEPS = 100
-"""The shortest recording a fit takes, in time steps of the model's grid: its steady window
-(a tenth of the run) must hold 10 of them."""
+"""The shortest recording a fit takes, in time steps of the wave model's grid: its steady
+window (a tenth of the run) must hold 10 of them (a chain's integrator steps freely)."""
 
 
 def check_wob(value: Any, key: str) -> float:
@@ -163,7 +165,8 @@ def check_wob(value: Any, key: str) -> float:
 
 def _check_records(family: SystemFamily, records: Sequence[Recording]) -> None:
     """Each record long enough for the model's grid, and turning (errors name it)."""
-    shortest = MIN_STEPS * float(family.base.model.time_step)
+    step = getattr(family.base.model, "time_step", None)  # a chain has no fixed step
+    shortest = MIN_STEPS * float(step) if step else 0.0
     threshold = float(family.values["threshold_speed"])
     for record in records:
         if record.time.size < MIN_SAMPLES or record.duration < shortest:
@@ -200,32 +203,30 @@ def _final_rpm(record: Recording, top: str) -> float:
 
 SPEED_TWIN_SAMPLES = 10
 """The smoothed-speed twin's window, in sample intervals of the record (at least twice the
-fit's own window): :func:`_twin_records`."""
+fit's own window): :func:`_twins`."""
 
 
-def _twin_records(
+def _twins(
     config: Any,
     family: SystemFamily,
     misfit: Misfit,
     top: str,
     smoothing: float,
     best: np.ndarray,
-) -> list[tuple[str, list[Recording]]]:
-    """The twins of the fitted model (:mod:`torsio.calibration.profile`), by name, each as
-    the records with its surface torque at ``best``: the finer and the coarser grid
-    (:meth:`SystemFamily.twins`) and, with the top held at the recorded speed, that speed
-    smoothed over :data:`SPEED_TWIN_SAMPLES` sample intervals (at least twice ``smoothing``):
-    a record's noise on the speed is not motion of the top, and the fit should not rest on
-    it."""
+) -> list[tuple[str, Any]]:
+    """The twins of the fitted model (:mod:`torsio.calibration.profile`), by name: the
+    wave model's finer and coarser grid (:meth:`SystemFamily.twins`) and, with the top held
+    at the recorded speed, that speed smoothed over :data:`SPEED_TWIN_SAMPLES` sample
+    intervals (at least twice ``smoothing``: a record's noise on the speed is not motion of
+    the top, and the fit should not rest on it), each as the records with its surface
+    torque at ``best``; on a lumped strategy, the continuum reading the records itself."""
     records, names = misfit.recordings, misfit.names
-    others = [
-        (name, twin, misfit.tops) for name, twin in zip(TWIN_GRIDS, family.twins(), strict=True)
-    ]
+    others = [(name, twin, misfit.tops) for name, twin in family.twins()]
     if top == "recorded":
         interval = max(float(np.median(np.diff(r.time))) for r in records)
         window = max(SPEED_TWIN_SAMPLES * interval, 2.0 * smoothing)
         others.append(("smoothed speed", family, _tops(config, records, top, window)))
-    twins = []
+    twins: list[tuple[str, Any]] = []
     for name, grid, tops in others:
         runs = Misfit(grid, records, names, tops, misfit.rpms, misfit.wob, misfit.objective)
         torques = runs.models(best)
@@ -234,7 +235,13 @@ def _twin_records(
             attrs.evolve(r, surface_torque=t, name=f"{r.name} ({name})")
             for r, t in zip(records, torques, strict=True)
         ]
-        twins.append((name, twin))
+        twins.append((name, grid_twin(misfit.objective, twin)))
+    continuum = family.continuum()
+    if continuum is not None:
+        reader = Misfit(
+            continuum, records, names, misfit.tops, misfit.rpms, misfit.wob, misfit.objective
+        )
+        twins.append((TWIN_GRIDS[2], reader_twin(reader, misfit)))
     return twins
 
 
@@ -316,7 +323,7 @@ def fit_recordings(
     best = fit.values
     bounds = (admissible_floor(family, names, best), upper)
     parts = misfit.split(best)
-    twins = _twin_records(config, family, misfit, top, speed_smoothing, best) if profile else []
+    twins = _twins(config, family, misfit, top, speed_smoothing, best) if profile else []
     spread = parameter_uncertainty(
         misfit, best, fit.jacobian, parts, bounds=bounds, profile=profile, twins=twins
     )

@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from torsio.analysis.wave import wave_response
+from torsio.analysis.transient import simulate
 from torsio.errors import ConfigError
 
 __all__ = [
@@ -72,14 +72,11 @@ def model_torque(system: Any, recording: Any) -> tuple[np.ndarray, Any]:
     """The surface torque of ``system`` (its top drive set) at the record's times [N m],
     and the transient it came from; the run lasts the record (from rest)."""
     duration = recording.duration
-    response = wave_response(
-        system,
-        duration=duration,
-        steady_window=0.1 * duration,
-        output_step=system.model.time_step,
-        progress=False,
+    # the wave model's own step; a chain's at the record's sampling (RODAS4 steps freely)
+    step = getattr(system.model, "time_step", None) or float(np.min(np.diff(recording.time)))
+    transient = simulate(
+        system, duration=duration, steady_window=0.1 * duration, output_step=step, progress=False
     )
-    transient = response.transient
     torque = np.interp(recording.time - recording.time[0], transient.time, transient.surface_torque)
     return torque, transient
 

@@ -44,7 +44,7 @@ from torsio.analysis.grid_check import TWIN_TRAVEL_TIME_TOLERANCE
 from torsio.errors import ConfigError
 from torsio.model.contacts import StringContacts
 from torsio.physics.damping import RayleighDamping
-from torsio.well.string_contacts import string_contacts
+from torsio.well.string_contacts import model_contacts
 from torsio.well.wellbore import HoleSection
 
 __all__ = ["PARAMETER_UNITS", "PHYSICAL_RANGES", "TWIN_GRIDS", "SystemFamily"]
@@ -82,23 +82,31 @@ def _unit_well(well: Any, zone: int) -> Any:
     return attrs.evolve(well, friction_static=unit, friction_dynamic=unit, hole=tuple(sections))
 
 
-TWIN_GRIDS = ("finer grid", "coarser grid")
-"""The names of :meth:`SystemFamily.twins`, in order."""
+TWIN_GRIDS = ("finer grid", "coarser grid", "continuum")
+"""The names of the grids whose reading of the records gives a fit's discretization part:
+the wave model's finer and coarser grid (:meth:`SystemFamily.twins`) and the continuum a
+lumped strategy approximates (:meth:`SystemFamily.continuum`)."""
+
+DRAG_SPACING_CONTINUUM = 1
+"""The continuum's contacts: on every node of its grid."""
 
 FINER_STEP = 0.25
 """The finer twin's time step, relative to the fit's grid (:meth:`SystemFamily.twins`)."""
 
 
 class SystemFamily:
-    """The wave-model systems of a configuration as its fittable parameters change.
+    """The systems of a configuration as its fittable parameters change.
 
     Parameters
     ----------
     config : Config
         A configuration with a ``[[section]]`` string and a ``[well]``; it is run on the
-        wave model (``strategy = "wave"``) whatever its ``[discretization]`` says.
+        wave model (``strategy = "wave"``) whatever its ``[discretization]`` says, unless
+        ``strategy`` names another.
     **discretization
-        Options of the wave grid (e.g. ``drag_spacing``).
+        ``strategy`` (default ``"wave"``: the continuum, converged in its grid) and the
+        options of its grid (e.g. ``drag_spacing`` of the wave model, ``dp_elements`` of a
+        lumped strategy).
     """
 
     def __init__(self, config: Any, **discretization: Any) -> None:
@@ -107,19 +115,21 @@ class SystemFamily:
         if config.axial is not None:
             raise ConfigError(
                 "bit_rock.law",
-                "a fit runs the torsional wave model, and this configuration has axial "
+                "a fit runs a torsional model, and this configuration has axial "
                 "dynamics (an axial bit-rock law such as rgd, or [chain] masses), which it "
                 "does not run; fit a copy with a torsional [bit_rock] law (e.g. tucker-wang: "
                 "the fit is off bottom by default, where the law gives no torque)",
             )
         self.discretization = dict(discretization)
         strategy = discretization.pop("strategy", "wave")
+        self.strategy = str(strategy)
         self.config = config
         self.base = config.system(strategy=strategy, **discretization)
         well = config.well
         self.zones = len(well.hole) + 1
         self._unit = [
-            string_contacts(self.base.model, _unit_well(well, z)) for z in range(self.zones)
+            model_contacts(self.base.model, _unit_well(well, z), config.string)
+            for z in range(self.zones)
         ]
         values: dict[str, float] = {
             "friction_static": well.friction_static,
@@ -169,12 +179,16 @@ class SystemFamily:
         """The largest value a fit may try [the parameter's unit]."""
         return PHYSICAL_RANGES[name.split(".")[-1]][1]
 
-    def twins(self) -> tuple[SystemFamily, SystemFamily]:
-        """The same family on a finer and on a coarser grid, from which the fit reads its
-        own grid's discretization error (:mod:`torsio.calibration.profile`): a quarter of the
-        time step with contacts on every node (``drag_spacing = 1``), and twice the time step
-        (the coarse twin of :mod:`torsio.analysis.grid_check`, its travel-time tolerance
-        :data:`~torsio.analysis.grid_check.TWIN_TRAVEL_TIME_TOLERANCE`)."""
+    def twins(self) -> tuple[tuple[str, SystemFamily], ...]:
+        """The same friction on other grids of the wave model, by name (:data:`TWIN_GRIDS`),
+        from which the fit reads its own grid's discretization error
+        (:mod:`torsio.calibration.profile`): a quarter of the time step with contacts on
+        every node (``drag_spacing = 1``), and twice the time step (the coarse twin of
+        :mod:`torsio.analysis.grid_check`, its travel-time tolerance
+        :data:`~torsio.analysis.grid_check.TWIN_TRAVEL_TIME_TOLERANCE`); none on a lumped
+        strategy (its lumping's error is read against the :meth:`continuum`)."""
+        if self.strategy != "wave":
+            return ()
         step = float(self.base.model.time_step)
         finer = {**self.discretization, "time_step": FINER_STEP * step, "drag_spacing": 1}
         coarser = {
@@ -182,7 +196,18 @@ class SystemFamily:
             "time_step": 2.0 * step,
             "travel_time_tolerance": TWIN_TRAVEL_TIME_TOLERANCE,
         }
-        return SystemFamily(self.config, **finer), SystemFamily(self.config, **coarser)
+        return (
+            (TWIN_GRIDS[0], SystemFamily(self.config, **finer)),
+            (TWIN_GRIDS[1], SystemFamily(self.config, **coarser)),
+        )
+
+    def continuum(self) -> SystemFamily | None:
+        """The continuum a lumped strategy approximates (the wave model with contacts on
+        every node), which reads the same records for the fit's lumping error; None on the
+        wave model."""
+        if self.strategy == "wave":
+            return None
+        return SystemFamily(self.config, strategy="wave", drag_spacing=DRAG_SPACING_CONTINUUM)
 
     def _zone_factors(self, values: Mapping[str, float], kind: str) -> list[float]:
         factors = []
@@ -209,8 +234,8 @@ class SystemFamily:
         contacts = self.contacts(merged).at_wob(float(self.base.wob))  # as Config.system
         model = self.base.model.with_contacts(contacts)
         damping = attrs.evolve(self.base.damping, alpha=float(merged["alpha"]))
-        if not isinstance(damping, RayleighDamping):  # pragma: no cover - wave: Rayleigh only
-            raise ConfigError("damping", "the wave model takes Rayleigh damping")
+        if not isinstance(damping, RayleighDamping):  # pragma: no cover - a chain's dampers
+            raise ConfigError("damping", "a fit takes Rayleigh damping ([damping] alpha, beta)")
         return attrs.evolve(self.base, model=model, damping=damping)
 
 

@@ -18,7 +18,9 @@ point the model runs once per recording, and three things are read from its torq
   (:meth:`~torsio.calibration.parameters.SystemFamily.twins`: half the time step with
   contacts on every node, and twice the time step) gives at the best fit: where it is
   least is how far the fit's own grid misreads that grid, the discretization part (the
-  larger of the two; noise-free: no record in it). Both twins are needed: measured on
+  larger of the two; noise-free: no record in it); on a lumped strategy, the continuum it
+  approximates reads the records itself along the same path, and where its misfit is least
+  is how far the lumping misreads them. Both wave twins are needed: measured on
   start-ups of the built-in deviated well made at 2.5e-4 s with contacts on every node,
   the default grid (6.9e-4 s) reads mu_s 0.010 low, while the shift to a grid of half its
   step is 0.002 and to one of twice its step 0.006 (docs/calibration.md).
@@ -36,7 +38,7 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import attrs
@@ -44,7 +46,16 @@ import numpy as np
 
 from torsio.calibration.objectives import residuals
 
-__all__ = ["MIN_REACH", "PROFILE_POINTS", "SPAN", "Profile", "least", "profile_parameter"]
+__all__ = [
+    "MIN_REACH",
+    "PROFILE_POINTS",
+    "SPAN",
+    "Profile",
+    "grid_twin",
+    "least",
+    "profile_parameter",
+    "reader_twin",
+]
 
 PROFILE_POINTS = 10
 """Points of the path on each side of the best fit (at most)."""
@@ -53,8 +64,9 @@ SPAN = 0.25
 """How far the path reaches on each side, relative to the value (the model-form and grid
 minima are sought within it)."""
 
-Twins = Sequence[tuple[str, Sequence[Any]]]
-"""The twins of a fitted model: (name, the records with its torque at the best fit)."""
+Twins = Sequence[tuple[str, Callable[[np.ndarray, Sequence[np.ndarray]], float]]]
+"""The twins of a fitted model: (name, its misfit [N^2 m^2] at a parameter vector given the
+fitted model's torques there), made by :func:`grid_twin` and :func:`reader_twin`."""
 
 MIN_REACH = 16.0
 """The least reach of the path, in the Jacobian's sigmas."""
@@ -105,22 +117,41 @@ def _offsets(sigma: float, reach: float) -> np.ndarray:
     return np.geomspace(first, reach, PROFILE_POINTS)
 
 
+def grid_twin(objective: str, records: Sequence[Any]) -> Callable[..., float]:
+    """A twin that made ``records`` (the recordings with its torque at the best fit): its
+    misfit is the fitted model's against them, least where the fitted model reads the
+    twin's data."""
+
+    def cost(x: np.ndarray, models: Sequence[np.ndarray]) -> float:
+        return sum(
+            float(np.sum(residuals(objective, m, t) ** 2))
+            for m, t in zip(models, records, strict=True)
+        )
+
+    return cost
+
+
+def reader_twin(reader: Any, fitted: Any) -> Callable[..., float]:
+    """A twin that reads the recordings itself (``reader`` a
+    :class:`~torsio.calibration.objectives.Misfit` of another model): its misfit against
+    them, least where that model reads them; its runs count in the ``fitted`` Misfit's."""
+
+    def cost(x: np.ndarray, models: Sequence[np.ndarray]) -> float:
+        value = float(np.sum(reader(x) ** 2))
+        fitted.runs += len(reader.recordings)
+        return value
+
+    return cost
+
+
 def _costs(misfit: Any, x: np.ndarray, twins: Twins) -> np.ndarray:
-    """Per recording its misfit against the record, then per twin the misfit against its
-    torque (all recordings) [N^2 m^2]."""
+    """Per recording its misfit against the record, then each twin's [N^2 m^2]."""
     models = misfit.models(x)
     own = [
         float(np.sum(residuals(misfit.objective, m, r) ** 2))
         for m, r in zip(models, misfit.recordings, strict=True)
     ]
-    grids = [
-        sum(
-            float(np.sum(residuals(misfit.objective, m, t) ** 2))
-            for m, t in zip(models, records, strict=True)
-        )
-        for _, records in twins
-    ]
-    return np.array([*own, *grids])
+    return np.array([*own, *(cost(x, models) for _, cost in twins)])
 
 
 def profile_parameter(
@@ -137,8 +168,7 @@ def profile_parameter(
 
     ``bounds`` are the admissible (lower, upper) values of every parameter, ``scale`` is
     s^2 tau [N^2 m^2], ``sigma`` the Jacobian's sigma of parameter k, and ``twins`` the
-    twins of the model by name, each the records with its surface torque at ``best``
-    (empty: no model-form parts).
+    twins of the model by name (:data:`Twins`; empty: no model-form parts).
     """
     lower, upper = bounds
     value = float(best[k])

@@ -18,8 +18,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "Fit parameters of CONFIG (its keys: friction_static, friction_dynamic, "
         "hole[i].friction_static, hole[i].friction_dynamic, threshold_speed, alpha) to "
         "recordings of top-drive speed and surface torque (CSV: time,top_rpm,surface_torque), "
-        "on the wave model: a global stage over the admissible range, then least squares "
-        "(docs/calibration.md).",
+        "on the wave model (or the lumped strategy --strategy names): a global stage over "
+        "the admissible range, then least squares (docs/calibration.md).",
     )
     parser.add_argument("config", metavar="CONFIG", help="TOML configuration file with [well]")
     parser.add_argument(
@@ -61,6 +61,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="smooth the recorded speed over a centred window (s or with units) before it "
         "drives the top (default 0.2 s; 0: as recorded); against noise on the speed record",
     )
+    common.add_discretization_arguments(parser)
     parser.add_argument(
         "--plot",
         metavar="FILE",
@@ -98,6 +99,7 @@ def run(args: argparse.Namespace) -> int:
         wob=wob,
         profile=not args.no_profile,
         speed_smoothing=SPEED_SMOOTHING if window is None else window,
+        **{k: v for k, v in common.discretization_overrides(args).items() if v is not None},
     )
     return common.write_and_print(args, results, outputs, _print_table)
 

@@ -40,7 +40,13 @@ from torsio.well.break_off import break_off
 from torsio.well.rotating_column import RotatingColumn
 from torsio.well.wellbore import Wellbore
 
-__all__ = ["CONTACT_CELL_LENGTH", "node_contacts", "string_contacts", "with_contacts"]
+__all__ = [
+    "CONTACT_CELL_LENGTH",
+    "model_contacts",
+    "node_contacts",
+    "string_contacts",
+    "with_contacts",
+]
 
 CONTACT_CELL_LENGTH = 10.0
 """Cell of the torque-and-drag integrals the capacities are taken from [m]."""
@@ -241,6 +247,13 @@ def with_contacts(model: Any, well: Wellbore, string: Any, wob: float = 0.0) -> 
             "friction along the string needs the string's sections ([[section]]: diameters "
             "and lengths); a [chain] has none",
         )
+    return model.with_contacts(model_contacts(model, well, string, wob))
+
+
+def model_contacts(model: Any, well: Wellbore, string: Any, wob: float = 0.0) -> StringContacts:
+    """The contacts of ``string`` in ``well`` on ``model`` at weight on bit ``wob`` [N]: at
+    every node of a chain with matrices (:func:`node_contacts`), at every drag node of a
+    characteristic grid (:func:`string_contacts`)."""
     if model.has_matrices:
-        return model.with_contacts(node_contacts(model, well, string, wob))
-    return model.with_contacts(string_contacts(model, well, wob))
+        return node_contacts(model, well, string, wob)
+    return string_contacts(model, well, wob)
