@@ -331,7 +331,7 @@ STARTUP_ROWS = "".join(f"{0.1 * i:.1f},{min(12 * i, 120)},{100 * i}\n" for i in 
             "deviated_well.toml",
             "recording: rig.csv: 2 samples over 0.001 s; a fit needs at least 11 samples",
         ),
-        (STARTUP_ROWS, (), "rgd_deviated_well.toml", "bit_rock.law: a fit runs the torsional"),
+        (STARTUP_ROWS, (), "rgd_deviated_well.toml", "bit_rock.law: a fit runs a torsional model"),
         # 0 means no smoothing (taken); a negative window is not a window
         (
             STARTUP_ROWS,
