@@ -1,5 +1,5 @@
 """The capacities of a lumped chain's contacts with the borehole (the Python side of
-:mod:`torsio.axial.string_friction`).
+:func:`torsio.solvers.contact_law.cone_step`).
 
 Node i of the chain, at its depth below the string's top, stands for the string from
 half-way to the node above (the top, for the first) to half-way to the node below (the
