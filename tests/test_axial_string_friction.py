@@ -277,16 +277,6 @@ def test_cli_simulate_and_map_give_the_string_friction(tmp_path, capsys):
 
 
 def test_refusals_name_the_key():
-    wave = TEXT.replace(
-        '[axial]\nhook = "weight"',
-        '[discretization]\nstrategy = "wave"\n\n[axial]\nhook = "weight"',
-    )
-    wave = wave.replace(
-        'element_length = "100 m"       # the lumped chain\'s longest element\n', ""
-    )
-    wave = wave.replace("[damping]\nbeta = 0.01", "[damping]\nbeta = 0.0")
-    with pytest.raises(ConfigError, match=r"well: .*distributed axial pipe carries no contacts"):
-        _config(wave)
     with pytest.raises(ConfigError, match=r"well\.friction_dynamic"):
         _config(TEXT.replace("friction_dynamic = 0.3\n", "friction_dynamic = 0.5\n"))
     with pytest.raises(ConfigError, match=r"well\.threshold_speed"):
