@@ -46,12 +46,13 @@ def _steady_run(config, hook: str):
 
 
 def test_the_pipe_takes_the_contacts_of_its_lumped_twin(config):
-    # every inner node of the twin's 100 m elements, the capacities of the soft-string
-    # state (torsio.axial.string_contacts.axial_contacts): 9 depths, 5 below the
-    # vertical top (500 m) press on the borehole
+    # every node of the twin's 100 m elements, the capacities of the soft-string state
+    # (torsio.axial.string_contacts.axial_contacts): 10 depths, the 6 below the vertical
+    # top (500 m) press on the borehole; the last, at the pipe's bottom, takes the BHA's
+    # and the bit's share, on the last inner node of the pipe's grid
     contacts = config.axial.contacts
-    assert contacts.depths.tolist() == pytest.approx([100.0 * k for k in range(1, 10)])
-    assert contacts.count == 5
+    assert contacts.depths.tolist() == pytest.approx([100.0 * k for k in range(1, 11)])
+    assert contacts.count == 6
 
 
 @pytest.mark.parametrize("hook", ["weight", "speed"])
@@ -102,7 +103,7 @@ def test_cli_simulate_gives_the_pipe_friction(config, tmp_path, capsys):
     path.write_text(wave_well_text(), encoding="utf-8")
     assert main(["simulate", str(path), "--duration", "20", "--window", "10", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["string_contacts"]["count"] == 5
+    assert data["string_contacts"]["count"] == 6
     assert data["string_friction_work"] > 0.0
     assert data["contact_switches"] > 0
     assert data["growth_rate"] is None

@@ -46,12 +46,12 @@ from torsio.axial.energy_balance import EnergyBalance, chain_energy, energy_bala
 from torsio.axial.kernel import march
 from torsio.axial.run_setup import BitRotation, RunOptions, RunSetup, run_setup
 from torsio.axial.run_warnings import run_warnings
-from torsio.axial.stability import growth_rate_skipped
+from torsio.axial.stability import NO_PIPE_FRICTION_RATE, growth_rate_skipped
 from torsio.axial.steady import SteadyDrilling
 from torsio.axial.step_rule import DEFAULT_STEPS_PER_PERIOD
 from torsio.axial.torque_law import AxialBit, TorqueLawBit
 from torsio.axial.wave_assembly import WaveDrillingAssembly
-from torsio.axial.wave_setup import NO_PIPE_FRICTION_RATE, WaveRunSetup, wave_chunk, wave_run_setup
+from torsio.axial.wave_setup import WaveRunSetup, wave_chunk, wave_run_setup
 from torsio.axial.window_summary import WindowSummary, summarize
 from torsio.errors import ConfigError, SolverError
 from torsio.model.lumped import chain_matrix
@@ -442,9 +442,7 @@ def simulate_axial(
         energy = energy_balance(stats, start_energy, end_energy)
     rate, skipped = None, None  # a prescribed rotation has no growth rate
     if bit_rotation is None and not torque_law:
-        skipped = growth_rate_skipped(assembly) if growth_rate is None else None
-        if isinstance(assembly, WaveDrillingAssembly) and contacts is not None:
-            skipped = f"growth rate not computed: {NO_PIPE_FRICTION_RATE}"
+        skipped = growth_rate_skipped(assembly, contacts) if growth_rate is None else None
         if growth_rate or (growth_rate is None and skipped is None):
             rate = _growth_rate(assembly, bit, wob, rpm, boundary, contacts)
     result = AxialTransient(

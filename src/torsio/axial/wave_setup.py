@@ -69,14 +69,6 @@ __all__ = [
 ]
 
 
-NO_PIPE_FRICTION_RATE = (
-    "the distributed pipe's characteristic equation carries no friction along the string "
-    "(its growth rate would be the frictionless pipe's); the lumped chain of the same "
-    "[well] has it"
-)
-"""Why a run of the distributed pipe with contacts has no growth rate."""
-
-
 def _offsets(cells: NDArray[np.int64]) -> NDArray[np.int64]:
     return np.concatenate([[0], np.cumsum(cells + 1)]).astype(np.int64)
 

@@ -4,11 +4,11 @@ A ``[[section]]`` string with ``law = "rgd"`` is a lumped axial-torsional chain
 (:func:`torsio.config.axial.lumped_chain`); with ``[well]`` each of its nodes gets the
 Coulomb contact of its share of the string (:func:`torsio.axial.string_contacts.axial_contacts`,
 the normal force of the well's model at the run's weight on bit). The distributed axial pipe
-(``[discretization] strategy = "wave"``) gets a contact at every inner node of its lumped
-twin (elements of at most :data:`~torsio.axial.wave_assembly.DEFAULT_ELEMENT_LENGTH`), each
-with the share of the string down to half-way to the next (the last one's down to the bit:
-the rigid BHA's too); a ``[chain]`` has no diameters to press on the borehole with (refused
-by :func:`torsio.config.well.well_table`).
+(``[discretization] strategy = "wave"``) gets the contacts of its lumped twin's nodes
+(elements of at most :data:`~torsio.axial.wave_assembly.DEFAULT_ELEMENT_LENGTH`), each
+with the share of the string down to half-way to the next (the last one's, at the pipe's
+bottom, down to the bit: the rigid BHA's too); a ``[chain]`` has no diameters to press on
+the borehole with (refused by :func:`torsio.config.well.well_table`).
 
 Examples
 --------
@@ -46,8 +46,8 @@ def with_well(axial: AxialConfig, table: Mapping[str, Any], well: Wellbore | Non
     if isinstance(axial.assembly, WaveDrillingAssembly):
         if well is None or axial.string is None:
             raise ConfigError("well", "[well] needs a drill-string ([[section]]), not a [chain]")
-        inner = lumped_node_depths(axial.assembly.sections, DEFAULT_ELEMENT_LENGTH)[:-1]
-        return attrs.evolve(axial, contacts=axial_contacts(well, axial.string, inner))
+        depths = lumped_node_depths(axial.assembly.sections, DEFAULT_ELEMENT_LENGTH)
+        return attrs.evolve(axial, contacts=axial_contacts(well, axial.string, depths))
     if well is None or axial.sections is None or axial.element_length is None:
         raise ConfigError("well", "[well] needs a drill-string ([[section]]), not a [chain]")
     depths = lumped_node_depths(axial.sections.pipe, axial.element_length)
