@@ -52,7 +52,8 @@ class _Contacts:
         self.mass = np.diag(dynamics.mass_matrix)[self.nodes]
         self.rows = dynamics.states + 1 + 2 * self.nodes  # v of each contact node in y
         self.reference = float(dynamics.reference_speed)
-        self.code = np.zeros((1, self.nodes.size))  # law's state codes (one point)
+        self.codes = np.zeros((1, self.nodes.size))  # law's state codes, one point's
+        self.code = self.codes.reshape(-1)  # the same, per contact
         self._cache: tuple[float, np.ndarray, np.ndarray] | None = None
         self.offsets = np.zeros((2, self.nodes.size))
         self.switches = 0
@@ -74,13 +75,13 @@ class _Contacts:
     def friction(self) -> np.ndarray:
         """Friction torque of each moving contact [N m] (0 where stuck)."""
         out = np.empty((1, self.nodes.size))
-        law.frictions(self.code, self.static, self.dynamic, out)
-        return out[0]
+        law.frictions(self.codes, self.static, self.dynamic, out)
+        return out.reshape(-1)
 
     @property
     def stuck(self) -> np.ndarray:
         """Which contacts hold their node."""
-        return self.code[0] == 0.0
+        return self.code == 0.0
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         dy = self.free_rhs(t, y).copy()
@@ -102,23 +103,23 @@ class _Contacts:
     def start(self, y: np.ndarray) -> None:
         """States at the initial state: at rest stuck (until :meth:`prepare` finds it pushed
         beyond C_s), moving on the branch of its speed."""
-        law.start_codes(self.speeds(y)[None, :], self.static, self.thresholds, self.code)
+        law.start_codes(self.speeds(y)[None, :], self.static, self.thresholds, self.codes)
         self.prepare(0.0, y)
 
     def tolerances(self) -> np.ndarray:
         """How near 0 a margin counts as 0 (:meth:`margins`), (2, contacts)."""
         out = np.empty((1, 2, self.nodes.size))
-        law.tolerances(self.code, self.static, self.thresholds, np.array([self.reference]), out)
-        return out[0]
+        law.tolerances(self.codes, self.static, self.thresholds, np.array([self.reference]), out)
+        return out.reshape(2, -1)
 
     def apply(self, row: int, j: int, t: float, y: np.ndarray) -> None:
         """The switch of contact j whose margin ``row`` (:meth:`margins`) falls through 0; a
         node that sticks gets its speed set to exactly 0 in ``y``."""
         self.switches += 1
-        now = self.code[0, j]
+        now = self.code[j]
         holding = float(self.holding(t, y)[j])
-        self.code[0, j] = law.switched(now, row + 1, holding, self.static[j], self.threshold)
-        if self.code[0, j] == 0.0 and now != 0.0:
+        self.code[j] = law.switched(now, row + 1, holding, self.static[j], self.threshold)
+        if self.code[j] == 0.0 and now != 0.0:
             y[self.rows[j]] = -self.reference
         self._cache = None
 
@@ -152,9 +153,9 @@ class _Contacts:
         moving contact's speed crossing the threshold (1 where it cannot)."""
         holding = self.holding(t, y) if self.stuck.any() else np.zeros(self.nodes.size)
         out = np.empty((1, 2, self.nodes.size))
-        law.margins(self.code, self.static, self.thresholds, self.speeds(y)[None, :],
+        law.margins(self.codes, self.static, self.thresholds, self.speeds(y)[None, :],
                     holding[None, :], out)  # fmt: skip
-        return out[0]
+        return out.reshape(2, -1)
 
     def event(self) -> Callable[[float, np.ndarray], float]:
         """One event function for every contact: the least margin (:meth:`margins`, offset
