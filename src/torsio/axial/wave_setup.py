@@ -14,7 +14,9 @@ frequency by at most about the same fraction (docs/axial.md, "The distributed pi
 
 **Starts.** ``"steady"``: the pipe carrying W₀ and T₀ throughout (a uniform strain and
 twist gradient), every point at V₀ and Ω₀: p = F + Z v, m = F − Z v with (F, v) = (W₀, V₀)
-axially and (T₀, Ω₀) torsionally; the bit speed raised by ``perturbation``. ``"rest"``:
+axially and (T₀, Ω₀) torsionally (with contacts along the pipe, the bit's W_b and T_b, and
+above each contact its steady friction more); the bit speed raised by ``perturbation``.
+``"rest"``:
 the pipe at rest carrying W₀ axially (p = m = W₀), untwisted (p = m = 0), the bottom flat,
 the top drive turning at Ω₀ (and the speed hook moving at V₀) from t = 0.
 
@@ -242,7 +244,7 @@ def wave_run_setup(
         if on_steady:
             loads = np.array([friction.node_force, friction.node_torque])
             table[slot.CONTACT_VELOCITY], table[slot.CONTACT_SPEED] = v0, omega0
-    axial_bottom = steady.wob if on_steady else hook_force
+    axial_bottom = steady.wob if on_steady else float(wob)  # at rest: W₀ throughout
     axial_p, axial_m = _line_state(grid.axial_offsets, axial_z, axial_bottom, velocity,
                                    axial_nodes[: loads.shape[1]], loads[0])  # fmt: skip
     torsional_p, torsional_m = _line_state(grid.torsional_offsets, torsional_z, torque, speed,
