@@ -1,8 +1,9 @@
 """Coulomb friction along the string on the lumped axial-torsional chain (docs/axial.md,
 "Friction along the string"): one contact's set-valued step against its closed forms
-(torsio.axial.string_friction), steady drilling with friction (torsio.axial.steady_friction),
-the energy balance (torsio.axial.energy_balance), the break-off of torsio.well.break_off,
-and the built-in rgd_deviated_well.toml through the command line.
+(torsio.solvers.contact_law.cone_step), steady drilling with friction
+(torsio.axial.steady_friction), the energy balance (torsio.axial.energy_balance), the
+break-off of torsio.well.break_off, and the built-in rgd_deviated_well.toml through the
+command line.
 
 Every run is rgd_deviated_well.toml (torsio.examples.rgd_deviated_well_config: the stepped
 RGD string, 2.5 km, in the deviated well's survey; 24 nodes of at most 100 m), short.
@@ -20,12 +21,12 @@ import scipy.optimize
 
 from torsio.axial.run_setup import BitRotation
 from torsio.axial.steady_friction import friction_damping, friction_split, steady_with_friction
-from torsio.axial.string_friction import node_friction, sliding_speed
 from torsio.axial.transient import simulate_axial
 from torsio.cli import main
 from torsio.config.reading import parse_config_text
 from torsio.errors import ConfigError
 from torsio.examples import rgd_deviated_well_config
+from torsio.solvers.contact_law import cone_step, sliding_speed
 
 TEXT = resources.files("torsio").joinpath("data/rgd_deviated_well.toml").read_text(encoding="utf-8")
 
@@ -48,7 +49,7 @@ def test_sliding_step_against_the_closed_form_of_equal_metrics(free):
     mass, radius, step, force = 500.0, 0.0635, 1e-3, 3000.0
     velocity, tangential = free
     inertia = mass * radius**2
-    new_v, new_w, stuck = node_friction(
+    new_v, new_w, stuck = cone_step(
         velocity, tangential / radius, radius, 1 / mass, 1 / inertia, 4000.0, force, step, False
     )
     factor = 1.0 - step * force / (mass * math.hypot(velocity, tangential))
@@ -78,12 +79,12 @@ def test_contact_sticks_when_the_stopping_impulse_is_within_the_cone():
     velocity, speed = 0.004, 0.05
     stop = math.hypot(m * velocity, j * r * speed)
     just_above, just_below = stop / h * (1 + 1e-9), stop / h * (1 - 1e-9)
-    assert node_friction(velocity, speed, r, 1 / m, 1 / inertia, just_above, 0.5 * just_above,
+    assert cone_step(velocity, speed, r, 1 / m, 1 / inertia, just_above, 0.5 * just_above,
                          h, True) == (0.0, 0.0, True)  # fmt: skip
-    assert not node_friction(velocity, speed, r, 1 / m, 1 / inertia, just_below, 0.5 * just_below,
+    assert not cone_step(velocity, speed, r, 1 / m, 1 / inertia, just_below, 0.5 * just_below,
                              h, True)[2]  # fmt: skip
     # on the sliding branch the cone is F_d: the same F_s does not hold the node
-    assert not node_friction(velocity, speed, r, 1 / m, 1 / inertia, just_above, 0.5 * just_above,
+    assert not cone_step(velocity, speed, r, 1 / m, 1 / inertia, just_above, 0.5 * just_above,
                              h, False)[2]  # fmt: skip
 
 
@@ -276,16 +277,6 @@ def test_cli_simulate_and_map_give_the_string_friction(tmp_path, capsys):
 
 
 def test_refusals_name_the_key():
-    wave = TEXT.replace(
-        '[axial]\nhook = "weight"',
-        '[discretization]\nstrategy = "wave"\n\n[axial]\nhook = "weight"',
-    )
-    wave = wave.replace(
-        'element_length = "100 m"       # the lumped chain\'s longest element\n', ""
-    )
-    wave = wave.replace("[damping]\nbeta = 0.01", "[damping]\nbeta = 0.0")
-    with pytest.raises(ConfigError, match=r"well: .*distributed axial pipe carries no contacts"):
-        _config(wave)
     with pytest.raises(ConfigError, match=r"well\.friction_dynamic"):
         _config(TEXT.replace("friction_dynamic = 0.3\n", "friction_dynamic = 0.5\n"))
     with pytest.raises(ConfigError, match=r"well\.threshold_speed"):

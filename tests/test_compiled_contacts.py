@@ -94,7 +94,7 @@ def test_the_double_on_the_batch_engine(coulomb_node: System) -> None:
     batch = simulate_batch(coulomb_node, [0.0], [60.0], duration=5.0, steady_window=2.5,
                            steady_tolerance=0.0, **TIGHT)  # fmt: skip
     assert batch.engine == "compiled" and batch.ok.all()
-    # the least speed: 0, to the location's tolerance (contact_kernel.TOLERANCE (1 + Omega):
+    # the least speed: 0, to the location's tolerance (contact_law.TOLERANCE (1 + Omega):
     # the cubic of the step that ends where the node sticks; measured -7.0e-10 rad/s)
     assert abs(batch.bit_speed_min[0]) < 1e-9 * (1.0 + OMEGA)
     assert batch.severity[0] == pytest.approx(PEAK / (2.0 * OMEGA), rel=1e-7)
@@ -332,7 +332,8 @@ def test_a_switch_is_located_on_the_cubic_of_the_speed() -> None:
     # interpolant of its end values and slopes is that cubic): w(x) = 1 - 3x + x^3, whose
     # root in (0, 1) is 2 cos(4 pi / 9) = 0.347296...; contact_kernel.cubic_crossing aims at
     # half the tolerance below 0 and stops within a quarter of it
-    from torsio.solvers.contact_kernel import TOLERANCE, cubic_crossing
+    from torsio.solvers.contact_kernel import cubic_crossing
+    from torsio.solvers.contact_law import TOLERANCE
     from torsio.solvers.layouts import CHAIN_CONTACT_STATIC, CHAIN_CONTACT_THRESHOLD, CHAIN_ROWS
 
     chain = np.zeros((CHAIN_ROWS, 1))

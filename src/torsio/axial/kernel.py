@@ -18,7 +18,7 @@ at the velocity level over each step (Moreau's time stepping):
    T_b + I_b Ω_b/h). With a prescribed rotation Φ_b, Ω_b are set instead.
    3b. A node with a contact along the string (``contacts``, rows
    :data:`torsio.axial.layouts.CONTACT_ROW`, F_s > 0) takes its Coulomb friction on its free
-   (V_i, ω_i) (:func:`torsio.axial.string_friction.node_friction`; static branch while
+   (V_i, ω_i) (:func:`torsio.solvers.contact_law.cone_step`; static branch while
    |s|/r at the step's start is below ``settings[THRESHOLD_SPEED]``), at the bit after the
    bit's contacts; ``contact_stuck`` keeps each contact's state to count its switches. With
    contacts the axial dampers read the node below at the step's start.
@@ -65,8 +65,8 @@ import numpy as np
 from torsio.axial import bit_step
 from torsio.axial import layouts as slot
 from torsio.axial.history import append
-from torsio.axial.string_friction import node_friction
 from torsio.solvers.compiled import HAVE_NUMBA, njit
+from torsio.solvers.contact_law import cone_step
 
 __all__ = ["march", "march_signature"]
 
@@ -234,7 +234,7 @@ def march(
                     # 3b. the node's contact with the borehole, on its free (V, ω)
                     radius = contacts[slot.CONTACT_RADIUS, i]
                     sticky = math.hypot(v_start[i], radius * speed_start) < radius * threshold
-                    v[i], omega[i], stuck = node_friction(
+                    v[i], omega[i], stuck = cone_step(
                         v[i], omega[i], radius, axial[0, i], torsional[0, i],
                         contacts[slot.STATIC_FORCE, i], contacts[slot.SLIDING_FORCE, i], h, sticky,
                     )  # fmt: skip

@@ -40,6 +40,7 @@ __all__ = [
     "SAMPLE_COLUMNS",
     "STATS",
     "TOP_DRIVE",
+    "WAVE_CONTACT_ROW",
     "WAVE_SETTINGS",
 ]
 
@@ -223,10 +224,12 @@ WAVE_SETTINGS = (
     "axial_bottom_impedance",
     "torsional_top_impedance",
     "torsional_bottom_impedance",
+    "pipe_threshold_speed",
 )
 """The entries of the distributed pipe's ``settings`` (:mod:`torsio.axial.wave_kernel`):
 those of :data:`RUN_SETTINGS`, then m_b [kg], I_b [kg m²], Z of the top and bottom sections
-axially [N s/m] and torsionally [N m s/rad]."""
+axially [N s/m] and torsionally [N m s/rad], the string contacts' threshold speed
+[rad/s]."""
 
 (
     BHA_MASS,
@@ -235,7 +238,33 @@ axially [N s/m] and torsionally [N m s/rad]."""
     AXIAL_BOTTOM_IMPEDANCE,
     TORSIONAL_TOP_IMPEDANCE,
     TORSIONAL_BOTTOM_IMPEDANCE,
+    PIPE_THRESHOLD_SPEED,
 ) = range(len(RUN_SETTINGS), len(WAVE_SETTINGS))
+
+WAVE_CONTACT_ROW = (
+    *CONTACT_ROW,
+    "axial_node",
+    "torsional_node",
+    "axial_impedance",
+    "torsional_impedance",
+    "velocity",
+    "speed",
+    "stuck",
+)
+"""The rows of the distributed pipe's ``contacts`` (one column per contact,
+:func:`torsio.axial.wave_pipe.pipe_contacts`): those of :data:`CONTACT_ROW`, the contact's
+node in the axial and in the torsional line's state (as floats), Z there axially [N s/m]
+and torsionally [N m s/rad], its last step's V [m/s] and ω [rad/s], 1 while it is stuck."""
+
+(
+    AXIAL_NODE,
+    TORSIONAL_NODE,
+    AXIAL_IMPEDANCE,
+    TORSIONAL_IMPEDANCE,
+    CONTACT_VELOCITY,
+    CONTACT_SPEED,
+    CONTACT_STUCK,
+) = range(len(CONTACT_ROW), len(WAVE_CONTACT_ROW))
 
 BHA_STATE = ("position", "velocity", "angle", "speed")
 """The entries of the distributed pipe's ``bha``: U_b [m, down], V_b [m/s], Φ_b [rad],

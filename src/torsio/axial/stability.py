@@ -50,9 +50,18 @@ frequency, then a Newton solve per candidate): the deviated-well chain of
 (2026-12-05, 2-core AMD EPYC 2.0 GHz)."""
 
 
-def growth_rate_skipped(assembly: Any) -> str | None:
+NO_PIPE_FRICTION_RATE = (
+    "the distributed pipe's characteristic equation carries no friction along the string "
+    "(its growth rate would be the frictionless pipe's); the lumped chain of the same "
+    "[well] has it"
+)
+"""Why a run of the distributed pipe with contacts has no growth rate (refused if asked)."""
+
+
+def growth_rate_skipped(assembly: Any, contacts: Any = None) -> str | None:
     """Why a run does not find the growth rate of ``assembly`` unless asked: a lumped chain
-    of more than :data:`MAX_AUTO_DOFS` degrees of freedom; None when it does.
+    of more than :data:`MAX_AUTO_DOFS` degrees of freedom, or a distributed pipe with
+    ``contacts`` (:data:`NO_PIPE_FRICTION_RATE`); None when it does.
 
     Examples
     --------
@@ -61,7 +70,7 @@ def growth_rate_skipped(assembly: Any) -> str | None:
     True
     """
     if not isinstance(assembly, DrillingAssembly):
-        return None
+        return None if contacts is None else f"growth rate not computed: {NO_PIPE_FRICTION_RATE}"
     dofs = assembly.nodes + assembly.axial_dofs
     if dofs <= MAX_AUTO_DOFS:
         return None

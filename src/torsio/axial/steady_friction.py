@@ -1,7 +1,7 @@
 """Steady drilling with Coulomb friction along the string, in closed form.
 
 In steady drilling every node slides axially at the rate of penetration V₀ while it turns at
-Ω₀, so each contact's sliding friction F_d (:mod:`torsio.axial.string_friction`) splits
+Ω₀, so each contact's sliding friction F_d (:func:`torsio.solvers.contact_law.cone_step`) splits
 along its sliding direction ŝ₀ = (V₀, r Ω₀)/|s₀|:
 
     axial friction  F_a = F_d V₀/|s₀|,     friction torque  T_f = F_d r² Ω₀/|s₀|.

@@ -1,5 +1,5 @@
 """The capacities of a lumped chain's contacts with the borehole (the Python side of
-:mod:`torsio.axial.string_friction`).
+:func:`torsio.solvers.contact_law.cone_step`).
 
 Node i of the chain, at its depth below the string's top, stands for the string from
 half-way to the node above (the top, for the first) to half-way to the node below (the
@@ -32,14 +32,12 @@ from numpy.typing import NDArray
 from torsio.axial import layouts as slot
 from torsio.errors import ConfigError
 from torsio.model.arrays import read_only
+from torsio.well.break_off import friction_below
 from torsio.well.rotating_column import RotatingColumn
+from torsio.well.string_contacts import CONTACT_CELL_LENGTH, node_shares
 from torsio.well.wellbore import Wellbore
 
 __all__ = ["AxialContacts", "ContactsAtWob", "axial_contacts", "contact_rows"]
-
-CONTACT_CELL_LENGTH = 10.0
-"""Cell of the soft-string integrals the capacities are taken from [m] (as the torsional
-contacts: :data:`torsio.well.string_contacts.CONTACT_CELL_LENGTH`)."""
 
 
 @attrs.frozen(eq=False, repr=False)
@@ -56,6 +54,9 @@ class AxialContacts:
         |s|/r below which a contact is on its static branch [rad/s] (the well's).
     wob : float
         Weight on bit [N] of the normal force (0: off bottom).
+    depths : ndarray or None
+        Depth of every node [m below the string's top] (None: not given); the distributed
+        pipe places its contacts there.
     details : dict
         Where the capacities came from (for reports): normal-force model, totals.
     rebuild : callable or None
@@ -68,6 +69,7 @@ class AxialContacts:
     radius: NDArray[np.float64] = attrs.field(converter=read_only)
     threshold_speed: float = 0.5
     wob: float = 0.0
+    depths: NDArray[np.float64] | None = None
     details: dict[str, Any] = attrs.field(factory=dict)
     rebuild: Callable[[float], AxialContacts] | None = attrs.field(default=None)
 
@@ -183,12 +185,9 @@ def axial_contacts(
     per_cell_torque = column.friction_per_cell(wob)  # ∫ N r_o over each cell
     per_cell_force = per_cell_torque / column.radii  # ∫ N over each cell
     depths = float(md[0]) + np.asarray(node_depths, dtype=float)
-    edges = np.concatenate([[md[0]], 0.5 * (depths[:-1] + depths[1:]), [md[-1]]])
 
     def shares(per_cell: NDArray[np.float64], friction: NDArray[np.float64]) -> NDArray:
-        below = np.concatenate([np.cumsum((friction * per_cell)[::-1])[::-1], [0.0]])
-        levels = np.interp(edges, md, below)
-        return levels[:-1] - levels[1:]
+        return node_shares(md, friction_below(per_cell, friction), depths)
 
     mu_s, mu_d = well.friction_static_at(mid), well.friction_dynamic_at(mid)
     static, sliding = shares(per_cell_force, mu_s), shares(per_cell_force, mu_d)
@@ -203,6 +202,7 @@ def axial_contacts(
         radius=radius,
         threshold_speed=well.threshold_speed,
         wob=float(wob),
+        depths=np.asarray(node_depths, dtype=float),
         details={"normal_force": well.normal_force},
         rebuild=rebuild,
     )

@@ -46,7 +46,7 @@ from torsio.axial.energy_balance import EnergyBalance, chain_energy, energy_bala
 from torsio.axial.kernel import march
 from torsio.axial.run_setup import BitRotation, RunOptions, RunSetup, run_setup
 from torsio.axial.run_warnings import run_warnings
-from torsio.axial.stability import growth_rate_skipped
+from torsio.axial.stability import NO_PIPE_FRICTION_RATE, growth_rate_skipped
 from torsio.axial.steady import SteadyDrilling
 from torsio.axial.step_rule import DEFAULT_STEPS_PER_PERIOD
 from torsio.axial.torque_law import AxialBit, TorqueLawBit
@@ -208,6 +208,8 @@ class AxialTransient:
         rotation).
     contact_switches : int
         Stick ↔ slip switches of the string's contacts over the run (0 without them).
+    string_friction_work : float
+        The work of the friction along the string over the run [J] (0 without it).
     string_contacts, steady_friction : dict or None
         The contacts' totals (:meth:`~torsio.axial.string_contacts.AxialContacts.describe`)
         and what they take in steady drilling
@@ -229,13 +231,9 @@ class AxialTransient:
     warnings: tuple[str, ...] = ()
     energy: EnergyBalance | None = None
     contact_switches: int = 0
+    string_friction_work: float = 0.0
     string_contacts: dict[str, Any] | None = None
     steady_friction: dict[str, Any] | None = None
-
-    @property
-    def string_friction_work(self) -> float:
-        """The work of the friction along the string over the run [J] (0 without it)."""
-        return self.energy.string_friction_work if self.energy is not None else 0.0
 
     def __getattr__(self, name: str) -> Any:
         if name in _SUMMARY_NAMES:
@@ -392,10 +390,11 @@ def simulate_axial(
         The drill string the assembly was built from, for tunings that read the top pipe's
         impedance (``soft-torque``, ``z-torque`` defaults).
     contacts : AxialContacts, optional
-        Coulomb friction along the string at the chain's nodes
-        (:mod:`torsio.axial.string_contacts`; lumped assemblies only), its normal force
-        rebuilt at ``wob``. The growth rate is then that of the linearization with the
-        contacts' damping (:mod:`torsio.axial.steady_friction`).
+        Coulomb friction along the string at the chain's nodes, or at the distributed
+        pipe's inner nodes nearest their ``depths`` (:mod:`torsio.axial.string_contacts`),
+        its normal force rebuilt at ``wob``. The growth rate is then that of the
+        linearization with the contacts' damping (:mod:`torsio.axial.steady_friction`;
+        the distributed pipe has none with contacts).
     """
     wob, rpm = as_si(wob, "force", "wob"), as_rpm(rpm)  # "100 kN", "60 rpm" as in a file
     typical, _ = run_times(assembly, None, None)
@@ -427,14 +426,9 @@ def simulate_axial(
                 f"{bit_rotation!r} given; a prescribed rotation applies to lumped assemblies "
                 "only (expected None with a WaveDrillingAssembly)",
             )
-        if contacts is not None:
-            raise ConfigError(
-                "well",
-                "friction along the string is built for the lumped chain only: the "
-                "distributed axial pipe carries no contacts (expected contacts=None with a "
-                "WaveDrillingAssembly)",
-            )
-        setup = wave_run_setup(assembly, bit, wob, rpm, options)
+        if contacts is not None and growth_rate:
+            raise ConfigError("growth_rate", f"True given: {NO_PIPE_FRICTION_RATE}")
+        setup = wave_run_setup(assembly, bit, wob, rpm, options, contacts)
     else:
         setup = run_setup(assembly, bit, wob, rpm, options, bit_rotation, boundary, contacts)
     every = max(1, setup.steps // samples) if samples > 0 else 0
@@ -448,7 +442,7 @@ def simulate_axial(
         energy = energy_balance(stats, start_energy, end_energy)
     rate, skipped = None, None  # a prescribed rotation has no growth rate
     if bit_rotation is None and not torque_law:
-        skipped = growth_rate_skipped(assembly) if growth_rate is None else None
+        skipped = growth_rate_skipped(assembly, contacts) if growth_rate is None else None
         if growth_rate or (growth_rate is None and skipped is None):
             rate = _growth_rate(assembly, bit, wob, rpm, boundary, contacts)
     result = AxialTransient(
@@ -466,6 +460,7 @@ def simulate_axial(
         stability_of_held_top=rate is not None and _top_held_in_stability(boundary, setup.steady),
         energy=energy,
         contact_switches=int(stats[slot.CONTACT_SWITCHES]),
+        string_friction_work=float(stats[slot.FRICTION_WORK]),
         string_contacts=contacts.at_wob(wob).describe() if contacts is not None else None,
         steady_friction=_steady_friction(setup),
     )

@@ -14,6 +14,10 @@ step, from the state at t to t + h:
    m = p − 2 Z_a V.
 3. Torsional line likewise: the top drive turning at Ω₀, the BHA's I_b Ω' = p − Z_t Ω − T
    with the bit's no-backward rotation (:func:`torsio.axial.bit_step.forward_rotation`).
+   3b. The contacts along the pipe (``contacts``, rows
+   :data:`torsio.axial.layouts.WAVE_CONTACT_ROW`; none: zero columns) on the arriving waves
+   of both lines (:func:`torsio.axial.wave_pipe.pipe_contacts`), their work and switches
+   added to ``stats``.
 4. The bit's position and angle by the trapezoidal rule; the new bit state to the history.
 
 ``settings`` holds the entries named by :data:`torsio.axial.layouts.WAVE_SETTINGS`, at those
@@ -37,6 +41,7 @@ from torsio.axial.history import append
 from torsio.axial.wave_pipe import (
     advance,
     close_bottom,
+    pipe_contacts,
     set_top_force,
     set_top_velocity,
     smooth_end_terms,
@@ -59,6 +64,7 @@ def march(
     torsional_p,
     torsional_m,
     bha,
+    contacts,
     history,
     cursor,
     stats,
@@ -83,6 +89,7 @@ def march(
     )
     wf_max, tf_per_wf = bit[slot.FRICTION_WEIGHT], bit[slot.FRICTION_TORQUE_PER_WEIGHT]
     axial_end, torsional_end = axial_p.size - 1, torsional_p.size - 1
+    threshold = settings[slot.PIPE_THRESHOLD_SPEED]
     delayed = np.zeros(2)
     if first == 0:
         bit_step.start_window(stats)
@@ -130,6 +137,12 @@ def march(
         tf = tf_per_wf * wf
         omega_new, bit_torque = bit_step.forward_rotation(free, torque, tc, tf, inverse_inertia, h)
         close_bottom(torsional_p, torsional_m, zt_bottom, omega_new)
+        if contacts.shape[1] > 0:  # 3b. the contacts along the pipe
+            work, switches = pipe_contacts(
+                axial_p, axial_m, torsional_p, torsional_m, contacts, h, threshold
+            )
+            stats[slot.FRICTION_WORK] += work
+            stats[slot.CONTACT_SWITCHES] += switches
         # 4. the bit's position and angle, the history
         bha[slot.BHA_POSITION] = u + 0.5 * h * (v + v_new)
         bha[slot.BHA_VELOCITY] = v_new

@@ -26,6 +26,13 @@ At the bottom the pipe meets a lumped body moving at V: its force on the body is
 F = p − Z V, the arriving wave's force less a dashpot Z, and the wave sent back up is
 m = p − 2 Z V (:func:`close_bottom`).
 
+**Contacts along the pipe.** At an inner node of both lines, massless, the arriving p and m
+and the friction G on the node give its velocity from 2 Z v = p − m + G (the force above
+p − Z v, below m + Z v): the free velocity v* = (p − m)/(2 Z), and over a step h the
+friction acts as on a body of mass 2 Z h. :func:`pipe_contacts` solves each contact's
+axial and tangential velocity on the cone of :func:`torsio.solvers.contact_law.cone_step`
+with these masses and sends the waves p = m + 2 Z v down and m = p − 2 Z v up from it.
+
 The state of a line is ``p``, ``m``: every section's nodes from the top down, section s at
 ``offsets[s]`` … ``offsets[s + 1] − 1`` (a junction node once in each section).
 
@@ -45,15 +52,20 @@ Examples
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import NDArray
 
+from torsio.axial import layouts as slot
 from torsio.solvers.compiled import njit
+from torsio.solvers.contact_law import cone_step
 
 __all__ = [
     "advance",
     "close_bottom",
     "junction_rows",
+    "pipe_contacts",
     "set_top_force",
     "set_top_velocity",
     "smooth_end_terms",
@@ -124,3 +136,42 @@ def smooth_end_terms(
     """
     inverse = 1.0 / (mass + 0.5 * step * impedance)
     return velocity * (mass - 0.5 * step * impedance) * inverse, inverse
+
+
+@njit(cache=True, error_model="numpy", _nrt=False)
+def pipe_contacts(
+    axial_p, axial_m, torsional_p, torsional_m, contacts, step, threshold
+) -> tuple[float, float]:  # pragma: no cover - compiled
+    """The contacts along the pipe over one step ``step`` [s] on the arriving waves of both
+    lines, in place (``contacts``: rows :data:`torsio.axial.layouts.WAVE_CONTACT_ROW`; the
+    static branch while a contact's |s|/r at the step's start is below ``threshold``
+    [rad/s]). Returns the friction's work [J] and the stick-slip switches of the step."""
+    work = 0.0
+    switches = 0.0
+    for j in range(contacts.shape[1]):
+        ia, it = int(contacts[slot.AXIAL_NODE, j]), int(contacts[slot.TORSIONAL_NODE, j])
+        za, zt = contacts[slot.AXIAL_IMPEDANCE, j], contacts[slot.TORSIONAL_IMPEDANCE, j]
+        radius = contacts[slot.CONTACT_RADIUS, j]
+        last = math.hypot(
+            contacts[slot.CONTACT_VELOCITY, j], radius * contacts[slot.CONTACT_SPEED, j]
+        )
+        sticky = last < radius * threshold
+        static, sliding = contacts[slot.STATIC_FORCE, j], contacts[slot.SLIDING_FORCE, j]
+        free_velocity = (axial_p[ia] - axial_m[ia]) / (2.0 * za)
+        free_speed = (torsional_p[it] - torsional_m[it]) / (2.0 * zt)
+        velocity, speed, stuck = cone_step(
+            free_velocity, free_speed, radius, 1.0 / (2.0 * za * step), 1.0 / (2.0 * zt * step),
+            static, sliding, step, sticky,
+        )  # fmt: skip
+        arriving = axial_p[ia]
+        axial_p[ia] = axial_m[ia] + 2.0 * za * velocity
+        axial_m[ia] = arriving - 2.0 * za * velocity
+        arriving = torsional_p[it]
+        torsional_p[it] = torsional_m[it] + 2.0 * zt * speed
+        torsional_m[it] = arriving - 2.0 * zt * speed
+        if stuck != (contacts[slot.CONTACT_STUCK, j] != 0.0):
+            switches += 1.0
+        contacts[slot.CONTACT_STUCK, j] = 1.0 if stuck else 0.0
+        contacts[slot.CONTACT_VELOCITY, j], contacts[slot.CONTACT_SPEED, j] = velocity, speed
+        work += step * (static if sticky else sliding) * math.hypot(velocity, radius * speed)
+    return work, switches

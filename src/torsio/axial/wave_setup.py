@@ -14,7 +14,9 @@ frequency by at most about the same fraction (docs/axial.md, "The distributed pi
 
 **Starts.** ``"steady"``: the pipe carrying W₀ and T₀ throughout (a uniform strain and
 twist gradient), every point at V₀ and Ω₀: p = F + Z v, m = F − Z v with (F, v) = (W₀, V₀)
-axially and (T₀, Ω₀) torsionally; the bit speed raised by ``perturbation``. ``"rest"``:
+axially and (T₀, Ω₀) torsionally (with contacts along the pipe, the bit's W_b and T_b, and
+above each contact its steady friction more); the bit speed raised by ``perturbation``.
+``"rest"``:
 the pipe at rest carrying W₀ axially (p = m = W₀), untwisted (p = m = 0), the bottom flat,
 the top drive turning at Ω₀ (and the speed hook moving at V₀) from t = 0.
 
@@ -50,13 +52,23 @@ from torsio.axial import wave_kernel
 from torsio.axial.run_budget import check_run_work
 from torsio.axial.run_setup import BitStart, KernelSetup, RunOptions, kernel_setup
 from torsio.axial.steady import steady_drilling
+from torsio.axial.steady_friction import SteadyFriction, steady_with_friction
+from torsio.axial.string_contacts import AxialContacts
 from torsio.axial.torque_law import AxialBit, TorqueLawBit
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_pipe import junction_rows
 from torsio.errors import ConfigError
 from torsio.model.wave_grid import choose_time_step
 
-__all__ = ["PipeGrid", "WaveRunSetup", "pipe_grid", "run_wave", "wave_chunk", "wave_run_setup"]
+__all__ = [
+    "PipeGrid",
+    "WaveRunSetup",
+    "contact_nodes",
+    "pipe_grid",
+    "run_wave",
+    "wave_chunk",
+    "wave_run_setup",
+]
 
 
 def _offsets(cells: NDArray[np.int64]) -> NDArray[np.int64]:
@@ -114,11 +126,52 @@ def pipe_grid(assembly: WaveDrillingAssembly, max_step: float) -> PipeGrid:
 
 
 def _line_state(
-    offsets: NDArray[np.int64], impedances: NDArray[np.float64], force: float, velocity: float
+    offsets: NDArray[np.int64],
+    impedances: NDArray[np.float64],
+    force: float,
+    velocity: float,
+    nodes: NDArray[np.int64],
+    loads: NDArray[np.float64],
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """p, m of a line carrying ``force`` everywhere and moving at ``velocity``."""
+    """p, m of a line moving at ``velocity`` that carries ``force`` at its bottom, and
+    above each contact node ``nodes`` its friction ``loads`` more (the pair stored at a
+    contact node is the one leaving it: p from the force below it, m from the one above)."""
     z = np.repeat(impedances, np.diff(offsets))
-    return force + z * velocity, force - z * velocity
+    below = np.full(z.size, float(force))
+    above = below.copy()
+    for node, load in zip(nodes, loads, strict=True):
+        below[:node] += load
+        above[: node + 1] += load
+    return below + z * velocity, above - z * velocity
+
+
+def contact_nodes(
+    offsets: NDArray[np.int64], lengths: NDArray[np.float64], depths: NDArray[np.float64]
+) -> NDArray[np.int64]:
+    """The node of a line's state nearest each depth [m below the pipe's top] among the
+    inner nodes of its section (not a junction, nor an end); a ConfigError naming
+    ``well`` when a section has none or two contacts share a node."""
+    tops = np.concatenate([[0.0], np.cumsum(lengths)])
+    nodes = []
+    for depth in depths:
+        s = min(int(np.searchsorted(tops, depth, side="right")) - 1, lengths.size - 1)
+        cells = int(offsets[s + 1] - offsets[s] - 1)
+        if cells < 2:
+            raise ConfigError(
+                "well",
+                f"a contact at {depth:.6g} m falls in pipe section {s + 1}, whose grid has no "
+                "inner node to carry it (expected at least two cells: a smaller step)",
+            )
+        k = int(np.clip(round((depth - tops[s]) / lengths[s] * cells), 1, cells - 1))
+        nodes.append(int(offsets[s]) + k)
+    found = np.array(nodes, dtype=np.int64)
+    if np.unique(found).size != found.size:
+        raise ConfigError(
+            "well",
+            "two contacts along the pipe fall on one node of its grid (expected contacts "
+            "farther apart than its cells)",
+        )
+    return found
 
 
 @attrs.frozen(eq=False)
@@ -133,14 +186,27 @@ class WaveRunSetup(KernelSetup):
     torsional_p: NDArray[np.float64]
     torsional_m: NDArray[np.float64]
     bha: NDArray[np.float64]
+    contacts: NDArray[np.float64] = attrs.field(
+        factory=lambda: np.zeros((len(slot.WAVE_CONTACT_ROW), 0))
+    )
+    friction: SteadyFriction | None = None
 
 
 def wave_run_setup(
-    assembly: WaveDrillingAssembly, bit: AxialBit, wob: float, rpm: float, options: RunOptions
+    assembly: WaveDrillingAssembly,
+    bit: AxialBit,
+    wob: float,
+    rpm: float,
+    options: RunOptions,
+    contacts: AxialContacts | None = None,
 ) -> WaveRunSetup:
     """The grid, the initial state and the history of a run (see the module docstring) at
     ``wob`` [N] and ``rpm`` [rev/min], set up as ``options`` say; the RGD bit only (a law of
     the torque alone runs on a lumped chain, a ConfigError naming ``bit_rock.law``).
+    ``contacts``: the pipe's contacts with the borehole at their ``depths``
+    (:mod:`torsio.axial.string_contacts`, the normal force at ``wob``), each on the inner
+    node of both lines nearest it (:func:`contact_nodes`); the steady start then carries
+    their steady friction (:mod:`torsio.axial.steady_friction`).
     """
     if isinstance(bit, TorqueLawBit):
         raise ConfigError(
@@ -148,7 +214,12 @@ def wave_run_setup(
             f"{bit.name!r} is a law of the torque alone: it runs on a lumped chain only "
             "(expected a DrillingAssembly, or law = 'rgd' on the distributed pipe)",
         )
-    steady = steady_drilling(bit, wob, rpm)
+    friction = None
+    if contacts is None:
+        steady = steady_drilling(bit, wob, rpm)
+    else:
+        contacts = contacts.at_wob(wob)
+        steady, friction = steady_with_friction(bit, wob, rpm, contacts, assembly.hook)
     options.check()
     fastest = assembly.fastest_rate()
     grid = pipe_grid(assembly, options.largest_step(bit, assembly.bha_mass, fastest))
@@ -160,8 +231,24 @@ def wave_run_setup(
     axial_z, torsional_z = assembly.axial_impedances, assembly.torsional_impedances
     speed, velocity = (omega0, v0) if on_steady else (0.0, 0.0)
     torque = steady.bit_torque if on_steady else 0.0
-    axial_p, axial_m = _line_state(grid.axial_offsets, axial_z, wob, velocity)
-    torsional_p, torsional_m = _line_state(grid.torsional_offsets, torsional_z, torque, speed)
+    hook_force = friction.hook_force if friction is not None else float(wob)
+    table = np.zeros((len(slot.WAVE_CONTACT_ROW), 0))
+    loads = np.zeros((2, 0))
+    axial_nodes = torsional_nodes = np.zeros(0, dtype=np.int64)
+    if contacts is not None and friction is not None:
+        if contacts.depths is None:
+            raise ConfigError("well", "the pipe's contacts need their depths (axial_contacts)")
+        axial_nodes = contact_nodes(grid.axial_offsets, assembly.lengths, contacts.depths)
+        torsional_nodes = contact_nodes(grid.torsional_offsets, assembly.lengths, contacts.depths)
+        table = _contact_table(contacts, axial_nodes, torsional_nodes, assembly, grid)
+        if on_steady:
+            loads = np.array([friction.node_force, friction.node_torque])
+            table[slot.CONTACT_VELOCITY], table[slot.CONTACT_SPEED] = v0, omega0
+    axial_bottom = steady.wob if on_steady else float(wob)  # at rest: W₀ throughout
+    axial_p, axial_m = _line_state(grid.axial_offsets, axial_z, axial_bottom, velocity,
+                                   axial_nodes[: loads.shape[1]], loads[0])  # fmt: skip
+    torsional_p, torsional_m = _line_state(grid.torsional_offsets, torsional_z, torque, speed,
+                                           torsional_nodes[: loads.shape[1]], loads[1])  # fmt: skip
     bit_speed = speed * (1.0 + options.perturbation) if on_steady else 0.0
     torsional_m[-1] = torsional_p[-1] - 2.0 * torsional_z[-1] * bit_speed  # the bit's end
     bha = np.array([0.0, velocity, 0.0, bit_speed])
@@ -178,6 +265,8 @@ def wave_run_setup(
     settings[slot.AXIAL_BOTTOM_IMPEDANCE] = axial_z[-1]
     settings[slot.TORSIONAL_TOP_IMPEDANCE] = torsional_z[0]
     settings[slot.TORSIONAL_BOTTOM_IMPEDANCE] = torsional_z[-1]
+    settings[slot.HOOK_WEIGHT] = hook_force
+    settings[slot.PIPE_THRESHOLD_SPEED] = contacts.threshold_speed if contacts is not None else 0.0
     return WaveRunSetup(
         **attrs.asdict(kernel, recurse=False),
         grid=grid,
@@ -186,7 +275,29 @@ def wave_run_setup(
         torsional_p=torsional_p,
         torsional_m=torsional_m,
         bha=bha,
+        contacts=table,
+        friction=friction,
     )
+
+
+def _contact_table(
+    contacts: AxialContacts,
+    axial_nodes: NDArray[np.int64],
+    torsional_nodes: NDArray[np.int64],
+    assembly: WaveDrillingAssembly,
+    grid: PipeGrid,
+) -> NDArray[np.float64]:
+    """The kernel's ``contacts`` (:data:`torsio.axial.layouts.WAVE_CONTACT_ROW`), at rest."""
+    table = np.zeros((len(slot.WAVE_CONTACT_ROW), axial_nodes.size))
+    table[slot.STATIC_FORCE] = contacts.static_force
+    table[slot.SLIDING_FORCE] = contacts.sliding_force
+    table[slot.CONTACT_RADIUS] = contacts.radius
+    table[slot.AXIAL_NODE], table[slot.TORSIONAL_NODE] = axial_nodes, torsional_nodes
+    sections_a = np.searchsorted(grid.axial_offsets, axial_nodes, side="right") - 1
+    sections_t = np.searchsorted(grid.torsional_offsets, torsional_nodes, side="right") - 1
+    table[slot.AXIAL_IMPEDANCE] = assembly.axial_impedances[sections_a]
+    table[slot.TORSIONAL_IMPEDANCE] = assembly.torsional_impedances[sections_t]
+    return table
 
 
 def run_wave(setup: WaveRunSetup, samples: NDArray[np.float64], sample_every: int) -> NDArray:
@@ -221,6 +332,7 @@ def wave_chunk(
         setup.torsional_p,
         setup.torsional_m,
         setup.bha,
+        setup.contacts,
         setup.history,
         setup.cursor,
         stats,

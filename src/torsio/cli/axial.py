@@ -191,7 +191,7 @@ def run_map(args: argparse.Namespace, config: Any, wob: Any, rpm: Any) -> int:
     if args.engine not in (None, "auto", "numba"):
         raise ConfigError("--engine", f"{args.engine!r}: the axial engine is compiled (numba)")
     axial = config.axial
-    skipped = growth_rate_skipped(axial.assembly) if axial.bit.needs_axial else None
+    skipped = growth_rate_skipped(axial.assembly, axial.contacts) if axial.bit.needs_axial else None
     if skipped is not None:  # the same at every point: said once
         print(f"torsio map: warning: {skipped}", file=sys.stderr)
     start = time.perf_counter()

@@ -4,9 +4,11 @@ A ``[[section]]`` string with ``law = "rgd"`` is a lumped axial-torsional chain
 (:func:`torsio.config.axial.lumped_chain`); with ``[well]`` each of its nodes gets the
 Coulomb contact of its share of the string (:func:`torsio.axial.string_contacts.axial_contacts`,
 the normal force of the well's model at the run's weight on bit). The distributed axial pipe
-(``[discretization] strategy = "wave"``) carries no contacts and refuses ``[well]``; a
-``[chain]`` has no diameters to press on the borehole with (refused by
-:func:`torsio.config.well.well_table`).
+(``[discretization] strategy = "wave"``) gets the contacts of its lumped twin's nodes
+(elements of at most :data:`~torsio.axial.wave_assembly.DEFAULT_ELEMENT_LENGTH`), each
+with the share of the string down to half-way to the next (the last one's, at the pipe's
+bottom, down to the bit: the rigid BHA's too); a ``[chain]`` has no diameters to press on
+the borehole with (refused by :func:`torsio.config.well.well_table`).
 
 Examples
 --------
@@ -24,28 +26,28 @@ from typing import Any
 import attrs
 
 from torsio.axial.string_contacts import axial_contacts
-from torsio.axial.wave_assembly import WaveDrillingAssembly, lumped_node_depths
+from torsio.axial.wave_assembly import (
+    DEFAULT_ELEMENT_LENGTH,
+    WaveDrillingAssembly,
+    lumped_node_depths,
+)
 from torsio.config.axial import AxialConfig
 from torsio.errors import ConfigError
 from torsio.well.wellbore import Wellbore
 
 __all__ = ["with_well"]
 
-WAVE_WELL_REFUSAL = (
-    "[well] with [discretization] strategy = 'wave': the distributed axial pipe carries no "
-    "contacts along the string (its lines have no friction yet); remove [well], or choose "
-    "the lumped chain (another strategy), whose nodes take the well's Coulomb friction"
-)
-"""Why the distributed axial pipe refuses ``[well]`` (the message of ``well``)."""
-
 
 def with_well(axial: AxialConfig, table: Mapping[str, Any], well: Wellbore | None) -> AxialConfig:
-    """``axial`` with the contacts of its lumped chain in ``well`` (the parsed ``[well]``
-    of ``table``; None: absent, ``axial`` unchanged)."""
+    """``axial`` with the contacts of its lumped chain, or of its distributed pipe, in
+    ``well`` (the parsed ``[well]`` of ``table``; None: absent, ``axial`` unchanged)."""
     if "well" not in table:
         return axial
     if isinstance(axial.assembly, WaveDrillingAssembly):
-        raise ConfigError("well", WAVE_WELL_REFUSAL)
+        if well is None or axial.string is None:
+            raise ConfigError("well", "[well] needs a drill-string ([[section]]), not a [chain]")
+        depths = lumped_node_depths(axial.assembly.sections, DEFAULT_ELEMENT_LENGTH)
+        return attrs.evolve(axial, contacts=axial_contacts(well, axial.string, depths))
     if well is None or axial.sections is None or axial.element_length is None:
         raise ConfigError("well", "[well] needs a drill-string ([[section]]), not a [chain]")
     depths = lumped_node_depths(axial.sections.pipe, axial.element_length)

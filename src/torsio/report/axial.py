@@ -126,7 +126,7 @@ def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
     held = held and speed_loop(top, steady.bit_torque, steady.bit_speed) is None
     growth = {"growth_rate": result.growth_rate, "stable": result.stable, "twin_growth_rate": None}
     model = axial.stability_model
-    if isinstance(axial.assembly, WaveDrillingAssembly):  # its own characteristic equation
+    if isinstance(axial.assembly, WaveDrillingAssembly) and contacts is None:  # its own equation
         from torsio.axial.wave_stability import distributed_stability
 
         exact = distributed_stability(axial.assembly, axial.bit, wob, rpm, twin=chain)

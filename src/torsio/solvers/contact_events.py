@@ -1,14 +1,12 @@
 """Runs of a lumped chain with Coulomb contacts along the string: scipy between switches.
 
-Each contact of :attr:`torsio.physics.dynamics.Dynamics.contacts` is in one state: stuck
-(its node's absolute speed held at 0, the friction the torque that holds it, at most the
-static capacity C_s), slipping slowly (0 < |w| < w_th: F = C_s sign w) or sliding
-(|w| >= w_th: F = C_d sign w): the law of Aarsnes & Shor (2018) as the wave model solves
-it (:mod:`torsio.solvers.wave_contacts`). Between switches the equations are smooth and
-``solve_ivp`` integrates them; every switch is an event it locates (a speed reaching 0
-or w_th, a stuck node's holding torque reaching C_s), where the run restarts in the new
-states. A node that sticks gets a speed of exactly 0 and the equation w' = 0: nothing
-creeps or leaks past it. Lumped mass only (a contact's friction acts on its node alone).
+Each contact of :attr:`torsio.physics.dynamics.Dynamics.contacts` follows the event form of
+:mod:`torsio.solvers.contact_law` (Aarsnes & Shor 2018): stuck, slipping slowly on C_s or
+sliding on C_d. Between switches the equations are smooth and ``solve_ivp`` integrates
+them; every switch is an event it locates (a speed reaching 0 or w_th, a stuck node's
+holding torque reaching C_s), where the run restarts in the new states. A node that sticks
+gets a speed of exactly 0 and the equation w' = 0: nothing creeps or leaks past it. Lumped
+mass only (a contact's friction acts on its node alone).
 
 The compiled RODAS4 engine runs the same law (:mod:`torsio.solvers.contact_kernel`) and
 is what ``simulate`` uses by default; this module is the path of the scipy methods
@@ -32,10 +30,10 @@ from torsio.analysis.budget import BudgetExceeded, EvaluationBudget
 from torsio.analysis.simulation_options import SimulationOptions
 from torsio.errors import ConfigError, SolverError
 from torsio.physics.dynamics import Dynamics
+from torsio.solvers import contact_law as law
 
 __all__ = ["contact_method", "integrate_with_contacts"]
 
-STUCK, SLOW, FAST = 0, 1, 2
 MAX_SWITCHES_PER_SAMPLE = 50
 """Contact switches allowed per output sample before a run is reported as chattering."""
 
@@ -50,11 +48,12 @@ class _Contacts:
         self.static = np.asarray(contacts.static, dtype=float)[self.nodes]
         self.dynamic = np.asarray(contacts.dynamic, dtype=float)[self.nodes]
         self.threshold = float(contacts.threshold_speed)
+        self.thresholds = np.full(self.nodes.size, self.threshold)
         self.mass = np.diag(dynamics.mass_matrix)[self.nodes]
         self.rows = dynamics.states + 1 + 2 * self.nodes  # v of each contact node in y
         self.reference = float(dynamics.reference_speed)
-        self.state = np.full(self.nodes.size, STUCK)
-        self.sign = np.zeros(self.nodes.size)
+        self.codes = np.zeros((1, self.nodes.size))  # law's state codes, one point's
+        self.code = self.codes.reshape(-1)  # the same, per contact
         self._cache: tuple[float, np.ndarray, np.ndarray] | None = None
         self.offsets = np.zeros((2, self.nodes.size))
         self.switches = 0
@@ -75,19 +74,25 @@ class _Contacts:
 
     def friction(self) -> np.ndarray:
         """Friction torque of each moving contact [N m] (0 where stuck)."""
-        capacity = np.where(self.state == SLOW, self.static, self.dynamic)
-        return np.where(self.state == STUCK, 0.0, self.sign * capacity)
+        out = np.empty((1, self.nodes.size))
+        law.frictions(self.codes, self.static, self.dynamic, out)
+        return out.reshape(-1)
+
+    @property
+    def stuck(self) -> np.ndarray:
+        """Which contacts hold their node."""
+        return self.code == 0.0
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         dy = self.free_rhs(t, y).copy()
         dy[self.rows] -= self.friction() / self.mass
-        dy[self.rows[self.state == STUCK]] = 0.0
+        dy[self.rows[self.stuck]] = 0.0
         return dy
 
     def jacobian(self, t: float, y: np.ndarray) -> Any:
         """d(dy/dt)/dy in the present states: a stuck node's row is zero (sparse)."""
         keep = np.ones(self.dynamics.size)
-        keep[self.rows[self.state == STUCK]] = 0.0
+        keep[self.rows[self.stuck]] = 0.0
         return (scipy.sparse.diags(keep) @ self.dynamics.jacobian(t, y)).tocsc()
 
     def speeds(self, y: np.ndarray) -> np.ndarray:
@@ -95,49 +100,27 @@ class _Contacts:
         return self.reference + y[self.rows]
 
     # --- the switches --------------------------------------------------------------------
-    def moving(self, j: int, direction: float) -> None:
-        """Contact j starts to move in ``direction`` (+1 or -1) from rest."""
-        self.state[j] = SLOW if self.threshold > 0.0 else FAST
-        self.sign[j] = direction
-
-    def at_rest(self, j: int, t: float, y: np.ndarray) -> None:
-        """Contact j has reached speed 0: it sticks if its static capacity holds it, else it
-        turns the other way; a stuck node's speed is set to exactly 0 in ``y``."""
-        torque = float(self.holding(t, y)[j])
-        if abs(torque) < self.static[j]:
-            self.state[j] = STUCK
-            self.sign[j] = 0.0
-            y[self.rows[j]] = -self.reference
-        else:
-            self.moving(j, float(np.sign(torque)))
-
     def start(self, y: np.ndarray) -> None:
         """States at the initial state: at rest stuck (until :meth:`prepare` finds it pushed
         beyond C_s), moving on the branch of its speed."""
-        speed = self.speeds(y)
-        for j in range(self.nodes.size):
-            if speed[j] == 0.0:
-                self.state[j], self.sign[j] = STUCK, 0.0
-            else:
-                self.sign[j] = np.sign(speed[j])
-                self.state[j] = FAST if abs(speed[j]) >= self.threshold else SLOW
+        law.start_codes(self.speeds(y)[None, :], self.static, self.thresholds, self.codes)
         self.prepare(0.0, y)
 
     def tolerances(self) -> np.ndarray:
-        """How near 0 a margin counts as 0 (:meth:`margins`): 1e-9 of its scale."""
-        speed = 1e-9 * (1.0 + abs(self.reference) + self.threshold)
-        first = np.where(self.state == STUCK, 1e-9 * self.static, speed)
-        return np.stack([first, np.full(self.nodes.size, speed)])
+        """How near 0 a margin counts as 0 (:meth:`margins`), (2, contacts)."""
+        out = np.empty((1, 2, self.nodes.size))
+        law.tolerances(self.codes, self.static, self.thresholds, np.array([self.reference]), out)
+        return out.reshape(2, -1)
 
     def apply(self, row: int, j: int, t: float, y: np.ndarray) -> None:
-        """The switch of contact j whose margin ``row`` (:meth:`margins`) falls through 0."""
+        """The switch of contact j whose margin ``row`` (:meth:`margins`) falls through 0; a
+        node that sticks gets its speed set to exactly 0 in ``y``."""
         self.switches += 1
-        if self.state[j] == STUCK:
-            self.moving(j, float(np.sign(self.holding(t, y)[j])))
-        elif row == 0:
-            self.at_rest(j, t, y)
-        else:
-            self.state[j] = FAST if self.state[j] == SLOW else SLOW
+        now = self.code[j]
+        holding = float(self.holding(t, y)[j])
+        self.code[j] = law.switched(now, row + 1, holding, self.static[j], self.threshold)
+        if self.code[j] == 0.0 and now != 0.0:
+            y[self.rows[j]] = -self.reference
         self._cache = None
 
     def prepare(self, t: float, y: np.ndarray) -> None:
@@ -165,21 +148,14 @@ class _Contacts:
         self.offsets = np.where(margins <= tolerance, tolerance - margins, 0.0)
 
     def margins(self, t: float, y: np.ndarray) -> np.ndarray:
-        """Per contact, two margins that fall through 0 at a switch: (a) a moving contact's
-        speed reaching 0, a stuck one's holding torque reaching C_s [N m]; (b) a moving
-        contact's speed crossing the threshold (1 where it cannot)."""
-        moving = self.sign * self.speeds(y)
-        stuck = self.state == STUCK
-        first = moving.copy()
-        if stuck.any():
-            first[stuck] = self.static[stuck] - np.abs(self.holding(t, y)[stuck])
-        second = np.ones_like(moving)
-        slow = self.state == SLOW
-        second[slow] = self.threshold - moving[slow]
-        if self.threshold > 0.0:
-            fast = self.state == FAST
-            second[fast] = moving[fast] - self.threshold
-        return np.stack([first, second])
+        """Per contact, the two margins of :func:`law.margin` (2, contacts): (a) a moving
+        contact's speed reaching 0, a stuck one's holding torque reaching C_s [N m]; (b) a
+        moving contact's speed crossing the threshold (1 where it cannot)."""
+        holding = self.holding(t, y) if self.stuck.any() else np.zeros(self.nodes.size)
+        out = np.empty((1, 2, self.nodes.size))
+        law.margins(self.codes, self.static, self.thresholds, self.speeds(y)[None, :],
+                    holding[None, :], out)  # fmt: skip
+        return out.reshape(2, -1)
 
     def event(self) -> Callable[[float, np.ndarray], float]:
         """One event function for every contact: the least margin (:meth:`margins`, offset

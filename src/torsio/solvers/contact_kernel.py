@@ -1,10 +1,8 @@
 """Coulomb contacts along the string in the compiled RODAS4 kernel (:mod:`torsio.solvers.rodas`).
 
-The law is that of :mod:`torsio.solvers.contact_events` (Aarsnes & Shor 2018): a contact
-node is stuck (its absolute speed w = Omega_ref + v held at exactly 0, the friction the
-torque H that holds it, |H| <= C_s), slow (0 < |w| < w_th: friction C_s sign w) or fast
-(|w| >= w_th: C_d sign w). Each node's state sits in row ``VEC_CONTACT_STATE`` of the work
-space: 0 stuck (or no contact: C_s = 0), +-1 slow, +-2 fast, the sign that of w.
+The law is :mod:`torsio.solvers.contact_law`'s event form (Aarsnes & Shor 2018): each
+node's state code sits in row ``VEC_CONTACT_STATE`` of the work space: 0 stuck (or no
+contact: C_s = 0), +-1 slow, +-2 fast, the sign that of w = Omega_ref + v.
 
 Within a step the states are fixed, so the equations are smooth: a moving contact adds
 the constant torque -C sign w to its node (:func:`add_friction`); a stuck node's speed
@@ -14,22 +12,21 @@ its increment is 0, so the elimination still holds), while its twist moves at
 v_i = -Omega_ref. The holding torque H_i is the node's force without friction (lumped
 mass only: [I] diagonal).
 
-After a step that passes the error test, :func:`check_step` evaluates each contact's
-margins at the step's end (a moving node's speed sign w, or a stuck node's C_s - |H|;
-and a moving node's distance to w_th). One falling through minus its tolerance
-(:data:`TOLERANCE` of its scale) rejects the step, which is retried shortened to the
-crossing, aimed at half the tolerance below 0 on the step's cubic Hermite interpolant of
-the margin's quantity (:func:`cubic_crossing`: a moving node's speed, from its
-accelerations at both ends; a stuck node's holding torque, from its rate at both ends,
-:func:`holding_rate`), so that the retry mostly lands within the tolerance at once (the
-chord of the margin falls short or overshoots where the margin curves, and costs more
+After a step that passes the error test, :func:`check_step` evaluates each contact's margins
+at the step's end (a moving node's speed sign w, or a stuck node's C_s - |H|; and a moving
+node's distance to w_th). One falling through minus its tolerance
+(:data:`torsio.solvers.contact_law.TOLERANCE` of its scale) rejects the step, which is
+retried shortened to the crossing, aimed at half the tolerance below 0 on the step's cubic
+Hermite interpolant of the margin's quantity (:func:`cubic_crossing`: a moving node's speed,
+from its accelerations at both ends; a stuck node's holding torque, from its rate at both
+ends, :func:`holding_rate`), so that the retry mostly lands within the tolerance at once
+(the chord of the margin falls short or overshoots where the margin curves, and costs more
 retries: docs/performance.md); a step is accepted when every margin at its end is above
-minus its tolerance,
-and the contacts whose margin is then within it and falling switch (:func:`switch`). A
-node that sticks gets v_i = -Omega_ref exactly. A margin already below its tolerance at
-the step's start switches there (the run starts, or a node just set moving turns back).
-The friction's work over a step is exact: its torque is constant, so C |delta theta|.
-An accepted step's end forces are those :func:`check_step` computed there
+minus its tolerance, and the contacts whose margin is then within it and falling switch
+(:func:`switch`). A node that sticks gets v_i = -Omega_ref exactly. A margin already below
+its tolerance at the step's start switches there (the run starts, or a node just set moving
+turns back). The friction's work over a step is exact: its torque is constant, so C |delta
+theta|. An accepted step's end forces are those :func:`check_step` computed there
 (:func:`restart_at_end`).
 """
 
@@ -37,6 +34,7 @@ from __future__ import annotations
 
 import math
 
+from torsio.solvers import contact_law as law
 from torsio.solvers.chain_kernel import accelerations, forces
 from torsio.solvers.compiled import njit
 from torsio.solvers.cycles import hermite
@@ -53,7 +51,6 @@ from torsio.solvers.layouts import (
 )
 
 __all__ = [
-    "TOLERANCE",
     "add_friction",
     "check_step",
     "cubic_crossing",
@@ -68,10 +65,6 @@ __all__ = [
     "zero_stuck",
 ]
 
-TOLERANCE = 1e-9
-"""How near 0 a switch's margin counts as 0, relative to its scale: 1 + |Omega_ref| + w_th
-[rad/s] for a speed, C_s [N m] for a holding torque (as in :mod:`contact_events`)."""
-
 
 @njit(cache=True, error_model="numpy", _nrt=False)
 def start_contacts(chain, omega, v, state) -> bool:
@@ -81,10 +74,7 @@ def start_contacts(chain, omega, v, state) -> bool:
         state[i] = 0.0
         if chain[CHAIN_CONTACT_STATIC, i] > 0.0:
             found = True
-            speed = omega + v[i]
-            if speed != 0.0:
-                fast = abs(speed) >= chain[CHAIN_CONTACT_THRESHOLD, i]
-                state[i] = math.copysign(2.0 if fast else 1.0, speed)
+            state[i] = law.start_code(omega + v[i], chain[CHAIN_CONTACT_THRESHOLD, i])
     return found
 
 
@@ -97,11 +87,7 @@ def is_stuck(chain, state, i) -> bool:
 @njit(cache=True, error_model="numpy", _nrt=False, inline="always")
 def _friction(chain, state, i) -> float:
     """Node i's friction torque in its state [N m] (0 stuck or without a contact)."""
-    code = state[i]
-    if code == 0.0:
-        return 0.0
-    slow = abs(code) == 1.0
-    return math.copysign(chain[CHAIN_CONTACT_STATIC if slow else CHAIN_CONTACT_DYNAMIC, i], code)
+    return law.friction(state[i], chain[CHAIN_CONTACT_STATIC, i], chain[CHAIN_CONTACT_DYNAMIC, i])
 
 
 @njit(cache=True, error_model="numpy", _nrt=False, inline="always")
@@ -161,17 +147,9 @@ def restart_at_end(chain, f1, fz1, f0v, f0z, mpiv, mlow, acc, state) -> None:
 @njit(cache=True, error_model="numpy", _nrt=False, inline="always")
 def _margin(chain, state, omega, speed, holding, i, k) -> float:
     """Margin k of node i (0: speed or holding torque, 1: threshold), falling through 0 at
-    its switch; 1.0 where it cannot switch."""
-    code = state[i]
-    if code == 0.0:
-        return chain[CHAIN_CONTACT_STATIC, i] - abs(holding) if k == 0 else 1.0
-    moving = math.copysign(1.0, code) * (omega + speed)
-    if k == 0:
-        return moving
-    threshold = chain[CHAIN_CONTACT_THRESHOLD, i]
-    if abs(code) == 1.0:
-        return threshold - moving
-    return moving - threshold if threshold > 0.0 else 1.0
+    its switch; 1.0 where it cannot switch (:func:`torsio.solvers.contact_law.margin`)."""
+    static, threshold = chain[CHAIN_CONTACT_STATIC, i], chain[CHAIN_CONTACT_THRESHOLD, i]
+    return law.margin(state[i], static, threshold, omega + speed, holding, k)
 
 
 @njit(cache=True, error_model="numpy", _nrt=False, inline="always")
@@ -187,9 +165,8 @@ def _slope(state, acc, threshold, k) -> float:
 
 @njit(cache=True, error_model="numpy", _nrt=False, inline="always")
 def _tolerance(chain, state, omega, i, k) -> float:
-    if k == 0 and state[i] == 0.0:
-        return TOLERANCE * chain[CHAIN_CONTACT_STATIC, i]
-    return TOLERANCE * (1.0 + abs(omega) + chain[CHAIN_CONTACT_THRESHOLD, i])
+    static, threshold = chain[CHAIN_CONTACT_STATIC, i], chain[CHAIN_CONTACT_THRESHOLD, i]
+    return law.tolerance(state[i], static, threshold, omega, k)
 
 
 @njit(cache=True, error_model="numpy", _nrt=False, inline="always")
@@ -339,17 +316,10 @@ def switch(chain, state, omega, v, f, pending) -> int:
         made += 1
         holding = f[i] + _friction(chain, state, i)
         now = state[i]
-        moving = 1.0 if chain[CHAIN_CONTACT_THRESHOLD, i] > 0.0 else 2.0
-        if now == 0.0:  # the holding torque reached C_s: it slips its way
-            state[i] = math.copysign(moving, holding)
-        elif code == 1.0:  # at rest: it sticks if C_s holds it, else it turns back
-            if abs(holding) < chain[CHAIN_CONTACT_STATIC, i]:
-                state[i] = 0.0
-                v[i] = -omega
-            else:
-                state[i] = math.copysign(moving, holding)
-        else:  # across the threshold speed
-            state[i] = math.copysign(2.0 if abs(now) == 1.0 else 1.0, now)
+        static, threshold = chain[CHAIN_CONTACT_STATIC, i], chain[CHAIN_CONTACT_THRESHOLD, i]
+        state[i] = law.switched(now, code, holding, static, threshold)
+        if state[i] == 0.0 and now != 0.0:  # it sticks
+            v[i] = -omega
     return made
 
 

@@ -1,25 +1,20 @@
 """Coulomb contacts along the string in the numpy batch engine, vectorized over points.
 
-The law of :mod:`torsio.solvers.contact_events` (Aarsnes & Shor 2018): a contact node is
-stuck (its absolute speed w = Omega_ref + v held at exactly 0, the friction whatever torque
-holds it, at most C_s), slipping slowly (0 < |w| < w_th: C_s sign w) or sliding
-(|w| >= w_th: C_d sign w). Each point carries its contacts' states, arrays of shape
-(points, nodes); within a step they are fixed, so the equations are smooth: a moving
-contact adds the constant torque -C sign w to its node, a stuck node's speed equation is
-v' = 0 (:func:`hold_rows`: its row of the step matrix the identity's, its right-hand side
-0; its twist still turns at v = -Omega_ref).
+The law is :mod:`torsio.solvers.contact_law`'s event form (Aarsnes & Shor 2018): each point
+carries its contacts' state codes, an array of shape (points, nodes) (0 stuck, +-1 slow,
++-2 fast; 0 too where a node has no contact); within a step they are fixed, so the
+equations are smooth: a moving contact adds the constant torque -C sign w to its node, a
+stuck node's speed equation is v' = 0 (:func:`hold_rows`: its row of the step matrix the
+identity's, its right-hand side 0; its twist still turns at v = -Omega_ref).
 
-After a step that passes error control, the switches' margins (:meth:`ContactLaw.margins`,
-as :mod:`torsio.solvers.contact_events` defines them) are evaluated at its end. A margin
-beyond its tolerance below 0 rejects the step: it is retried shortened to the crossing,
-interpolated linearly from the margins at the step's start and end, or through the ends
-of two retries (secant), aiming at half the tolerance below 0; a shorter step that falls
-short is accepted and the next one aims from it. A step that
-ends with a margin within its tolerance below 0 switches that contact: a moving one at
-rest sticks if its holding torque H (its node's force without friction) is below C_s, and
-its speed is set to exactly 0, else it turns the other way; a stuck one moves in the
-direction of H; slow and fast swap at the threshold. The tolerances are contact_events':
-1e-9 of C_s for a torque, 1e-9 (1 + |Omega_ref| + w_th) for a speed.
+After a step that passes error control, the switches' margins
+(:func:`torsio.solvers.contact_law.margins`) are evaluated at its end. A margin beyond its
+tolerance below 0 rejects the step: it is retried shortened to the crossing, interpolated
+linearly from the margins at the step's start and end, or through the ends of two
+retries (secant), aiming at half the tolerance below 0; a shorter step that falls short
+is accepted and the next one aims from it. A step that ends with a margin within its
+tolerance below 0 switches that contact (:func:`torsio.solvers.contact_law.switched`; a
+node that sticks gets its speed set to exactly 0).
 
 A point whose contacts do not settle at an instant, or switch more than
 :data:`MAX_SWITCHES_PER_PERIOD` times per contact and first natural period (plus
@@ -34,31 +29,20 @@ from typing import Any
 
 import numpy as np
 
+from torsio.solvers import contact_law as law
 from torsio.solvers import layouts as slot
 from torsio.solvers.batch_results import STATUS_CHATTER
 
-__all__ = [
-    "CLOSEST_SWITCH",
-    "FAST",
-    "MAX_SWITCHES_PER_PERIOD",
-    "SLOW",
-    "STUCK",
-    "ContactLaw",
-    "hold_rows",
-]
+__all__ = ["CLOSEST_SWITCH", "MAX_SWITCHES_PER_PERIOD", "ContactLaw", "hold_rows"]
 
-STUCK, SLOW, FAST = 0, 1, 2
-"""A contact's states (as in :mod:`torsio.solvers.contact_events`)."""
 MAX_SWITCHES_PER_PERIOD = 50
 """Switches allowed per contact and first natural period before a point is reported as
 chattering."""
 CLOSEST_SWITCH = 100.0
 """The shortest step aimed at a crossing, in the engine's smallest steps (1e-12 of the
 run): the compiled kernel's ``h_min`` too."""
-TOLERANCE = 1e-9
-"""How near 0 a margin counts as 0, relative to its scale (contact_events' tolerance)."""
 ALL = slice(None)
-KEYS = ("contact", "sign", "margin", "switches", "event_t", "event_g", "event_k")
+KEYS = ("contact", "margin", "switches", "event_t", "event_g", "event_k")
 """The per-point arrays the contacts add to the engine's state (compacted with it)."""
 
 
@@ -97,45 +81,36 @@ class ContactLaw:
     # --- the equations in the present states -----------------------------------------------
     def friction(self, s: dict[str, np.ndarray], rows: Any = ALL) -> np.ndarray:
         """Friction torque on each node [N m] (points, nodes): 0 where stuck or no contact."""
-        state = s["contact"][rows]
-        capacity = np.where(state == SLOW, self.static, self.dynamic)
-        return np.where(state == STUCK, 0.0, s["sign"][rows] * capacity)
+        code = np.ascontiguousarray(s["contact"][rows])
+        out = np.empty(code.shape)
+        law.frictions(code, self.static, self.dynamic, out)
+        return out
 
-    @staticmethod
-    def stuck(s: dict[str, np.ndarray], rows: Any = ALL) -> np.ndarray:
+    def stuck(self, s: dict[str, np.ndarray], rows: Any = ALL) -> np.ndarray:
         """Which nodes are held (points, nodes)."""
-        return s["contact"][rows] == STUCK
+        return (s["contact"][rows] == 0.0) & self.nodes
 
     # --- the switches ------------------------------------------------------------------
-    def margins(self, state, sign, om, v, free) -> np.ndarray:
-        """(points, 2, nodes): (a) a moving contact's speed in its direction, a stuck one's
-        C_s - |H|; (b) a moving one's distance to the threshold speed; inf where none."""
-        moving = sign * (om[:, None] + v)
-        contact = self.nodes & (state != STUCK)
-        first = np.where(state == STUCK, self.static - np.abs(free), moving)
-        slow = contact & (state == SLOW)
-        fast = contact & (state == FAST) & (self.threshold > 0.0)
-        second = np.where(
-            slow, self.threshold - moving, np.where(fast, moving - self.threshold, np.inf)
-        )
-        first = np.where(self.nodes, first, np.inf)
-        return np.stack([first, second], axis=1)
+    def margins(self, code, om, v, free) -> np.ndarray:
+        """(points, 2, nodes): :func:`law.margins` (inf where a node has no contact)."""
+        out = np.empty((code.shape[0], 2, code.shape[1]))
+        law.margins(np.ascontiguousarray(code), self.static, self.threshold,
+                    om[:, None] + v, np.ascontiguousarray(free), out)  # fmt: skip
+        return out
 
-    def tolerances(self, state, om) -> np.ndarray:
-        """(points, 2, nodes): how near 0 a margin counts as 0."""
-        speed = TOLERANCE * (1.0 + np.abs(om)[:, None] + self.threshold)
-        first = np.where(state == STUCK, TOLERANCE * self.static, speed)
-        return np.stack([first, np.broadcast_to(speed, first.shape)], axis=1)
+    def tolerances(self, code, om) -> np.ndarray:
+        """(points, 2, nodes): how near 0 a margin counts as 0 (:func:`law.tolerances`)."""
+        out = np.empty((code.shape[0], 2, code.shape[1]))
+        law.tolerances(np.ascontiguousarray(code), self.static, self.threshold,
+                       np.ascontiguousarray(om), out)  # fmt: skip
+        return out
 
     def start(self, s: dict[str, np.ndarray], forces) -> tuple[np.ndarray, np.ndarray]:
         """The states of the initial state: at rest stuck, else on the branch of the speed;
         then the switches due at once (:meth:`settle`, whose forces it returns)."""
         count, n = s["v"].shape
-        speed = s["om"][:, None] + s["v"]
-        fast = np.abs(speed) >= self.threshold
-        state = np.where(speed == 0.0, STUCK, np.where(fast, FAST, SLOW))
-        s["contact"] = np.where(self.nodes, state, FAST).astype(np.int8)
-        s["sign"] = np.where(self.nodes, np.sign(speed), 0.0)
+        s["contact"] = np.empty((count, n))
+        law.start_codes(s["om"][:, None] + s["v"], self.static, self.threshold, s["contact"])
         s["switches"] = np.zeros(count, dtype=np.int64)
         s["event_t"] = np.full(count, np.nan)
         s["event_g"] = np.zeros(count)
@@ -146,17 +121,13 @@ class ContactLaw:
     def apply(self, s, rows: np.ndarray, fire: np.ndarray, free: np.ndarray) -> None:
         """Switch the contacts of points ``rows`` whose margins ``fire`` (rows, 2, nodes), with
         holding torques ``free`` (rows, nodes); a node that sticks is set to rest exactly."""
-        state, sign = s["contact"][rows], s["sign"][rows]
-        first, second = fire[:, 0], fire[:, 1] & ~fire[:, 0]
-        at_rest = first & (state != STUCK)
-        holds = at_rest & (np.abs(free) < self.static)
-        turns = first & ~holds  # a stuck one breaks free, a moving one turns: the way of H
-        state = np.where(turns, np.where(self.threshold > 0.0, SLOW, FAST), state)
-        sign = np.where(turns, np.sign(free), sign)
-        state = np.where(holds, STUCK, np.where(second, SLOW + FAST - state, state))
-        s["contact"][rows] = state
-        s["sign"][rows] = np.where(holds, 0.0, sign)
-        s["switches"][rows] += (first | second).sum(axis=1)
+        code = np.ascontiguousarray(s["contact"][rows])
+        kinds = np.where(fire[:, 0], 1, np.where(fire[:, 1], 2, 0)).astype(np.int64)
+        moving = code != 0.0
+        law.switch_codes(code, kinds, np.ascontiguousarray(free), self.static, self.threshold)
+        s["switches"][rows] += (kinds > 0).sum(axis=1)
+        holds = moving & (code == 0.0)
+        s["contact"][rows] = code
         if holds.any():
             v = s["v"][rows]
             v[holds] = np.broadcast_to(-s["om"][rows][:, None], v.shape)[holds]
@@ -170,7 +141,7 @@ class ContactLaw:
         free, fz = forces(rows)
         for _ in range(4 * self.count + 4):
             state, om = s["contact"][rows], s["om"][rows]
-            margin = self.margins(state, s["sign"][rows], om, s["v"][rows], free)
+            margin = self.margins(state, om, s["v"][rows], free)
             fire = margin < -self.tolerances(state, om)
             if not fire.any():
                 break
@@ -189,7 +160,7 @@ class ContactLaw:
         ``free``): the margins, which are beyond their tolerance below 0 (the step crossed
         a switch) and which are within it (the step ends on a switch), (rows, 2, nodes)."""
         state, om = s["contact"][rows], s["om"][rows]
-        margin = self.margins(state, s["sign"][rows], om, v, free)
+        margin = self.margins(state, om, v, free)
         tolerance = self.tolerances(state, om)
         beyond = margin < -tolerance
         return margin, beyond, (margin <= 0.0) & ~beyond

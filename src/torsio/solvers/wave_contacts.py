@@ -5,20 +5,13 @@ torque above is p - Z v and below m + Z v, so the node's speed v solves
 
     (2 Z + c) v + F = p - m = d        (a junction: Z1 + Z2 + c in place of 2 Z)
 
-with c the node's damper and F the contact's friction torque, set-valued: the law of
-Aarsnes & Shor (2018) made implicit in the torque,
-
-    v = 0 and |F| <= C_s                      (stuck),
-    F = C_s sign(v)      for 0 < |v| < v_th   (static branch: slow slip),
-    F = C_d sign(v)      for |v| >= v_th      (dynamic branch: sliding).
-
-On a branch of capacity C the solution is explicit: v = sign(d) max(|d| - C, 0) / (2 Z + c),
+with c the node's damper and F the contact's friction torque, set-valued: the step form of
+:mod:`torsio.solvers.contact_law` (stuck, static branch C_s below v_th, dynamic C_d above).
+On a branch of capacity C the solution is explicit: v = sign(d) excess(d, C) / (2 Z + c),
 F = d - (2 Z + c) v (a stuck node, |d| <= C, takes exactly the torque d that holds it and
-keeps speed 0: nothing creeps or leaks past it). The law weakens at v_th, so for some d
-both branches have a solution; the node then stays on the branch of its previous step (a
-node turns from static to dynamic when its static branch has no solution left, and back
-when its dynamic branch has none). No iteration: the contact is piecewise linear. The
-energy leaving the node's pair of waves in a step is exactly (c v^2 + F v) dt.
+keeps speed 0: nothing creeps or leaks past it); the branch is
+:func:`torsio.solvers.contact_law.static_branch`'s. No iteration: the contact is piecewise
+linear. The energy leaving the node's pair of waves in a step is exactly (c v^2 + F v) dt.
 
 :func:`_contacts` does this for a run of regular nodes (contiguous slices, vectorizable),
 :func:`_contact_speed` for one node; :func:`contact_arrays` lays the capacities of a
@@ -45,6 +38,7 @@ import numpy as np
 
 from torsio.model.wave import drag_lumping
 from torsio.solvers.compiled import njit
+from torsio.solvers.contact_law import excess, static_branch
 from torsio.solvers.layouts import (
     CONTACT_DYNAMIC,
     CONTACT_INDEX_COLUMNS,
@@ -67,12 +61,9 @@ def _contact_speed(d, inverse, static, dynamic, previous, below):  # type: ignor
     ``below`` the largest speed under the threshold (:func:`speed_below`), so that
     |v| <= below is the static branch (v = 0 too with a threshold of 0). Written with
     selects only, so that a run of nodes vectorizes."""
-    a = abs(d)
-    slow = max(a - static, 0.0) * inverse
-    fast = max(a - dynamic, 0.0) * inverse
-    # the static branch: kept while it has a solution, taken when the dynamic has none
-    on_slow = (slow <= below) if abs(previous) <= below else (fast <= below)
-    return math.copysign(slow if on_slow else fast, d)
+    slow = excess(d, static) * inverse
+    fast = excess(d, dynamic) * inverse
+    return math.copysign(slow if static_branch(previous, below, slow, fast) else fast, d)
 
 
 @njit(cache=True, nogil=True, _nrt=False)

@@ -61,7 +61,7 @@ from torsio.units import as_si
 from torsio.well.rotating_column import RotatingColumn
 from torsio.well.wellbore import Wellbore
 
-__all__ = ["BreakOff", "break_off"]
+__all__ = ["BreakOff", "break_off", "friction_below"]
 
 
 @attrs.frozen(eq=False)
@@ -115,6 +115,13 @@ def _torsional_rigidity(string: DrillString, top: float, md: np.ndarray) -> np.n
     return rigidity[index]
 
 
+def friction_below(per_cell: np.ndarray, friction: np.ndarray) -> np.ndarray:
+    """The friction of the string below each cell edge (the last edge the bit's, 0): the
+    friction factors ``friction`` times ``per_cell`` (each cell's integral of N r_o [N m],
+    or of N [N]) summed from the bit up."""
+    return np.concatenate([np.cumsum((friction * per_cell)[::-1])[::-1], [0.0]])
+
+
 def break_off(
     well: Wellbore,
     string: DrillString,
@@ -155,12 +162,8 @@ def break_off(
     per_cell = column.friction_per_cell(wob)  # int N r_o over each cell
     mid = 0.5 * (md[:-1] + md[1:])
 
-    def profile(friction: np.ndarray) -> np.ndarray:
-        below = np.concatenate([np.cumsum((friction * per_cell)[::-1])[::-1], [0.0]])
-        return below
-
-    static = profile(well.friction_static_at(mid))
-    sliding = profile(well.friction_dynamic_at(mid))
+    static = friction_below(per_cell, well.friction_static_at(mid))
+    sliding = friction_below(per_cell, well.friction_dynamic_at(mid))
     rigidity = _torsional_rigidity(string, column.string_top_md, mid)
     twist = float(np.sum(0.5 * (static[:-1] + static[1:]) * np.diff(md) / rigidity))
     return BreakOff(

@@ -44,6 +44,7 @@ __all__ = [
     "CONTACT_CELL_LENGTH",
     "model_contacts",
     "node_contacts",
+    "node_shares",
     "string_contacts",
     "with_contacts",
 ]
@@ -210,11 +211,10 @@ def node_contacts(
     profile = break_off(well, string, CONTACT_CELL_LENGTH, wob, column)
     md = profile.md
     depths = float(md[0]) + np.asarray(model.node_depths, dtype=float)
-    edges = np.concatenate([[md[0]], 0.5 * (depths[:-1] + depths[1:]), [md[-1]]])
-    capacities = []
-    for torque in (profile.static_torque, profile.sliding_torque_profile):
-        levels = np.interp(edges, md, torque)  # the friction of everything below each edge
-        capacities.append(levels[:-1] - levels[1:])
+    capacities = [
+        node_shares(md, torque, depths)
+        for torque in (profile.static_torque, profile.sliding_torque_profile)
+    ]
     return StringContacts(
         static=capacities[0],
         dynamic=np.minimum(capacities[1], capacities[0]),  # equal to round-off where mu_s = mu_d
@@ -223,6 +223,16 @@ def node_contacts(
         wob=float(wob),
         rebuild=_rebuild(model, well, string, column),
     )
+
+
+def node_shares(md: np.ndarray, below: np.ndarray, depths: np.ndarray) -> np.ndarray:
+    """The shares of nodes at measured depths ``depths`` [m] of a profile ``below`` along
+    ``md`` (the friction of everything below each depth, :func:`break_off`): node i's
+    from half-way to the node above (the string's top ``md[0]``, for the first) to half-way
+    to the node below (the bit ``md[-1]``, for the last); they add up to ``below[0]``."""
+    edges = np.concatenate([[md[0]], 0.5 * (depths[:-1] + depths[1:]), [md[-1]]])
+    levels = np.interp(edges, md, below)
+    return levels[:-1] - levels[1:]
 
 
 def _details(well: Wellbore, profile: Any) -> dict[str, Any]:
