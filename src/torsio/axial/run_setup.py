@@ -44,6 +44,7 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
+from torsio.analysis.severity import check_window
 from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.run_budget import check_run_work
@@ -144,7 +145,7 @@ class RunOptions:
 
     def check(self) -> None:
         """A ConfigError unless ``start`` is one of :data:`STARTS`, -1 < perturbation < 1 and
-        0 < window <= duration."""
+        0 < window <= duration (:func:`torsio.analysis.severity.check_window`)."""
         if self.start not in STARTS:
             raise ConfigError(
                 "simulation.start", f"{self.start!r} is not one of {', '.join(STARTS)}"
@@ -156,11 +157,7 @@ class RunOptions:
                 "steady start; expected -1 < perturbation < 1 (1 already doubles the speed: "
                 "no longer a perturbation of steady drilling)",
             )
-        if not (0 < self.window <= self.duration and math.isfinite(self.duration)):
-            raise ConfigError(
-                "simulation.steady_window",
-                f"expected 0 < window <= duration, got {self.window!r} and {self.duration!r}",
-            )
+        check_window(self.duration, self.window)
 
     def largest_step(self, bit: AxialBit, mass: float, fastest: float) -> float:
         """h_max = 2π/(ω_fast × ``steps_per_period``) [s], ω_fast the larger of the bit's

@@ -48,30 +48,11 @@ __all__ = [
 
 
 @attrs.frozen
-class _AssemblyModel:
-    """The torsional chain as a top drive's tuning reads it: its first frequency."""
-
-    assembly: DrillingAssembly
-
-    def first_frequency(self) -> float:
-        """ω₁ [rad/s] of the torsional chain, top held, undamped (as
-        :func:`torsio.axial.transient.first_torsional_frequency`)."""
-        import scipy.linalg  # not at import: the torsional engines load this package too
-
-        from torsio.model.lumped import chain_matrix
-
-        stiffness = chain_matrix(self.assembly.stiffnesses)
-        inertia = np.diag(self.assembly.inertias)
-        values = scipy.linalg.eigh(stiffness, inertia, eigvals_only=True)
-        return float(math.sqrt(values[0]))
-
-
-@attrs.frozen
 class AxialTopSystem:
     """What ``top_drive.boundary(system)`` reads of an axial run: ``omega`` the set speed
-    [rad/s], ``model`` (its ``first_frequency()``, ω₁ with the top held) and ``string``
-    (the drill string the assembly was built from, for the top pipe's impedance; None for a
-    chain given directly)."""
+    [rad/s], ``model`` (the assembly: its ``first_frequency()``, ω₁ with the top held) and
+    ``string`` (the drill string the assembly was built from, for the top pipe's impedance;
+    None for a chain given directly)."""
 
     model: Any
     omega: float
@@ -89,7 +70,7 @@ def top_boundary(
         A top drive with a set speed that changes in time as a table (``recorded``): the
         lumped axial engine takes a held speed or a controller (with its ``ramp``).
     """
-    system = AxialTopSystem(_AssemblyModel(assembly), float(rpm) * RPM_TO_RAD_S, string)
+    system = AxialTopSystem(assembly, float(rpm) * RPM_TO_RAD_S, string)
     boundary = top_drive.boundary(system)
     if not isinstance(boundary, TopDriveBoundary):
         raise ConfigError(
