@@ -8,8 +8,8 @@ tunings read of a system (:class:`AxialTopSystem`: the set speed, the first tors
 frequency with the top held, the string when there is one); :class:`TopDriveArrays` is what
 the compiled loop (:mod:`torsio.axial.kernel`) takes; :func:`top_drive_rates` gives the
 eigenvalues of the top node and its controller against the string's top spring (the
-fastest rate the explicit step must resolve) and :func:`steady_controller_state` the
-controller state of steady drilling.
+fastest rate the explicit step must resolve); the controller state of steady drilling is the
+boundary's :meth:`~torsio.physics.top_drive_boundary.TopDriveBoundary.steady_states`.
 
 Examples
 --------
@@ -19,13 +19,12 @@ Examples
 ...                         rgd_two_dof_example(), 60.0)
 >>> boundary.held, round(boundary.set_speed, 6)
 (False, 6.283185)
->>> [round(float(z), 9) for z in steady_controller_state(boundary, 1000.0)]  # ki z = T₀
+>>> [round(float(z), 9) for z in boundary.steady_states(1000.0, 1000.0)]  # ki z = T₀
 [0.538793103]
 """
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import attrs
@@ -41,7 +40,6 @@ from torsio.units import RPM_TO_RAD_S
 __all__ = [
     "AxialTopSystem",
     "TopDriveArrays",
-    "steady_controller_state",
     "top_boundary",
     "top_drive_rates",
 ]
@@ -159,25 +157,3 @@ def top_drive_rates(
 ) -> NDArray[np.complex128]:
     """The eigenvalues [1/s] of :func:`top_drive_matrix`: the top drive's own rates."""
     return np.linalg.eigvals(top_drive_matrix(boundary, stiffness, damper))
-
-
-def steady_controller_state(
-    boundary: TopDriveBoundary, torque: float, speed: float | None = None
-) -> NDArray[np.float64]:
-    """The controller state z of steady drilling: the top at its set speed (e = 0), the
-    string carrying ``torque`` T₀ [N m], z' = 0 and u = T₀ + drag Ω_set, by least squares
-    (a kind that cannot hold it, e.g. a constant torque, gets the nearest z; ``speed``
-    [rad/s] default the set speed)."""
-    m = boundary.states
-    if m == 0:
-        return np.zeros(0)
-    omega = boundary.set_speed if speed is None else speed
-    omega = 0.0 if not math.isfinite(omega) else omega
-    a, b = np.asarray(boundary.a, float).reshape(m, m), np.asarray(boundary.b, float).reshape(m, 2)
-    c, d = np.asarray(boundary.c, float).reshape(m), np.asarray(boundary.d, float).reshape(2)
-    matrix = np.vstack([a, c[None, :]])
-    right = np.concatenate(
-        [-b[:, 1] * torque, [torque + boundary.drag * omega - boundary.u0 - d[1] * torque]]
-    )
-    state, *_ = np.linalg.lstsq(matrix, right, rcond=None)
-    return np.asarray(state, dtype=float)

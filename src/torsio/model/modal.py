@@ -221,7 +221,9 @@ def natural_frequencies(model: LumpedModel) -> np.ndarray:
     per model and kept with it (or taken from a modal analysis of all its modes)."""
     memo = _memo(model)
     if "frequencies" not in memo:
-        _remember(model, np.sqrt(_eigen(model, (0, model.dofs - 1), vectors=False)[0]))
+        _remember(
+            model, np.sqrt(_eigen(model.stiffness, model.inertia, (0, model.dofs - 1), False)[0])
+        )
     return np.asarray(memo["frequencies"])
 
 
@@ -260,7 +262,7 @@ def modal_analysis(
     if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count:
         raise ConfigError("count", f"expected a whole number of modes >= 1, got {count!r}")
     count = min(count, n)
-    eigenvalues, vectors = _eigen(model, (0, count - 1))
+    eigenvalues, vectors = _eigen(model.stiffness, model.inertia, (0, count - 1))
     frequencies = np.sqrt(eigenvalues)
     _remember(model, frequencies)  # every later omega_1 (and spectrum) of the model reads it
     return ModalResults(model, frequencies, normalize_shape(vectors), vectors, string)
@@ -269,18 +271,10 @@ def modal_analysis(
 def pencil_first_frequency(stiffness: np.ndarray, inertia: np.ndarray) -> float:
     """omega_1 [rad/s] of the pencil ([K] [N m/rad], [I] [kg m^2]), top held, undamped: the
     one solve of a chain's first frequency (a lumped model's, an axial assembly's)."""
-    return float(np.sqrt(_pencil_eigen(stiffness, inertia, (0, 0), vectors=False)[0][0]))
+    return float(np.sqrt(_eigen(stiffness, inertia, (0, 0), vectors=False)[0][0]))
 
 
 def _eigen(
-    model: LumpedModel, indices: tuple[int, int], vectors: bool = True
-) -> tuple[np.ndarray, np.ndarray]:
-    """Eigenvalues omega^2 [rad^2/s^2] ``indices[0]..indices[1]`` of a model's pencil
-    ([K], [I]), ascending, with their vectors (:func:`_pencil_eigen`)."""
-    return _pencil_eigen(model.stiffness, model.inertia, indices, vectors)
-
-
-def _pencil_eigen(
     stiffness: np.ndarray, inertia: np.ndarray, indices: tuple[int, int], vectors: bool = True
 ) -> tuple[np.ndarray, np.ndarray]:
     """Eigenvalues omega^2 [rad^2/s^2] ``indices[0]..indices[1]`` of the pencil ([K], [I]),
