@@ -103,7 +103,7 @@ def test_the_pi_law_with_back_calculation(evaluate):
         assert free == pytest.approx(expected_free, rel=1e-15)
         assert u == pytest.approx(min(max(expected_free, -LIMIT), LIMIT), rel=1e-15)
         rates = np.zeros(1)
-        rates_of(1, pi.a, pi.b, pi.w, state, error, 100.0, u, free, rates)
+        rates_of(1, 1, np.ravel(pi.a), np.ravel(pi.b), pi.w, state, error, 100.0, u, free, rates)
         assert rates[0] == pytest.approx(error + (u - expected_free) / KP, rel=1e-14)
 
 

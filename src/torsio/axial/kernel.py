@@ -35,7 +35,8 @@ evaluation of every engine, :func:`torsio.physics.top_drive_boundary.motor_torqu
 :func:`~torsio.physics.top_drive_boundary.controller_rates`),
 Ω_top ← Ω_top + h (u − drag Ω_top − T_pipe)/J, θ_top ← θ_top + h Ω_top (the new speed).
 ``top`` holds the entries of :data:`torsio.axial.layouts.TOP_DRIVE`; ``top_state`` is
-[θ_top (rad), Ω_top (rad/s)], ``controller_state`` z; ``ctrl_a`` (m, m), ``ctrl_b`` (m, 2),
+[θ_top (rad), Ω_top (rad/s)], ``controller_state`` z; ``ctrl_a`` (m, m) and ``ctrl_b`` (m, 2)
+row by row,
 ``ctrl_c`` (m,), ``ctrl_d`` (2,), ``ctrl_w`` (m,) the controller's matrices.
 
 The bit's part of steps 1-3 is :mod:`torsio.axial.bit_step`, shared with the distributed
@@ -87,7 +88,7 @@ def march_signature() -> object:
     vector, matrix, law = types.float64[::1], types.float64[:, ::1], law_type()
     return types.void(
         vector, matrix, matrix, vector, vector, vector, vector, vector, matrix, vector, vector,
-        matrix, vector, vector, vector, matrix, matrix, vector, vector, vector, matrix, vector,
+        matrix, vector, vector, vector, vector, vector, vector, vector, vector, matrix, vector,
         law, law, vector,
     )  # fmt: skip
 
@@ -258,8 +259,8 @@ def march(
                 controller_state, error, top_torque,
             )  # fmt: skip
             compiled_controller_rates(
-                states, ctrl_a, ctrl_b, ctrl_w, controller_state, error, top_torque, motor, free,
-                rate,
+                states, states, ctrl_a, ctrl_b, ctrl_w, controller_state, error, top_torque, motor,
+                free, rate,
             )  # fmt: skip
             for j in range(states):
                 controller_state[j] += h * rate[j]

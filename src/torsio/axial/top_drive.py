@@ -89,7 +89,7 @@ def top_boundary(
 @attrs.frozen(eq=False)
 class TopDriveArrays:
     """The compiled loop's top drive: ``top`` (slots :data:`torsio.axial.layouts.TOP_DRIVE`)
-    and the controller matrices a (m, m), b (m, 2), c (m,), d (2,), w (m,)."""
+    and the controller matrices a (m, m) and b (m, 2) row by row, c (m,), d (2,), w (m,)."""
 
     top: NDArray[np.float64]
     a: NDArray[np.float64]
@@ -104,9 +104,7 @@ class TopDriveArrays:
         top = np.zeros(len(TOP_SLOTS))
         if boundary is None or boundary.held:
             top[TOP_SLOTS.index("held")] = 1.0
-            return cls(
-                top, np.zeros((0, 0)), np.zeros((0, 2)), np.zeros(0), np.zeros(2), np.zeros(0)
-            )
+            return cls(top, np.zeros(0), np.zeros(0), np.zeros(0), np.zeros(2), np.zeros(0))
         values = {
             "held": 0.0,
             "inverse_inertia": 1.0 / boundary.inertia,
@@ -121,8 +119,8 @@ class TopDriveArrays:
         m = boundary.states
         return cls(
             top,
-            np.ascontiguousarray(np.asarray(boundary.a, dtype=float).reshape(m, m)),
-            np.ascontiguousarray(np.asarray(boundary.b, dtype=float).reshape(m, 2)),
+            np.ascontiguousarray(np.asarray(boundary.a, dtype=float).reshape(m * m)),
+            np.ascontiguousarray(np.asarray(boundary.b, dtype=float).reshape(m * 2)),
             np.ascontiguousarray(np.asarray(boundary.c, dtype=float).reshape(m)),
             np.ascontiguousarray(np.asarray(boundary.d, dtype=float).reshape(2)),
             np.ascontiguousarray(np.asarray(boundary.w, dtype=float).reshape(m)),

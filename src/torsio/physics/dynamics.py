@@ -375,7 +375,8 @@ class Dynamics:
             u, free = motor_torque(top.u0, top.kp, top.pipe_gain, top.max_torque, m, top.c, z,
                                    error, pipe)  # fmt: skip
             force[0] += float(u)
-            controller_rates(m, top.a, top.b, top.w, z, error, pipe, u, free, dy)
+            controller_rates(m, m, np.ravel(top.a), np.ravel(top.b), top.w, z, error, pipe, u,
+                             free, dy)  # fmt: skip
         dy[m::2] = v
         dy[m + 1 :: 2] = self._solve_mass(force)
         return dy

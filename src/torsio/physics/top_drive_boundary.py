@@ -35,9 +35,16 @@ __all__ = [
     "ScaledTopDrive",
     "TopDriveBoundary",
     "controller_rates",
+    "limited",
     "motor_torque",
     "top_pipe_impedance",
 ]
+
+
+def limited(torque, max_torque):
+    """``torque`` [N m] held to +-``max_torque``: np.clip (numba compiles it as min(max()),
+    :mod:`torsio.solvers.chain_kernel`)."""
+    return np.clip(torque, -max_torque, max_torque)
 
 
 def motor_torque(u0, kp, pipe_gain, max_torque, states, c, z, error, pipe):
@@ -51,16 +58,18 @@ def motor_torque(u0, kp, pipe_gain, max_torque, states, c, z, error, pipe):
     free = u0 + kp * error + pipe_gain * pipe
     for j in range(states):
         free = free + c[j] * z[j]
-    return np.minimum(np.maximum(free, -max_torque), max_torque), free
+    return limited(free, max_torque), free
 
 
-def controller_rates(states, a, b, w, z, error, pipe, u, free, rates):
-    """rates = z' = a z + b [e, T_pipe] + w (u - u_free) of the first ``states`` states
-    (a (m, m), b (m, 2), w (m,); floats or arrays of points as in :func:`motor_torque`)."""
+def controller_rates(states, stride, a, b, w, z, error, pipe, u, free, rates):
+    """rates = z' = a z + b [e, T_pipe] + w (u - u_free) of the first ``states`` states m:
+    ``a`` flat, row j at ``stride`` j (the m x m matrix, or its block of a larger square),
+    ``b`` flat, the gains on (e, T_pipe) of each state in turn, ``w`` (m,); floats or arrays
+    of points as in :func:`motor_torque`."""
     for j in range(states):
-        rate = b[j, 0] * error + b[j, 1] * pipe + w[j] * (u - free)
+        rate = b[2 * j] * error + b[2 * j + 1] * pipe + w[j] * (u - free)
         for k in range(states):
-            rate = rate + a[j, k] * z[k]
+            rate = rate + a[stride * j + k] * z[k]
         rates[j] = rate
 
 

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from torsio.physics.top_drive_boundary import controller_rates, motor_torque
-from torsio.solvers.compiled import njit
+from torsio.physics.top_drive_boundary import controller_rates, limited, motor_torque
+from torsio.solvers.compiled import HAVE_NUMBA, njit, numba
 from torsio.solvers.layouts import (
     CARRY_ERR_ACCEPTED,
     CARRY_H,
@@ -82,6 +82,13 @@ __all__ = [
 ]
 
 
+if HAVE_NUMBA:  # np.clip of floats, as numba compiles it (numpy's is for arrays)
+
+    @numba.extending.overload(limited, inline="always")
+    def _limited(torque, max_torque):
+        return lambda torque, max_torque: min(max(torque, -max_torque), max_torque)
+
+
 # the controller's one evaluation (physics/top_drive_boundary.py), compiled as it is written
 _INLINE = {"cache": True, "error_model": "numpy", "_nrt": False, "inline": "always"}
 compiled_motor_torque = njit(**_INLINE)(motor_torque)
@@ -130,9 +137,8 @@ def forces(
         u, free = packed_motor_torque(top, z, error, pipe)
         fv[0] += u
         compiled_controller_rates(
-            m, top[TOP_A:TOP_B].reshape((MAX_STATES, MAX_STATES)),
-            top[TOP_B:TOP_C].reshape((MAX_STATES, 2)), top[TOP_W:TOP_SIZE], z, error, pipe, u,
-            free, fz,
+            m, MAX_STATES, top[TOP_A:TOP_B], top[TOP_B:TOP_C], top[TOP_W:TOP_SIZE], z, error,
+            pipe, u, free, fz,
         )  # fmt: skip
     else:
         fv[0] += top[TOP_K_PIPE] * top_twist + top[TOP_C_PIPE] * (set_speed - omega)

@@ -56,6 +56,7 @@ class _Chain:
         self.b = top[slot.TOP_B : slot.TOP_C].reshape(states, 2)[:m]
         self.c = top[slot.TOP_C : slot.TOP_C + m]
         self.w = top[slot.TOP_W : slot.TOP_W + m]
+        self.top = top
         self.law = law
         self.radius = radius
         self.contacts: ContactLaw | None = None  # the contacts along the string, if any
@@ -85,7 +86,9 @@ class _Chain:
             error, pipe, u, free = self.controller(om, om_set, phi, v, z)
             fv[:, 0] += u
             rates = fz.T  # (m, points), a view: written in place
-            controller_rates(self.m, self.a, self.b, self.w, z.T, error, pipe, u, free, rates)
+            a, b = self.top[slot.TOP_A : slot.TOP_B], self.top[slot.TOP_B : slot.TOP_C]
+            controller_rates(self.m, slot.MAX_STATES, a, b, self.w, z.T, error, pipe, u, free,
+                             rates)  # fmt: skip
         return fv, fz
 
     def accelerations(self, fv: np.ndarray) -> np.ndarray:
