@@ -10,6 +10,7 @@ the held top where it stick-slips (a physical expectation), and the refusals.
 from __future__ import annotations
 
 import json
+import math
 from importlib import resources
 
 import numpy as np
@@ -206,9 +207,11 @@ def test_pi_file_through_the_command_line(tmp_path, capsys):
 
 def test_section_string_gives_the_soft_torque_defaults():
     # reference: kp = ζ = J_p √(G ρ) of the top pipe (torsio.physics.top_drive_boundary),
-    # ki = ω₁² J with ω₁ of the assembly's torsional chain, top held
-    from torsio.axial.transient import first_torsional_frequency
+    # ki = ω₁² J with ω₁ of the assembly's torsional chain, top held: the lowest root of
+    # the dense generalized eigenproblem K x = ω² I x solved here (the package solves it
+    # as a tridiagonal one, torsio.model.modal.pencil_first_frequency)
     from torsio.config.reading import parse_config
+    from torsio.model.lumped import chain_matrix
     from torsio.physics.top_drive_boundary import top_pipe_impedance
 
     data = {**STRING, "top_drive": {"kind": "soft-torque", "inertia": 2900.0}}
@@ -216,7 +219,10 @@ def test_section_string_gives_the_soft_torque_defaults():
     boundary = top_boundary(axial.top_drive, axial.assembly, 60.0, axial.string)
     zeta = top_pipe_impedance(axial)
     assert boundary.kp == pytest.approx(zeta, rel=1e-15)
-    omega1 = first_torsional_frequency(axial.assembly)
+    assembly = axial.assembly
+    stiffness, inertia = chain_matrix(assembly.stiffnesses), np.diag(assembly.inertias)
+    omega1 = math.sqrt(scipy.linalg.eigh(stiffness, inertia, eigvals_only=True)[0])
+    assert assembly.first_frequency() == pytest.approx(omega1, rel=1e-12)
     assert boundary.c[0] == pytest.approx(omega1**2 * 2900.0, rel=1e-12)
     run = simulate_axial(
         axial.assembly, axial.bit, 100e3, 60.0, duration=2.0, window=1.0, growth_rate=False,

@@ -9,9 +9,9 @@ cache to the user's cache folder, never into the installed package (a cache insi
   cache folder: ``~/.cache/torsio/numba`` (Linux), ``~/Library/Caches/torsio/numba``
   (macOS), ``%LOCALAPPDATA%\\torsio\\Cache\\numba`` (Windows); in it, one folder per
   state of the kernel sources (``kernels-<key>``, the key a hash of torsio's and numba's
-  versions and of the contents of every kernel source file: ``solvers/``, ``axial/`` and
-  ``physics/laws.py``), and in that a folder per subpackage (``solvers``, ``axial``,
-  ``physics``).
+  versions and of the contents of every kernel source file: ``solvers/``, ``axial/``,
+  ``physics/laws.py`` and ``physics/top_drive_boundary.py``), and in that a folder per
+  subpackage (``solvers``, ``axial``, ``physics``).
 
 Neither depends on where the package is installed: a regular install (``pip install .``)
 and an editable one (``pip install -e .``, the README's second command) of the same
@@ -154,13 +154,14 @@ def _kernels_folder() -> Path:
 
 def kernel_sources() -> list[Path]:
     """The files numba compiles torsio's kernels from (and the constants they read):
-    ``solvers/``, ``axial/`` and ``physics/laws.py``."""
+    ``solvers/``, ``axial/``, ``physics/laws.py`` and ``physics/top_drive_boundary.py``."""
     package = _package()
     sources = [
         *sorted((package / "solvers").glob("*.py")),
         *sorted((package / "axial").glob("*.py")),
     ]
     sources.append(package / "physics" / "laws.py")
+    sources.append(package / "physics" / "top_drive_boundary.py")  # the controller's evaluation
     return sources
 
 

@@ -202,9 +202,9 @@ def _build_map(
 ) -> SeverityMap:
     import time
 
+    from torsio.analysis.severity import run_times
     from torsio.analysis.stability import stability_boundary
     from torsio.analysis.sweep import CONNECT_TIMEOUT
-    from torsio.solvers.reference import run_times
 
     check_grid_size(rpm.size, wob.size)
     duration, steady_window = run_times(system, options.duration, options.steady_window)

@@ -77,8 +77,9 @@ def run_times(
 
     Without ``duration``: :data:`DEFAULT_DURATION_PERIODS` periods of omega_1.
     Without ``steady_window``: :data:`DEFAULT_WINDOW_PERIODS` periods, but at most
-    half of a run whose length was given. ``system`` is a System or LumpedModel
-    (only read when a default is needed). Every analyzer uses this function.
+    half of a run whose length was given. ``system`` is a System, a structural model or an
+    axial assembly: whatever has (or whose ``model`` has) ``first_frequency()``, read only
+    when a default is needed. Every engine's defaults come from this function.
     """
     if duration is None or steady_window is None:
         default_duration, default_window = default_times(first_natural_frequency(system))
@@ -92,6 +93,17 @@ def run_times(
     return float(duration), float(steady_window)
 
 
+def severity_of_extremes(speed_max: Any, speed_min: Any, omega: Any) -> Any:
+    """S_SS (Eq. 12) of the bit speed's extremes [rad/s] over the steady window at the
+    surface speed omega [rad/s]: the one formula every engine reads S_SS with (floats, or
+    arrays elementwise: a batch's points).
+
+    >>> severity_of_extremes(15.0, 5.0, 10.0)
+    0.5
+    """
+    return (speed_max - speed_min) / (2.0 * omega)
+
+
 def severity(bit_speed: np.ndarray, omega: float) -> float:
     """S_SS of bit speeds [rad/s] sampled over the steady window, at surface speed omega [rad/s]."""
     if not (math.isfinite(omega) and omega > 0):
@@ -102,7 +114,7 @@ def severity(bit_speed: np.ndarray, omega: float) -> float:
     speeds = np.asarray(bit_speed, dtype=float)
     if speeds.size == 0:
         raise ConfigError("steady_window", "no samples in the steady-state window")
-    return float((speeds.max() - speeds.min()) / (2.0 * omega))
+    return float(severity_of_extremes(speeds.max(), speeds.min(), omega))
 
 
 def default_times(first_frequency_rad: float) -> tuple[float, float]:

@@ -25,6 +25,8 @@ __all__ = [
     "IMPLICIT_METHODS",
     "METHODS",
     "MIN_WINDOW_SAMPLES",
+    "SINGLE_RUN_ATOL",
+    "SINGLE_RUN_RTOL",
     "SimulationOptions",
     "check_window_samples",
 ]
@@ -41,6 +43,10 @@ IMPLICIT_METHODS = ("Radau", "BDF")
 
 MIN_WINDOW_SAMPLES = 10
 """Fewest output samples the steady-state window may hold."""
+
+SINGLE_RUN_RTOL, SINGLE_RUN_ATOL = 1e-6, 1e-9
+"""A single run's default tolerances (relative; absolute in rad, rad/s); a batch's are
+:data:`torsio.solvers.batch_options.DEFAULT_RTOL` and ``DEFAULT_ATOL``."""
 
 
 def check_window_samples(
@@ -146,9 +152,11 @@ class SimulationOptions:
         converter=lambda v: _optional_positive("steady_window", v, "a positive time in s"),
     )
     method: Any = attrs.field(default="auto", converter=_check_method)
-    rtol: float = attrs.field(default=1e-6, converter=lambda v: check_rtol(v, "simulation.rtol"))
+    rtol: float = attrs.field(
+        default=SINGLE_RUN_RTOL, converter=lambda v: check_rtol(v, "simulation.rtol")
+    )
     atol: float = attrs.field(
-        default=1e-9, converter=lambda v: _positive("atol", v, "a positive tolerance")
+        default=SINGLE_RUN_ATOL, converter=lambda v: _positive("atol", v, "a positive tolerance")
     )
     output_step: float | None = attrs.field(
         default=None,

@@ -72,6 +72,8 @@ from torsio.analysis.severity import (
 )
 from torsio.analysis.simulation_options import (
     MIN_WINDOW_SAMPLES,
+    SINGLE_RUN_ATOL,
+    SINGLE_RUN_RTOL,
     SimulationOptions,
 )
 from torsio.analysis.time_scales import check_time_scales
@@ -127,8 +129,8 @@ def simulate(
     duration: float | None = None,
     steady_window: float | None = None,
     method: Any = "auto",
-    rtol: float = 1e-6,
-    atol: float = 1e-9,
+    rtol: float = SINGLE_RUN_RTOL,
+    atol: float = SINGLE_RUN_ATOL,
     output_step: float | None = None,
     initial_state: Any = None,
     stick_threshold: float | None = None,

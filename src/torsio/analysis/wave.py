@@ -39,7 +39,12 @@ import numpy as np
 from torsio.analysis.budget import check_law_time_scale, check_output_size, check_wave_steps
 from torsio.analysis.contact_summary import contact_summary
 from torsio.analysis.limits import past_the_record, short_window, stuck_throughout, warning_list
-from torsio.analysis.severity import DEFAULT_DURATION_PERIODS, DEFAULT_WINDOW_PERIODS, check_window
+from torsio.analysis.severity import (
+    DEFAULT_SAMPLES_PER_PERIOD,
+    DEFAULT_STICK_THRESHOLD,
+    run_times,
+    severity_of_extremes,
+)
 from torsio.analysis.simulation_options import SimulationOptions, check_window_samples
 from torsio.analysis.transient_results import TransientResults
 from torsio.errors import ConfigError
@@ -49,12 +54,6 @@ from torsio.solvers.characteristics import RECORD_CHANNELS, WaveState, node_offs
 from torsio.solvers.run_chunks import QUIET_SECONDS, stderr_progress
 from torsio.solvers.wave_march import WaveRun, march
 from torsio.solvers.wave_top import top_boundary
-
-DEFAULT_SAMPLES_PER_PERIOD = 200
-"""Output samples per period of the first continuum mode (as the lumped transient)."""
-
-DEFAULT_STICK_THRESHOLD = 0.1
-"""The bit sticks while |bit speed| < 0.1 Omega (as the lumped transient)."""
 
 INTEGRATOR_OPTIONS = ("method", "rtol", "atol")
 """Options of the lumped integrators that have no meaning on the characteristic grid."""
@@ -233,11 +232,8 @@ def wave_response(
         grid = grid.with_contacts(contacts)
     dt = grid.time_step
     period = 2.0 * math.pi / first_frequency(grid)
-    duration = DEFAULT_DURATION_PERIODS * period if duration is None else float(duration)
     window_given = steady_window is not None
-    if steady_window is None:
-        steady_window = min(DEFAULT_WINDOW_PERIODS * period, 0.5 * duration)
-    check_window(duration, float(steady_window))
+    duration, steady_window = run_times(system, duration, steady_window)
     output_step = period / DEFAULT_SAMPLES_PER_PERIOD if output_step is None else output_step
     if not (math.isfinite(output_step) and output_step > 0):
         raise ConfigError("simulation.output_step", f"expected a positive time, got {output_step}")
@@ -277,7 +273,7 @@ def wave_response(
         reference = summary["top_speed_sum"] / summary["window_steps"]
     else:
         reference = top.set_speed
-    severity = (summary["bit_speed_max"] - summary["bit_speed_min"]) / (2.0 * reference)
+    severity = severity_of_extremes(summary["bit_speed_max"], summary["bit_speed_min"], reference)
     stick = float(np.mean(np.abs(bit_speed[window]) < threshold * reference))
     bit_angle = np.concatenate(
         [[0.0], np.cumsum(0.5 * (bit_speed[1:] + bit_speed[:-1]) * np.diff(t))]

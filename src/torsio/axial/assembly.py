@@ -159,6 +159,14 @@ class DrillingAssembly:
         """The kernel's torsional rows 1/I, k, c (:mod:`torsio.axial.kernel`)."""
         return np.ascontiguousarray([1.0 / self.inertias, self.stiffnesses, self.damping])
 
+    def first_frequency(self) -> float:
+        """ω₁ [rad/s] of the torsional chain, top held, undamped
+        (:func:`torsio.model.modal.pencil_first_frequency`)."""
+        from torsio.model.lumped import chain_matrix  # scipy: not at import
+        from torsio.model.modal import pencil_first_frequency
+
+        return pencil_first_frequency(chain_matrix(self.stiffnesses), np.diag(self.inertias))
+
     def fastest_frequency(self) -> float:
         """An upper bound [rad/s] of the chain's node frequencies, √((k_i + k_i+1)/I_i) and
         √((k_a,i + k_a,i+1)/m_i): what the explicit step must resolve."""

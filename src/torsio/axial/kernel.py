@@ -30,10 +30,13 @@ With a top drive that is not held (``top[TOP_HELD]`` 0), the top is a node (J, d
 a linear controller (:class:`torsio.physics.top_drive_boundary.TopDriveBoundary`), advanced
 in step 3 after the chain with the surface torque T_pipe = k_0 (θ_top − θ_0) + c_0 (Ω_top −
 ω_0) of the state at the step's start: y = [Ω_set − Ω_top, T_pipe], u_free = u0 + c·z +
-d·y, u = clip(u_free, ±max_torque), z ← z + h (a z + b y + w (u − u_free)),
+d·y, u = clip(u_free, ±max_torque), z ← z + h (a z + b y + w (u − u_free)) (the one
+evaluation of every engine, :func:`torsio.physics.top_drive_boundary.motor_torque` and
+:func:`~torsio.physics.top_drive_boundary.controller_rates`),
 Ω_top ← Ω_top + h (u − drag Ω_top − T_pipe)/J, θ_top ← θ_top + h Ω_top (the new speed).
 ``top`` holds the entries of :data:`torsio.axial.layouts.TOP_DRIVE`; ``top_state`` is
-[θ_top (rad), Ω_top (rad/s)], ``controller_state`` z; ``ctrl_a`` (m, m), ``ctrl_b`` (m, 2),
+[θ_top (rad), Ω_top (rad/s)], ``controller_state`` z; ``ctrl_a`` (m, m) and ``ctrl_b`` (m, 2)
+row by row,
 ``ctrl_c`` (m,), ``ctrl_d`` (2,), ``ctrl_w`` (m,) the controller's matrices.
 
 The bit's part of steps 1-3 is :mod:`torsio.axial.bit_step`, shared with the distributed
@@ -65,6 +68,7 @@ import numpy as np
 from torsio.axial import bit_step
 from torsio.axial import layouts as slot
 from torsio.axial.history import append
+from torsio.solvers.chain_kernel import compiled_controller_rates, compiled_motor_torque
 from torsio.solvers.compiled import HAVE_NUMBA, njit
 from torsio.solvers.contact_law import cone_step
 
@@ -84,7 +88,7 @@ def march_signature() -> object:
     vector, matrix, law = types.float64[::1], types.float64[:, ::1], law_type()
     return types.void(
         vector, matrix, matrix, vector, vector, vector, vector, vector, matrix, vector, vector,
-        matrix, vector, vector, vector, matrix, matrix, vector, vector, vector, matrix, vector,
+        matrix, vector, vector, vector, vector, vector, vector, vector, vector, matrix, vector,
         law, law, vector,
     )  # fmt: skip
 
@@ -250,17 +254,14 @@ def march(
             if top[slot.TOP_RAMP] > 0.0:
                 set_speed *= min(1.0, t / top[slot.TOP_RAMP])
             error = 0.0 if math.isnan(set_speed) else set_speed - top_rate
-            free = top[slot.TOP_U0] + ctrl_d[0] * error + ctrl_d[1] * top_torque
-            for j in range(states):
-                free += ctrl_c[j] * controller_state[j]
-            limit = top[slot.TOP_MAX_TORQUE]
-            motor = min(max(free, -limit), limit)
-            for j in range(states):
-                value = ctrl_b[j, 0] * error + ctrl_b[j, 1] * top_torque
-                value += ctrl_w[j] * (motor - free)
-                for k in range(states):
-                    value += ctrl_a[j, k] * controller_state[k]
-                rate[j] = value
+            motor, free = compiled_motor_torque(
+                top[slot.TOP_U0], ctrl_d[0], ctrl_d[1], top[slot.TOP_MAX_TORQUE], states, ctrl_c,
+                controller_state, error, top_torque,
+            )  # fmt: skip
+            compiled_controller_rates(
+                states, states, ctrl_a, ctrl_b, ctrl_w, controller_state, error, top_torque, motor,
+                free, rate,
+            )  # fmt: skip
             for j in range(states):
                 controller_state[j] += h * rate[j]
             top_state[1] += (

@@ -37,9 +37,10 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
+from torsio.analysis.severity import run_times
 from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.rgd import RGDBit
-from torsio.axial.transient import run_times, simulate_axial
+from torsio.axial.transient import simulate_axial
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.errors import ConfigError
 

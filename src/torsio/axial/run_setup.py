@@ -44,6 +44,7 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
+from torsio.analysis.severity import check_window
 from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.run_budget import check_run_work
@@ -51,7 +52,7 @@ from torsio.axial.steady import SteadyDrilling
 from torsio.axial.steady_friction import steady_loads, steady_with_friction
 from torsio.axial.step_rule import DAMPER_STEP, DEFAULT_STEPS_PER_PERIOD, contact_frequency
 from torsio.axial.string_contacts import AxialContacts, contact_rows
-from torsio.axial.top_drive import TopDriveArrays, steady_controller_state, top_drive_rates
+from torsio.axial.top_drive import TopDriveArrays, top_drive_rates
 from torsio.axial.torque_law import AxialBit, TorqueLawBit, law_functions, steady_state
 from torsio.errors import ConfigError
 from torsio.physics.top_drive_boundary import TopDriveBoundary
@@ -144,7 +145,7 @@ class RunOptions:
 
     def check(self) -> None:
         """A ConfigError unless ``start`` is one of :data:`STARTS`, -1 < perturbation < 1 and
-        0 < window <= duration."""
+        0 < window <= duration (:func:`torsio.analysis.severity.check_window`)."""
         if self.start not in STARTS:
             raise ConfigError(
                 "simulation.start", f"{self.start!r} is not one of {', '.join(STARTS)}"
@@ -156,11 +157,7 @@ class RunOptions:
                 "steady start; expected -1 < perturbation < 1 (1 already doubles the speed: "
                 "no longer a perturbation of steady drilling)",
             )
-        if not (0 < self.window <= self.duration and math.isfinite(self.duration)):
-            raise ConfigError(
-                "simulation.steady_window",
-                f"expected 0 < window <= duration, got {self.window!r} and {self.duration!r}",
-            )
+        check_window(self.duration, self.window)
 
     def largest_step(self, bit: AxialBit, mass: float, fastest: float) -> float:
         """h_max = 2π/(ω_fast × ``steps_per_period``) [s], ω_fast the larger of the bit's
@@ -345,11 +342,11 @@ def run_setup(
     ``bit_rotation`` prescribes when given; ``top_drive`` the top's boundary
     (:func:`torsio.axial.top_drive.top_boundary`; None: held at Ω₀). A top drive that is not
     held starts with the string: from rest (angle, speed and controller states zero) or on
-    the steady state (at Ω₀, the controller state of
-    :func:`torsio.axial.top_drive.steady_controller_state`). ``contacts``: the string's
-    contacts with the borehole (:mod:`torsio.axial.string_contacts`; their normal force at
-    ``wob``), the steady state then that of :mod:`torsio.axial.steady_friction` (``wob`` the
-    hook's weight under the weight hook).
+    the steady state (at Ω₀, the controller state of ``TopDriveBoundary.steady_states``).
+    ``contacts``: the string's contacts with the borehole
+    (:mod:`torsio.axial.string_contacts`; their normal force at ``wob``), the steady state
+    then that of :mod:`torsio.axial.steady_friction` (``wob`` the hook's weight under the
+    weight hook).
     """
     options.check()
     hook_force = float(wob)
@@ -432,7 +429,8 @@ def run_setup(
         if on_steady:
             top_state[1] = omega0
             surface = steady.bit_torque if contacts is None else friction.surface_torque
-            controller_state = steady_controller_state(top_drive, surface, omega0)
+            motor = surface + top_drive.drag * omega0  # u = T₀ + drag Ω₀
+            controller_state = top_drive.steady_states(surface, motor)
     settings = kernel.settings
     settings[slot.HOOK_START] = hook_start
     settings[slot.HOOK_WEIGHT] = hook_force

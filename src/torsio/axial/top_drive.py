@@ -8,8 +8,8 @@ tunings read of a system (:class:`AxialTopSystem`: the set speed, the first tors
 frequency with the top held, the string when there is one); :class:`TopDriveArrays` is what
 the compiled loop (:mod:`torsio.axial.kernel`) takes; :func:`top_drive_rates` gives the
 eigenvalues of the top node and its controller against the string's top spring (the
-fastest rate the explicit step must resolve) and :func:`steady_controller_state` the
-controller state of steady drilling.
+fastest rate the explicit step must resolve); the controller state of steady drilling is the
+boundary's :meth:`~torsio.physics.top_drive_boundary.TopDriveBoundary.steady_states`.
 
 Examples
 --------
@@ -19,13 +19,12 @@ Examples
 ...                         rgd_two_dof_example(), 60.0)
 >>> boundary.held, round(boundary.set_speed, 6)
 (False, 6.283185)
->>> [round(float(z), 9) for z in steady_controller_state(boundary, 1000.0)]  # ki z = T₀
+>>> [round(float(z), 9) for z in boundary.steady_states(1000.0, 1000.0)]  # ki z = T₀
 [0.538793103]
 """
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import attrs
@@ -41,37 +40,17 @@ from torsio.units import RPM_TO_RAD_S
 __all__ = [
     "AxialTopSystem",
     "TopDriveArrays",
-    "steady_controller_state",
     "top_boundary",
     "top_drive_rates",
 ]
 
 
 @attrs.frozen
-class _AssemblyModel:
-    """The torsional chain as a top drive's tuning reads it: its first frequency."""
-
-    assembly: DrillingAssembly
-
-    def first_frequency(self) -> float:
-        """ω₁ [rad/s] of the torsional chain, top held, undamped (as
-        :func:`torsio.axial.transient.first_torsional_frequency`)."""
-        import scipy.linalg  # not at import: the torsional engines load this package too
-
-        from torsio.model.lumped import chain_matrix
-
-        stiffness = chain_matrix(self.assembly.stiffnesses)
-        inertia = np.diag(self.assembly.inertias)
-        values = scipy.linalg.eigh(stiffness, inertia, eigvals_only=True)
-        return float(math.sqrt(values[0]))
-
-
-@attrs.frozen
 class AxialTopSystem:
     """What ``top_drive.boundary(system)`` reads of an axial run: ``omega`` the set speed
-    [rad/s], ``model`` (its ``first_frequency()``, ω₁ with the top held) and ``string``
-    (the drill string the assembly was built from, for the top pipe's impedance; None for a
-    chain given directly)."""
+    [rad/s], ``model`` (the assembly: its ``first_frequency()``, ω₁ with the top held) and
+    ``string`` (the drill string the assembly was built from, for the top pipe's impedance;
+    None for a chain given directly)."""
 
     model: Any
     omega: float
@@ -89,7 +68,7 @@ def top_boundary(
         A top drive with a set speed that changes in time as a table (``recorded``): the
         lumped axial engine takes a held speed or a controller (with its ``ramp``).
     """
-    system = AxialTopSystem(_AssemblyModel(assembly), float(rpm) * RPM_TO_RAD_S, string)
+    system = AxialTopSystem(assembly, float(rpm) * RPM_TO_RAD_S, string)
     boundary = top_drive.boundary(system)
     if not isinstance(boundary, TopDriveBoundary):
         raise ConfigError(
@@ -110,7 +89,7 @@ def top_boundary(
 @attrs.frozen(eq=False)
 class TopDriveArrays:
     """The compiled loop's top drive: ``top`` (slots :data:`torsio.axial.layouts.TOP_DRIVE`)
-    and the controller matrices a (m, m), b (m, 2), c (m,), d (2,), w (m,)."""
+    and the controller matrices a (m, m) and b (m, 2) row by row, c (m,), d (2,), w (m,)."""
 
     top: NDArray[np.float64]
     a: NDArray[np.float64]
@@ -125,9 +104,7 @@ class TopDriveArrays:
         top = np.zeros(len(TOP_SLOTS))
         if boundary is None or boundary.held:
             top[TOP_SLOTS.index("held")] = 1.0
-            return cls(
-                top, np.zeros((0, 0)), np.zeros((0, 2)), np.zeros(0), np.zeros(2), np.zeros(0)
-            )
+            return cls(top, np.zeros(0), np.zeros(0), np.zeros(0), np.zeros(2), np.zeros(0))
         values = {
             "held": 0.0,
             "inverse_inertia": 1.0 / boundary.inertia,
@@ -142,8 +119,8 @@ class TopDriveArrays:
         m = boundary.states
         return cls(
             top,
-            np.ascontiguousarray(np.asarray(boundary.a, dtype=float).reshape(m, m)),
-            np.ascontiguousarray(np.asarray(boundary.b, dtype=float).reshape(m, 2)),
+            np.ascontiguousarray(np.asarray(boundary.a, dtype=float).reshape(m * m)),
+            np.ascontiguousarray(np.asarray(boundary.b, dtype=float).reshape(m * 2)),
             np.ascontiguousarray(np.asarray(boundary.c, dtype=float).reshape(m)),
             np.ascontiguousarray(np.asarray(boundary.d, dtype=float).reshape(2)),
             np.ascontiguousarray(np.asarray(boundary.w, dtype=float).reshape(m)),
@@ -178,25 +155,3 @@ def top_drive_rates(
 ) -> NDArray[np.complex128]:
     """The eigenvalues [1/s] of :func:`top_drive_matrix`: the top drive's own rates."""
     return np.linalg.eigvals(top_drive_matrix(boundary, stiffness, damper))
-
-
-def steady_controller_state(
-    boundary: TopDriveBoundary, torque: float, speed: float | None = None
-) -> NDArray[np.float64]:
-    """The controller state z of steady drilling: the top at its set speed (e = 0), the
-    string carrying ``torque`` T₀ [N m], z' = 0 and u = T₀ + drag Ω_set, by least squares
-    (a kind that cannot hold it, e.g. a constant torque, gets the nearest z; ``speed``
-    [rad/s] default the set speed)."""
-    m = boundary.states
-    if m == 0:
-        return np.zeros(0)
-    omega = boundary.set_speed if speed is None else speed
-    omega = 0.0 if not math.isfinite(omega) else omega
-    a, b = np.asarray(boundary.a, float).reshape(m, m), np.asarray(boundary.b, float).reshape(m, 2)
-    c, d = np.asarray(boundary.c, float).reshape(m), np.asarray(boundary.d, float).reshape(2)
-    matrix = np.vstack([a, c[None, :]])
-    right = np.concatenate(
-        [-b[:, 1] * torque, [torque + boundary.drag * omega - boundary.u0 - d[1] * torque]]
-    )
-    state, *_ = np.linalg.lstsq(matrix, right, rcond=None)
-    return np.asarray(state, dtype=float)

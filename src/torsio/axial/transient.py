@@ -11,8 +11,8 @@ A law of the torque alone (:mod:`torsio.axial.torque_law`: Tucker-Wang, a plugin
 a lumped chain the same way, resting axially on the rock, and has no growth rate here.
 
 Default run length and window as torsio's other runs
-(:func:`torsio.analysis.severity.default_times`): 40 and 15 periods of the first torsional
-mode, top held.
+(:func:`torsio.analysis.severity.run_times`): 40 and 15 periods of the first torsional
+mode, top held (the assembly's ``first_frequency()``).
 
 Examples
 --------
@@ -35,11 +35,10 @@ from typing import Any
 
 import attrs
 import numpy as np
-import scipy.linalg
 from numpy.typing import NDArray
 
 from torsio.analysis.limits import saturated_motor, warning_list
-from torsio.analysis.severity import default_times
+from torsio.analysis.severity import run_times
 from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.energy_balance import EnergyBalance, chain_energy, energy_balance
@@ -54,35 +53,10 @@ from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_setup import WaveRunSetup, wave_chunk, wave_run_setup
 from torsio.axial.window_summary import WindowSummary, summarize
 from torsio.errors import ConfigError, SolverError
-from torsio.model.lumped import chain_matrix
 from torsio.solvers.run_chunks import run_in_chunks
 from torsio.units import as_rpm, as_si
 
-__all__ = ["AxialTransient", "first_torsional_frequency", "run_times", "simulate_axial"]
-
-
-def first_torsional_frequency(assembly: DrillingAssembly | WaveDrillingAssembly) -> float:
-    """ω₁ [rad/s] of the torsional chain (or the distributed pipe's exact one), top held,
-    undamped."""
-    if isinstance(assembly, WaveDrillingAssembly):
-        return float(assembly.torsional_frequencies(1)[0])
-    stiffness = chain_matrix(assembly.stiffnesses)
-    values = scipy.linalg.eigh(stiffness, np.diag(assembly.inertias), eigvals_only=True)
-    return float(math.sqrt(values[0]))
-
-
-def run_times(
-    assembly: DrillingAssembly | WaveDrillingAssembly, duration: float | None, window: float | None
-) -> tuple[float, float]:
-    """(duration, window) [s]: the given ones, or torsio's defaults (40 and 15 periods of
-    ω₁; a given duration gets at most half of it as its default window)."""
-    if duration is None or window is None:
-        default_duration, default_window = default_times(first_torsional_frequency(assembly))
-        if window is None:
-            window = default_window if duration is None else min(default_window, 0.5 * duration)
-        if duration is None:
-            duration = default_duration
-    return float(duration), float(window)
+__all__ = ["AxialTransient", "simulate_axial"]
 
 
 def _chain_chunk(
@@ -364,7 +338,8 @@ def simulate_axial(
         A lumped chain (:mod:`torsio.axial.kernel`) or a distributed pipe above a lumped
         BHA (:mod:`torsio.axial.wave_kernel`).
     duration, window : float, optional
-        Run length and steady window at its end [s] (:func:`run_times`).
+        Run length and steady window at its end [s]
+        (:func:`torsio.analysis.severity.run_times`).
     start : str
         ``"rest"`` (default) or ``"steady"`` with the bit speed raised by ``perturbation``.
     step, steps_per_period : float, int

@@ -197,6 +197,11 @@ class WaveDrillingAssembly:
             rigidity, self.lengths, self.torsional_wave_speeds, self.bha_inertia, count
         )
 
+    def first_frequency(self) -> float:
+        """ω₁ [rad/s]: the first exact torsional frequency, top held
+        (:meth:`torsional_frequencies`)."""
+        return float(self.torsional_frequencies(1)[0])
+
     def fastest_rate(self) -> float:
         """The largest of Z_a/m_b and Z_t/I_b [1/s], the rates at which the pipe's bottom
         section takes the BHA's motion away: what the step must resolve beside the bit."""

@@ -8,6 +8,7 @@ import math
 import attrs
 from numpy.typing import NDArray
 
+from torsio.analysis.severity import severity_of_extremes
 from torsio.axial import layouts as slot
 from torsio.axial.run_setup import KernelSetup
 from torsio.axial.torque_law import AxialBit
@@ -49,7 +50,9 @@ def summarize(stats: NDArray, setup: KernelSetup, bit: AxialBit) -> WindowSummar
     advance = s["position_end"] - s["position_start"]
     steady = setup.steady
     return WindowSummary(
-        severity=float((s["bit_speed_max"] - s["bit_speed_min"]) / (2 * steady.bit_speed)),
+        severity=float(
+            severity_of_extremes(s["bit_speed_max"], s["bit_speed_min"], steady.bit_speed)
+        ),
         axial_severity=(  # NaN without a steady rate of penetration (a law of the torque alone)
             float((s["axial_speed_max"] - s["axial_speed_min"]) / (2 * steady.rop))
             if steady.rop > 0

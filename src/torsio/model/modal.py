@@ -221,7 +221,9 @@ def natural_frequencies(model: LumpedModel) -> np.ndarray:
     per model and kept with it (or taken from a modal analysis of all its modes)."""
     memo = _memo(model)
     if "frequencies" not in memo:
-        _remember(model, np.sqrt(_eigen(model, (0, model.dofs - 1), vectors=False)[0]))
+        _remember(
+            model, np.sqrt(_eigen(model.stiffness, model.inertia, (0, model.dofs - 1), False)[0])
+        )
     return np.asarray(memo["frequencies"])
 
 
@@ -260,14 +262,20 @@ def modal_analysis(
     if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count:
         raise ConfigError("count", f"expected a whole number of modes >= 1, got {count!r}")
     count = min(count, n)
-    eigenvalues, vectors = _eigen(model, (0, count - 1))
+    eigenvalues, vectors = _eigen(model.stiffness, model.inertia, (0, count - 1))
     frequencies = np.sqrt(eigenvalues)
     _remember(model, frequencies)  # every later omega_1 (and spectrum) of the model reads it
     return ModalResults(model, frequencies, normalize_shape(vectors), vectors, string)
 
 
+def pencil_first_frequency(stiffness: np.ndarray, inertia: np.ndarray) -> float:
+    """omega_1 [rad/s] of the pencil ([K] [N m/rad], [I] [kg m^2]), top held, undamped: the
+    one solve of a chain's first frequency (a lumped model's, an axial assembly's)."""
+    return float(np.sqrt(_eigen(stiffness, inertia, (0, 0), vectors=False)[0][0]))
+
+
 def _eigen(
-    model: LumpedModel, indices: tuple[int, int], vectors: bool = True
+    stiffness: np.ndarray, inertia: np.ndarray, indices: tuple[int, int], vectors: bool = True
 ) -> tuple[np.ndarray, np.ndarray]:
     """Eigenvalues omega^2 [rad^2/s^2] ``indices[0]..indices[1]`` of the pencil ([K], [I]),
     ascending, with their vectors (columns; none with ``vectors=False``).
@@ -275,11 +283,12 @@ def _eigen(
     Lumped (diagonal) inertia with a chain stiffness is solved as the tridiagonal matrix
     D^-1/2 [K] D^-1/2 (O(n^2), no dense BLAS); any other model as the dense pencil.
     """
-    shapes = np.empty((model.dofs, 0))
-    if model.has_lumped_mass and is_tridiagonal(model.stiffness):
-        scale = 1.0 / np.sqrt(np.diag(model.inertia))
-        diagonal = np.diag(model.stiffness) * scale**2
-        off_diagonal = np.diag(model.stiffness, 1) * scale[:-1] * scale[1:]
+    shapes = np.empty((stiffness.shape[0], 0))
+    lumped = not np.count_nonzero(inertia - np.diag(np.diag(inertia)))
+    if lumped and is_tridiagonal(stiffness):
+        scale = 1.0 / np.sqrt(np.diag(inertia))
+        diagonal = np.diag(stiffness) * scale**2
+        off_diagonal = np.diag(stiffness, 1) * scale[:-1] * scale[1:]
         solved = scipy.linalg.eigh_tridiagonal(
             diagonal, off_diagonal, eigvals_only=not vectors, select="i", select_range=indices
         )
@@ -287,7 +296,7 @@ def _eigen(
         shapes = shapes * scale[:, None] if vectors else shapes
     else:
         solved = scipy.linalg.eigh(
-            model.stiffness, model.inertia, eigvals_only=not vectors, subset_by_index=indices
+            stiffness, inertia, eigvals_only=not vectors, subset_by_index=indices
         )
         eigenvalues, shapes = solved if vectors else (solved, shapes)
     if np.any(eigenvalues <= 0):

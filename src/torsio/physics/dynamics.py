@@ -46,7 +46,7 @@ from torsio.errors import ConfigError
 from torsio.model.contacts import carried_contacts
 from torsio.model.tridiagonal import is_tridiagonal, tridiagonal_bands, tridiagonal_matvec
 from torsio.physics.law_slope import bit_slope
-from torsio.physics.top_drive_boundary import TopDriveBoundary
+from torsio.physics.top_drive_boundary import TopDriveBoundary, controller_rates, motor_torque
 
 __all__ = ["Dynamics"]
 
@@ -340,18 +340,15 @@ class Dynamics:
             torque = self.pipe_torque(phi, v, time)
             return torque, torque
         top = self.top
-        set_speed = self.set_speed_at(time)[0]
-        error = set_speed - (self.reference_speed + v[0]) if math.isfinite(top.set_speed) else 0.0
-        pipe = self.pipe_torque(phi, v)
-        free = top.u0 + top.d[0] * error + top.d[1] * pipe
-        if top.states:
-            free = free + np.tensordot(top.c, z, axes=1)
-        limited = np.clip(free, -top.max_torque, top.max_torque)
-        return limited, free
+        error, pipe = self._outputs(phi, v, time)
+        return motor_torque(top.u0, top.kp, top.pipe_gain, top.max_torque, top.states, top.c, z,
+                            error, pipe)  # fmt: skip
 
-    def _outputs(self, phi: np.ndarray, v: np.ndarray, time: Any = None) -> np.ndarray:
-        error = self.set_speed_at(time)[0] - (self.reference_speed + v[0])
-        return np.array([error, float(self.pipe_torque(phi, v))])
+    def _outputs(self, phi: np.ndarray, v: np.ndarray, time: Any = None) -> tuple[Any, Any]:
+        """(e, T_pipe): the speed error [rad/s] (0 without a set speed) and the pipe torque."""
+        set_speed = self.set_speed_at(time)[0]
+        error = set_speed - (self.reference_speed + v[0]) if math.isfinite(self.set_speed) else 0.0
+        return error, self.pipe_torque(phi, v)
 
     # --- first-order equations ------------------------------------------------------------
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
@@ -374,11 +371,12 @@ class Dynamics:
         dy = np.empty_like(y)
         if self.has_top_node:
             top = self.top
-            u, free = self.motor_torque(z, phi, v, time)
+            error, pipe = self._outputs(phi, v, time)
+            u, free = motor_torque(top.u0, top.kp, top.pipe_gain, top.max_torque, m, top.c, z,
+                                   error, pipe)  # fmt: skip
             force[0] += float(u)
-            if m:
-                outputs = self._outputs(phi, v, time)
-                dy[:m] = top.a @ z + top.b @ outputs + top.w * (float(u) - float(free))
+            controller_rates(m, m, np.ravel(top.a), np.ravel(top.b), top.w, z, error, pipe, u,
+                             free, dy)  # fmt: skip
         dy[m::2] = v
         dy[m + 1 :: 2] = self._solve_mass(force)
         return dy
@@ -485,12 +483,7 @@ class Dynamics:
         phi = np.zeros(n)
         phi[1:] = np.linalg.solve(stiffness[1:, 1:], load[1:])
         y[m::2] = phi
-        if m:
-            outputs = self._outputs(phi, np.zeros(n))  # e = 0 at the set speed
-            # steady controller: a z + b y = 0 and u0 + c z + d y = motor
-            system = np.vstack([top.a, top.c[None, :]])
-            rhs = np.concatenate([-top.b @ outputs, [motor - top.u0 - top.d @ outputs]])
-            y[:m] = np.linalg.lstsq(system, rhs, rcond=None)[0]
+        y[:m] = top.steady_states(float(self.pipe_torque(phi, np.zeros(n))), motor)
         return y
 
     def linearized(self, bit_slope: float | None = None) -> np.ndarray:

@@ -5,6 +5,12 @@ returns from ``boundary(system)``; :class:`ScaledTopDrive` is a top drive rescal
 to the dimensionless formulation; :func:`top_pipe_impedance` is the drill pipe's
 characteristic impedance that the tunings refer to.
 
+The controller is evaluated here, once for every engine: :func:`motor_torque` (u and
+u_free) and :func:`controller_rates` (z') of the speed error e and the pipe torque T_pipe.
+They are plain functions of floats or numpy arrays (Dynamics and the numpy batch engine
+call them on arrays of samples or points) that numba compiles as they are for the
+lumped RODAS4 kernel and the axial kernel (:mod:`torsio.solvers.chain_kernel`).
+
 Examples
 --------
 >>> import numpy as np
@@ -25,7 +31,46 @@ import numpy as np
 
 from torsio.errors import ConfigError
 
-__all__ = ["ScaledTopDrive", "TopDriveBoundary", "top_pipe_impedance"]
+__all__ = [
+    "ScaledTopDrive",
+    "TopDriveBoundary",
+    "controller_rates",
+    "limited",
+    "motor_torque",
+    "top_pipe_impedance",
+]
+
+
+def limited(torque, max_torque):
+    """``torque`` [N m] held to +-``max_torque``: np.clip (numba compiles it as min(max()),
+    :mod:`torsio.solvers.chain_kernel`)."""
+    return np.clip(torque, -max_torque, max_torque)
+
+
+def motor_torque(u0, kp, pipe_gain, max_torque, states, c, z, error, pipe):
+    """(u, u_free) [N m]: u_free = u0 + kp e + pipe_gain T_pipe + c . z, u = clip(u_free,
+    -max_torque, max_torque), for the speed error e [rad/s] and the pipe torque T_pipe [N m]
+    (floats, or arrays of points with ``z`` shaped (m, points)); ``states`` m <= len(c).
+
+    >>> [float(t) for t in motor_torque(100.0, 5.0, 0.0, 110.0, 1, [2.0], [3.0], 1.0, 0.0)]
+    [110.0, 111.0]
+    """
+    free = u0 + kp * error + pipe_gain * pipe
+    for j in range(states):
+        free = free + c[j] * z[j]
+    return limited(free, max_torque), free
+
+
+def controller_rates(states, stride, a, b, w, z, error, pipe, u, free, rates):
+    """rates = z' = a z + b [e, T_pipe] + w (u - u_free) of the first ``states`` states m:
+    ``a`` flat, row j at ``stride`` j (the m x m matrix, or its block of a larger square),
+    ``b`` flat, the gains on (e, T_pipe) of each state in turn, ``w`` (m,); floats or arrays
+    of points as in :func:`motor_torque`."""
+    for j in range(states):
+        rate = b[2 * j] * error + b[2 * j + 1] * pipe + w[j] * (u - free)
+        for k in range(states):
+            rate = rate + a[stride * j + k] * z[k]
+        rates[j] = rate
 
 
 @attrs.frozen
@@ -135,6 +180,19 @@ class TopDriveBoundary:
         import scipy.optimize  # a torque-driven top drive only
 
         return float(scipy.optimize.brentq(excess, grid[i], grid[i + 1], xtol=1e-13, rtol=1e-14))
+
+    def steady_states(self, pipe_torque: float, motor: float) -> np.ndarray:
+        """The controller states z of steady rotation at the set speed (e = 0) with the pipe
+        torque ``pipe_torque`` [N m]: z' = a z + b [0, T_pipe] = 0 and u_free = ``motor``
+        [N m], by least squares (a kind that cannot hold it gets the nearest z)."""
+        m = self.states
+        if m == 0:
+            return np.zeros(0)
+        outputs = np.array([0.0, float(pipe_torque)])
+        a, b = np.asarray(self.a, float).reshape(m, m), np.asarray(self.b, float).reshape(m, 2)
+        c, d = np.asarray(self.c, float).reshape(m), np.asarray(self.d, float).reshape(2)
+        right = np.concatenate([-b @ outputs, [motor - self.u0 - d @ outputs]])
+        return np.asarray(np.linalg.lstsq(np.vstack([a, c]), right, rcond=None)[0], float)
 
     def transfer(self, s: complex) -> np.ndarray:
         """H(s) = c (s I - a)^-1 b + d: motor torque per unit (e, T_pipe), shape (2,)."""

@@ -49,6 +49,7 @@ from typing import Any
 import attrs
 import numpy as np
 
+from torsio.analysis.severity import run_times, severity_of_extremes
 from torsio.errors import ConfigError, SolverError
 from torsio.model.modal import first_natural_frequency, highest_natural_frequency
 from torsio.physics.system import System
@@ -73,7 +74,7 @@ from torsio.solvers.layouts import (
     TOP_HAS_NODE,
 )
 from torsio.solvers.lumped_inputs import pack_chain, pack_top, run_settings, step_limits
-from torsio.solvers.reference import reference_options, reference_severity, run_times
+from torsio.solvers.reference import reference_options, reference_severity
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = [
@@ -359,7 +360,7 @@ def simulate_lumped_batch(
     reference = top_speed if torque_driven else omega_set
     bit_max, bit_min = out[:, OUT_BIT_SPEED_MAX], out[:, OUT_BIT_SPEED_MIN]
     with np.errstate(invalid="ignore", divide="ignore"):
-        severity = np.where(status == 0, (bit_max - bit_min) / (2.0 * reference), np.nan)
+        severity = np.where(status == 0, severity_of_extremes(bit_max, bit_min, reference), np.nan)
     return BatchResults(
         wob_arr,
         rpm_arr,

@@ -87,7 +87,7 @@ class BatchOptions:
     ----------
     duration, steady_window : float or None
         Run length and steady-state window [s]; None: the defaults of
-        :func:`torsio.solvers.reference.run_times` (40 and 15 first-mode periods).
+        :func:`torsio.analysis.severity.run_times` (40 and 15 first-mode periods).
     rtol, atol : float
         Per-point local error tolerances (relative; absolute in rad, rad/s and the
         controller states' units).

@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from torsio.solvers.compiled import njit
+from torsio.physics.top_drive_boundary import controller_rates, limited, motor_torque
+from torsio.solvers.compiled import HAVE_NUMBA, njit, numba
 from torsio.solvers.layouts import (
     CARRY_ERR_ACCEPTED,
     CARRY_H,
@@ -54,6 +55,7 @@ from torsio.solvers.layouts import (
     TOP_KP,
     TOP_MAX_TORQUE,
     TOP_PIPE_GAIN,
+    TOP_SIZE,
     TOP_STATES,
     TOP_U0,
     TOP_W,
@@ -66,6 +68,8 @@ from torsio.solvers.layouts import (
 
 __all__ = [
     "accelerations",
+    "compiled_controller_rates",
+    "compiled_motor_torque",
     "controller_solve",
     "finish_run",
     "forces",
@@ -76,6 +80,29 @@ __all__ = [
     "store_carry",
     "store_window",
 ]
+
+
+if HAVE_NUMBA:  # np.clip of floats, as numba compiles it (numpy's is for arrays)
+
+    @numba.extending.overload(limited, inline="always")
+    def _limited(torque, max_torque):
+        return lambda torque, max_torque: min(max(torque, -max_torque), max_torque)
+
+
+# the controller's one evaluation (physics/top_drive_boundary.py), compiled as it is written
+_INLINE = {"cache": True, "error_model": "numpy", "_nrt": False, "inline": "always"}
+compiled_motor_torque = njit(**_INLINE)(motor_torque)
+compiled_controller_rates = njit(**_INLINE)(controller_rates)
+
+
+@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+def packed_motor_torque(top, z, error, pipe):
+    """(u, u_free) [N m] of the packed top drive ``top`` (``TOP_*``) at the speed error
+    ``error`` [rad/s] and the pipe torque ``pipe`` [N m]."""
+    return compiled_motor_torque(
+        top[TOP_U0], top[TOP_KP], top[TOP_PIPE_GAIN], top[TOP_MAX_TORQUE], int(top[TOP_STATES]),
+        top[TOP_C:TOP_W], z, error, pipe,
+    )  # fmt: skip
 
 
 @njit(cache=True, error_model="numpy", _nrt=False, inline="always")
@@ -107,17 +134,12 @@ def forces(
         m = int(top[TOP_STATES])
         error = set_speed - (omega + v[0]) if set_speed == set_speed else 0.0
         pipe = top[TOP_K_PIPE] * (phi[0] - phi[1]) + top[TOP_C_PIPE] * (v[0] - v[1])
-        free = top[TOP_U0] + top[TOP_KP] * error + top[TOP_PIPE_GAIN] * pipe
-        for j in range(m):
-            free += top[TOP_C + j] * z[j]
-        u = min(max(free, -top[TOP_MAX_TORQUE]), top[TOP_MAX_TORQUE])
+        u, free = packed_motor_torque(top, z, error, pipe)
         fv[0] += u
-        for j in range(m):
-            s = top[TOP_B + 2 * j] * error + top[TOP_B + 2 * j + 1] * pipe
-            s += top[TOP_W + j] * (u - free)
-            for q in range(m):
-                s += top[TOP_A + MAX_STATES * j + q] * z[q]
-            fz[j] = s
+        compiled_controller_rates(
+            m, MAX_STATES, top[TOP_A:TOP_B], top[TOP_B:TOP_C], top[TOP_W:TOP_SIZE], z, error,
+            pipe, u, free, fz,
+        )  # fmt: skip
     else:
         fv[0] += top[TOP_K_PIPE] * top_twist + top[TOP_C_PIPE] * (set_speed - omega)
     return bit_speed
@@ -222,10 +244,8 @@ def saturated(top, omega, set_speed, phi, v, z) -> bool:
         return False
     error = set_speed - (omega + v[0]) if set_speed == set_speed else 0.0
     pipe = top[TOP_K_PIPE] * (phi[0] - phi[1]) + top[TOP_C_PIPE] * (v[0] - v[1])
-    free = top[TOP_U0] + top[TOP_KP] * error + top[TOP_PIPE_GAIN] * pipe
-    for j in range(int(top[TOP_STATES])):
-        free += top[TOP_C + j] * z[j]
-    return abs(free) > top[TOP_MAX_TORQUE]
+    u, free = packed_motor_torque(top, z, error, pipe)
+    return u != free
 
 
 @njit(cache=True, error_model="numpy", _nrt=False, inline="always")

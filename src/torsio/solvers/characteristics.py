@@ -65,6 +65,7 @@ import math
 from typing import Any
 
 from torsio.solvers import layouts as slot
+from torsio.solvers.chain_kernel import compiled_motor_torque
 from torsio.solvers.compiled import njit
 from torsio.solvers.set_speed import table_speed
 from torsio.solvers.wave_bit import _solve_bit
@@ -139,7 +140,9 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
     ``contacts``: :func:`torsio.solvers.wave_contacts.contact_arrays`, threshold speed
     ``WAVE_THRESHOLD``), solved exactly at every step (:mod:`torsio.solvers.wave_contacts`).
     The set speed is ``speed_table``'s (:func:`table_speed`), constant from
-    ``WAVE_RAMP_END`` on; ``WAVE_KP`` (kp) is the motor torque per unit set speed."""
+    ``WAVE_RAMP_END`` on; the motor torque is the one evaluation of every engine
+    (:func:`torsio.physics.top_drive_boundary.motor_torque`) of ``coefficients``
+    (``COEF_*``)."""
     dt = settings[slot.WAVE_DT]
     bit_inertia = settings[slot.WAVE_BIT_INERTIA]
     alpha = settings[slot.WAVE_ALPHA]
@@ -163,7 +166,6 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
         slot.WAVE_BELOW_THRESHOLD
     ]  # the largest speed under the threshold: the static branch
     rubbing = settings[slot.WAVE_CONTACTS] != 0.0
-    kp = settings[slot.WAVE_KP]  # the motor torque per unit set speed
     ramp_end = settings[slot.WAVE_RAMP_END]
     t_end = run_steps * dt  # the run's end, for the cycles left, and its window's length
     window_length = (run_steps - window_start + 1) * dt
@@ -297,13 +299,13 @@ def _march(  # type: ignore[no-untyped-def,unused-ignore]
                     for j in range(n_top):
                         acc += propagator[mode, i, j] * top_state[j]
                     mode_x[i] = acc
-                u_free = (
-                    coefficients[slot.COEF_U0]
-                    + kp * set_speed
-                    + coefficients[slot.COEF_STATES + n_top] * m_in
-                )
-                for i in range(n_top):
-                    u_free += coefficients[slot.COEF_STATES + i] * mode_x[i]
+                speed = mode_x[slot.X_TOP_SPEED]
+                u_free = compiled_motor_torque(
+                    coefficients[slot.COEF_U0], coefficients[slot.COEF_KP],
+                    coefficients[slot.COEF_PIPE_GAIN], max_torque, n_top - slot.X_CONTROLLER,
+                    coefficients[slot.COEF_STATES :], mode_x[slot.X_CONTROLLER :],
+                    set_speed - speed, m_in + z_top * speed,
+                )[1]  # fmt: skip
                 if mode == 0:
                     if u_free > max_torque:
                         continue

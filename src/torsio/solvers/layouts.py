@@ -149,15 +149,14 @@ GAIN_E, GAIN_PIPE, GAIN_STATES = field_starts(1, 1)
 # drive's drag [N m s/rad], track the energies (1.0), drag spacing [nodes], steady-cycle
 # tolerance [S_SS units], reference speed [rad/s], least time between two ends of a cycle
 # [s], steps of the run, the contacts' threshold speed [rad/s], contacts along the string
-# (1.0), the largest speed below the threshold [rad/s], kp of [top_drive] (the motor
-# torque per unit set speed [N m s/rad]; 0 without a set speed), the time from which the
-# set speed is constant [s]
+# (1.0), the largest speed below the threshold [rad/s], the time from which the set speed
+# is constant [s]
 (WAVE_DT, WAVE_BIT_INERTIA, WAVE_ALPHA, WAVE_WOB, WAVE_BIT_RADIUS, WAVE_HELD,
  WAVE_SET_SPEED, WAVE_MAX_TORQUE, WAVE_STEPS, WAVE_WINDOW_START, WAVE_RECORD_EVERY,
  WAVE_FIELD_EVERY, WAVE_TOP_DRAG, WAVE_TRACK_ENERGY, WAVE_DRAG_SPACING,
  WAVE_STEADY_TOLERANCE, WAVE_REFERENCE, WAVE_CYCLE_GAP, WAVE_RUN_STEPS, WAVE_THRESHOLD,
- WAVE_CONTACTS, WAVE_BELOW_THRESHOLD, WAVE_KP, WAVE_RAMP_END, WAVE_SIZE) = field_starts(
-    *(1,) * 24
+ WAVE_CONTACTS, WAVE_BELOW_THRESHOLD, WAVE_RAMP_END, WAVE_SIZE) = field_starts(
+    *(1,) * 23
 )  # fmt: skip
 
 # --- the wave model: a run's summary, carried from call to call ------------------------
@@ -205,8 +204,10 @@ extremes and sums over the window; energies [J] over the run."""
 BIT_SPEED, BIT_SPEED_BEFORE, BIT_STEPS, BIT_STATE_SIZE = field_starts(1, 1, 1)
 # WaveState.top and the top drive's state x: Omega_0 [rad/s], then the controller states
 X_TOP_SPEED, X_CONTROLLER = field_starts(1)
-# TopArrays.coefficients of u_free: the constant [N m], the gains on x, then on m (last)
-COEF_U0, COEF_STATES = field_starts(1)
+# TopArrays.coefficients, the controller's gains (top_drive_boundary.motor_torque): u0
+# [N m], kp of [top_drive] (the motor torque per unit speed error [N m s/rad]; 0 without a
+# set speed), the motor torque per unit pipe torque [-], then c (one per controller state)
+COEF_U0, COEF_KP, COEF_PIPE_GAIN, COEF_STATES = field_starts(1, 1, 1)
 
 # --- the wave model: the grid's buffers (solvers/wave_state.py, wave_buffers.py) --------
 # per section, integers: cells n, first node in the state arrays, first slot of the

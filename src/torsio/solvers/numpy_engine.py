@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from torsio.physics.law_slope import bit_slope
+from torsio.physics.top_drive_boundary import controller_rates, motor_torque
 from torsio.solvers import layouts as slot
 from torsio.solvers.numpy_contacts import ContactLaw, hold_rows
 from torsio.solvers.rodas import GAMMA, RODAS_A, RODAS_C
@@ -55,6 +56,7 @@ class _Chain:
         self.b = top[slot.TOP_B : slot.TOP_C].reshape(states, 2)[:m]
         self.c = top[slot.TOP_C : slot.TOP_C + m]
         self.w = top[slot.TOP_W : slot.TOP_W + m]
+        self.top = top
         self.law = law
         self.radius = radius
         self.contacts: ContactLaw | None = None  # the contacts along the string, if any
@@ -66,11 +68,13 @@ class _Chain:
             self.mpiv[i] = self.md[i] - self.mlow[i] * self.mu[i - 1]
 
     def controller(self, om: np.ndarray, om_set: np.ndarray, phi: np.ndarray, v: np.ndarray, z):
-        """Speed error, pipe torque, u and u_free per point."""
+        """Speed error, pipe torque, u and u_free per point (z: (points, m))."""
         error = np.where(np.isnan(om_set), 0.0, om_set - (om + v[:, 0]))
         pipe = self.k1 * (phi[:, 0] - phi[:, 1]) + self.c1 * (v[:, 0] - v[:, 1])
-        free = self.u0 + self.kp * error + self.pipe_gain * pipe + z @ self.c
-        return error, pipe, np.clip(free, -self.max_torque, self.max_torque), free
+        u, free = motor_torque(
+            self.u0, self.kp, self.pipe_gain, self.max_torque, self.m, self.c, z.T, error, pipe
+        )
+        return error, pipe, u, free
 
     def forces(self, om, om_set, wob, phi, v, z) -> tuple[np.ndarray, np.ndarray]:
         """Chain forces (motor and bit included) and z' per point."""
@@ -81,9 +85,10 @@ class _Chain:
         if self.has_top:
             error, pipe, u, free = self.controller(om, om_set, phi, v, z)
             fv[:, 0] += u
-            if self.m:
-                fz = z @ self.a.T + np.outer(error, self.b[:, 0]) + np.outer(pipe, self.b[:, 1])
-                fz += (u - free)[:, None] * self.w
+            rates = fz.T  # (m, points), a view: written in place
+            a, b = self.top[slot.TOP_A : slot.TOP_B], self.top[slot.TOP_B : slot.TOP_C]
+            controller_rates(self.m, slot.MAX_STATES, a, b, self.w, z.T, error, pipe, u, free,
+                             rates)  # fmt: skip
         return fv, fz
 
     def accelerations(self, fv: np.ndarray) -> np.ndarray:

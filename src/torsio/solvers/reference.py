@@ -1,7 +1,4 @@
-"""The reference of the batch engine: one :func:`scipy.integrate.solve_ivp` run per point.
-
-Also the run length and steady window every engine uses (:func:`run_times`).
-"""
+"""The reference of the batch engine: one :func:`scipy.integrate.solve_ivp` run per point."""
 
 from __future__ import annotations
 
@@ -9,14 +6,14 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from torsio.analysis.severity import run_times as severity_run_times
+from torsio.analysis.severity import run_times, severity_of_extremes
 from torsio.errors import SolverError
 from torsio.physics.system import System
 
 if TYPE_CHECKING:
     from torsio.analysis.simulation_options import SimulationOptions
 
-__all__ = ["reference_options", "reference_severity", "run_times"]
+__all__ = ["reference_options", "reference_severity"]
 
 
 def reference_severity(
@@ -103,7 +100,7 @@ def reference_severity(
         top_speed = np.full_like(times, dynamics.reference_speed)
     info["top_speed_mean"] = float(np.trapezoid(top_speed, times) / steady_window)
     speed = dynamics.set_speed if np.isfinite(dynamics.set_speed) else info["top_speed_mean"]
-    return float((bit_speed.max() - bit_speed.min()) / (2.0 * speed)), info
+    return float(severity_of_extremes(bit_speed.max(), bit_speed.min(), speed)), info
 
 
 def reference_options(**overrides: Any) -> SimulationOptions:
@@ -117,14 +114,3 @@ def reference_options(**overrides: Any) -> SimulationOptions:
     from torsio.analysis.simulation_options import SimulationOptions
 
     return SimulationOptions(**{"method": "Radau", "rtol": 1e-8, "atol": 1e-10, **overrides})
-
-
-def run_times(
-    system: System, duration: float | None, steady_window: float | None
-) -> tuple[float, float]:
-    """(duration, steady window) [s]: :func:`torsio.analysis.severity.run_times`, the one rule.
-
-    The given values, else 40 and 15 first-mode periods, the window at most half of a
-    run whose length is given (as for a single run).
-    """
-    return severity_run_times(system, duration, steady_window)

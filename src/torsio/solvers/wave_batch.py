@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 
 from torsio.analysis.budget import check_wave_steps
-from torsio.analysis.severity import check_window, default_times
+from torsio.analysis.severity import check_window, run_times, severity_of_extremes
 from torsio.analysis.simulation_options import check_window_samples
 from torsio.errors import ConfigError, SolverError
 from torsio.model.wave import check_wave_damping
@@ -85,12 +85,9 @@ def simulate_wave_batch(system: Any, wob: Any, rpm: Any, options: BatchOptions) 
     points = batch_points(system, wob, rpm)
     wob_arr, rpm_arr, torque_driven = points.wob, points.rpm, points.torque_driven
     omega_1 = grid.first_frequency()
-    default_duration, default_window = default_times(omega_1)
-    if duration is not None:  # the window at most half a given run, as run_times says
-        default_window = min(default_window, 0.5 * float(duration))
-    duration = default_duration if duration is None else float(duration)
-    window_given = steady_window is not None and float(steady_window) != default_window
+    duration, default_window = run_times(system, duration, None)
     steady_window = default_window if steady_window is None else float(steady_window)
+    window_given = steady_window != default_window
     check_window(duration, steady_window)
     dt = grid.time_step
     steps = check_wave_steps(grid, duration)
@@ -141,7 +138,7 @@ def simulate_wave_batch(system: Any, wob: Any, rpm: Any, options: BatchOptions) 
     elapsed = time.perf_counter() - start
     reference = top_mean if torque_driven else rpm_arr * RPM_TO_RAD_S
     with np.errstate(invalid="ignore", divide="ignore"):
-        severity = np.where(status == 0, (bit_max - bit_min) / (2.0 * reference), np.nan)
+        severity = np.where(status == 0, severity_of_extremes(bit_max, bit_min, reference), np.nan)
     ended = np.where((taken < steps) & (status == 0), taken * dt, float(duration))
     return BatchResults(
         wob_arr, rpm_arr, severity, bit_max, bit_min, top_mean, taken,

@@ -17,6 +17,7 @@ import numpy as np
 
 from torsio.errors import SolverError
 from torsio.model.wave import WaveModel
+from torsio.physics.top_drive_boundary import motor_torque
 from torsio.solvers import layouts as slot
 from torsio.solvers.characteristics import (
     KernelLayout,
@@ -82,6 +83,7 @@ def _python_march() -> Any:
     function = getattr(_march, "py_func", _march)
     solve = getattr(characteristics._solve_bit, "py_func", characteristics._solve_bit)
     namespace = {**vars(characteristics), "_solve_bit": solve}
+    namespace["compiled_motor_torque"] = motor_torque
     return types.FunctionType(function.__code__, namespace, function.__name__)
 
 
@@ -231,12 +233,13 @@ def march(
     # powers at t = 0 for the trapezoidal energies
     speed0 = state.top[slot.X_TOP_SPEED] if not top.held else set_speed0
     surface0 = state.m[0] + (z_top + layout.end_dampers[0]) * speed0  # with the top node's drag
-    if not top.held:
-        x0 = state.top
-        gains = top.coefficients[slot.COEF_STATES : slot.COEF_STATES + top.states]
-        u0 = top.coefficients[slot.COEF_U0] + top.kp * set_speed0 + gains @ x0
-        u0 += top.coefficients[slot.COEF_STATES + top.states] * state.m[0]
-        motor0 = float(np.clip(u0, -top.max_torque, top.max_torque))
+    if not top.held:  # the motor torque of e = Omega_set - Omega_0, T_pipe = m + Z Omega_0
+        gains, x0 = top.coefficients, state.top
+        motor0 = float(motor_torque(
+            gains[slot.COEF_U0], gains[slot.COEF_KP], gains[slot.COEF_PIPE_GAIN], top.max_torque,
+            top.states - slot.X_CONTROLLER, gains[slot.COEF_STATES :], x0[slot.X_CONTROLLER :],
+            set_speed0 - speed0, state.m[0] + z_top * speed0,
+        )[0])  # fmt: skip
     else:
         motor0 = surface0 + layout.end_dampers[0] * speed0
     w_bit = state.bit[slot.BIT_SPEED]
@@ -280,7 +283,6 @@ def march(
     settings[slot.WAVE_THRESHOLD] = threshold
     settings[slot.WAVE_CONTACTS] = 0.0 if grid.contacts is None else 1.0
     settings[slot.WAVE_BELOW_THRESHOLD] = speed_below(threshold)
-    settings[slot.WAVE_KP] = top.kp
     settings[slot.WAVE_RAMP_END] = top.ramp_end
     cross = np.zeros((slot.NODE_ROWS, state.p.size + slot.CROSS_EXTRA))
     work = (  # the kernel's work space: buffers, node scratch, heads, top states

@@ -27,7 +27,7 @@ from typing import Any
 import attrs
 import numpy as np
 
-from torsio.solvers.layouts import COEF_STATES, COEF_U0, TABLE_SPEED, TABLE_TIME
+from torsio.solvers import layouts as slot
 from torsio.solvers.set_speed import table_speed
 
 
@@ -38,8 +38,10 @@ class TopArrays:
     ``held``: the top turns at the set speed. Otherwise the state x = [Omega_0, z] advances
     by ``x1 = L[k] x0 + g[k] (m0 + m1) + q[k] + Omega_mid r[k]`` (trapezoidal rule) in mode
     k = 0 (free), 1 (motor torque at +max) or 2 (at -max), with Omega_mid the mean set
-    speed over the step; the motor torque is ``u_free = u0 + kp Omega_set + g . x + g_m m``
-    with ``coefficients`` = [u0, g, g_m] (``COEF_*`` of :mod:`torsio.solvers.layouts`).
+    speed over the step; the motor torque is
+    :func:`~torsio.physics.top_drive_boundary.motor_torque` of e = Omega_set - Omega_0 and
+    T_pipe = m + Z Omega_0 with the gains ``coefficients`` (``COEF_*`` of
+    :mod:`torsio.solvers.layouts`: u0, kp, the pipe torque's gain, c).
     ``speed_table`` (2, k) is the set speed
     [rad/s] against time [s]; ``set_speed`` its final value. ``drag`` is the top drive's own
     drag, ``node_damper`` the string's drag at the top node [N m s/rad], which the arrays
@@ -54,7 +56,7 @@ class TopArrays:
     propagator: np.ndarray  # (3, n, n)
     forcing: np.ndarray  # (3, n)
     constant: np.ndarray  # (3, n)
-    coefficients: np.ndarray  # (n + 2,)
+    coefficients: np.ndarray  # (COEF_STATES + m,)
     speed_table: np.ndarray  # (2, k): time [s], set speed [rad/s]
     constant_per_speed: np.ndarray  # (3, n): r[k]
     kp: float = 0.0  # the motor torque per unit set speed [N m s/rad] (0: no set speed)
@@ -70,7 +72,7 @@ class TopArrays:
     @property
     def ramp_end(self) -> float:
         """The time [s] from which the set speed is constant."""
-        return float(self.speed_table[TABLE_TIME, -1])
+        return float(self.speed_table[slot.TABLE_TIME, -1])
 
     def set_speed_at(self, time: float) -> float:
         """The set speed [rad/s] at ``time`` [s]: linear in the table, constant beyond it."""
@@ -81,7 +83,7 @@ def held_top(speed: float, table: np.ndarray | None = None) -> TopArrays:
     """A top held at ``speed`` [rad/s], or at the speeds of ``table`` (rows time, speed)."""
     table = np.array([[0.0], [float(speed)]]) if table is None else np.asarray(table, float)
     return TopArrays(
-        True, float(table[TABLE_SPEED, -1]), 0.0, 0.0, math.inf, np.zeros((3, 1, 1)),
+        True, float(table[slot.TABLE_SPEED, -1]), 0.0, 0.0, math.inf, np.zeros((3, 1, 1)),
         np.zeros((3, 1)), np.zeros((3, 1)), np.zeros(3), np.ascontiguousarray(table),
         np.zeros((3, 1)),
     )  # fmt: skip
@@ -111,14 +113,13 @@ def top_arrays(
     n = m + 1
     inertia, drag, z_pipe = float(boundary.inertia), float(boundary.drag), float(impedance)
     set_speed = float(boundary.set_speed)
-    kp = 0.0 if math.isnan(set_speed) else float(d[0])  # no set speed: no set term
-    # u_free = u0 + d0 set + [(-d0 + d1 Z), c] . x + d1 m
-    coefficients = np.zeros(COEF_STATES + n + 1)
-    coefficients[COEF_U0] = boundary.u0
-    coefficients[COEF_STATES] = -d[0] + d[1] * z_pipe  # on Omega_0, then on z
-    coefficients[COEF_STATES + 1 : COEF_STATES + n] = c
-    coefficients[COEF_STATES + n] = d[1]  # on the incoming m
-    gains, m_gain, u0 = coefficients[COEF_STATES : COEF_STATES + n], d[1], boundary.u0
+    kp = 0.0 if math.isnan(set_speed) else float(d[0])  # no set speed: no speed error
+    coefficients = np.zeros(slot.COEF_STATES + m)  # the gains motor_torque reads
+    coefficients[slot.COEF_U0], coefficients[slot.COEF_KP] = boundary.u0, kp
+    coefficients[slot.COEF_PIPE_GAIN], coefficients[slot.COEF_STATES :] = d[1], c
+    # u_free = u0 + kp set + [(-kp + d1 Z), c] . x + d1 m, e = set - Omega_0, T = m + Z Omega_0
+    gains = np.concatenate([[-kp + d[1] * z_pipe], c])
+    m_gain, u0 = d[1], boundary.u0
     propagator = np.zeros((3, n, n))
     forcing = np.zeros((3, n))
     constant = np.zeros((3, n))
