@@ -12,6 +12,8 @@ here each run keeps :data:`SURFACE_SAMPLES` rows of signals and the surface torq
 mean of the ``surface_torque`` column over the window's rows
 (:meth:`~torsio.axial.transient.AxialTransient.top_drive_summary`).
 
+Ctrl-C raises :class:`PointsInterrupted` with the rows of the points that finished.
+
 Where the points run, as the maps (:mod:`torsio.analysis.sweep`): ``executor=None`` in this
 process on ``threads`` threads (the compiled loop releases the GIL), else N local
 processes, a Dask scheduler's address or any :class:`concurrent.futures.Executor`, in
@@ -33,7 +35,15 @@ from numpy.typing import NDArray
 from torsio.axial.transient import run_times, simulate_axial
 from torsio.errors import ConfigError
 
-__all__ = ["COLUMNS", "SURFACE_SAMPLES", "AxialCase", "Evaluation", "case_with", "evaluate"]
+__all__ = [
+    "COLUMNS",
+    "SURFACE_SAMPLES",
+    "AxialCase",
+    "Evaluation",
+    "PointsInterrupted",
+    "case_with",
+    "evaluate",
+]
 
 SURFACE_SAMPLES = 1500
 """Rows of signals a run keeps for its mean surface torque (about 550 in the window of the
@@ -139,6 +149,15 @@ class Evaluation:
     surface_torque_max: NDArray[np.float64]
 
 
+class PointsInterrupted(KeyboardInterrupt):
+    """Ctrl-C during :func:`evaluate`: ``finished`` holds the rows of the points that ran,
+    by their index."""
+
+    def __init__(self, finished: dict[int, list[float]]) -> None:
+        super().__init__(f"interrupted after {len(finished)} points")
+        self.finished = finished
+
+
 Point = tuple[AxialCase, float, float]
 """One run: the case, the weight on bit [N] and the rotary speed [rev/min]."""
 
@@ -161,12 +180,15 @@ def _rows_here(
             with lock:
                 progress(1)
 
-    if threads <= 1 or len(points) == 1:
-        for k in range(len(points)):
-            one(k)
-    else:  # the compiled loop releases the GIL: points run side by side
-        with ThreadPoolExecutor(max_workers=min(threads, len(points))) as pool:
-            list(pool.map(one, range(len(points))))
+    try:
+        if threads <= 1 or len(points) == 1:
+            for k in range(len(points)):
+                one(k)
+        else:  # the compiled loop releases the GIL: points run side by side
+            with ThreadPoolExecutor(max_workers=min(threads, len(points))) as pool:
+                list(pool.map(one, range(len(points))))
+    except KeyboardInterrupt:
+        raise PointsInterrupted({k: row for k, row in enumerate(rows) if row}) from None
     return rows
 
 
@@ -185,7 +207,16 @@ def _rows_on(
             progress(now - done[0])
             done[0] = now
 
-    outcome = run_tasks(_run_chunk, tasks, executor, progress=report)
+    from torsio.analysis.sweep import SweepInterrupted
+
+    try:
+        outcome = run_tasks(_run_chunk, tasks, executor, progress=report)
+    except SweepInterrupted as exc:
+        finished = {}
+        for task, chunk in enumerate(exc.results):
+            for k, row in enumerate(chunk or ()):
+                finished[task * size + k] = row
+        raise PointsInterrupted(finished) from None
     return [row for chunk in outcome.results for row in chunk]
 
 

@@ -196,13 +196,25 @@ def case_with_values(config: Any, case: Any, values: Mapping[str, float], flag: 
         from torsio.axial.wave_assembly import lumped_node_depths
 
         sections = list(config.well.hole)
-        for (index, key), value in holes.items():
-            sections[index] = attrs.evolve(sections[index], **{key: value})
-        well = attrs.evolve(config.well, hole=tuple(sections), **well_values)
+        for index in {i for i, _ in holes}:
+            drawn = {key: value for (i, key), value in holes.items() if i == index}
+            sections[index] = attrs.evolve(sections[index], **_factors(sections[index], drawn))
+        well = attrs.evolve(config.well, hole=tuple(sections), **_factors(config.well, well_values))
         depths = lumped_node_depths(axial.sections.pipe, axial.element_length)
         contacts = axial_contacts(well, axial.string, depths)
     bit = attrs.evolve(case.bit, **bit_values) if bit_values else None
     return case_with(case, contacts=contacts, bit=bit)
+
+
+def _factors(table: Any, drawn: Mapping[str, float]) -> dict[str, Any]:
+    """The drawn values for a well or hole section, its dynamic factor at most its static
+    one (independent draws may cross them; the well requires dynamic <= static)."""
+    values = {**drawn}
+    static = values.get("friction_static", table.friction_static)
+    dynamic = values.get("friction_dynamic", table.friction_dynamic)
+    if static is not None and dynamic is not None and dynamic > static:
+        values["friction_dynamic"] = static
+    return values
 
 
 def severe_count(severity: Any, threshold: float) -> tuple[int, int]:

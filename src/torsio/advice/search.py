@@ -23,7 +23,7 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.advice.evaluate import COLUMNS, AxialCase, Evaluation, evaluate
+from torsio.advice.evaluate import COLUMNS, AxialCase, Evaluation, PointsInterrupted, evaluate
 from torsio.advice.region import Constraints, Region, objective_value
 
 __all__ = ["Ledger", "Window", "critical_wob", "search_window"]
@@ -58,7 +58,12 @@ class Ledger:
         if not new:
             return
         wobs, rpms = zip(*new, strict=True)
-        done = evaluate(self.case, wobs, rpms, progress=self.progress, **self.run_on)
+        try:
+            done = evaluate(self.case, wobs, rpms, progress=self.progress, **self.run_on)
+        except PointsInterrupted as exc:  # keep what finished
+            for k, row in exc.finished.items():
+                self.rows[new[k]] = row
+            raise
         for k, key in enumerate(new):
             self.rows[key] = [float(getattr(done, name)[k]) for name in COLUMNS]
 
@@ -221,7 +226,7 @@ def search_window(
             _bisect(ledger, constraints, new, bisections, tolerance)
         complete = True
     except KeyboardInterrupt:
-        coarse = min(ledger.runs, wob.size)
+        coarse = min(ledger.runs, wob.size)  # the coarse map runs first
         rows = sorted({float(r) for r in ledger.points().rpm})
         if ledger.runs == 0:
             raise
