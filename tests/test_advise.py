@@ -229,3 +229,42 @@ def test_a_top_drive_the_advisor_cannot_take_is_refused(capsys, tmp_path):
 def test_torsional_configuration_is_refused_by_key(capsys):
     status = main(["advise", "--json"])
     assert status == 2 and "bit_rock.law" in capsys.readouterr().err
+
+
+SMALL = ["--wob", "78kN:110kN:2", "--rpm", "160:180:2", "--duration", "80", "--window", "30"]
+
+
+def test_json_has_the_design_keys(capsys):
+    status = main(["advise", WELL, *SMALL, "--no-compare", "--threads", "2", "--json"])
+    captured = capsys.readouterr()
+    assert status == 0, captured.err
+    data = json.loads(captured.out)
+    # DESIGN.md's CLI table: recommended (wob, rpm, rop, mse, severity, surface_torque,
+    # probability_severe), constraints, top_drives (each its recommended point)
+    assert {"recommended", "constraints", "top_drives"} <= set(data)
+    design = {"wob", "rpm", "rop", "mse", "severity", "surface_torque", "probability_severe"}
+    assert design <= set(data["recommended"])
+    assert [d["top_drive"] for d in data["top_drives"]] == ["constant-speed (configured)"]
+    assert data["top_drives"][0]["recommended"]["wob"] == data["recommended"]["wob"]
+    assert data["complete"] is True and data["runs"]["coarse"] == 4
+    assert data["recommended"]["severity"] <= THRESHOLD
+
+
+def test_ctrl_c_on_the_command_line_prints_the_partial_advice(capsys, monkeypatch):
+    from torsio.advice.evaluate import AxialCase
+
+    run = AxialCase.__call__
+    calls = []
+
+    def interrupted_after_three(self, wob, rpm):
+        calls.append((wob, rpm))
+        if len(calls) > 3:
+            raise KeyboardInterrupt  # what Ctrl-C raises in the main thread
+        return run(self, wob, rpm)
+
+    monkeypatch.setattr(AxialCase, "__call__", interrupted_after_three)
+    status = main(["advise", WELL, *SMALL, "--no-compare", "--threads", "1", "--json"])
+    captured = capsys.readouterr()
+    assert status == 130 and "interrupted" in captured.err
+    data = json.loads(captured.out)
+    assert data["complete"] is False and data["runs"]["total"] == 3

@@ -33,7 +33,14 @@ from torsio.advice.margin import (
 )
 from torsio.advice.region import Constraints, Region
 from torsio.advice.results import Advice, Margin
-from torsio.advice.search import Ledger, SearchInterrupted, Window, search_window
+from torsio.advice.search import (
+    DEFAULT_BISECTIONS,
+    DEFAULT_REFINEMENTS,
+    Ledger,
+    SearchInterrupted,
+    Window,
+    search_window,
+)
 from torsio.advice.top_drives import alternatives, safe_share, soft_torque_tunings
 from torsio.errors import ConfigError
 
@@ -78,8 +85,10 @@ class _Advisor:
         run_on: dict,
         progress: Callable[[int], None] | None,
         case: AxialCase,
+        search: dict[str, int],
     ) -> None:
         self.config, self.region, self.constraints = config, region, constraints
+        self.options = search
         self.run_on, self.progress, self.case = run_on, progress, case
         self.start = time.perf_counter()
         self.ledger = Ledger(case, run_on, progress)
@@ -91,9 +100,9 @@ class _Advisor:
         self.mc_runs = 0
         self.uncertainty: dict[str, Any] | None = None
 
-    def search(self, ledger: Ledger, **options: Any) -> Window:
+    def search(self, ledger: Ledger) -> Window:
         try:
-            return search_window(ledger, self.region, self.constraints, **options)
+            return search_window(ledger, self.region, self.constraints, **self.options)
         except SearchInterrupted as exc:
             if ledger is self.ledger:
                 self.window = exc.window
@@ -175,8 +184,10 @@ class _Advisor:
 
     def advice(self, complete: bool) -> Advice:
         window = self.window or _with_points(None, self.ledger, self.constraints)
+        if self.window is not None:  # the recommended point: the margin's, not the best
+            window = attrs.evolve(window, best=self.best)
         margin = self.margin
-        recommended = window.point(self.best) if self.window is not None else None
+        recommended = window.point(window.best) if self.window is not None else None
         if recommended is not None:
             critical = _effective_critical(window, self.constraints.severity)
             at = np.flatnonzero(window.rows == recommended["rpm"])
@@ -236,6 +247,8 @@ def advise(
     progress: Callable[[int], None] | None = None,
     duration: float | None = None,
     window: float | None = None,
+    bisections: int = DEFAULT_BISECTIONS,
+    refinements: int = DEFAULT_REFINEMENTS,
 ) -> Advice:
     """The advice on ``config`` over ``region`` (module documentation).
 
@@ -243,7 +256,9 @@ def advise(
     ``level``: the probability of severe stick-slip the point's bound stays below;
     ``samples`` and ``seed`` of the Monte Carlo; ``compare``: search the alternative top
     drives too; ``threads``/``executor``: where the runs go (as the maps);
-    ``progress(n)`` after every n runs; ``duration``/``window`` of every run [s]."""
+    ``progress(n)`` after every n runs; ``duration``/``window`` of every run [s];
+    ``bisections`` and ``refinements`` of the search
+    (:func:`~torsio.advice.search.search_window`)."""
     if not (0.0 < level < 1.0):
         raise ConfigError("--level", f"expected a probability between 0 and 1, got {level!r}")
     if isinstance(samples, bool) or not isinstance(samples, int) or samples < 1:
@@ -264,7 +279,8 @@ def advise(
     if compare:
         alternatives(config)  # a [chain] without a drill pipe: an error before any run
     run_on = {"threads": threads, "executor": executor}
-    advisor = _Advisor(config, region, constraints, run_on, progress, case)
+    search = {"bisections": bisections, "refinements": refinements}
+    advisor = _Advisor(config, region, constraints, run_on, progress, case, search)
     try:
         advisor.window = advisor.search(advisor.ledger)
         advisor.best = advisor.window.best

@@ -101,6 +101,12 @@ class AxialCase:
                 "configuration with axial dynamics (law = 'rgd', or [chain] masses); this one "
                 "is torsional only",
             )
+        if not axial.bit.needs_axial:
+            raise ConfigError(
+                "bit_rock.law",
+                f"the {axial.bit.name} law is a law of the torque alone: its bit rests on the "
+                "rock and has no rate of penetration to advise on (law = 'rgd')",
+            )
         if config.top_drive.speed_follows is not None:
             raise ConfigError(
                 "top_drive.kind",

@@ -9,7 +9,12 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["draw_window", "plot_window", "write_points"]
+__all__ = ["REPORT_SEARCH", "draw_window", "plot_window", "report_figures", "write_points"]
+
+REPORT_SEARCH = {"wob_points": 3, "rpm_points": 3, "bisections": 3, "refinements": 1}
+"""The quick advice of ``torsio report --html``: the configured top drive on a 3 x 3 coarse
+map of the default region, 3 halvings of each row's boundary, one rpm refinement, no
+Monte Carlo (about 20 runs)."""
 
 
 def draw_window(advice: Any, ax: Any) -> None:
@@ -111,3 +116,44 @@ def write_points(advice: Any, path: str | Path) -> Path:
             f"{int(advice.window.admissible[k])}"
         )
     return write_text(path, "\n".join(lines) + "\n")
+
+
+def report_figures(config: Any) -> list[tuple[Any, str]]:
+    """The window of a quick advice (:data:`REPORT_SEARCH`) on a configuration with the RGD
+    bit, with its caption, for ``torsio report --html``; none for another configuration."""
+    from matplotlib.figure import Figure
+
+    from torsio.advice.advise import advise
+    from torsio.advice.region import Region, default_region
+    from torsio.solvers.compiled import numba
+
+    axial = getattr(config, "axial", None)
+    if axial is None or not axial.bit.needs_axial or config.top_drive.speed_follows:
+        return []
+    default, quick = default_region(axial.bit), REPORT_SEARCH
+    region = Region(default.wob, default.rpm, quick["wob_points"], quick["rpm_points"])
+    threads = 1 if numba is None else int(numba.get_num_threads())
+    advice = advise(
+        config,
+        region,
+        compare=False,
+        threads=threads,
+        bisections=quick["bisections"],
+        refinements=quick["refinements"],
+    )
+    figure = Figure(figsize=(8, 6))
+    draw_window(advice, figure.add_subplot())
+    point = advice.recommended
+    found = (
+        "no admissible point"
+        if point is None
+        else f"recommended {point['wob'] / 1e3:.4g} kN, {point['rpm']:.4g} rpm: ROP "
+        f"{point['rop'] * 3600:.4g} m/h, S_SS {point['severity']:.3f}, mean surface torque "
+        f"{point['surface_torque'] / 1e3:.4g} kN m"
+    )
+    caption = (
+        "Operating window of the configured top drive, a quick "
+        f"advice: {found}; {advice.window.runs} runs. torsio advise searches finer, with "
+        "the margin and the top drives compared (docs/advise.md)."
+    )
+    return [(figure, caption)]

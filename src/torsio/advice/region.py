@@ -30,11 +30,24 @@ from numpy.typing import NDArray
 from torsio.analysis.severity import SEVERE_THRESHOLD
 from torsio.errors import ConfigError
 
-__all__ = ["DEFAULT_RPM", "OBJECTIVES", "Constraints", "Region", "objective_value"]
+__all__ = [
+    "DEFAULT_RPM",
+    "DEFAULT_WOB",
+    "OBJECTIVES",
+    "Constraints",
+    "Region",
+    "default_region",
+    "objective_value",
+]
 
 DEFAULT_RPM = (40.0, 180.0, 5)
 """The rpm range and coarse points when neither ``--rpm`` nor the call gives one: the range
 of a top drive drilling with a PDC bit."""
+
+DEFAULT_WOB = (1.1, 2.0, 5)
+"""The WOB range when none is given, in multiples of the weight the RGD bit's wear flats
+carry (σ a l, below which it does not cut), and its coarse points (as ``torsio map``'s
+axial default)."""
 
 OBJECTIVES = {"rop": "largest mean ROP", "mse": "least mean MSE"}
 """The objectives the advisor takes, and what each picks among the admissible points."""
@@ -150,6 +163,15 @@ class Constraints:
                 + (f", WOB <= {self.max_wob:g} N" if self.max_wob is not None else "")
             ),
         }
+
+
+def default_region(bit: Any) -> Region:
+    """The region of :data:`DEFAULT_WOB` (times ``bit.friction_weight`` [N]) and
+    :data:`DEFAULT_RPM`."""
+    low, high, count = DEFAULT_WOB
+    weight = float(bit.friction_weight)
+    rpm_low, rpm_high, rpm_count = DEFAULT_RPM
+    return Region((low * weight, high * weight), (rpm_low, rpm_high), count, rpm_count)
 
 
 def objective_value(evaluation: Any, objective: str) -> NDArray[np.float64]:

@@ -91,23 +91,24 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def _region(args: argparse.Namespace, config: Any) -> Any:
+    """The region of --wob and --rpm, each defaulting to the advisor's
+    (:func:`torsio.advice.region.default_region`)."""
     from torsio.advice import Region
-    from torsio.advice.region import DEFAULT_RPM
-    from torsio.cli.map import _range_bounds, axial_wob_range
-    from torsio.errors import ConfigError
+    from torsio.advice.evaluate import AxialCase
+    from torsio.advice.region import default_region
+    from torsio.cli.map import _range_bounds
 
-    if config.axial is None:
-        raise ConfigError(
-            "bit_rock.law",
-            "torsio advise needs the rate of penetration of the axial engine: a configuration "
-            "with axial dynamics (law = 'rgd', or [chain] masses); this one is torsional only",
-        )
-    low, high, wob_n = _range_bounds(args.wob or axial_wob_range(config), "--wob", "wob")
-    rpm_text = args.rpm or "{:g}:{:g}:{}".format(*DEFAULT_RPM)
-    rpm_low, rpm_high, rpm_n = _range_bounds(rpm_text, "--rpm", "rpm")
-    if low <= 0:
-        raise ConfigError("--wob", f"expected a positive START, got {args.wob!r}")
-    return Region((low, high), (rpm_low, rpm_high), wob_n, rpm_n)
+    case = AxialCase.from_config(config)  # a torsional configuration: an error by key
+    default = default_region(case.bit)
+    wob, wob_n = default.wob, default.wob_points
+    if args.wob is not None:
+        low, high, wob_n = _range_bounds(args.wob, "--wob", "wob")
+        wob = (low, high)
+    rpm, rpm_n = default.rpm, default.rpm_points
+    if args.rpm is not None:
+        low, high, rpm_n = _range_bounds(args.rpm, "--rpm", "rpm")
+        rpm = (low, high)
+    return Region(wob, rpm, wob_n, rpm_n)
 
 
 def _torque(text: str | None, flag: str, dimension: str) -> float | None:
