@@ -268,3 +268,35 @@ def test_ctrl_c_on_the_command_line_prints_the_partial_advice(capsys, monkeypatc
     assert status == 130 and "interrupted" in captured.err
     data = json.loads(captured.out)
     assert data["complete"] is False and data["runs"]["total"] == 3
+
+
+def test_points_are_the_same_wherever_they_run():
+    # every point is one deterministic run (docs/advise.md, "Where the runs go"): two local
+    # processes give the threads' numbers to the bit
+    from torsio.advice.evaluate import AxialCase, evaluate
+    from torsio.examples import rgd_two_dof_config
+
+    case = AxialCase.from_config(rgd_two_dof_config(), duration=20.0, window=10.0)
+    wob, rpm = [90e3, 110e3, 130e3], [60.0, 120.0, 90.0]
+    here = evaluate(case, wob, rpm, threads=2)
+    there = evaluate(case, wob, rpm, executor=2)
+    for name in ("severity", "rop", "mse", "surface_torque", "surface_torque_max"):
+        assert np.array_equal(getattr(here, name), getattr(there, name)), name
+
+
+def test_clopper_pearson_bound_of_no_severe_sample_is_the_closed_form():
+    # with none of n severe the one-sided bound solves (1 - p)^n = 1 - confidence:
+    # p = 1 - 0.05^(1/n) (Clopper and Pearson 1934)
+    for n in (29, 30, 60):
+        assert upper_bound(0, n) == pytest.approx(1 - 0.05 ** (1 / n), rel=1e-9)
+    assert upper_bound(0, 28) > 0.1 > upper_bound(0, 29)  # why 29 samples at least for 10 %
+
+
+def test_rpm_margin_follows_the_critical_curve_linearly():
+    from torsio.advice.margin import rpm_margin
+
+    # critical WOB 60 kN at 60 rpm rising linearly to 100 kN at 120 rpm: a point at 90 kN
+    # and 120 rpm crosses it at 60 + (90 - 60)/(100 - 60) * 60 = 105 rpm, 15 rpm away
+    rows, critical = np.array([60.0, 120.0]), np.array([60e3, 100e3])
+    assert rpm_margin(rows, critical, 90e3, 120.0) == pytest.approx(15.0)
+    assert rpm_margin(rows, critical, 50e3, 120.0) is None  # below the whole curve

@@ -14,6 +14,8 @@ from torsio.advice.search import Window
 
 __all__ = ["Advice", "Margin"]
 
+BACK_OFF_TEXT = "the WOB steps down from it at its rpm"
+
 
 @attrs.frozen
 class Margin:
@@ -161,29 +163,20 @@ class Advice:
         }
 
     def table(self) -> Any:
-        """A rich table: the top drives' recommended points (the configured first)."""
+        """A rich table: the top drives' recommended points (the configured first); T_s is
+        the mean surface torque over the window."""
         from rich.table import Table
         from rich.text import Text
 
         title = f"Operating window: {self.model}" + ("" if self.complete else " (incomplete)")
         table = Table(title=Text(title))
-        for name in (
-            "top drive",
-            "WOB [kN]",
-            "rpm",
-            "ROP [m/h]",
-            "MSE [MPa]",
-            "S_SS",
-            "surface torque [kN m]",
-            "runs",
-        ):
+        table.add_column(Text("top drive"), no_wrap=True)
+        for name in ("WOB kN", "rpm", "ROP m/h", "MSE MPa", "S_SS", "T_s kN m", "runs"):
             table.add_column(Text(name), justify="right")
         for window in self.top_drives:
             point = window.point(window.best)
             if point is None:
-                table.add_row(
-                    window.label, "-", "-", "no admissible point", "", "", "", str(window.runs)
-                )
+                table.add_row(window.label, *["-"] * 6, str(window.runs))
                 continue
             table.add_row(
                 window.label,
@@ -199,9 +192,14 @@ class Advice:
 
     def notes(self) -> list[str]:
         """Lines under the table: the recommendation, its margin, the criterion, the runs."""
-        lines = [f"criterion: {self.constraints.to_dict()['criterion']}"]
+        lines = [f"criterion: {self.constraints.to_dict()['criterion']} (T_s: mean surface torque)"]
         point, m = self.recommended, self.margin
-        if point is None:
+        if point is None and m.samples:
+            lines.append(
+                f"no recommended point: the best one and {BACK_OFF_TEXT} do not bring the "
+                f"bound of P(severe) below {m.level:g} (last: {m.severe}/{m.samples} severe)"
+            )
+        elif point is None:
             lines.append("no admissible point in the region")
         else:
             lines.append(

@@ -44,7 +44,7 @@ def _inertia_and_impedance(config: Any) -> tuple[float, float]:
         raise ConfigError(
             "top_drive",
             "the top drives compared are tuned on the drill pipe's impedance; a [chain] has "
-            "no drill pipe (give [[section]]s)",
+            "no drill pipe (give [[section]]s, or compare none: --no-compare)",
         )
     return inertia, top_pipe_impedance(AxialTopSystem(None, 0.0, string))
 
