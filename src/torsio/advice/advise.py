@@ -40,6 +40,7 @@ from torsio.advice.search import (
     SearchInterrupted,
     Window,
     search_window,
+    window_of,
 )
 from torsio.advice.top_drives import alternatives, safe_share, soft_torque_tunings
 from torsio.errors import ConfigError
@@ -221,15 +222,13 @@ def _tuning_grid(region: Region) -> tuple[np.ndarray, np.ndarray]:
 
 def _with_points(window: Window | None, ledger: Ledger, constraints: Constraints) -> Window:
     """``window`` with every point the ledger has run since (the Monte Carlo's nominal)."""
-    from torsio.advice.search import _window
-
     rows = [] if window is None else window.rows.tolist()
     rows = sorted(
         set(rows) | ({float(r) for r in ledger.points().rpm} if window is None else set())
     )
     coarse = 0 if window is None else window.coarse_runs
     complete = window is not None and window.complete
-    return _window(ledger, constraints, rows, coarse, complete)
+    return window_of(ledger, constraints, rows, coarse, complete)
 
 
 def advise(

@@ -26,7 +26,7 @@ from numpy.typing import NDArray
 from torsio.advice.evaluate import COLUMNS, AxialCase, Evaluation, PointsInterrupted, evaluate
 from torsio.advice.region import Constraints, Region, objective_value
 
-__all__ = ["Ledger", "Window", "critical_wob", "search_window"]
+__all__ = ["Ledger", "SearchInterrupted", "Window", "critical_wob", "search_window", "window_of"]
 
 DEFAULT_BISECTIONS = 5
 """Halvings of each row's boundary bracket (the coarse WOB step over 32)."""
@@ -230,9 +230,9 @@ def search_window(
         rows = sorted({float(r) for r in ledger.points().rpm})
         if ledger.runs == 0:
             raise
-        interrupted = _window(ledger, constraints, rows, coarse, complete)
+        interrupted = window_of(ledger, constraints, rows, coarse, complete)
         raise SearchInterrupted(interrupted) from None
-    return _window(ledger, constraints, rows, coarse, complete)
+    return window_of(ledger, constraints, rows, coarse, complete)
 
 
 class SearchInterrupted(KeyboardInterrupt):
@@ -243,9 +243,11 @@ class SearchInterrupted(KeyboardInterrupt):
         self.window = window
 
 
-def _window(
+def window_of(
     ledger: Ledger, constraints: Constraints, rows: list[float], coarse: int, complete: bool
 ) -> Window:
+    """The :class:`Window` of every point ``ledger`` has run: the ``rows`` [rev/min] searched,
+    ``coarse`` runs of the coarse map, ``complete`` False when interrupted."""
     points = ledger.points()
     ok = constraints.admissible(points)
     return Window(
