@@ -300,3 +300,22 @@ def test_rpm_margin_follows_the_critical_curve_linearly():
     rows, critical = np.array([60.0, 120.0]), np.array([60e3, 100e3])
     assert rpm_margin(rows, critical, 90e3, 120.0) == pytest.approx(15.0)
     assert rpm_margin(rows, critical, 50e3, 120.0) is None  # below the whole curve
+
+
+def test_the_files_top_drive_limit_is_the_default_torque_limit(capsys, tmp_path):
+    # a rig limit in the configuration: [top_drive] max_torque bounds the surface torque
+    # when --max-surface-torque is not given
+    path = tmp_path / "limited.toml"
+    text = open(WELL, encoding="utf-8").read()
+    path.write_text(
+        text + '\n[top_drive]\nkind = "soft-torque"\ninertia = 2900.0\nmax_torque = "12 kN*m"\n'
+    )
+    status = main(["advise", str(path), *SMALL, "--no-compare", "--threads", "2", "--json"])
+    captured = capsys.readouterr()
+    assert status == 0, captured.err
+    data = json.loads(captured.out)
+    limits = data["constraints"]
+    assert limits["max_surface_torque"] == 12e3
+    assert limits["max_surface_torque_from"] == "top_drive.max_torque"
+    point = data["recommended"]
+    assert point is None or point["surface_torque"] <= 12e3

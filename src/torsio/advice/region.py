@@ -115,6 +115,8 @@ class Constraints:
         The S_SS above which a point is severe (default the paper's 0.8).
     objective : str
         ``"rop"`` or ``"mse"`` (:data:`OBJECTIVES`).
+    torque_limit : str
+        Where ``max_surface_torque`` comes from (a flag, or ``"top_drive.max_torque"``).
     """
 
     max_surface_torque: float | None = attrs.field(
@@ -127,6 +129,7 @@ class Constraints:
         default=SEVERE_THRESHOLD, validator=_positive_or_none("--severity", "S_SS")
     )
     objective: str = "rop"
+    torque_limit: str = "--max-surface-torque"
 
     def __attrs_post_init__(self) -> None:
         if self.objective not in OBJECTIVES:
@@ -146,10 +149,13 @@ class Constraints:
         return ok
 
     def to_dict(self) -> dict[str, Any]:
-        """The constraints and the criterion: ``max_surface_torque`` [N m], ``max_wob`` [N],
-        ``severity`` (S_SS), ``objective``, ``criterion`` (in words)."""
+        """The constraints and the criterion: ``max_surface_torque`` [N m] and where it comes
+        from, ``max_wob`` [N], ``severity`` (S_SS), ``objective``, ``criterion`` (in words)."""
         return {
             "max_surface_torque": self.max_surface_torque,
+            "max_surface_torque_from": (
+                self.torque_limit if self.max_surface_torque is not None else None
+            ),
             "max_wob": self.max_wob,
             "severity": self.severity,
             "objective": self.objective,

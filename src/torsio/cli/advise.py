@@ -7,6 +7,7 @@ refines from there): ``--wob 80kN:140kN:5 --rpm 60:180:5``. See docs/advise.md.
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from typing import Any
 
@@ -34,7 +35,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("--rpm", metavar="START:STOP:N", help="rotary speeds (default 40:180:5)")
     parser.add_argument(
-        "--max-surface-torque", metavar="T", help="largest mean surface torque: N m or with units"
+        "--max-surface-torque",
+        metavar="T",
+        help="largest mean surface torque: N m or with units (default the file's "
+        "top_drive.max_torque, if given)",
     )
     parser.add_argument("--max-wob", metavar="W", help="largest weight on bit: N or with units")
     parser.add_argument(
@@ -125,6 +129,8 @@ def _torque(text: str | None, flag: str, dimension: str) -> float | None:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``torsio advise``; returns the exit status."""
+    import attrs
+
     from torsio.advice import AdviceInterrupted, Constraints, Uncertainty, advise
     from torsio.advice.advise import DEFAULT_LEVEL, DEFAULT_SAMPLES
     from torsio.errors import ConfigError
@@ -144,6 +150,12 @@ def run(args: argparse.Namespace) -> int:
     outputs = common.check_outputs(args, ("csv", "plot"))
     common.require_plotting(args)
     config = common.load(args)
+    if constraints.max_surface_torque is None:  # the rig's limit in the file, if any
+        limit = config.top_drive.parameters.get("max_torque")
+        if limit is not None and math.isfinite(limit):
+            constraints = attrs.evolve(
+                constraints, max_surface_torque=float(limit), torque_limit="top_drive.max_torque"
+            )
     region = _region(args, config)
     uncertainty = None
     if args.fit is not None:
