@@ -64,8 +64,12 @@ def main() -> int:
     print(f"margin: {json.dumps(data['margin'])}")
     for drive in data["top_drives"]:
         best = drive["recommended"]
-        text = "none" if best is None else (
-            f"{best['wob'] / 1e3:.4g} kN, {best['rpm']:.4g} rpm, {best['rop'] * 3600:.4g} m/h"
+        text = (
+            "none"
+            if best is None
+            else (
+                f"{best['wob'] / 1e3:.4g} kN, {best['rpm']:.4g} rpm, {best['rop'] * 3600:.4g} m/h"
+            )
         )
         print(f"  {drive['top_drive']}: {text} ({drive['runs']} runs)")
     return 0 if wall <= TARGET else 1
