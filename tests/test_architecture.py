@@ -111,7 +111,7 @@ INPUT = ("torsio.config", "torsio.examples")
 OUTPUT = ("torsio.report",)
 CLI = ("torsio.cli",)
 CORE = ("torsio.model", "torsio.physics", "torsio.solvers", "torsio.analysis", "torsio.well")
-CORE += ("torsio.axial", "torsio.calibration")
+CORE += ("torsio.axial", "torsio.calibration", "torsio.advice")
 LAYER_RULES = {
     **{layer: INPUT + OUTPUT + CLI for layer in CORE},
     "torsio.config": OUTPUT + CLI,

@@ -18,7 +18,7 @@ from typing import Any
 
 from torsio.errors import TorsioError
 
-COMMANDS = ("report", "modes", "simulate", "map", "drag", "fit", "laws", "init")
+COMMANDS = ("report", "modes", "simulate", "map", "advise", "drag", "fit", "laws", "init")
 
 
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:

@@ -92,12 +92,15 @@ def _figure_html(figure: Any, caption: str) -> str:
 
 
 def report_figures(ctx: ReportContext) -> list[tuple[Any, str]]:
-    """The report's figures (matplotlib Figures, no pyplot state) with their captions;
-    none for a configuration with axial dynamics (its section is a table)."""
+    """The report's figures (matplotlib Figures, no pyplot state) with their captions; for
+    a configuration with axial dynamics (its section is a table) the operating window of
+    :func:`torsio.advice.plot.report_figures`."""
     from matplotlib.figure import Figure
 
-    if ctx.config.axial is not None:
-        return []
+    if ctx.config.axial is not None:  # the operating window (torsio advise's, quick)
+        from torsio.advice.plot import report_figures as window_figures
+
+        return window_figures(ctx.config)
 
     from torsio.plotting import plot_mode_shapes
 
