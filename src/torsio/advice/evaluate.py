@@ -32,7 +32,8 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.axial.transient import run_times, simulate_axial
+from torsio.analysis.severity import run_times
+from torsio.axial.transient import simulate_axial
 from torsio.errors import ConfigError
 
 __all__ = [
