@@ -53,10 +53,12 @@ def upper_bound(severe: int, samples: int, confidence: float = CONFIDENCE) -> fl
 
 @attrs.frozen
 class _Spread:
-    """The sigma and two-sigma interval :func:`parameter_draws` reads of a fit."""
+    """The sigma, two-sigma interval and identifiability :func:`parameter_draws` reads of a
+    fit (a parameter the data do not pin down is drawn over its whole interval)."""
 
     sigma: float
     interval: tuple[float, float]
+    identifiable: bool = True
 
 
 @attrs.frozen
@@ -95,13 +97,15 @@ class Uncertainty:
             ) from None
         names = tuple(parameters)
         intervals = data.get("interval") or {}
+        identifiable = data.get("identifiable") or {}
         spreads = []
         for name in names:
             value, sigma = float(parameters[name]), sigmas.get(name)
             if sigma is None or not (math.isfinite(float(sigma)) and float(sigma) >= 0):
                 raise ConfigError("--fit", f"{name}: expected a one-sigma >= 0, got {sigma!r}")
             low, high = intervals.get(name) or (value - 2 * sigma, value + 2 * sigma)
-            spreads.append(_Spread(float(sigma), (float(low), float(high))))
+            pinned = bool(identifiable.get(name, True))
+            spreads.append(_Spread(float(sigma), (float(low), float(high)), pinned))
         matrix = data.get("correlation")
         correlation = None
         if matrix:
