@@ -183,7 +183,7 @@ def main() -> None:
     grid = axial_map(assembly, bit, np.linspace(80e3, 200e3, 21), np.linspace(30.0, 200.0, 21))
     elapsed = time.perf_counter() - start
     print(
-        f"21 x 21 map, 80..200 kN x 30..200 rpm, {grid.duration:.1f} s runs, serial: "
+        f"21 x 21 map, 80..200 kN x 30..200 rpm, {grid.info['duration']:.1f} s runs, serial: "
         f"{elapsed:.1f} s ({elapsed / 441 * 1e3:.1f} ms per run)"
     )
 

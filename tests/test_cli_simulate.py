@@ -298,16 +298,6 @@ def test_a_recording_written_by_simulate_is_fitted_back_to_its_friction(capsys, 
     assert fitted == pytest.approx(0.3, abs=1e-6)
 
 
-def test_a_recording_of_an_axial_run_is_refused(capsys, tmp_path):
-    from importlib import resources
-
-    source = tmp_path / "rgd.toml"
-    source.write_text(resources.files("torsio").joinpath("data/rgd_2dof.toml").read_text())
-    status = main(["simulate", str(source), "--recording", str(tmp_path / "r.csv")])
-    assert status == 2
-    assert "--recording" in capsys.readouterr().err
-
-
 def test_units_field_table_and_readable_energy(capsys):
     """--units field: the table's forces in klbf and torques in kft·lbf (1 lbf =
     4.4482216152605 N, 1 ft = 0.3048 m, exact: NIST SP 811, B.8), energy without an

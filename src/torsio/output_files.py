@@ -29,7 +29,7 @@ from typing import IO, Any
 
 from torsio.errors import OutputError
 
-__all__ = ["atomic_output", "save_figure_file", "write_bytes", "write_text"]
+__all__ = ["atomic_output", "save_columns", "save_figure_file", "write_bytes", "write_text"]
 
 
 @contextlib.contextmanager
@@ -81,6 +81,17 @@ def write_bytes(path: str | os.PathLike[str], data: bytes) -> Path:
     """Write ``data`` to ``path`` atomically (:func:`atomic_output`); the path."""
     with atomic_output(path, binary=True) as stream:
         stream.write(data)
+    return Path(path)
+
+
+def save_columns(path: str | os.PathLike[str], names: list[str], columns: list[Any]) -> Path:
+    """Signals as CSV, atomically: a header of ``names``, then one row per sample of the
+    equally long ``columns`` (10 significant digits). Returns the path written."""
+    import numpy as np
+
+    with atomic_output(path) as stream:
+        np.savetxt(stream, np.column_stack(columns), delimiter=",", header=",".join(names),
+                   comments="", fmt="%.10g")  # fmt: skip
     return Path(path)
 
 

@@ -8,18 +8,29 @@ extra runs (conventions in :mod:`torsio.analysis.maps`).
 from __future__ import annotations
 
 import math
+from typing import Protocol
 
 import numpy as np
 
-from torsio.analysis.map_runs import PointRunner
 from torsio.errors import SolverError
 from torsio.solvers.batch_results import STATUS_MESSAGES, BatchPoints
 
-__all__ = ["locate_critical_wob"]
+__all__ = ["BisectionRuns", "locate_critical_wob"]
+
+
+class BisectionRuns(Protocol):
+    """What runs the bisection points of any engine (a torsional map's
+    :class:`~torsio.analysis.map_runs.PointRunner`, an axial map's runs)."""
+
+    def run(self, points: BatchPoints) -> np.ndarray:
+        """Rows (S_SS, solver status, ...) of ``points``."""
+
+    def skip(self, count: int) -> None:
+        """Count ``count`` planned runs as done without running them."""
 
 
 def locate_critical_wob(
-    runner: PointRunner,
+    runner: BisectionRuns,
     wob: np.ndarray,
     rpm: np.ndarray,
     severity: np.ndarray,
@@ -31,7 +42,7 @@ def locate_critical_wob(
 
     Parameters
     ----------
-    runner : PointRunner
+    runner : BisectionRuns
         Runs the bisection points (unused when ``refine`` is 0).
     wob, rpm : ndarray
         Axes of the grid [N], [rpm].

@@ -25,7 +25,14 @@ import numpy as np
 
 from torsio.errors import ConfigError
 
-__all__ = ["CRITICAL_STATUSES", "FORMAT", "FORMAT_VERSION", "REQUIRED_KEYS", "check_map_data"]
+__all__ = [
+    "CRITICAL_STATUSES",
+    "LAYERS",
+    "FORMAT",
+    "FORMAT_VERSION",
+    "REQUIRED_KEYS",
+    "check_map_data",
+]
 
 FORMAT = "torsio-severity-map"
 """The ``format`` key of saved maps (version :data:`FORMAT_VERSION`)."""
@@ -52,6 +59,12 @@ REQUIRED_KEYS = (
     "done",
 )
 """Keys every saved map has (others, e.g. ``info``, are optional)."""
+
+LAYERS: tuple[str, ...] = ("rop", "mse", "stick_fraction", "off_bottom_fraction", "axial_severity")
+LAYERS += ("growth_rate", "string_friction_work")
+"""Optional layers of a map, shaped as ``severity`` (the axial engine's): mean ROP [m/s] and
+MSE [Pa], stuck and off-bottom fractions, axial severity, the linear growth rate of steady
+drilling [1/s], the work of the friction along the string [J]; None: asked, not computed."""
 
 CRITICAL_STATUSES = (
     "bisected",
@@ -126,6 +139,8 @@ def check_map_data(data: Any, where: str) -> None:
     for key in ("critical_wob", "stability_wob"):
         _shape(_array(data, key, where, float), (rpm.size,), key, where)
     _shape(_array(data, "critical_bracket", where, float), (rpm.size, 2), "critical_bracket", where)
+    for key in (key for key in LAYERS if data.get(key) is not None):  # optional layers
+        _shape(_array(data, key, where, float), grid, key, where)
     for key in ("status", "steps"):
         array = _array(data, key, where, float)
         _shape(array, grid, key, where)

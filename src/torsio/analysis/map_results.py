@@ -13,6 +13,7 @@ from __future__ import annotations
 import json
 import math
 import zipfile
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -20,7 +21,7 @@ import attrs
 import numpy as np
 
 from torsio.analysis.limits import stuck_points, warning_list
-from torsio.analysis.map_checks import FORMAT, FORMAT_VERSION, check_map_data
+from torsio.analysis.map_checks import FORMAT, FORMAT_VERSION, LAYERS, check_map_data
 from torsio.errors import ConfigError
 from torsio.output_files import atomic_output
 from torsio.solvers.batch_results import STATUS_MESSAGES
@@ -152,6 +153,9 @@ class SeverityMap:
         Whether the bit stuck throughout each point's steady window (S_SS then reads
         near 0 and says nothing of stick-slip: such points are classified ``"stuck"``);
         all False in maps saved before it was recorded.
+    layers : dict
+        Optional layers by name (:data:`~torsio.analysis.map_checks.LAYERS`), also
+        attributes (``grid.rop``); empty for a torsional map.
     """
 
     wob: np.ndarray
@@ -176,6 +180,17 @@ class SeverityMap:
     stuck: np.ndarray = attrs.field(
         default=attrs.Factory(lambda self: np.zeros(self.severity.shape, dtype=bool), True)
     )
+    layers: Mapping[str, np.ndarray | None] = attrs.field(factory=dict)
+
+    def __getattr__(self, name: str) -> Any:
+        if name in LAYERS:  # a layer the map does not have: None
+            return self.layers.get(name)
+        raise AttributeError(name)
+
+    @property
+    def executor(self) -> str | None:
+        """What ran the points (``"threads(2)"``, ``"processes(2)"``, ``"dask(...)"``)."""
+        return self.info.get("executor")
 
     # --- derived ----------------------------------------------------------------------
     @property
@@ -277,6 +292,11 @@ class SeverityMap:
             "engine": self.engine,
             "stuck": self.stuck.tolist(),
             "warnings": list(self.warnings),
+            **{key: self.info[key] for key in ("duration", "steady_window") if key in self.info},
+            **{
+                key: None if layer is None else [_float_list(row) for row in layer]
+                for key, layer in self.layers.items()
+            },
         }
 
     @classmethod
@@ -335,6 +355,11 @@ class SeverityMap:
                 if "stuck" in data
                 else np.zeros((rpm.size, wob.size), dtype=bool)
             ),
+            layers={
+                key: None if data[key] is None else array(key).reshape(rpm.size, wob.size)
+                for key in LAYERS
+                if key in data
+            },
         )
 
     def save(self, path: str | Path) -> Path:
@@ -359,6 +384,7 @@ class SeverityMap:
                     for key in _NPZ_ARRAYS
                 }
                 arrays["severity"] = self.severity
+                arrays.update({k: v for k, v in self.layers.items() if v is not None})
                 arrays["critical_bracket"] = self.critical_bracket
                 meta = {k: v for k, v in data.items() if k not in arrays}
                 np.savez_compressed(stream, metadata=np.array(json.dumps(meta)), **arrays)
@@ -376,20 +402,11 @@ class SeverityMap:
         with atomic_output(path) as stream:
             writer = csv.writer(stream)
             writer.writerow(["rpm", "wob_N", "pi1", "pi2", "severity", "class", "status"])
-            for i in range(self.rpm.size):
-                for j in range(self.wob.size):
-                    s = self.severity[i, j]
-                    writer.writerow(
-                        [
-                            repr(float(self.rpm[i])),
-                            repr(float(self.wob[j])),
-                            repr(float(pi1[i])),
-                            repr(float(pi2[j])),
-                            "" if not math.isfinite(s) else repr(float(s)),
-                            labels[i, j],
-                            int(self.status[i, j]),
-                        ]
-                    )
+            for (i, j), s in np.ndenumerate(self.severity):
+                numbers = (self.rpm[i], self.wob[j], pi1[i], pi2[j])
+                writer.writerow([*(repr(float(x)) for x in numbers),
+                                 "" if not math.isfinite(s) else repr(float(s)),
+                                 labels[i, j], int(self.status[i, j])])  # fmt: skip
         return path
 
     def __repr__(self) -> str:

@@ -13,17 +13,25 @@ import os
 from collections.abc import Callable
 from typing import Any
 
+import attrs
 import numpy as np
 
 from torsio.analysis.severity import DEFAULT_STICK_THRESHOLD
 from torsio.analysis.sweep import SweepError, SweepInterrupted, run_tasks_on
-from torsio.errors import ConfigError
+from torsio.errors import ConfigError, SolverError
 from torsio.physics.system import System
 from torsio.solvers.batch import simulate_batch
 from torsio.solvers.batch_options import BatchOptions
 from torsio.solvers.batch_results import STATUS_MESSAGES, BatchPoints
 
-__all__ = ["BYTES_PER_POINT", "MapFailed", "PointRunner", "check_grid_size"]
+__all__ = [
+    "BYTES_PER_POINT",
+    "MapFailed",
+    "MapWork",
+    "PointRunner",
+    "check_grid_size",
+    "drive_map",
+]
 
 BYTES_PER_POINT = 256
 """Memory a grid point costs, results and their JSON text included (an upper estimate)."""
@@ -132,19 +140,32 @@ def _chunk_task(system: System, points: BatchPoints, options: BatchOptions) -> n
     )
 
 
+@attrs.frozen
+class MapWork:
+    """What the points of a map run, on any engine: ``task(model, points, settings)`` gives
+    rows (S_SS, solver status, steps, rejected steps, the time the run ended [s], stuck 1/0,
+    then the map's layers) of the :class:`~torsio.solvers.batch_results.BatchPoints`, in
+    tasks of ``chunk_size`` points; ``solver`` names the engine in errors. ``task`` is
+    module-level and ``model`` and ``settings`` pickle, for process and Dask workers."""
+
+    task: Callable[[Any, BatchPoints, Any], np.ndarray]
+    model: Any
+    settings: Any
+    chunk_size: int
+    solver: str = "the solver"
+    layers: tuple[str, ...] = ()
+
+
 class PointRunner:
-    """Runs lists of points through a sweep, in chunks, with one shared progress count.
+    """Runs lists of points of a :class:`MapWork` through a sweep, in chunks, with one
+    shared progress count.
 
     Parameters
     ----------
-    system : System
-        The model every point runs.
+    work : MapWork
+        What every point runs, and in chunks of how many points.
     handle : object
         An open executor (:func:`torsio.analysis.sweep.open_executor`).
-    options : BatchOptions
-        The options of :func:`torsio.solvers.batch.simulate_batch` for every chunk.
-    chunk_size : int
-        Points per task.
     retries : int
         Resubmissions of a chunk whose worker died.
     progress : callable, optional
@@ -158,18 +179,14 @@ class PointRunner:
 
     def __init__(
         self,
-        system: System,
+        work: MapWork,
         handle: Any,
-        options: BatchOptions,
-        chunk_size: int,
         retries: int,
         progress: Callable[[int, int], None] | None,
         total: int | None = None,
     ) -> None:
-        self.system = system
+        self.work = work
         self.handle = handle
-        self.options = options
-        self.chunk_size = chunk_size
         self.retries = retries
         self.progress = progress
         self.done_points = 0
@@ -191,12 +208,12 @@ class PointRunner:
         points: BatchPoints,
         on_partial: Callable[[list[tuple[tuple[int, int], np.ndarray]]], None] | None = None,
     ) -> np.ndarray:
-        """Rows (severity, status, steps, rejected, ended, stuck) of the checked points
-        (``points.wob[k]``, ``points.rpm[k]``)."""
+        """Rows (severity, status, steps, rejected, ended, stuck, layers...) of the checked
+        points (``points.wob[k]``, ``points.rpm[k]``)."""
         count = points.size
-        size = self.chunk_size
+        size = self.work.chunk_size
         bounds = [(k, min(k + size, count)) for k in range(0, count, size)]
-        tasks = [(self.system, points[a:b], self.options) for a, b in bounds]
+        tasks = [(self.work.model, points[a:b], self.work.settings) for a, b in bounds]
         base = self.done_points
         if not self.fixed_total or base + count > self.total_points:
             self.total_points = max(self.total_points, base) + count
@@ -210,7 +227,7 @@ class PointRunner:
 
         try:
             outcome = run_tasks_on(
-                self.handle, _chunk_task, tasks, retries=self.retries, progress=report
+                self.handle, self.work.task, tasks, retries=self.retries, progress=report
             )
         except (SweepInterrupted, SweepError) as exc:  # keep what finished, then re-raise
             if on_partial is not None:
@@ -219,7 +236,7 @@ class PointRunner:
         self.retried += outcome.retries
         self.done_points += count
         self.runs += count
-        return np.concatenate(outcome.results) if outcome.results else np.empty((0, 5))
+        return np.concatenate(outcome.results) if outcome.results else np.empty((0, 6))
 
 
 def _default_chunk_size(points: int, workers: int, serial: bool, dofs: int) -> int:
@@ -235,3 +252,144 @@ def _failure_lines(wob: np.ndarray, rpm: np.ndarray, status: np.ndarray) -> list
         f"{STATUS_MESSAGES.get(int(status[i, j]), f'status {status[i, j]}')}"
         for i, j in zip(*np.nonzero(status), strict=True)
     ]
+
+
+def drive_map(
+    work: MapWork,
+    scales: dict[str, Any],
+    info: dict[str, Any],
+    options: Any,
+    *,
+    executor: Any = None,
+    progress: bool | Callable[[int, int], None] | None = None,
+    label: str = "severity map",
+) -> Any:
+    """The map of every engine: ``work`` at every point of the grid ``scales["wob"]`` x
+    ``scales["rpm"]`` on ``executor`` (:func:`torsio.analysis.sweep.open_executor`), then
+    its critical weight on bit bisected with more runs of ``work``
+    (:func:`torsio.analysis.critical_wob.locate_critical_wob`), as a
+    :class:`~torsio.analysis.map_results.SeverityMap` with ``work.layers`` (its
+    ``stability_wob`` NaN: the engine's to add).
+
+    ``scales`` are the map's fields every map of the call shares (axes, thresholds,
+    k_eq, ω₁, bit radius, ...); ``options`` a :class:`~torsio.analysis.map_options.MapOptions`
+    (``threshold``, ``refine``, ``on_failure``, ``retries``, ``timeout``); ``progress`` as
+    :func:`torsio.analysis.maps.severity_map`'s. Ctrl-C raises
+    :class:`~torsio.analysis.map_results.MapInterrupted`, a failed executor
+    :class:`MapFailed`, each with the points done as a partial map.
+    """
+    import time
+    import warnings
+
+    from torsio.analysis.critical_wob import locate_critical_wob
+    from torsio.analysis.map_results import MapInterrupted, SeverityMap
+    from torsio.analysis.sweep import CONNECT_TIMEOUT, open_executor
+
+    wob, rpm = scales["wob"], scales["rpm"]
+    shape, points = (rpm.size, wob.size), rpm.size * wob.size
+    stop: Callable[[], None] | None = None
+    callback = progress if callable(progress) else None
+    if progress is True:
+        from torsio.solvers.run_chunks import map_progress
+
+        callback, stop = map_progress(label)
+    severity = np.full(shape, np.nan)
+    status = np.zeros(shape, dtype=np.int64)
+    steps = np.zeros(shape, dtype=np.int64)
+    done = np.zeros(shape, dtype=bool)
+    stuck = np.zeros(shape, dtype=bool)
+    ended_early = np.zeros(shape, dtype=bool)
+    layers = {name: np.full(shape, np.nan) for name in work.layers}
+    grid_rpm, grid_wob = np.meshgrid(rpm, wob, indexing="ij")
+    start = time.perf_counter()
+
+    def store(rows: np.ndarray, at: np.ndarray) -> None:
+        i, j = np.unravel_index(at, shape)
+        severity[i, j] = rows[:, 0]
+        status[i, j] = rows[:, 1].astype(np.int64)
+        steps[i, j] = rows[:, 2].astype(np.int64)
+        ended_early[i, j] = rows[:, 4] < info["duration"]
+        stuck[i, j] = rows[:, 5] > 0.5
+        done[i, j] = True
+        for k, layer in enumerate(layers.values()):
+            layer[i, j] = rows[:, 6 + k]
+
+    def partial_map() -> SeverityMap:
+        nan_rows = np.full(rpm.size, np.nan)
+        return SeverityMap(
+            **scales,
+            severity=severity.copy(),
+            critical_wob=nan_rows,
+            critical_status=("unresolved",) * rpm.size,
+            critical_bracket=np.full((rpm.size, 2), np.nan),
+            stability_wob=nan_rows.copy(),
+            status=status.copy(),
+            steps=steps.copy(),
+            done=done.copy(),
+            stuck=stuck.copy(),
+            complete=False,
+            info={**info, "elapsed_s": time.perf_counter() - start},
+            layers={name: layer.copy() for name, layer in layers.items()},
+        )
+
+    try:
+        timeout = CONNECT_TIMEOUT if options.timeout is None else options.timeout
+        with open_executor(executor, timeout) as handle:
+            info.setdefault("executor", handle.name)
+            # a fixed progress total: the grid and every possible bisection run
+            total = points + options.refine * rpm.size
+            runner = PointRunner(work, handle, options.retries, callback, total=total)
+            indices = np.arange(points)
+
+            def keep_partial(chunks: list[Any]) -> None:
+                for (a, b), rows in chunks:
+                    store(rows, indices[a:b])
+
+            try:
+                flat = BatchPoints(grid_wob.ravel(), grid_rpm.ravel())  # axes checked
+                store(runner.run(flat, keep_partial), indices)
+                failed = done & (status != 0)
+                if failed.any() and options.on_failure == "raise":
+                    lines = _failure_lines(wob, rpm, status)
+                    raise SolverError(
+                        f"{work.solver} failed at {len(lines)} of {points} points: "
+                        + "; ".join(lines[:5])
+                        + (" ..." if len(lines) > 5 else "")
+                        + " (on_failure='mark' keeps the others)"
+                    )
+                critical, crit_status, bracket = locate_critical_wob(
+                    runner, wob, rpm, severity, options.threshold, options.refine,
+                    options.on_failure,
+                )  # fmt: skip
+            except SweepInterrupted:
+                raise MapInterrupted(partial_map()) from None
+            except SweepError as exc:
+                raise MapFailed(exc, partial_map()) from exc
+            info["retried_chunks"] = runner.retried
+    finally:
+        if stop is not None:
+            stop()
+    if failed.any():
+        warnings.warn(
+            f"{work.solver} failed at {int(failed.sum())} points; they are NaN in the map",
+            RuntimeWarning,
+            stacklevel=4,
+        )
+    info["elapsed_s"] = time.perf_counter() - start
+    info["extra_runs"] = runner.runs - points
+    info["ended_on_steady_cycle"] = int(ended_early.sum())  # grid points that ended early
+    return SeverityMap(
+        **scales,
+        severity=severity,
+        critical_wob=critical,
+        critical_status=crit_status,
+        critical_bracket=bracket,
+        stability_wob=np.full(rpm.size, np.nan),
+        status=status,
+        steps=steps,
+        done=done,
+        stuck=stuck,
+        complete=True,
+        info=info,
+        layers=layers,
+    )

@@ -53,43 +53,36 @@ Examples
 from __future__ import annotations
 
 import math
-import warnings
 from collections.abc import Callable
 from typing import Any
 
+import attrs
 import numpy as np
 
 from torsio.analysis.budget import check_batch_work
-from torsio.analysis.critical_wob import locate_critical_wob
 from torsio.analysis.map_options import MapOptions
-from torsio.analysis.map_results import (
-    MapInterrupted,
-    SeverityMap,
-)
+from torsio.analysis.map_results import MapInterrupted, SeverityMap
 from torsio.analysis.map_runs import (
     MapFailed,
-    PointRunner,
+    MapWork,
     _axis,
+    _chunk_task,
     _default_chunk_size,
-    _failure_lines,
     check_grid_size,
+    drive_map,
 )
 from torsio.analysis.sweep import (
     ExecutorSpec,
-    SweepError,
-    SweepInterrupted,
-    open_executor,
     worker_count,
 )
 from torsio.analysis.time_scales import check_time_scales
-from torsio.errors import ConfigError, SolverError
+from torsio.errors import ConfigError
 from torsio.model.contacts import carried_contacts
 from torsio.physics.system import System
 from torsio.solvers.batch import (
     simulate_batch,
 )
 from torsio.solvers.batch_options import DEFAULT_MAX_STEPS
-from torsio.solvers.batch_results import BatchPoints
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = ["dimensionless_map", "severity_map"]
@@ -148,10 +141,73 @@ def severity_map(
     MapInterrupted
         On Ctrl-C; its ``partial`` map has ``complete = False``.
     """
-    chosen = MapOptions.of(options, values)
-    wob_axis = _axis("wob", wob, positive=False)
-    rpm_axis = _axis("rpm", rpm, positive=True)
-    return _build_map(system, wob_axis, rpm_axis, chosen, executor, progress, dimensionless=False)
+    from torsio.analysis.severity import run_times
+    from torsio.analysis.stability import stability_boundary
+    from torsio.plugins import describe_bit_law
+
+    options = MapOptions.of(options, values)
+    wob = _axis("wob", wob, positive=False)
+    rpm = _axis("rpm", rpm, positive=True)
+    check_grid_size(rpm.size, wob.size)
+    duration, steady_window = run_times(system, options.duration, options.steady_window)
+    k_eq, omega1 = _scales(system)
+    check_batch_work(system, wob, duration, options.rtol, 2.0 * math.pi / omega1, DEFAULT_MAX_STEPS)
+    check_time_scales(system, duration)
+    serial = executor is None or executor == "serial"
+    batch = options.batch_options(duration, steady_window, None if serial else 1)
+    boundary = system.top.boundary(system)
+    if not boundary.held and not math.isfinite(boundary.set_speed):
+        raise ConfigError(
+            "rpm",
+            f"a map runs over rotary (set) speeds, and the top drive "
+            f"{getattr(system.top, 'name', system.top)!r} has none (its speed follows from "
+            "the torque balance); map with a speed-controlled top drive or run "
+            "torsio.solvers.batch.simulate_batch(system, wob) over weights on bit",
+        )
+    # validate options (engine, tolerances) here rather than in every worker
+    engine_name = simulate_batch(system, np.empty(0), np.empty(0), batch).engine
+    scales: dict[str, Any] = {  # what every map of this call shares, partial or not
+        "wob": wob,
+        "rpm": rpm,
+        "threshold": options.threshold,
+        "stick_slip_threshold": options.stick_slip_threshold,
+        "k_eq": k_eq,
+        "omega1": omega1,
+        "bit_radius": system.bit_radius,
+        "dimensionless": False,
+        "engine": engine_name,
+    }
+    points = rpm.size * wob.size
+    size = options.chunk_size or _default_chunk_size(
+        points, worker_count(executor), serial, system.model.dofs
+    )
+    info: dict[str, Any] = {
+        "model": {
+            "name": getattr(system.string, "name", "") or "",
+            "strategy": system.model.strategy,
+            "dofs": system.model.dofs,
+        },
+        "law": repr(system.law),
+        "damping": repr(system.damping),
+        "duration": duration,
+        "steady_window": steady_window,
+        "rtol": options.rtol,
+        "atol": options.atol,
+        "refine": options.refine,
+        "initial_state": "rest",
+        "steady_tolerance": options.steady_tolerance,
+    }
+    no_friction = carried_contacts(getattr(system.model, "contacts", None))[1]
+    if no_friction is not None:
+        info["contacts_warning"] = no_friction
+    solver = f"the batch solver ({engine_name} engine, bit-rock law {describe_bit_law(system.law)})"
+    work = MapWork(_chunk_task, system, batch, size, solver)
+    grid = drive_map(work, scales, info, options, executor=executor, progress=progress)
+    if system.model.linearizable:
+        linear_wob = stability_boundary(system, rpm).critical_wob
+    else:  # e.g. the distributed model: no linearization (yet)
+        linear_wob = np.full(rpm.shape, np.nan)
+    return attrs.evolve(grid, stability_wob=linear_wob)
 
 
 def dimensionless_map(
@@ -188,207 +244,9 @@ def dimensionless_map(
     k_eq, omega1 = _scales(system)
     rpm = pi1_axis * omega1 / RPM_TO_RAD_S
     wob = pi2_axis * k_eq / system.bit_radius
-    return _build_map(system, wob, rpm, chosen, executor, progress, dimensionless=True)
-
-
-def _build_map(
-    system: System,
-    wob: np.ndarray,
-    rpm: np.ndarray,
-    options: MapOptions,
-    executor: ExecutorSpec,
-    progress: bool | Callable[[int, int], None] | None,
-    dimensionless: bool,
-) -> SeverityMap:
-    import time
-
-    from torsio.analysis.severity import run_times
-    from torsio.analysis.stability import stability_boundary
-    from torsio.analysis.sweep import CONNECT_TIMEOUT
-
-    check_grid_size(rpm.size, wob.size)
-    duration, steady_window = run_times(system, options.duration, options.steady_window)
-    k_eq, omega1 = _scales(system)
-    check_batch_work(system, wob, duration, options.rtol, 2.0 * math.pi / omega1, DEFAULT_MAX_STEPS)
-    check_time_scales(system, duration)
-    serial = executor is None or executor == "serial"
-    batch = options.batch_options(duration, steady_window, None if serial else 1)
-    boundary = system.top.boundary(system)
-    if not boundary.held and not math.isfinite(boundary.set_speed):
-        raise ConfigError(
-            "rpm",
-            f"a map runs over rotary (set) speeds, and the top drive "
-            f"{getattr(system.top, 'name', system.top)!r} has none (its speed follows from "
-            "the torque balance); map with a speed-controlled top drive or run "
-            "torsio.solvers.batch.simulate_batch(system, wob) over weights on bit",
-        )
-    # validate options (engine, tolerances) here rather than in every worker
-    engine_name = simulate_batch(system, np.empty(0), np.empty(0), batch).engine
-    scales: dict[str, Any] = {  # what every map of this call shares, partial or not
-        "wob": wob,
-        "rpm": rpm,
-        "threshold": options.threshold,
-        "stick_slip_threshold": options.stick_slip_threshold,
-        "k_eq": k_eq,
-        "omega1": omega1,
-        "bit_radius": system.bit_radius,
-        "dimensionless": dimensionless,
-        "engine": engine_name,
-    }
-    points = rpm.size * wob.size
-    size = options.chunk_size or _default_chunk_size(
-        points, worker_count(executor), serial, system.model.dofs
-    )
-
-    stop: Callable[[], None] | None = None
-    callback: Callable[[int, int], None] | None
-    if progress is True:
-        from torsio.solvers.run_chunks import map_progress
-
-        callback, stop = map_progress("severity map")
-    elif callable(progress):
-        callback = progress
-    else:
-        callback = None
-
-    severity = np.full((rpm.size, wob.size), np.nan)
-    status = np.zeros((rpm.size, wob.size), dtype=np.int64)
-    steps = np.zeros((rpm.size, wob.size), dtype=np.int64)
-    done = np.zeros((rpm.size, wob.size), dtype=bool)
-    stuck = np.zeros((rpm.size, wob.size), dtype=bool)
-    ended_early = np.zeros((rpm.size, wob.size), dtype=bool)
-    grid_rpm, grid_wob = np.meshgrid(rpm, wob, indexing="ij")
-    flat_wob = grid_wob.ravel()
-    flat_rpm = grid_rpm.ravel()
-    start = time.perf_counter()
-    info: dict[str, Any] = {
-        "model": {
-            "name": getattr(system.string, "name", "") or "",
-            "strategy": system.model.strategy,
-            "dofs": system.model.dofs,
-        },
-        "law": repr(system.law),
-        "damping": repr(system.damping),
-        "duration": duration,
-        "steady_window": steady_window,
-        "rtol": options.rtol,
-        "atol": options.atol,
-        "refine": options.refine,
-        "initial_state": "rest",
-        "steady_tolerance": options.steady_tolerance,
-    }
-    no_friction = carried_contacts(getattr(system.model, "contacts", None))[1]
-    if no_friction is not None:
-        info["contacts_warning"] = no_friction
-
-    def store(rows: np.ndarray, at: np.ndarray) -> None:
-        i, j = np.unravel_index(at, severity.shape)
-        severity[i, j] = rows[:, 0]
-        status[i, j] = rows[:, 1].astype(np.int64)
-        steps[i, j] = rows[:, 2].astype(np.int64)
-        ended_early[i, j] = rows[:, 4] < duration
-        stuck[i, j] = rows[:, 5] > 0.5
-        done[i, j] = True
-
-    def partial_map() -> SeverityMap:
-        nan_rows = np.full(rpm.size, np.nan)
-        return SeverityMap(
-            **scales,
-            severity=severity.copy(),
-            critical_wob=nan_rows,
-            critical_status=("unresolved",) * rpm.size,
-            critical_bracket=np.full((rpm.size, 2), np.nan),
-            stability_wob=nan_rows.copy(),
-            status=status.copy(),
-            steps=steps.copy(),
-            done=done.copy(),
-            stuck=stuck.copy(),
-            complete=False,
-            info={**info, "elapsed_s": time.perf_counter() - start},
-        )
-
-    try:
-        with open_executor(
-            executor, CONNECT_TIMEOUT if options.timeout is None else options.timeout
-        ) as handle:
-            info["executor"] = handle.name
-            # a fixed progress total: the grid and every possible bisection run
-            runner = PointRunner(
-                system,
-                handle,
-                batch,
-                size,
-                options.retries,
-                callback,
-                total=points + options.refine * rpm.size,
-            )
-            indices = np.arange(points)
-
-            def keep_partial(chunks: list[Any]) -> None:
-                for (a, b), rows in chunks:
-                    store(rows, indices[a:b])
-
-            try:
-                rows = runner.run(BatchPoints(flat_wob, flat_rpm), keep_partial)  # axes checked
-            except SweepInterrupted:
-                raise MapInterrupted(partial_map()) from None
-            except SweepError as exc:
-                raise MapFailed(exc, partial_map()) from exc
-            store(rows, indices)
-            failed = done & (status != 0)
-            if failed.any() and options.on_failure == "raise":
-                lines = _failure_lines(wob, rpm, status)
-                from torsio.plugins import describe_bit_law
-
-                raise SolverError(
-                    f"the batch solver ({engine_name} engine, bit-rock law "
-                    f"{describe_bit_law(system.law)}) failed at {len(lines)} of {points} points: "
-                    + "; ".join(lines[:5])
-                    + (" ..." if len(lines) > 5 else "")
-                    + " (on_failure='mark' keeps the others)"
-                )
-            try:
-                critical, crit_status, bracket = locate_critical_wob(
-                    runner,
-                    wob,
-                    rpm,
-                    severity,
-                    options.threshold,
-                    options.refine,
-                    options.on_failure,
-                )
-            except SweepInterrupted:
-                raise MapInterrupted(partial_map()) from None
-            except SweepError as exc:
-                raise MapFailed(exc, partial_map()) from exc
-            info["retried_chunks"] = runner.retried
-    finally:
-        if stop is not None:
-            stop()
-    if failed.any():
-        warnings.warn(
-            f"the batch solver failed at {int(failed.sum())} points; they are NaN in the map",
-            RuntimeWarning,
-            stacklevel=3,
-        )
-    info["elapsed_s"] = time.perf_counter() - start
-    info["extra_runs"] = runner.runs - points
-    info["ended_on_steady_cycle"] = int(ended_early.sum())  # grid points that ended early
-    if system.model.linearizable:
-        linear_wob = stability_boundary(system, rpm).critical_wob
-    else:  # e.g. the distributed model: no linearization (yet)
-        linear_wob = np.full(rpm.shape, np.nan)
-    return SeverityMap(
-        **scales,
-        severity=severity,
-        critical_wob=critical,
-        critical_status=crit_status,
-        critical_bracket=bracket,
-        stability_wob=linear_wob,
-        status=status,
-        steps=steps,
-        done=done,
-        stuck=stuck,
-        complete=True,
-        info=info,
-    )
+    try:  # the map over rpm x wob, its axes in the dimensionless groups
+        grid = severity_map(system, wob, rpm, chosen, executor=executor, progress=progress)
+    except (MapInterrupted, MapFailed) as exc:
+        exc.partial = attrs.evolve(exc.partial, dimensionless=True)
+        raise
+    return attrs.evolve(grid, dimensionless=True)

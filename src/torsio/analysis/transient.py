@@ -247,23 +247,16 @@ def simulate_lumped(
         options.stick_threshold if options.stick_threshold is not None else DEFAULT_STICK_THRESHOLD
     )
 
-    from torsio.solvers.run_chunks import QUIET_SECONDS, stderr_progress
+    from torsio.solvers.run_chunks import run_progress
     from torsio.solvers.single_run import integrate_run  # numba only when a run starts
 
     dynamics = Dynamics.from_system(system)
     y0 = _initial_state(dynamics, initial_state)
     where = f"WOB = {system.wob:g} N, {system.rpm:g} rpm"
-    reporter = None
-    if progress is None or progress is True:
-        reporter = stderr_progress("simulate", quiet=0.0 if progress else QUIET_SECONDS)
-    report = reporter if reporter is not None else (progress or None)
-    try:
+    with run_progress(progress) as report:
         states, solver_info = integrate_run(
             system, dynamics, y0, time_grid, window, options, where, report
         )
-    finally:
-        if reporter is not None:
-            reporter.close()
     name = solver_info["method"]
     finite = np.all(np.isfinite(states), axis=0)
     if not finite.all():
@@ -372,8 +365,10 @@ def simulate_config(
     *,
     discretization: Mapping[str, Any] | None = None,
     **overrides: Any,
-) -> TransientResults:
-    """Simulate a configuration: its System, its ``[simulation]`` options, ``overrides`` on top.
+) -> Any:
+    """Simulate a configuration: its System, its ``[simulation]`` options, ``overrides`` on top;
+    a configuration with axial dynamics on the axial engine
+    (:func:`torsio.analysis.config_runs.simulate_axial_config`, with ``growth_rate``).
 
     A wave run from rest with friction along the string whose bit speed has a cycle is
     checked against a coarse twin (:mod:`torsio.analysis.grid_check`: ``grid_check`` in
@@ -399,6 +394,13 @@ def simulate_config(
     >>> round(results.severity, 3)
     1.099
     """
+    if config.axial is not None:  # the axial engine (torsio.analysis.config_runs)
+        from torsio.analysis.config_runs import run_capabilities, simulate_axial_config
+
+        given = {**overrides, **(discretization or {})}
+        run_capabilities(config).refuse({key: (key, value) for key, value in given.items()})
+        kept = ("duration", "steady_window", "growth_rate", "progress")
+        return simulate_axial_config(config, wob, rpm, **{k: given[k] for k in kept if k in given})
     initial_state = overrides.pop("initial_state", None)
     progress = overrides.pop("progress", None)
     options = SimulationOptions.from_config(config).replace(**overrides)

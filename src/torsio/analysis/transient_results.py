@@ -13,8 +13,7 @@ import attrs
 import numpy as np
 
 from torsio.analysis.severity import SEVERE_THRESHOLD
-from torsio.errors import ConfigError
-from torsio.output_files import atomic_output, save_figure_file
+from torsio.output_files import save_columns
 from torsio.physics.system import System
 from torsio.units import RPM_TO_RAD_S
 
@@ -258,113 +257,109 @@ class TransientResults:
         surface_torque_Nm, top_speed_rad_s, motor_torque_Nm, node_speed_1_rad_s, ...``.
         Returns the path written.
         """
-        path = Path(path)
-        columns = [
-            self.time,
-            self.bit_speed,
-            self.bit_angle,
-            self.bit_torque,
-            self.surface_torque,
-            self.top_speed,
-            self.motor_torque,
+        columns = [self.time, self.bit_speed, self.bit_angle, self.bit_torque]
+        columns += [self.surface_torque, self.top_speed, self.motor_torque, *self.node_speeds.T]
+        names = ["time_s", "bit_speed_rad_s", "bit_angle_rad", "bit_torque_Nm"]
+        names += ["surface_torque_Nm", "top_speed_rad_s", "motor_torque_Nm"]
+        names += [f"node_speed_{j + 1}_rad_s" for j in range(self.node_speeds.shape[1])]
+        return save_columns(path, names, columns)
+
+    def summary_rows(self, units: Any) -> tuple[str, list[tuple[str, str]]]:
+        """The terminal table of the run (``torsio simulate``): its title and (quantity,
+        value) rows, forces and torques in ``units`` (a
+        :class:`~torsio.display_units.DisplayUnits`)."""
+        system = self.system
+        solver = self.solver
+        title = f"Transient response: {system.model.strategy}, {system.model.dofs} DOF"
+        window = self.window_mask
+        rows = [
+            ("weight on bit", units.text("force", system.wob, ".4g")),
+            (
+                "rotary speed",
+                f"{self.rpm:.4g} rpm"
+                + ("" if self.has_set_speed else "  (mean top-drive speed; none is set)"),
+            ),
+            ("bit-rock law", str(getattr(system.law, "name", type(system.law).__name__))),
+            (
+                "run / steady window",
+                f"{self.duration:.4g} s / last {self.steady_window:.4g} s",
+            ),
+            (
+                "bit speed in window",
+                f"{self.bit_speed[window].min() * 30 / 3.141592653589793:.4g} .. "
+                f"{self.bit_speed[window].max() * 30 / 3.141592653589793:.4g} rpm",
+            ),
+            (
+                "S_SS (Eq. 12)",
+                f"{self.severity:.4f}" + ("  severe (> 0.8)" if self.severe else ""),
+            ),
+            (
+                "stick fraction",
+                f"{self.stick_fraction:.3f}  (|bit speed| < {self.stick_threshold:g} Omega)",
+            ),
+            (
+                "mean surface torque",
+                units.text("torque", self.surface_torque[window].mean(), ".4g"),
+            ),
+            ("mean torque on bit", units.text("torque", self.bit_torque[window].mean(), ".4g")),
+            (
+                "solver",
+                f"{solver['method']} ({solver.get('engine', 'scipy')} engine) "
+                f"rtol={solver['rtol']:g} atol={solver['atol']:g}: "
+                + (f"{solver['steps']} steps, " if solver.get("steps") is not None else "")
+                + f"{solver['nfev']} f-evals, {solver['njev']} Jacobians, "
+                f"{solver['wall_time_s']:.2f} s",
+            ),
         ]
-        names = [
-            "time_s",
-            "bit_speed_rad_s",
-            "bit_angle_rad",
-            "bit_torque_Nm",
-            "surface_torque_Nm",
-            "top_speed_rad_s",
-            "motor_torque_Nm",
-        ]
-        for j in range(self.node_speeds.shape[1]):
-            columns.append(self.node_speeds[:, j])
-            names.append(f"node_speed_{j + 1}_rad_s")
-        with atomic_output(path) as stream:  # whole or not at all (OutputError)
-            np.savetxt(
-                stream,
-                np.column_stack(columns),
-                delimiter=",",
-                header=",".join(names),
-                comments="",
-                fmt="%.10g",
-            )
-        return path
+        rows.extend(_well_rows(self.well_summary, units))
+        return title, rows
+
+    @property
+    def plot_label(self) -> str:
+        """The operating point, for the plot's title."""
+        if self.dimensionless:
+            return f"Pi1 = {self.omega:.4g}, Pi2 = {self.system.wob * self.system.bit_radius:.4g}"
+        mean = "" if self.has_set_speed else " (mean top speed)"
+        return f"WOB = {self.system.wob / 1e3:.4g} kN, {self.rpm:.4g} rpm{mean}"
 
     def plot(self, path: str | Path | None = None, ax: Any = None) -> Any:
-        """Bit speed, surface torque and torque on bit against time (matplotlib).
+        """Bit speed, surface torque and torque on bit against time
+        (:func:`torsio.plotting.transient_plot.plot_transient`); returns the figure."""
+        from torsio.plotting.transient_plot import plot_transient
 
-        With a top drive that has inertia the top-drive speed and the motor torque
-        are drawn too. The steady-state window is shaded. ``path`` writes the figure (PNG by
-        extension); ``ax`` (a sequence of three matplotlib axes: speeds, surface torque,
-        torque on bit) draws into existing ones, as ``ax=`` of every results' ``plot``.
-        Returns the figure.
-
-        Raises
-        ------
-        ImportError
-            If matplotlib is not installed (``pip install 'torsio[plot]'``).
-        """
-        try:
-            from matplotlib.figure import Figure
-        except ImportError as exc:  # pragma: no cover - depends on the environment
-            raise ImportError(
-                "plotting needs matplotlib, which is not installed: pip install 'torsio[plot]'"
-            ) from exc
-        axes = ax
-        if axes is not None:
-            if len(axes) != 3:
-                raise ConfigError("ax", f"expected three matplotlib axes, got {len(axes)}")
-            fig = axes[0].figure
-        elif path is not None:  # no pyplot: no GUI backend, nothing left open
-            fig = Figure(figsize=(8.0, 7.0))
-            axes = fig.subplots(3, 1, sharex=True)
-        else:
-            import matplotlib.pyplot as plt
-
-            fig, axes = plt.subplots(3, 1, sharex=True, figsize=(8.0, 7.0))
-        time_label = "tau = omega_1 t [-]" if self.dimensionless else "time [s]"
-        speed_unit = "-" if self.dimensionless else "rpm"
-        scale = 1.0 if self.dimensionless else 1.0 / RPM_TO_RAD_S
-        torque_unit = "-" if self.dimensionless else "kN m"
-        torque_scale = 1.0 if self.dimensionless else 1e-3
-        axes[0].plot(self.time, self.bit_speed * scale, lw=0.8, label="bit")
-        if self.has_top_drive_node:
-            axes[0].plot(self.time, self.top_speed * scale, lw=0.8, color="k", label="top drive")
-            axes[0].set_ylabel(f"speed [{speed_unit}]")
-        else:
-            axes[0].axhline(self.omega * scale, color="k", lw=0.6, ls="--", label="top")
-            axes[0].set_ylabel(f"bit speed [{speed_unit}]")
-        axes[0].legend(loc="upper right", fontsize="small")
-        axes[1].plot(
-            self.time, self.surface_torque * torque_scale, lw=0.8, color="C1", label="pipe"
-        )
-        if self.has_top_drive_node:
-            axes[1].plot(
-                self.time, self.motor_torque * torque_scale, lw=0.8, color="C4", label="motor"
-            )
-            axes[1].legend(loc="upper right", fontsize="small")
-        axes[1].set_ylabel(f"surface torque [{torque_unit}]")
-        axes[2].plot(self.time, self.bit_torque * torque_scale, lw=0.8, color="C2")
-        axes[2].set_ylabel(f"torque on bit [{torque_unit}]")
-        axes[2].set_xlabel(time_label)
-        for ax in axes:
-            ax.axvspan(self.window_start, self.duration, color="0.9", zorder=0)
-            ax.grid(True, lw=0.3)
-        op = (
-            f"Pi1 = {self.omega:.4g}, Pi2 = {self.system.wob * self.system.bit_radius:.4g}"
-            if self.dimensionless
-            else f"WOB = {self.system.wob / 1e3:.4g} kN, {self.rpm:.4g} rpm"
-            + ("" if self.has_set_speed else " (mean top speed)")
-        )
-        axes[0].set_title(f"{op}: S_SS = {self.severity:.3f} (steady window shaded)")
-        fig.tight_layout()
-        if path is not None:
-            save_figure_file(fig, path, dpi=120)  # whole or not at all (OutputError)
-        return fig
+        return plot_transient(self, path, ax)
 
 
 def window_mask(time_grid: np.ndarray, window: float) -> np.ndarray:
     """Boolean mask of the samples of ``time_grid`` [s] in the last ``window`` seconds."""
     start = time_grid[-1] - window
     return np.asarray(time_grid >= start - 1e-9 * max(1.0, abs(time_grid[-1])))
+
+
+def _well_rows(summary: Any, units: Any) -> list[tuple[str, str]]:
+    """Rows of a run with friction along the string (a [well]); none without."""
+    if summary is None:
+        return []
+    first = summary["bit_first_motion"]
+    period = summary["stick_slip_period"]
+    return [
+        (
+            "surface torque in window",
+            f"{units.number('torque', summary['surface_torque_min'], '.4g')} .. "
+            f"{units.text('torque', summary['surface_torque_max'], '.4g')}",
+        ),
+        ("peak surface torque", units.text("torque", summary["surface_torque_peak"], ".4g")),
+        (
+            "surface-torque swing in window",
+            units.text("torque", summary["surface_torque_swing"], ".4g"),
+        ),
+        (
+            "stick-slip period in window",
+            f"none: {summary['stick_slip_period_reason']}" if period is None else f"{period:.4g} s",
+        ),
+        (
+            f"bit first faster than {summary['threshold_speed']:g} rad/s",
+            "never" if first is None else f"at {first:.4g} s",
+        ),
+        ("friction work along the string", units.energy(summary["friction_work"])),
+    ]

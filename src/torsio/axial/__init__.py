@@ -27,9 +27,10 @@ if TYPE_CHECKING:
     from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
     from torsio.axial.energy_balance import EnergyBalance
     from torsio.axial.linearization import axial_linearization, drilling_linearization
-    from torsio.axial.maps import AxialMap, axial_map
+    from torsio.axial.maps import axial_map
     from torsio.axial.rgd import RGDBit, rgd_example, rgd_from_table
     from torsio.axial.root_branches import follow_roots
+    from torsio.axial.run_results import AxialTransient
     from torsio.axial.run_setup import BitRotation
     from torsio.axial.stability import (
         DrillingCase,
@@ -43,7 +44,7 @@ if TYPE_CHECKING:
     from torsio.axial.steady import SteadyDrilling, steady_drilling
     from torsio.axial.steady_friction import SteadyFriction, steady_with_friction
     from torsio.axial.string_contacts import AxialContacts, axial_contacts
-    from torsio.axial.transient import AxialTransient, simulate_axial
+    from torsio.axial.transient import simulate_axial
     from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly, wave_pipe_assembly
 
 # Every name is imported on first use (PEP 562): the stability analysis loads scipy.linalg,
@@ -58,7 +59,6 @@ _LAZY = {
     "rightmost_roots": "torsio.axial.delay_roots",
     "axial_linearization": "torsio.axial.linearization",
     "drilling_linearization": "torsio.axial.linearization",
-    "AxialMap": "torsio.axial.maps",
     "axial_map": "torsio.axial.maps",
     "RGDBit": "torsio.axial.rgd",
     "rgd_example": "torsio.axial.rgd",
@@ -79,7 +79,7 @@ _LAZY = {
     "AxialContacts": "torsio.axial.string_contacts",
     "axial_contacts": "torsio.axial.string_contacts",
     "EnergyBalance": "torsio.axial.energy_balance",
-    "AxialTransient": "torsio.axial.transient",
+    "AxialTransient": "torsio.axial.run_results",
     "simulate_axial": "torsio.axial.transient",
     "PipeSection": "torsio.axial.wave_assembly",
     "WaveDrillingAssembly": "torsio.axial.wave_assembly",
@@ -88,7 +88,6 @@ _LAZY = {
 
 __all__ = [
     "AxialContacts",
-    "AxialMap",
     "AxialTransient",
     "BitRotation",
     "DrillingAssembly",

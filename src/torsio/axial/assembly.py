@@ -43,7 +43,13 @@ from torsio.model.arrays import read_only_vector
 if TYPE_CHECKING:
     from torsio.axial.wave_assembly import PipeSection
 
-__all__ = ["DrillingAssembly", "pipe_assembly", "rgd_two_dof_example", "two_dof_assembly"]
+__all__ = [
+    "DrillingAssembly",
+    "assembly_summary",
+    "pipe_assembly",
+    "rgd_two_dof_example",
+    "two_dof_assembly",
+]
 
 HOOKS = ("weight", "speed")
 """The boundaries at the hook: a constant weight on the top node, or a constant speed."""
@@ -269,4 +275,22 @@ def pipe_assembly(
         masses=axial_share * pipe.density * pipe.area * spacing + bottom * bha_mass,
         axial_stiffnesses=np.full(nodes, pipe.youngs_modulus * pipe.area / spacing),
         hook=hook,
+    )
+
+
+def assembly_summary(model: dict[str, Any]) -> str:
+    """One line on an assembly from its ``describe()``: a chain's nodes, or a distributed
+    pipe's sections, with the hook and the total mass."""
+    if model.get("kind") == "distributed":
+        sections = model["sections"]
+        length = sum(s["length"] for s in sections)
+        pipe_mass = sum(s["density"] * s["area"] * s["length"] for s in sections)
+        return (
+            f"distributed pipe, {len(sections)} section(s), {length:.6g} m, hook "
+            f"{model['hook']}, total mass {(pipe_mass + model['bha_mass']) / 1e3:.4g} t "
+            f"(BHA {model['bha_mass'] / 1e3:.4g} t, rigid)"
+        )
+    return (
+        f"{model['nodes']} node(s), {model['axial_dofs']} axial DOF, hook {model['hook']}, "
+        f"total mass {sum(model['masses']) / 1e3:.4g} t"
     )

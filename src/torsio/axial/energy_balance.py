@@ -33,7 +33,7 @@ from numpy.typing import NDArray
 
 from torsio.axial import layouts as slot
 
-__all__ = ["RESIDUAL_TOLERANCE", "EnergyBalance", "chain_energy", "energy_balance"]
+__all__ = ["RESIDUAL_TOLERANCE", "EnergyBalance", "chain_energy", "energy_balance", "stored_energy"]
 
 
 def chain_energy(
@@ -122,4 +122,22 @@ def energy_balance(stats: NDArray, start: float, end: float) -> EnergyBalance:
         damper_work=float(stats[slot.DAMPER_WORK]),
         bit_work=float(stats[slot.BIT_WORK]),
         string_friction_work=float(stats[slot.FRICTION_WORK]),
+    )
+
+
+def stored_energy(setup: Any, time: float) -> float | None:
+    """The lumped chain's kinetic and spring energy [J] at ``time`` [s] of its state (None:
+    the distributed pipe, or a prescribed bit rotation)."""
+    from torsio.axial.run_setup import RunSetup
+
+    if not isinstance(setup, RunSetup) or setup.settings[slot.PRESCRIBED]:
+        return None
+    settings = setup.settings
+    held = setup.top.top[slot.TOP_HELD] != 0.0
+    top_angle = settings[slot.TOP_SPEED] * time if held else float(setup.top_state[0])
+    hook = None
+    if settings[slot.SPEED_HOOK]:
+        hook = settings[slot.HOOK_START] + settings[slot.HOOK_SPEED] * time
+    return chain_energy(
+        setup.torsional, setup.axial, setup.theta, setup.omega, setup.u, setup.v, top_angle, hook
     )

@@ -121,6 +121,9 @@ the top drive's speed [rad/s], its motor torque [N m] and the surface torque [N 
 torque in the string at the top: ``top_torque`` again, under the name the torsional runs
 use; with the top held the motor torque is the surface torque)."""
 
+SAMPLE_UNITS = ("s", "rad", "rad_s", "m", "m_s", "m_rev", "N", "Nm", "s", "Nm", "rad_s", "Nm", "Nm")
+"""The units of :data:`SAMPLE_COLUMNS`, as CSV headers write them (``time_s``)."""
+
 (
     TIME,
     BIT_ANGLE,

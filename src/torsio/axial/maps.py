@@ -2,11 +2,17 @@
 
 :func:`axial_map` runs :mod:`torsio.axial.kernel` at every point of the grid with the
 options of :func:`torsio.axial.transient.simulate_axial` (no signals kept), and returns
-:class:`AxialMap`: S_SS, axial severity, stuck and off-bottom fractions, mean ROP [m/s] and
-mean MSE [Pa], each of shape (rpm, wob) like torsio's severity maps (``severity[i][j]`` at
-``rpm[i]``, ``wob[j]``), and optionally the linear growth rate of steady drilling.
+:class:`~torsio.analysis.map_results.SeverityMap`, the map of every model: S_SS, its
+classification and critical weight on bit, and the layers axial severity, stuck and
+off-bottom fractions, mean ROP [m/s] and mean MSE [Pa] (``severity[i][j]`` at ``rpm[i]``,
+``wob[j]``), and optionally the linear growth rate of steady drilling, whose change of sign
+along each row is the map's ``stability_wob``. It saves, loads, plots and writes CSV as
+every map; Ctrl-C or a failed executor raise with the points done as a partial map
+(:class:`~torsio.analysis.map_results.MapInterrupted`,
+:class:`~torsio.analysis.map_runs.MapFailed`).
 
-**Where the points run**, as torsio's severity maps (:mod:`torsio.analysis.sweep`):
+**Where the points run**: on the driver of every map
+(:func:`torsio.analysis.map_runs.drive_map`, :mod:`torsio.analysis.sweep`):
 ``executor=None`` in this process, side by side on ``threads`` threads (default numba's
 thread count, the machine's cores; the compiled loop releases the GIL), or on an
 executor: N local processes, a Dask scheduler's address (the ``dask`` extra) or any
@@ -21,109 +27,39 @@ Examples
 ...                  duration=20.0, window=10.0, threads=2)
 >>> grid.severity.shape
 (2, 2)
->>> sorted(grid.to_dict())[:4]
-['axial_severity', 'duration', 'growth_rate', 'mse']
+>>> [key in grid.to_dict() for key in ("critical_wob", "rop", "mse", "growth_rate")]
+[True, True, True, True]
 """
 
 from __future__ import annotations
 
 import math
-import threading
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from typing import TYPE_CHECKING, Any
 
 import attrs
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
-from torsio.analysis.severity import run_times
-from torsio.axial.assembly import DrillingAssembly
-from torsio.axial.rgd import RGDBit
+from torsio.analysis.map_checks import LAYERS
+from torsio.analysis.map_options import MapOptions
+from torsio.analysis.map_results import STICK_SLIP_THRESHOLD, SeverityMap
+from torsio.analysis.map_runs import MapWork, drive_map
+from torsio.analysis.severity import SEVERE_THRESHOLD, run_times
+from torsio.axial.assembly import DrillingAssembly, assembly_summary
+from torsio.axial.run_results import SCHEME
+from torsio.axial.torque_law import AxialBit
 from torsio.axial.transient import simulate_axial
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.errors import ConfigError
+from torsio.solvers.batch_options import batch_threads
 
 if TYPE_CHECKING:
     from torsio.analysis.sweep import ExecutorSpec
+    from torsio.solvers.batch_results import BatchPoints
 
-__all__ = ["AxialMap", "axial_map"]
-
-_FIELDS = (
-    "severity",
-    "axial_severity",
-    "stick_fraction",
-    "off_bottom_fraction",
-    "rop_mean",
-    "mse_mean",
-)
-
-
-@attrs.frozen(eq=False)
-class AxialMap:
-    """Window outputs over a (rpm, wob) grid; every array has shape (len(rpm), len(wob)).
-
-    Attributes
-    ----------
-    wob, rpm : ndarray
-        The grid [N], [rev/min].
-    severity, axial_severity, stick_fraction, off_bottom_fraction : ndarray
-        As in :class:`torsio.axial.window_summary.WindowSummary`.
-    rop, mse : ndarray
-        Mean ROP [m/s] and mean MSE [Pa] over the window (MSE inf where the bit did not
-        advance).
-    growth_rate : ndarray or None
-        The linear growth rate [1/s] of steady drilling (when asked).
-    duration, window : float
-        Run length and window [s].
-    executor : str
-        What ran the points: ``"threads(N)"``, ``"processes(N)"``, ``"dask(address)"``.
-    string_friction_work : ndarray or None
-        The work of the friction along the string over each run [J] (0 without contacts).
-    """
-
-    wob: NDArray[np.float64]
-    rpm: NDArray[np.float64]
-    severity: NDArray[np.float64]
-    axial_severity: NDArray[np.float64]
-    stick_fraction: NDArray[np.float64]
-    off_bottom_fraction: NDArray[np.float64]
-    rop: NDArray[np.float64]
-    mse: NDArray[np.float64]
-    growth_rate: NDArray[np.float64] | None
-    duration: float
-    window: float
-    executor: str = "threads(1)"
-    string_friction_work: NDArray[np.float64] | None = None
-
-    def to_dict(self) -> dict[str, Any]:
-        """DESIGN.md's keys for ``torsio map --json`` with axial dynamics: ``wob``, ``rpm``,
-        ``severity``, ``rop``, ``mse`` (null where not finite) and the other fractions."""
-
-        def plain(array: NDArray[np.float64] | None) -> Any:
-            if array is None:
-                return None
-            return [[float(x) if np.isfinite(x) else None for x in row] for row in array]
-
-        return {
-            "wob": self.wob.tolist(),
-            "rpm": self.rpm.tolist(),
-            "severity": plain(self.severity),
-            "axial_severity": plain(self.axial_severity),
-            "stick_fraction": plain(self.stick_fraction),
-            "off_bottom_fraction": plain(self.off_bottom_fraction),
-            "rop": plain(self.rop),
-            "mse": plain(self.mse),
-            "growth_rate": plain(self.growth_rate),
-            "string_friction_work": plain(self.string_friction_work),
-            "duration": self.duration,
-            "steady_window": self.window,
-        }
-
-
-_OUTPUTS = len(_FIELDS) + 2
-"""Values of one point: the window's fields, the work of the friction along the string
-[J], then the growth rate (NaN when not asked)."""
+__all__ = ["axial_map"]
 
 
 @attrs.frozen(eq=False)
@@ -135,71 +71,30 @@ class PointRun:
     """
 
     assembly: DrillingAssembly | WaveDrillingAssembly
-    bit: RGDBit
+    bit: AxialBit
     options: dict[str, Any]
     growth_rate: bool
 
-    def __call__(self, wob: float, rpm: float) -> list[float]:
-        """The point's values at ``wob`` [N] and ``rpm`` [rev/min] (:data:`_OUTPUTS`)."""
-        run = simulate_axial(
-            self.assembly,
-            self.bit,
-            wob,
-            rpm,
-            samples=0,
-            growth_rate=self.growth_rate,
-            **self.options,
-        )
-        rate = math.nan if run.growth_rate is None else run.growth_rate
-        return [float(getattr(run.summary, name)) for name in _FIELDS] + [
-            run.string_friction_work,
-            rate,
-        ]
 
-
-def _thread_count(threads: int | None, points: int) -> int:
-    """``threads``, else numba's thread count on the main thread and one elsewhere (a Dask
-    worker's thread, a thread pool's), at most one per point."""
-    if threads is None:
-        if threading.current_thread() is not threading.main_thread():
-            return 1
-        from torsio.solvers.compiled import numba
-
-        if numba is None:  # pragma: no cover - plain Python holds the GIL anyway
-            return 1
-        threads = numba.get_num_threads()
-    return max(1, min(int(threads), points))
-
-
-def run_points(
-    run: PointRun,
-    points: Sequence[tuple[float, float]],
-    threads: int | None = 1,
-    progress: Callable[[int, int], None] | None = None,
-) -> NDArray[np.float64]:
-    """``run`` at the (wob [N], rpm) ``points`` on ``threads`` threads: rows of the window's
-    fields and the growth rate (a task of :func:`axial_map`; module-level, so it pickles)."""
-    total = len(points)
-    rows = np.empty((total, _OUTPUTS))
-    done = [0]
-    lock = threading.Lock()
-
-    def one(k: int) -> None:
-        wob, rpm = points[k]
-        rows[k] = run(wob, rpm)
-        if progress is not None:
-            with lock:
-                done[0] += 1
-                progress(done[0], total)
-
-    workers = _thread_count(threads, total)
-    if workers == 1:
-        for k in range(total):
-            one(k)
-    else:  # the compiled loop releases the GIL: points run side by side
-        with ThreadPoolExecutor(max_workers=workers, thread_name_prefix="torsio-axial") as pool:
-            list(pool.map(one, range(total)))
-    return rows
+def run_points(run: PointRun, points: BatchPoints, settings: Any = None) -> NDArray:
+    """The rows of the map driver (:class:`torsio.analysis.map_runs.MapWork`) at the
+    ``points``: S_SS, status 0, the steps, 0 rejected, the run's end [s], stuck (the bit
+    stuck throughout the window), then the layers :data:`~torsio.analysis.map_checks.LAYERS`
+    (the growth rate NaN when not asked)."""
+    rows = []
+    for wob, rpm in zip(points.wob, points.rpm, strict=True):
+        one = simulate_axial(run.assembly, run.bit, float(wob), float(rpm), samples=0,
+                             growth_rate=run.growth_rate, **run.options)  # fmt: skip
+        s = one.summary
+        layers = {"rop": s.rop_mean, "mse": s.mse_mean, "stick_fraction": s.stick_fraction,
+                  "off_bottom_fraction": s.off_bottom_fraction,
+                  "axial_severity": s.axial_severity,
+                  "growth_rate": math.nan if one.growth_rate is None else one.growth_rate,
+                  "string_friction_work": one.string_friction_work}  # fmt: skip
+        steps = round(one.duration / one.step)
+        head = [s.severity, 0.0, steps, 0.0, one.duration, float(s.stick_fraction >= 1.0)]
+        rows.append(head + [layers[name] for name in LAYERS])
+    return np.array(rows, dtype=float).reshape(-1, 6 + len(LAYERS))
 
 
 def _check_threads(threads: Any, executor: Any) -> int | None:
@@ -218,18 +113,20 @@ def _check_threads(threads: Any, executor: Any) -> int | None:
 
 def axial_map(
     assembly: DrillingAssembly | WaveDrillingAssembly,
-    bit: RGDBit,
-    wobs: Sequence[float],
-    rpms: Sequence[float],
+    bit: AxialBit,
+    wobs: ArrayLike,
+    rpms: ArrayLike,
     *,
     growth_rate: bool = False,
+    threshold: float = SEVERE_THRESHOLD,
+    refine: int = 0,
     threads: int | None = None,
     executor: ExecutorSpec = None,
     progress: bool | Callable[[int, int], None] | None = None,
     timeout: float | None = None,
     chunk_size: int | None = None,
     **options: Any,
-) -> AxialMap:
+) -> SeverityMap:
     """Run :func:`~torsio.axial.transient.simulate_axial` at every (rpm, wob) of the grid,
     no signals kept.
 
@@ -240,6 +137,11 @@ def axial_map(
     growth_rate : bool
         Add the linear growth rate [1/s] of steady drilling at each point (any assembly;
         not with a prescribed ``bit_rotation``).
+    threshold : float
+        S_SS above which a point is severe (the critical weight on bit's).
+    refine : int
+        Bisection steps of the critical weight on bit in its grid cell: one more run per
+        row and step (0: the middle of the cell, as ``"grid"``).
     threads : int, optional
         Points side by side in this process (default numba's thread count: the cores).
     executor : None, int, str or concurrent.futures.Executor
@@ -268,71 +170,51 @@ def axial_map(
             "the linear growth rate is of the assembly's turning chain; a prescribed "
             "bit_rotation does not integrate it",
         )
+    choices = MapOptions(threshold=threshold, refine=refine, timeout=timeout, chunk_size=chunk_size)
     run = PointRun(assembly, bit, {"duration": duration, "window": window, **options}, growth_rate)
-    shape = (rpm_grid.size, wob_grid.size)
-    points = [(float(w), float(r)) for r in rpm_grid for w in wob_grid]  # row-major: (rpm, wob)
-    stop: Callable[[], None] | None = None
-    callback = progress if callable(progress) else None
-    if progress is True:
-        from torsio.solvers.run_chunks import map_progress
+    points = wob_grid.size * rpm_grid.size
+    info = {"engine": "axial", "scheme": SCHEME, "start": options.get("start", "rest")}
+    info.update(model=assembly.describe(), duration=duration, steady_window=window)
+    info["label"] = f"{assembly_summary(info['model'])}, {bit.name} bit"
+    pool = None
+    if executor is None or executor == "serial":  # this process: a point per task, on threads
+        workers = batch_threads(threads, points)
+        info["executor"] = f"threads({workers})"
+        if workers > 1:  # the compiled loop releases the GIL: points run side by side
+            pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="torsio-axial")
+        size = 1
+    else:
+        from torsio.analysis.sweep import worker_count
 
-        callback, stop = map_progress("axial map")
+        size = chunk_size or max(1, math.ceil(points / (4 * worker_count(executor))))
+    chain = assembly.lumped_twin() if isinstance(assembly, WaveDrillingAssembly) else assembly
+    scales = {"wob": wob_grid, "rpm": rpm_grid, "threshold": choices.threshold,
+              "stick_slip_threshold": STICK_SLIP_THRESHOLD,
+              "k_eq": float(1.0 / np.sum(1.0 / chain.stiffnesses)),
+              "omega1": assembly.first_frequency(), "bit_radius": bit.radius,
+              "engine": "axial"}  # fmt: skip
+    work = MapWork(run_points, run, None, size, "the axial engine", LAYERS)
     try:
-        rows, ran_on = _run_grid(run, points, threads, executor, callback, timeout, chunk_size)
+        grid = drive_map(work, scales, info, choices, executor=pool or executor,
+                         progress=progress, label="axial map")  # fmt: skip
     finally:
-        if stop is not None:
-            stop()
-    out = {name: rows[:, k].reshape(shape) for k, name in enumerate(_FIELDS)}
-    return AxialMap(
-        wob=wob_grid,
-        rpm=rpm_grid,
-        severity=out["severity"],
-        axial_severity=out["axial_severity"],
-        stick_fraction=out["stick_fraction"],
-        off_bottom_fraction=out["off_bottom_fraction"],
-        rop=out["rop_mean"],
-        mse=out["mse_mean"],
-        growth_rate=rows[:, -1].reshape(shape) if growth_rate else None,
-        duration=duration,
-        window=window,
-        executor=ran_on,
-        string_friction_work=rows[:, -2].reshape(shape),
+        if pool is not None:  # Ctrl-C: the points not started are cancelled
+            pool.shutdown(wait=False, cancel_futures=True)
+    rates = grid.layers["growth_rate"] if growth_rate else None
+    return attrs.evolve(
+        grid,
+        layers={**grid.layers, "growth_rate": rates},
+        stability_wob=_sign_change(wob_grid, rates, rpm_grid.size),
     )
 
 
-def _run_grid(
-    run: PointRun,
-    points: list[tuple[float, float]],
-    threads: int | None,
-    executor: ExecutorSpec,
-    progress: Callable[[int, int], None] | None,
-    timeout: float | None,
-    chunk_size: int | None,
-) -> tuple[NDArray[np.float64], str]:
-    """The rows of every point, in order, and what ran them."""
-    if executor is None or executor == "serial":
-        workers = _thread_count(threads, len(points))
-        rows = run_points(run, points, workers, progress)
-        return rows, f"threads({workers})"
-    from torsio.analysis.sweep import CONNECT_TIMEOUT, run_tasks, worker_count
-
-    if chunk_size is not None and (
-        isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1
-    ):
-        raise ConfigError("chunk_size", f"expected a whole number >= 1, got {chunk_size!r}")
-    size = chunk_size or max(1, math.ceil(len(points) / (4 * worker_count(executor))))
-    bounds = [(k, min(k + size, len(points))) for k in range(0, len(points), size)]
-    tasks = [(run, points[a:b]) for a, b in bounds]
-
-    def report(done: int, total: int) -> None:
-        if progress is not None:
-            progress(len(points) if done == total else min(done * size, len(points)), len(points))
-
-    outcome = run_tasks(
-        run_points,
-        tasks,
-        executor,
-        progress=report,
-        timeout=CONNECT_TIMEOUT if timeout is None else timeout,
-    )
-    return np.concatenate(outcome.results), outcome.executor
+def _sign_change(wob: NDArray[np.float64], rates: NDArray | None, rows: int) -> NDArray:
+    """Per row, the weight on bit [N] where the growth rate first turns positive, linear
+    between the grid points that bracket it (NaN: no growth rate, or no change of sign)."""
+    found = np.full(rows, np.nan)
+    for i, row in enumerate(() if rates is None else rates):
+        cross = np.flatnonzero((row[:-1] <= 0) & (row[1:] > 0))
+        if cross.size:
+            j = int(cross[0])
+            found[i] = wob[j] - row[j] * (wob[j + 1] - wob[j]) / (row[j + 1] - row[j])
+    return found

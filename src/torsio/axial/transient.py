@@ -23,14 +23,13 @@ Examples
 >>> round(run.rop_mean / run.steady.rop, 12), run.stick_fraction
 (1.0, 0.0)
 >>> sorted(run.to_dict())[:3]
-['axial_severity', 'bit_speed_max', 'bit_speed_min']
+['axial_severity', 'bit', 'bit_speed_max']
 >>> run.string_friction_work, run.contact_switches  # no [well]: no contact along the string
 (0.0, 0)
 """
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import attrs
@@ -41,8 +40,9 @@ from torsio.analysis.limits import saturated_motor, warning_list
 from torsio.analysis.severity import run_times
 from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
-from torsio.axial.energy_balance import EnergyBalance, chain_energy, energy_balance
+from torsio.axial.energy_balance import energy_balance, stored_energy
 from torsio.axial.kernel import march
+from torsio.axial.run_results import SCHEME, AxialTransient
 from torsio.axial.run_setup import BitRotation, RunOptions, RunSetup, run_setup
 from torsio.axial.run_warnings import run_warnings
 from torsio.axial.stability import NO_PIPE_FRICTION_RATE, growth_rate_skipped
@@ -51,12 +51,12 @@ from torsio.axial.step_rule import DEFAULT_STEPS_PER_PERIOD
 from torsio.axial.torque_law import AxialBit, TorqueLawBit
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_setup import WaveRunSetup, wave_chunk, wave_run_setup
-from torsio.axial.window_summary import WindowSummary, summarize
+from torsio.axial.window_summary import summarize
 from torsio.errors import ConfigError, SolverError
 from torsio.solvers.run_chunks import run_in_chunks
 from torsio.units import as_rpm, as_si
 
-__all__ = ["AxialTransient", "simulate_axial"]
+__all__ = ["simulate_axial"]
 
 
 def _chain_chunk(
@@ -138,147 +138,6 @@ def run_kernel(
     return stats
 
 
-_SUMMARY_NAMES = frozenset(attrs.fields_dict(WindowSummary))
-
-
-@attrs.frozen(eq=False)
-class AxialTransient:
-    """One axial-torsional run with the RGD bit.
-
-    Attributes
-    ----------
-    wob, rpm : float
-        W₀ [N] and Ω₀ [rev/min].
-    steady : SteadyDrilling
-        The steady drilling state of (W₀, Ω₀).
-    summary : WindowSummary
-        The window's outputs (also as attributes: ``severity``, ``rop_mean`` ...).
-    growth_rate : float or None
-        The rightmost root's real part [1/s] of the linearization about the steady state
-        (a distributed pipe's from its exact characteristic equation,
-        :func:`torsio.axial.wave_stability.distributed_stability`; None with a prescribed
-        bit rotation or when not asked).
-    step, duration, window : float
-        The step h, the run's length and its window [s].
-    start : str
-        ``"rest"`` or ``"steady"``.
-    samples : ndarray (k, 13)
-        The bit's and the top drive's signals, columns
-        :data:`torsio.axial.layouts.SAMPLE_COLUMNS`.
-    top_drive : str
-        The top drive's kind (``"constant-speed"``: the top held at Ω₀).
-    stability_of_held_top : bool
-        Whether ``growth_rate`` is that of the top held at Ω₀ while the run's top drive is
-        not held: a controller other than a PI speed loop, which the linearization does not
-        take (:func:`torsio.axial.linearization.speed_loop`).
-    warnings : tuple of str
-        What limits the meaning of the run, as the torsional runs say it: a top drive at its
-        torque limit or short of its set speed over the window
-        (:func:`torsio.analysis.limits.saturated_motor`), and a window or an energy balance
-        that describe no drilling (:func:`torsio.axial.run_warnings.run_warnings`).
-    energy : EnergyBalance or None
-        The lumped chain's energy balance over the run
-        (:mod:`torsio.axial.energy_balance`; None for the distributed pipe and a prescribed
-        rotation).
-    contact_switches : int
-        Stick ↔ slip switches of the string's contacts over the run (0 without them).
-    string_friction_work : float
-        The work of the friction along the string over the run [J] (0 without it).
-    string_contacts, steady_friction : dict or None
-        The contacts' totals (:meth:`~torsio.axial.string_contacts.AxialContacts.describe`)
-        and what they take in steady drilling
-        (:meth:`~torsio.axial.steady_friction.SteadyFriction.to_dict`); None without them.
-    """
-
-    wob: float
-    rpm: float
-    steady: SteadyDrilling
-    summary: WindowSummary
-    growth_rate: float | None
-    step: float
-    duration: float
-    window: float
-    start: str
-    samples: NDArray[np.float64]
-    top_drive: str = "constant-speed"
-    stability_of_held_top: bool = False
-    warnings: tuple[str, ...] = ()
-    energy: EnergyBalance | None = None
-    contact_switches: int = 0
-    string_friction_work: float = 0.0
-    string_contacts: dict[str, Any] | None = None
-    steady_friction: dict[str, Any] | None = None
-
-    def __getattr__(self, name: str) -> Any:
-        if name in _SUMMARY_NAMES:
-            return getattr(self.summary, name)
-        raise AttributeError(name)
-
-    def signal(self, name: str) -> NDArray[np.float64]:
-        """One column of :attr:`samples` by name (e.g. ``"bit_speed"``)."""
-        return self.samples[:, slot.SAMPLE_COLUMNS.index(name)]
-
-    def window_rows(self) -> NDArray[np.bool_]:
-        """The sample rows inside the steady window."""
-        return self.signal("time") >= self.duration - self.window - 0.5 * self.step
-
-    def top_drive_summary(self) -> dict[str, float | None]:
-        """The top drive over the window's samples: ``top_speed_mean`` [rad/s],
-        ``surface_torque_min``, ``surface_torque_max``, ``mean_surface_torque``,
-        ``mean_motor_torque`` [N m] (window), ``surface_torque_peak`` [N m] (whole run);
-        null without samples."""
-        keys = ("top_speed_mean", "surface_torque_min", "surface_torque_max",
-                "mean_surface_torque", "mean_motor_torque", "surface_torque_peak")  # fmt: skip
-        rows = self.window_rows() if self.samples.shape[0] else np.zeros(0, bool)
-        if not rows.any():
-            return dict.fromkeys(keys)
-        surface = self.signal("surface_torque")
-        values = (
-            self.signal("top_speed")[rows].mean(),
-            surface[rows].min(),
-            surface[rows].max(),
-            surface[rows].mean(),
-            self.signal("motor_torque")[rows].mean(),
-            surface.max(),
-        )
-        return {key: float(value) for key, value in zip(keys, values, strict=True)}
-
-    def to_dict(self) -> dict[str, Any]:
-        """DESIGN.md's JSON keys: ``wob``, ``rpm``, ``severity``, ``rop_mean`` (m/s),
-        ``mse_mean`` (Pa; null when the bit did not advance), ``off_bottom_fraction``,
-        ``stick_fraction``, ``axial_severity``, ``steady_state``, ``growth_rate``, the top
-        drive's (:meth:`top_drive_summary`, ``top_drive``, ``stability_of_held_top``) and
-        more."""
-        data: dict[str, Any] = {"wob": self.wob, "rpm": self.rpm}
-        for key, value in attrs.asdict(self.summary).items():
-            data[key] = value if math.isfinite(value) else None
-        data.update(self.top_drive_summary())
-        data.update(
-            steady_state=self.steady.to_dict(),
-            growth_rate=self.growth_rate,
-            step=self.step,
-            duration=self.duration,
-            steady_window=self.window,
-            start=self.start,
-            top_drive=self.top_drive,
-            stability_of_held_top=self.stability_of_held_top,
-            warnings=list(self.warnings),
-            string_friction_work=self.string_friction_work,
-            contact_switches=self.contact_switches,
-            string_contacts=self.string_contacts,
-            steady_friction=self.steady_friction,
-            energy_balance=self.energy.to_dict() if self.energy is not None else None,
-        )
-        return data
-
-    def __repr__(self) -> str:
-        s = self.summary
-        return (
-            f"AxialTransient(wob={self.wob:g} N, rpm={self.rpm:g}, S_SS={s.severity:.4g}, "
-            f"stuck={s.stick_fraction:.3g}, rop={s.rop_mean * 3600:.4g} m/h)"
-        )
-
-
 def _top_held_in_stability(boundary: Any, steady: SteadyDrilling) -> bool:
     """Whether the linearization holds a top that the run does not hold (a controller other
     than a PI speed loop: :func:`torsio.axial.linearization.speed_loop`)."""
@@ -293,22 +152,6 @@ def _steady_friction(setup: RunSetup | WaveRunSetup) -> dict[str, Any] | None:
     """What the string's friction takes in the run's steady state (None without it)."""
     friction = getattr(setup, "friction", None)
     return friction.to_dict() if friction is not None else None
-
-
-def _stored_energy(setup: RunSetup | WaveRunSetup, time: float) -> float | None:
-    """The lumped chain's kinetic and spring energy [J] at ``time`` [s] of its state (None:
-    the distributed pipe, or a prescribed bit rotation)."""
-    if not isinstance(setup, RunSetup) or setup.settings[slot.PRESCRIBED]:
-        return None
-    settings = setup.settings
-    held = setup.top.top[slot.TOP_HELD] != 0.0
-    top_angle = settings[slot.TOP_SPEED] * time if held else float(setup.top_state[0])
-    hook = None
-    if settings[slot.SPEED_HOOK]:
-        hook = settings[slot.HOOK_START] + settings[slot.HOOK_SPEED] * time
-    return chain_energy(
-        setup.torsional, setup.axial, setup.theta, setup.omega, setup.u, setup.v, top_angle, hook
-    )
 
 
 def simulate_axial(
@@ -329,6 +172,7 @@ def simulate_axial(
     top_drive: Any = None,
     string: Any = None,
     contacts: Any = None,
+    progress: Any = None,
 ) -> AxialTransient:
     """Run the assembly drilling at ``wob`` [N] and ``rpm`` [rev/min].
 
@@ -370,6 +214,8 @@ def simulate_axial(
         its normal force rebuilt at ``wob``. The growth rate is then that of the
         linearization with the contacts' damping (:mod:`torsio.axial.steady_friction`;
         the distributed pipe has none with contacts).
+    progress : callable, optional
+        ``progress(steps_done, steps)`` after every chunk of the run (:func:`run_kernel`).
     """
     wob, rpm = as_si(wob, "force", "wob"), as_rpm(rpm)  # "100 kN", "60 rpm" as in a file
     typical, _ = run_times(assembly, None, None)
@@ -409,10 +255,10 @@ def simulate_axial(
     every = max(1, setup.steps // samples) if samples > 0 else 0
     rows = (setup.steps - 1) // every + 1 if every else 0
     table = np.zeros((rows, len(slot.SAMPLE_COLUMNS)))
-    start_energy = _stored_energy(setup, 0.0)
-    stats = run_kernel(setup, table, every)
+    start_energy = stored_energy(setup, 0.0)
+    stats = run_kernel(setup, table, every, progress)
     energy = None
-    end_energy = _stored_energy(setup, setup.steps * setup.step)
+    end_energy = stored_energy(setup, setup.steps * setup.step)
     if start_energy is not None and end_energy is not None:
         energy = energy_balance(stats, start_energy, end_energy)
     rate, skipped = None, None  # a prescribed rotation has no growth rate
@@ -438,6 +284,9 @@ def simulate_axial(
         string_friction_work=float(stats[slot.FRICTION_WORK]),
         string_contacts=contacts.at_wob(wob).describe() if contacts is not None else None,
         steady_friction=_steady_friction(setup),
+        solver={"engine": "axial", "method": "fixed-step", "scheme": SCHEME, "step": setup.step},
+        model=assembly.describe(),
+        bit=bit.to_dict(),
     )
     texts = warning_list(*run_warnings(result.summary, bit, energy), skipped)
     if boundary is not None and not boundary.held and result.window_rows().any():

@@ -142,6 +142,8 @@ def _range_bounds(text: str, option: str, kind: str) -> tuple[float, float, int]
     return start, stop, count
 
 
+_ENGINE_FLAGS = ("strategy", "dp_elements", "bha_elements", "pi1", "pi2")
+"""Flags that are not map options and that an engine may not take."""
 _RUN_ARGUMENTS = ("wob", "rpm", "pi1", "pi2", "workers", "scheduler", "out")
 _ARGUMENTS = {"grid": "--wob/--rpm", **{name: f"--{name}" for name in _RUN_ARGUMENTS}}
 """Flags of the map's arguments that are not options, for errors (options name themselves:
@@ -163,11 +165,13 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
+    import attrs
     import numpy as np
 
+    from torsio.analysis.config_runs import config_map, default_wob_range, run_capabilities
+    from torsio.analysis.map_options import MapOptions
     from torsio.analysis.map_results import MapInterrupted
     from torsio.analysis.map_runs import MapFailed, check_grid_size
-    from torsio.analysis.maps import dimensionless_map, severity_map
     from torsio.errors import ConfigError
 
     if args.wob is not None and args.pi2 is not None:
@@ -201,45 +205,34 @@ def _run(args: argparse.Namespace) -> int:
     common.require_plotting(args)
 
     config = common.load(args)
-    if config.axial is not None:  # [chain] masses or law = "rgd": the axial engine
-        from torsio.cli import axial
-
-        wob_text = args.wob or axial_wob_range(config)
-        y_start, y_stop, y_count = _range_bounds(wob_text, "--wob", "wob")
-        wobs, rpms = np.linspace(y_start, y_stop, y_count), np.linspace(x_start, x_stop, x_count)
-        return axial.run_map(args, config, wobs, rpms)
-    common.refuse_rpm_without_set_speed(config, args.rpm, ", there is no rotary speed to set")
-    system = config.system(
-        **{k: v for k, v in common.discretization_overrides(args).items() if v is not None}
-    )
-    simulation = dict(config.simulation.options)
-    options = _map_options(args, simulation)
-    single_run_only = sorted(set(simulation) & {"method", "output_step", "stick_threshold"})
-    if system.model.time_step is not None:  # fixed steps, no integrator: --rtol is an error
-        from torsio.analysis.wave import integrator_note, refuse_integrator_options
-
-        refuse_integrator_options({"--rtol (simulation.rtol)": args.rtol})
-        unused = sorted(set(simulation) & {"rtol", "atol"})
-        if unused:
-            print(f"torsio map: {integrator_note(unused)}", file=sys.stderr)
-    if single_run_only:
-        print(
-            f"torsio map: [simulation] {', '.join(single_run_only)} apply to single runs "
-            "(torsio simulate, report) only: the map integrates every point with its own "
-            "engine (--engine) and reads S_SS from the extremes of the bit speed",
-            file=sys.stderr,
+    capabilities = run_capabilities(config)
+    flags = {field.name: field.metadata["flag"] for field in attrs.fields(MapOptions)}
+    given = {name: (flag, getattr(args, flag[2:].replace("-", "_"))) for name, flag in flags.items()
+             if flag}  # fmt: skip
+    given.update({name: (f"--{name.replace('_', '-')}", getattr(args, name))
+                  for name in _ENGINE_FLAGS})  # fmt: skip
+    capabilities.refuse(given)  # what the model's engine cannot take, by flag
+    if args.wob is None and not dimensionless:  # the model's own default range
+        y_start, y_stop, y_count = _range_bounds(
+            default_wob_range(config, DEFAULT_WOB), "--wob", "wob"
         )
+    common.refuse_rpm_without_set_speed(config, args.rpm, ", there is no rotary speed to set")
+    options = _map_options(args, dict(config.simulation.options))
     x = np.linspace(x_start, x_stop, x_count)
     y = np.linspace(y_start, y_stop, y_count)
-    run_on: dict[str, Any] = {
-        "executor": args.workers if args.workers is not None else args.scheduler,
-        "progress": (not args.json) and sys.stdout.isatty() or None,
-    }
     try:
-        if dimensionless:
-            result = dimensionless_map(system, x, y, options, **run_on)
-        else:
-            result = severity_map(system, y, x, options, **run_on)
+        result = config_map(
+            config,
+            y,
+            x,
+            options,
+            discretization=common.discretization_overrides(args),
+            dimensionless=dimensionless,
+            executor=args.workers if args.workers is not None else args.scheduler,
+            progress=(not args.json) and sys.stdout.isatty() or None,
+            rtol=args.rtol,
+            note=lambda text: print(f"torsio map: {text}", file=sys.stderr),
+        )
     except MapInterrupted as exc:
         if args.out is not None:
             print(f"torsio map: {exc}; {_save_partial(exc.partial, args.out)}", file=sys.stderr)
@@ -264,16 +257,6 @@ def _save_partial(partial: Any, out: str) -> str:
         common.print_json(partial.to_dict())
         return f"{exc}; the partial results are on stdout as JSON (marked incomplete)"
     return f"partial results written to {path} (marked incomplete)"
-
-
-def axial_wob_range(config: Any) -> str:
-    """The default --wob of an axial map: 1.1 to 2 times the weight the wear flats carry
-    (σ a l, below which the RGD bit does not cut), 5 points; a law of the torque alone's
-    is that of the torsional maps (:data:`DEFAULT_WOB`)."""
-    if not config.axial.bit.needs_axial:
-        return DEFAULT_WOB
-    friction = config.axial.bit.friction_weight
-    return f"{1.1 * friction:.6g}:{2 * friction:.6g}:5"
 
 
 def _options_class() -> type:
@@ -329,11 +312,11 @@ def _print_summary(result: Any, written: dict[str, str]) -> None:
 
     info = result.info
     model = info.get("model", {})
+    label = info.get("label") or (
+        f"{model.get('name', '')} ({model.get('strategy')}, {model.get('dofs')} DOF)"
+    )
     table = Table(
-        title=escape(
-            f"Severity map: {model.get('name', '')} ({model.get('strategy')}, "
-            f"{model.get('dofs')} DOF), {result.rpm.size} x {result.wob.size} points"
-        )
+        title=escape(f"Severity map: {label}, {result.rpm.size} x {result.wob.size} points")
     )
     for name in ("rpm", "Pi_1", "critical WOB [kN]", "critical Pi_2", "linear stability WOB [kN]"):
         table.add_column(escape(name), justify="right")
@@ -374,5 +357,31 @@ def _print_summary(result: Any, written: dict[str, str]) -> None:
             f"on {info.get('executor')}, {result.engine} engine"
         )
     )
+    if result.rop is not None:  # the layers of a bit that drills
+        console.print(_layers_table(result))
     for key, path in written.items():
         console.print(escape(f"{key}: {path}"))
+
+
+def _layers_table(result: Any) -> Any:
+    """Every point's layers: S_SS, stuck and off-bottom fractions, ROP, MSE."""
+    import numpy as np
+    from rich.table import Table
+    from rich.text import Text
+
+    table = Table(title="Layers")
+    for name in ("rpm", "WOB [kN]", "S_SS", "stuck", "off bottom", "ROP [m/h]", "MSE [MPa]"):
+        table.add_column(Text(name), justify="right")  # Text: "[kN]" is a unit, not markup
+    for i, rpm in enumerate(result.rpm):
+        for j, wob in enumerate(result.wob):
+            mse = result.mse[i, j]
+            table.add_row(
+                f"{rpm:.4g}",
+                f"{wob / 1e3:.4g}",
+                f"{result.severity[i, j]:.3f}",
+                f"{result.stick_fraction[i, j]:.3f}",
+                f"{result.off_bottom_fraction[i, j]:.3f}",
+                f"{result.rop[i, j] * 3600:.4g}",
+                "-" if not np.isfinite(mse) else f"{mse / 1e6:.4g}",
+            )
+    return table

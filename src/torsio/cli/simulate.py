@@ -65,29 +65,17 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``torsio simulate`` with parsed arguments; return the exit status."""
+    from torsio.analysis.config_runs import run_capabilities
     from torsio.analysis.transient import simulate_config
     from torsio.errors import ConfigError
 
     outputs = common.check_outputs(args, ("csv", "plot", "recording"))
     config = common.load(args)
-    if config.axial is not None:  # [chain] masses or law = "rgd": the axial engine
-        from torsio.cli import axial
-
-        if args.recording is not None:
-            raise ConfigError(
-                "--recording", "a recording is of a torsional run (no axial channels)"
-            )
-
-        try:
-            return axial.simulate(args, config)
-        except ConfigError as exc:
-            raise ConfigError(_option_name(exc.key), exc.message) from None
-    if args.growth_rate is not None:
-        raise ConfigError(
-            "--growth-rate",
-            "applies to axial runs (the RGD bit) only: a torsional run has no growth rate of "
-            "steady drilling (torsio report gives its linear stability); remove it",
-        )
+    given = {
+        "growth_rate": ("--growth-rate", args.growth_rate),
+        **{name: (f"--{name.replace('_', '-')}", getattr(args, name)) for name in _ENGINE_FLAGS},
+    }
+    run_capabilities(config).refuse(given)  # what the model's engine cannot take, by flag
     common.refuse_rpm_without_set_speed(
         config, args.rpm, "; remove --rpm, or change top_drive.torque"
     )
@@ -102,6 +90,8 @@ def run(args: argparse.Namespace) -> int:
     _refuse_integrator_options(config, args, overrides)
     common.require_plotting(args)
     common.warn_small_bare_wob(args.wob)
+    if args.growth_rate is not None:
+        overrides["growth_rate"] = args.growth_rate
     try:  # a long run shows progress on stderr (simulate's default), never on stdout
         results = simulate_config(
             config,
@@ -150,6 +140,9 @@ def _refuse_integrator_options(config: Any, args: argparse.Namespace, given: dic
         print(f"torsio simulate: {integrator_note(unused)}", file=sys.stderr)
 
 
+_ENGINE_FLAGS = ("strategy", "dp_elements", "bha_elements", "method", "rtol", "atol", "output_step")
+"""Options that an engine may not take (:mod:`torsio.analysis.config_runs`)."""
+
 _OPTIONS = {
     "wob": "--wob",
     "rpm": "--rpm",
@@ -171,85 +164,12 @@ def _print_summary(results: Any, written: dict[str, str], units: Any = None) -> 
     from rich.markup import escape
     from rich.table import Table
 
-    units = DisplayUnits() if units is None else units
-    system = results.system
-    solver = results.solver
-    table = Table(title=f"Transient response: {system.model.strategy}, {system.model.dofs} DOF")
+    title, rows = results.summary_rows(DisplayUnits() if units is None else units)
+    table = Table(title=escape(title))
     table.add_column("quantity")
     table.add_column("value", justify="right")
-    window = results.window_mask
-    rows = [
-        ("weight on bit", units.text("force", system.wob, ".4g")),
-        (
-            "rotary speed",
-            f"{results.rpm:.4g} rpm"
-            + ("" if results.has_set_speed else "  (mean top-drive speed; none is set)"),
-        ),
-        ("bit-rock law", str(getattr(system.law, "name", type(system.law).__name__))),
-        (
-            "run / steady window",
-            f"{results.duration:.4g} s / last {results.steady_window:.4g} s",
-        ),
-        (
-            "bit speed in window",
-            f"{results.bit_speed[window].min() * 30 / 3.141592653589793:.4g} .. "
-            f"{results.bit_speed[window].max() * 30 / 3.141592653589793:.4g} rpm",
-        ),
-        (
-            "S_SS (Eq. 12)",
-            f"{results.severity:.4f}" + ("  severe (> 0.8)" if results.severe else ""),
-        ),
-        (
-            "stick fraction",
-            f"{results.stick_fraction:.3f}  (|bit speed| < {results.stick_threshold:g} Omega)",
-        ),
-        ("mean surface torque", units.text("torque", results.surface_torque[window].mean(), ".4g")),
-        ("mean torque on bit", units.text("torque", results.bit_torque[window].mean(), ".4g")),
-        (
-            "solver",
-            f"{solver['method']} ({solver.get('engine', 'scipy')} engine) "
-            f"rtol={solver['rtol']:g} atol={solver['atol']:g}: "
-            + (f"{solver['steps']} steps, " if solver.get("steps") is not None else "")
-            + f"{solver['nfev']} f-evals, {solver['njev']} Jacobians, "
-            f"{solver['wall_time_s']:.2f} s",
-        ),
-    ]
-    rows.extend(_well_rows(results.well_summary, units))
-    if "csv" in written:
-        rows.append(("time series", written["csv"]))
-    if "plot" in written:
-        rows.append(("plot", written["plot"]))
-    if "recording" in written:
-        rows.append(("recording (torsio fit)", written["recording"]))
+    files = {"csv": "time series", "plot": "plot", "recording": "recording (torsio fit)"}
+    rows += [(files[key], path) for key, path in written.items() if key in files]
     for name, value in rows:
         table.add_row(escape(name), escape(value))
     Console().print(table)
-
-
-def _well_rows(summary: Any, units: Any) -> list[tuple[str, str]]:
-    """Rows of a run with friction along the string (a [well]); none without."""
-    if summary is None:
-        return []
-    first = summary["bit_first_motion"]
-    period = summary["stick_slip_period"]
-    return [
-        (
-            "surface torque in window",
-            f"{units.number('torque', summary['surface_torque_min'], '.4g')} .. "
-            f"{units.text('torque', summary['surface_torque_max'], '.4g')}",
-        ),
-        ("peak surface torque", units.text("torque", summary["surface_torque_peak"], ".4g")),
-        (
-            "surface-torque swing in window",
-            units.text("torque", summary["surface_torque_swing"], ".4g"),
-        ),
-        (
-            "stick-slip period in window",
-            f"none: {summary['stick_slip_period_reason']}" if period is None else f"{period:.4g} s",
-        ),
-        (
-            f"bit first faster than {summary['threshold_speed']:g} rad/s",
-            "never" if first is None else f"at {first:.4g} s",
-        ),
-        ("friction work along the string", units.energy(summary["friction_work"])),
-    ]

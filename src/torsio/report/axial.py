@@ -35,7 +35,7 @@ import numpy as np
 import scipy.linalg
 from rich.table import Table
 
-from torsio.axial.assembly import DrillingAssembly
+from torsio.axial.assembly import DrillingAssembly, assembly_summary
 from torsio.axial.linearization import axial_matrices
 from torsio.axial.torque_law import TorqueLawBit
 from torsio.axial.wave_assembly import WaveDrillingAssembly
@@ -233,24 +233,6 @@ def axial_section(ctx: ReportContext) -> ReportSection | None:
         data["stability_of_held_top"] = data["stability"]["held_top"]
     title = f"Axial dynamics ({'RGD' if axial.bit.needs_axial else axial.bit.name} bit)"
     return ReportSection("axial", title, data, _body(data, ctx.units))
-
-
-def assembly_summary(model: dict[str, Any]) -> str:
-    """One line on an assembly from its ``describe()``: a chain's nodes, or a distributed
-    pipe's sections, with the hook and the total mass."""
-    if model.get("kind") == "distributed":
-        sections = model["sections"]
-        length = sum(s["length"] for s in sections)
-        pipe_mass = sum(s["density"] * s["area"] * s["length"] for s in sections)
-        return (
-            f"distributed pipe, {len(sections)} section(s), {length:.6g} m, hook "
-            f"{model['hook']}, total mass {(pipe_mass + model['bha_mass']) / 1e3:.4g} t "
-            f"(BHA {model['bha_mass'] / 1e3:.4g} t, rigid)"
-        )
-    return (
-        f"{model['nodes']} node(s), {model['axial_dofs']} axial DOF, hook {model['hook']}, "
-        f"total mass {sum(model['masses']) / 1e3:.4g} t"
-    )
 
 
 def _hz(values: list[float], boundaries: str) -> str:

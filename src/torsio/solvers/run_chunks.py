@@ -26,10 +26,11 @@ Examples
 
 from __future__ import annotations
 
+import contextlib
 import math
 import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import Any, TextIO
 
 __all__ = [
@@ -39,6 +40,7 @@ __all__ = [
     "map_progress",
     "progress_bar",
     "run_in_chunks",
+    "run_progress",
     "stderr_progress",
 ]
 
@@ -218,3 +220,18 @@ def stderr_progress(
     True
     """
     return _StderrProgress(label, stream, quiet, every)
+
+
+@contextlib.contextmanager
+def run_progress(progress: Any, label: str = "simulate") -> Iterator[Progress | None]:
+    """The ``progress(done, total)`` of one run: ``None``, :func:`stderr_progress` after
+    :data:`QUIET_SECONDS`; ``True``, at once; ``False``, none; a callable, itself. The
+    reporter is closed at the end."""
+    reporter = None
+    if progress is None or progress is True:
+        reporter = stderr_progress(label, quiet=0.0 if progress else QUIET_SECONDS)
+    try:
+        yield reporter if reporter is not None else (progress or None)
+    finally:
+        if reporter is not None:
+            reporter.close()

@@ -1,0 +1,295 @@
+"""The results of an axial-torsional run: :class:`AxialTransient`.
+
+Made by :func:`torsio.axial.transient.simulate_axial`: the window's outputs
+(:class:`~torsio.axial.window_summary.WindowSummary`), the steady state, the growth rate,
+the signals by name (:data:`torsio.axial.layouts.SAMPLE_COLUMNS`), and the outputs every
+run has: JSON (:meth:`AxialTransient.to_dict`), CSV, the plot
+(:func:`torsio.plotting.transient_plot.plot_transient`), the terminal table and, read by
+:meth:`torsio.calibration.recording.Recording.from_transient`, the rig recording.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import attrs
+import numpy as np
+from numpy.typing import NDArray
+
+from torsio.axial import layouts as slot
+from torsio.axial.assembly import assembly_summary
+from torsio.axial.energy_balance import EnergyBalance
+from torsio.axial.steady import SteadyDrilling
+from torsio.axial.window_summary import WindowSummary
+from torsio.output_files import save_columns
+from torsio.units import RPM_TO_RAD_S
+
+__all__ = ["SCHEME", "AxialTransient", "run_rows"]
+
+_SUMMARY_NAMES = frozenset(attrs.fields_dict(WindowSummary))
+
+SCHEME = "semi-implicit Euler, set-valued contacts at the velocity level (Moreau)"
+"""The axial engine's fixed-step scheme (:mod:`torsio.axial.kernel`)."""
+
+
+@attrs.frozen(eq=False)
+class AxialTransient:
+    """One axial-torsional run with the RGD bit.
+
+    Attributes
+    ----------
+    wob, rpm : float
+        W₀ [N] and Ω₀ [rev/min].
+    steady : SteadyDrilling
+        The steady drilling state of (W₀, Ω₀).
+    summary : WindowSummary
+        The window's outputs (also as attributes: ``severity``, ``rop_mean`` ...).
+    growth_rate : float or None
+        The rightmost root's real part [1/s] of the linearization about the steady state
+        (a distributed pipe's from its exact characteristic equation,
+        :func:`torsio.axial.wave_stability.distributed_stability`; None with a prescribed
+        bit rotation or when not asked).
+    step, duration, window : float
+        The step h, the run's length and its window [s].
+    start : str
+        ``"rest"`` or ``"steady"``.
+    samples : ndarray (k, 13)
+        The bit's and the top drive's signals, columns
+        :data:`torsio.axial.layouts.SAMPLE_COLUMNS`.
+    top_drive : str
+        The top drive's kind (``"constant-speed"``: the top held at Ω₀).
+    stability_of_held_top : bool
+        Whether ``growth_rate`` is that of the top held at Ω₀ while the run's top drive is
+        not held: a controller other than a PI speed loop, which the linearization does not
+        take (:func:`torsio.axial.linearization.speed_loop`).
+    warnings : tuple of str
+        What limits the meaning of the run, as the torsional runs say it: a top drive at its
+        torque limit or short of its set speed over the window
+        (:func:`torsio.analysis.limits.saturated_motor`), and a window or an energy balance
+        that describe no drilling (:func:`torsio.axial.run_warnings.run_warnings`).
+    energy : EnergyBalance or None
+        The lumped chain's energy balance over the run
+        (:mod:`torsio.axial.energy_balance`; None for the distributed pipe and a prescribed
+        rotation).
+    contact_switches : int
+        Stick ↔ slip switches of the string's contacts over the run (0 without them).
+    string_friction_work : float
+        The work of the friction along the string over the run [J] (0 without it).
+    string_contacts, steady_friction : dict or None
+        The contacts' totals (:meth:`~torsio.axial.string_contacts.AxialContacts.describe`)
+        and what they take in steady drilling
+        (:meth:`~torsio.axial.steady_friction.SteadyFriction.to_dict`); None without them.
+    solver, model, bit : dict
+        The engine (``engine``, ``method``, ``scheme``, ``step``), the assembly
+        (:meth:`~torsio.axial.assembly.DrillingAssembly.describe`) and the bit's law.
+
+    Every column of :attr:`samples` is an attribute by name (``run.time``,
+    ``run.bit_speed``, ``run.surface_torque`` ...), as the torsional runs' signals: the CSV,
+    the plot and the rig recording read them the same way.
+    """
+
+    wob: float
+    rpm: float
+    steady: SteadyDrilling
+    summary: WindowSummary
+    growth_rate: float | None
+    step: float
+    duration: float
+    window: float
+    start: str
+    samples: NDArray[np.float64]
+    top_drive: str = "constant-speed"
+    stability_of_held_top: bool = False
+    warnings: tuple[str, ...] = ()
+    energy: EnergyBalance | None = None
+    contact_switches: int = 0
+    string_friction_work: float = 0.0
+    string_contacts: dict[str, Any] | None = None
+    steady_friction: dict[str, Any] | None = None
+    solver: dict[str, Any] = attrs.field(factory=dict)
+    model: dict[str, Any] = attrs.field(factory=dict)
+    bit: dict[str, Any] = attrs.field(factory=dict)
+    dimensionless = False
+
+    @property
+    def window_start(self) -> float:
+        """Start of the steady window [s]."""
+        return self.duration - self.window
+
+    @property
+    def omega(self) -> float:
+        """Ω₀ [rad/s]."""
+        return self.rpm * RPM_TO_RAD_S
+
+    @property
+    def has_top_drive_node(self) -> bool:
+        """Whether the top drive has inertia (its speed and motor torque vary)."""
+        return self.top_drive != "constant-speed"
+
+    @property
+    def plot_label(self) -> str:
+        """The operating point, for the plot's title."""
+        return f"WOB = {self.wob / 1e3:.4g} kN, {self.rpm:.4g} rpm"
+
+    def __getattr__(self, name: str) -> Any:
+        if name in _SUMMARY_NAMES:
+            return getattr(self.summary, name)
+        if name in slot.SAMPLE_COLUMNS:
+            return self.signal(name)
+        raise AttributeError(name)
+
+    def signal(self, name: str) -> NDArray[np.float64]:
+        """One column of :attr:`samples` by name (e.g. ``"bit_speed"``)."""
+        return self.samples[:, slot.SAMPLE_COLUMNS.index(name)]
+
+    def window_rows(self) -> NDArray[np.bool_]:
+        """The sample rows inside the steady window."""
+        return self.signal("time") >= self.duration - self.window - 0.5 * self.step
+
+    def top_drive_summary(self) -> dict[str, float | None]:
+        """The top drive over the window's samples: ``top_speed_mean`` [rad/s],
+        ``surface_torque_min``, ``surface_torque_max``, ``mean_surface_torque``,
+        ``mean_motor_torque`` [N m] (window), ``surface_torque_peak`` [N m] (whole run);
+        null without samples."""
+        keys = ("top_speed_mean", "surface_torque_min", "surface_torque_max",
+                "mean_surface_torque", "mean_motor_torque", "surface_torque_peak")  # fmt: skip
+        rows = self.window_rows() if self.samples.shape[0] else np.zeros(0, bool)
+        if not rows.any():
+            return dict.fromkeys(keys)
+        surface = self.signal("surface_torque")
+        values = (
+            self.signal("top_speed")[rows].mean(),
+            surface[rows].min(),
+            surface[rows].max(),
+            surface[rows].mean(),
+            self.signal("motor_torque")[rows].mean(),
+            surface.max(),
+        )
+        return {key: float(value) for key, value in zip(keys, values, strict=True)}
+
+    def to_dict(self, series: bool = False) -> dict[str, Any]:
+        """DESIGN.md's JSON keys: ``wob``, ``rpm``, ``severity``, ``rop_mean`` (m/s),
+        ``mse_mean`` (Pa; null when the bit did not advance), ``off_bottom_fraction``,
+        ``stick_fraction``, ``axial_severity``, ``steady_state``, ``growth_rate``, the top
+        drive's (:meth:`top_drive_summary`, ``top_drive``, ``stability_of_held_top``),
+        ``solver``, ``model``, ``bit`` and more; ``series=True`` adds the signals."""
+        data: dict[str, Any] = {"wob": self.wob, "rpm": self.rpm}
+        for key, value in attrs.asdict(self.summary).items():
+            data[key] = value if math.isfinite(value) else None
+        data.update(self.top_drive_summary())
+        data.update(
+            steady_state=self.steady.to_dict(),
+            growth_rate=self.growth_rate,
+            step=self.step,
+            duration=self.duration,
+            steady_window=self.window,
+            start=self.start,
+            top_drive=self.top_drive,
+            stability_of_held_top=self.stability_of_held_top,
+            warnings=list(self.warnings),
+            string_friction_work=self.string_friction_work,
+            contact_switches=self.contact_switches,
+            string_contacts=self.string_contacts,
+            steady_friction=self.steady_friction,
+            energy_balance=self.energy.to_dict() if self.energy is not None else None,
+            solver=self.solver,
+            model=self.model,
+            bit=self.bit,
+        )
+        if series:
+            data["series"] = {name: self.signal(name).tolist() for name in slot.SAMPLE_COLUMNS}
+        return data
+
+    def to_csv(self, path: str | Path) -> Path:
+        """Every signal as CSV, a column per :data:`torsio.axial.layouts.SAMPLE_COLUMNS`
+        named with its unit (``time_s``, ``bit_speed_rad_s``, ``surface_torque_Nm`` ...)."""
+        units = zip(slot.SAMPLE_COLUMNS, slot.SAMPLE_UNITS, strict=True)
+        names = [f"{name}_{unit}" for name, unit in units]
+        return save_columns(path, names, list(self.samples.T))
+
+    def plot(self, path: str | Path | None = None, ax: Any = None) -> Any:
+        """Bit speed, surface torque and torque on bit against time, as every run's
+        (:func:`torsio.plotting.transient_plot.plot_transient`); returns the figure."""
+        from torsio.plotting.transient_plot import plot_transient
+
+        return plot_transient(self, path, ax)
+
+    def summary_rows(self, units: Any) -> tuple[str, list[tuple[str, str]]]:
+        """The terminal table of the run (:func:`run_rows`)."""
+        return run_rows(self.to_dict(), units)
+
+    def __repr__(self) -> str:
+        s = self.summary
+        return (
+            f"AxialTransient(wob={self.wob:g} N, rpm={self.rpm:g}, S_SS={s.severity:.4g}, "
+            f"stuck={s.stick_fraction:.3g}, rop={s.rop_mean * 3600:.4g} m/h)"
+        )
+
+
+NO_GROWTH_RATE = "not computed (--growth-rate asks for it)"
+"""The growth-rate row of a run that did not find it (too large a chain, --no-growth-rate)."""
+
+TORQUE_LAW_GROWTH_RATE = "none for a law of the torque alone (torsio report: the chain's)"
+"""The growth-rate row of a law of the torque alone, whose axial motion rests on the rock."""
+
+
+def run_rows(data: dict[str, Any], units: Any) -> tuple[str, list[tuple[str, str]]]:
+    """The terminal table of an axial run (``torsio simulate``) from its JSON ``data``
+    (:meth:`torsio.axial.run_results.AxialTransient.to_dict`): title and (quantity, value)
+    rows, forces and torques in ``units`` (a :class:`~torsio.display_units.DisplayUnits`)."""
+    steady = data["steady_state"]
+    law = data["bit"]["law"]
+    title = f"Axial-torsional run: {assembly_summary(data['model'])}, {law} bit"
+    mse = data["mse_mean"]
+    rate = data["growth_rate"]
+    axial = data["axial_severity"]
+    drilling = [  # the RGD bit's own; a law of the torque alone rests on the rock
+        ("mean ROP", f"{data['rop_mean'] * 3600:.4g} m/h ({data['rop_mean']:.4g} m/s)"),
+        ("mean MSE", "none (the bit did not advance)" if mse is None else f"{mse / 1e6:.4g} MPa"),
+        ("steady depth of cut", f"{steady['depth_of_cut'] * 1e3:.4g} mm/rev"),
+        ("steady ROP", f"{steady['rop'] * 3600:.4g} m/h ({steady['rop']:.4g} m/s)"),
+    ]
+    resting = [("axial motion", "at rest on the rock (a law of the torque alone)")]
+    steady_mse = [("steady MSE", f"{steady['mse'] / 1e6:.4g} MPa")] if steady["rop"] > 0 else []
+    rows = [
+        ("weight on bit", units.text("force", data["wob"], ".4g")),
+        ("rotary speed", f"{data['rpm']:.4g} rpm"),
+        ("run / steady window", f"{data['duration']:.4g} s / last {data['steady_window']:.4g} s"),
+        ("start", data["start"]),
+        ("S_SS (Eq. 12)", f"{data['severity']:.4f}"),
+        ("axial severity", "none (no rate of penetration)" if axial is None else f"{axial:.4f}"),
+        ("stuck fraction", f"{data['stick_fraction']:.3f}"),
+        ("off-bottom fraction", f"{data['off_bottom_fraction']:.3f}"),
+        *(drilling if steady["rop"] > 0 else resting),
+        ("steady bit torque", units.text("torque", steady["bit_torque"], ".4g")),
+        *steady_mse,
+        (
+            "growth rate (linear)",
+            (NO_GROWTH_RATE if steady["rop"] > 0 else TORQUE_LAW_GROWTH_RATE)
+            if rate is None
+            else f"{rate:.4g} 1/s ({'unstable' if rate > 0 else 'stable'})",
+        ),
+        ("solver", f"axial engine, fixed step {data['solver']['step'] * 1e3:.4g} ms"),
+        ("top drive", data["top_drive"]),
+    ]
+    if data["stability_of_held_top"]:
+        rows.append(("growth rate is of", "the top held at the set speed"))
+    contacts = data.get("string_contacts")
+    if contacts is not None:
+        rows += [
+            ("string contacts", f"{contacts['count']} nodes, break-off "
+             f"{units.text('torque', contacts['static_torque'], '.4g')}, sliding "
+             f"{units.text('torque', contacts['sliding_torque'], '.4g')}"),
+            ("string friction work", f"{units.energy(data['string_friction_work'])} "
+             f"({data['contact_switches']} stick-slip switches)"),
+        ]  # fmt: skip
+    if data["top_speed_mean"] is not None:
+        rows += [
+            ("mean top speed", f"{data['top_speed_mean'] * 60 / (2 * 3.141592653589793):.4g} rpm"),
+            ("surface torque (window)",
+             f"{units.number('torque', data['surface_torque_min'], '.4g')} to "
+             f"{units.text('torque', data['surface_torque_max'], '.4g')}"),
+        ]  # fmt: skip
+    return title, rows
