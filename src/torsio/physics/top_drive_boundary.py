@@ -52,8 +52,8 @@ def motor_torque(u0, kp, pipe_gain, max_torque, states, c, z, error, pipe):
     -max_torque, max_torque), for the speed error e [rad/s] and the pipe torque T_pipe [N m]
     (floats, or arrays of points with ``z`` shaped (m, points)); ``states`` m <= len(c).
 
-    >>> [float(t) for t in motor_torque(100.0, 5.0, 0.0, 110.0, 1, [2.0], [3.0], 1.0, 0.0)]
-    [110.0, 111.0]
+    >>> tuple(float(t) for t in motor_torque(100.0, 5.0, 0.0, 110.0, 1, [2.0], [3.0], 1.0, 0.0))
+    (110.0, 111.0)
     """
     free = u0 + kp * error + pipe_gain * pipe
     for j in range(states):
