@@ -170,9 +170,9 @@ class Advice:
 
         title = f"Operating window: {self.model}" + ("" if self.complete else " (incomplete)")
         table = Table(title=Text(title))
-        table.add_column(Text("top drive"), no_wrap=True)
+        table.add_column(Text("top drive"), ratio=1)  # the label wraps, the numbers never
         for name in ("WOB kN", "rpm", "ROP m/h", "MSE MPa", "S_SS", "T_s kN m", "runs"):
-            table.add_column(Text(name), justify="right")
+            table.add_column(Text(name), justify="right", no_wrap=True, min_width=len(name) // 2)
         for window in self.top_drives:
             point = window.point(window.best)
             if point is None:
