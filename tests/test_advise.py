@@ -319,3 +319,12 @@ def test_the_files_top_drive_limit_is_the_default_torque_limit(capsys, tmp_path)
     assert limits["max_surface_torque_from"] == "top_drive.max_torque"
     point = data["recommended"]
     assert point is None or point["surface_torque"] <= 12e3
+
+
+def test_without_a_configuration_it_advises_on_the_built_in_rgd_deviated_well(capsys):
+    # the default of the command: the built-in file whose name the JSON's model carries
+    status = main(["advise", "--no-compare", "--wob", "80kN:100kN:2", "--rpm", "150:180:2",
+                   "--duration", "40", "--window", "15", "--json"])  # fmt: skip
+    assert status == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["model"] == rgd_deviated_well_config().name

@@ -26,7 +26,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "and refinement near the optimum; its margin (Monte Carlo over --fit or --vary) and "
         "the top drives compared. Ranges are START:STOP:N (N: coarse points).",
     )
-    common.add_config_argument(parser)
+    parser.add_argument(
+        "config",
+        nargs="?",
+        metavar="CONFIG",
+        help="TOML configuration file with axial dynamics (default: the built-in RGD "
+        "deviated well, rgd_deviated_well.toml)",
+    )
     parser.add_argument(
         "--wob",
         metavar="START:STOP:N",
@@ -134,6 +140,7 @@ def run(args: argparse.Namespace) -> int:
     from torsio.advice import AdviceInterrupted, Constraints, Uncertainty, advise
     from torsio.advice.advise import DEFAULT_LEVEL, DEFAULT_SAMPLES
     from torsio.errors import ConfigError
+    from torsio.examples import rgd_deviated_well_config
 
     if args.fit is not None and args.vary:
         raise ConfigError("--vary", "give either --fit or --vary, not both")
@@ -149,7 +156,7 @@ def run(args: argparse.Namespace) -> int:
     )
     outputs = common.check_outputs(args, ("csv", "plot"))
     common.require_plotting(args)
-    config = common.load(args)
+    config = rgd_deviated_well_config() if args.config is None else common.load(args)
     if constraints.max_surface_torque is None:  # the rig's limit in the file, if any
         limit = config.top_drive.parameters.get("max_torque")
         if limit is not None and math.isfinite(limit):
