@@ -227,7 +227,8 @@ def test_a_top_drive_the_advisor_cannot_take_is_refused(capsys, tmp_path):
 
 
 def test_torsional_configuration_is_refused_by_key(capsys):
-    status = main(["advise", "--json"])
+    ritto = str(resources.files("torsio").joinpath("data/ritto2017.toml"))  # torsional only
+    status = main(["advise", ritto, "--json"])
     assert status == 2 and "bit_rock.law" in capsys.readouterr().err
 
 
