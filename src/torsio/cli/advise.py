@@ -82,15 +82,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "--no-compare", action="store_true", help="the configured top drive only (no alternatives)"
     )
     common.add_run_time_arguments(parser, length="run length of every point", run="each run")
-    parser.add_argument(
-        "--threads",
-        type=int,
-        metavar="N",
-        help="points side by side in this process (default: all cores)",
-    )
-    parser.add_argument("--workers", type=int, metavar="N", help="run on N local worker processes")
-    parser.add_argument(
-        "--scheduler", metavar="ADDRESS", help="run on a Dask scheduler (needs the dask extra)"
+    common.add_executor_arguments(
+        parser, "points side by side in this process (default: all cores)"
     )
     common.add_file_outputs(
         parser,
@@ -144,10 +137,7 @@ def run(args: argparse.Namespace) -> int:
 
     if args.fit is not None and args.vary:
         raise ConfigError("--vary", "give either --fit or --vary, not both")
-    if args.workers is not None and args.scheduler is not None:
-        raise ConfigError("--workers", "give either --workers or --scheduler, not both")
-    if args.workers is not None and args.workers < 1:
-        raise ConfigError("--workers", f"expected a number of processes >= 1, got {args.workers}")
+    executor = common.executor_choice(args)
     constraints = Constraints(
         max_surface_torque=_torque(args.max_surface_torque, "--max-surface-torque", "torque"),
         max_wob=_torque(args.max_wob, "--max-wob", "force"),
@@ -184,7 +174,7 @@ def run(args: argparse.Namespace) -> int:
             seed=args.seed,
             compare=not args.no_compare,
             threads=threads,
-            executor=args.workers if args.workers is not None else args.scheduler,
+            executor=executor,
             progress=callback,
             duration=common.parse_time(args.duration, "--duration"),
             window=common.parse_time(args.window, "--window"),

@@ -212,6 +212,26 @@ def add_config_argument(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def add_executor_arguments(parser: argparse.ArgumentParser, threads: str) -> None:
+    """--threads (``threads`` its help), --workers, --scheduler: where a command's points run."""
+    parser.add_argument("--threads", type=int, metavar="N", help=threads)
+    parser.add_argument("--workers", type=int, metavar="N", help="run on N local worker processes")
+    parser.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="run on a Dask scheduler (e.g. tcp://host:8786; needs the dask extra)",
+    )
+
+
+def executor_choice(args: argparse.Namespace) -> Any:
+    """The executor of --workers or --scheduler (None: this process), checked."""
+    if args.workers is not None and args.scheduler is not None:
+        raise ConfigError("--workers", "give either --workers or --scheduler, not both")
+    if args.workers is not None and args.workers < 1:
+        raise ConfigError("--workers", f"expected a number of processes >= 1, got {args.workers}")
+    return args.workers if args.workers is not None else args.scheduler
+
+
 def add_discretization_arguments(parser: argparse.ArgumentParser) -> None:
     """--strategy, --dp-elements, --bha-elements (override the file)."""
     parser.add_argument("--strategy", help="discretizer name (A, B, C, consistent, mixed, ...)")

@@ -56,17 +56,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     common.add_discretization_arguments(parser)
     common.add_run_time_arguments(parser, length="run length of every point", run="each run")
-    parser.add_argument(
-        "--threads",
-        type=int,
-        metavar="N",
-        help="threads of the compiled engine in this process (default: all cores)",
-    )
-    parser.add_argument("--workers", type=int, metavar="N", help="run on N local worker processes")
-    parser.add_argument(
-        "--scheduler",
-        metavar="ADDRESS",
-        help="run on a Dask scheduler (e.g. tcp://host:8786; needs the dask extra)",
+    common.add_executor_arguments(
+        parser, "threads of the compiled engine in this process (default: all cores)"
     )
     parser.add_argument(
         "--out",
@@ -184,10 +175,7 @@ def _run(args: argparse.Namespace) -> int:
             "--pi1" if args.pi1 is None else "--pi2",
             "a dimensionless map needs both --pi1 and --pi2",
         )
-    if args.workers is not None and args.scheduler is not None:
-        raise ConfigError("--workers", "give either --workers or --scheduler, not both")
-    if args.workers is not None and args.workers < 1:
-        raise ConfigError("--workers", f"expected a number of processes >= 1, got {args.workers}")
+    executor = common.executor_choice(args)
     if args.threads is not None:
         if args.workers is not None or args.scheduler is not None:
             raise ConfigError(
@@ -228,7 +216,7 @@ def _run(args: argparse.Namespace) -> int:
             options,
             discretization=common.discretization_overrides(args),
             dimensionless=dimensionless,
-            executor=args.workers if args.workers is not None else args.scheduler,
+            executor=executor,
             progress=(not args.json) and sys.stdout.isatty() or None,
             rtol=args.rtol,
             note=lambda text: print(f"torsio map: {text}", file=sys.stderr),
