@@ -294,6 +294,24 @@ def test_a_map_of_ramped_start_ups_agrees_with_scipy_and_single_runs(tmp_path):
     assert np.max(np.abs(early.severity - compiled.severity)) < 1e-3
 
 
+def test_a_small_batch_takes_the_batch_kernels_steps(tmp_path, monkeypatch):
+    # a batch of fewer than SMALL_BATCH points runs each point through the single run's
+    # kernel (rodas_kernels.run_points), a larger one through the batch loop: the same
+    # compiled steps from the same start, so the rows agree bitwise (ramped PI start-ups
+    # from rest, strategy C of the built-in Ritto et al. 2017 string)
+    from torsio.solvers import rodas_kernels
+
+    system = load_config(_ritto_with(tmp_path, PI_RAMP)).system(strategy="C")
+    points = {"wob": [100e3, 175e3, 60e3], "rpm": [100.0, 60.0, 140.0]}
+    options = {"duration": 30.0, "steady_window": 10.0, "engine": "compiled", "threads": 1}
+    small = simulate_batch(system, **points, **options)
+    monkeypatch.setattr(rodas_kernels, "SMALL_BATCH", 0)  # every batch through the loop
+    loop = simulate_batch(system, **points, **options)
+    assert small.ok.all()
+    for field in ("severity", "bit_speed_max", "bit_speed_min", "top_speed_mean", "steps"):
+        np.testing.assert_array_equal(getattr(small, field), getattr(loop, field), err_msg=field)
+
+
 def test_a_map_refuses_a_recorded_top_and_numpy_a_ramp_by_key():
     record = Recording(time=[0.0, 4.0], top_speed=[0.0, 6.0], surface_torque=[0.0, 0.0],
                        name="rig.csv")  # fmt: skip

@@ -63,9 +63,8 @@ from typing import Any, TextIO
 #: it starts. A kernel that another compiles with it (the lumped step loop within the
 #: batch loop of a first map) prints its own note as well.
 COMPILE_ESTIMATES: dict[str, tuple[str, float]] = {
-    "torsio.solvers.rodas.advance": ("the lumped engine's step loop", 13.0),
-    "torsio.solvers.rodas.start": ("the lumped engine's start of a run", 1.0),
-    "torsio.solvers.rodas_kernels._serial": ("the lumped engine's batch loop", 3.0),
+    "torsio.solvers.rodas.advance": ("the lumped engine's step loop", 15.0),
+    "torsio.solvers.rodas_kernels._serial": ("the lumped engine's batch loop", 4.0),
     "torsio.solvers.characteristics._march": ("the wave model's stepping", 6.0),
     "torsio.axial.kernel.march": ("the axial-torsional chain's stepping", 4.0),
     "torsio.axial.wave_kernel.march": ("the axial-torsional wave model's stepping", 3.0),

@@ -446,7 +446,10 @@ def _run_compiled(arguments: tuple[Any, ...], threads: int | None) -> None:
     compiled entry point serves one thread and many (no parallel kernel to compile).
 
     Points differ 100x in cost, so a free thread takes the next piece of the points left:
-    a piece is an eighth of a thread's share of them (guided scheduling), down to one."""
+    a piece is an eighth of a thread's share of them (guided scheduling), down to one.
+    A batch of fewer than :data:`~torsio.solvers.rodas_kernels.SMALL_BATCH` points runs
+    through the single run's entry points (the same steps), which need no compile of their
+    own after a single run."""
     import threading
     from concurrent.futures import ThreadPoolExecutor
 
@@ -455,8 +458,13 @@ def _run_compiled(arguments: tuple[Any, ...], threads: int | None) -> None:
     *shared, wob, omega, omega_set, out = arguments
     count = out.shape[0]  # out: a row per point
     workers = batch_threads(threads, count)
+    run: Any = (
+        rodas_kernels.run_points
+        if count < rodas_kernels.SMALL_BATCH
+        else rodas_kernels.integrate_serial
+    )
     if workers == 1:
-        rodas_kernels.integrate_serial(*arguments)
+        run(*arguments)
         return
     taken = [0]
     taking = threading.Lock()
@@ -470,9 +478,7 @@ def _run_compiled(arguments: tuple[Any, ...], threads: int | None) -> None:
             if start >= count:
                 return
             piece = slice(start, stop)
-            rodas_kernels.integrate_serial(
-                *shared, wob[piece], omega[piece], omega_set[piece], out[piece]
-            )
+            run(*shared, wob[piece], omega[piece], omega_set[piece], out[piece])
 
     with ThreadPoolExecutor(max_workers=workers) as pool:
         for done in [pool.submit(work) for _ in range(workers)]:

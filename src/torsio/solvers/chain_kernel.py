@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from torsio.physics.top_drive_boundary import controller_rates, limited, motor_torque
-from torsio.solvers.compiled import HAVE_NUMBA, njit, numba
+from torsio.solvers.compiled import HAVE_NUMBA, njit, njit_inner, numba
 from torsio.solvers.layouts import (
     CARRY_ERR_ACCEPTED,
     CARRY_H,
@@ -84,18 +84,18 @@ __all__ = [
 
 if HAVE_NUMBA:  # np.clip of floats, as numba compiles it (numpy's is for arrays)
 
-    @numba.extending.overload(limited, inline="always")
+    @numba.extending.overload(limited)
     def _limited(torque, max_torque):
         return lambda torque, max_torque: min(max(torque, -max_torque), max_torque)
 
 
 # the controller's one evaluation (physics/top_drive_boundary.py), compiled as it is written
-_INLINE = {"cache": True, "error_model": "numpy", "_nrt": False, "inline": "always"}
-compiled_motor_torque = njit(**_INLINE)(motor_torque)
-compiled_controller_rates = njit(**_INLINE)(controller_rates)
+_FLAGS = {"cache": True, "error_model": "numpy", "_nrt": False}
+compiled_motor_torque = njit(**_FLAGS)(motor_torque)
+compiled_controller_rates = njit(**_FLAGS)(controller_rates)
 
 
-@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def packed_motor_torque(top, z, error, pipe):
     """(u, u_free) [N m] of the packed top drive ``top`` (``TOP_*``) at the speed error
     ``error`` [rad/s] and the pipe torque ``pipe`` [N m]."""
@@ -105,7 +105,7 @@ def packed_motor_torque(top, z, error, pipe):
     )  # fmt: skip
 
 
-@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def forces(
     chain, top, torque, p, wob, radius, omega, set_speed, top_twist, phi, v, z, fv, fz
 ) -> float:  # fmt: skip
@@ -145,7 +145,7 @@ def forces(
     return bit_speed
 
 
-@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def set_speed_rates(top, omega, set_speed, rate, saturated, fz_rate) -> float:
     """d/dt at a fixed state of the forces a set speed changing at ``rate`` [rad/s^2] puts
     on node 0 (returned, [N m/s]) and of z' (into ``fz_rate``): the time derivative
@@ -162,7 +162,7 @@ def set_speed_rates(top, omega, set_speed, rate, saturated, fz_rate) -> float:
     return 0.0 if saturated else top[TOP_KP] * rate
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def mass_factors(chain, mpiv, mlow) -> None:
     """LU factors of the tridiagonal [I] (no pivoting: it is positive definite)."""
     md, mu = chain[CHAIN_MASS], chain[CHAIN_MASS_UPPER]
@@ -172,7 +172,7 @@ def mass_factors(chain, mpiv, mlow) -> None:
         mpiv[i] = md[i] - mlow[i] * mu[i - 1]
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def accelerations(chain, mpiv, mlow, fv, acc) -> None:
     """acc = [I]^-1 fv from the factors of :func:`mass_factors`."""
     n = fv.size
@@ -185,7 +185,7 @@ def accelerations(chain, mpiv, mlow, fv, acc) -> None:
         acc[i] = (acc[i] - mu[i] * acc[i + 1]) / mpiv[i]
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def controller_solve(top, g, saturated, q, zy, gains, work) -> None:
     """q = (I/g - Z_z)^-1, zy = Z_y and gains = (G_e, G_T, r_0.., r_m-1) of the elimination.
 
@@ -238,7 +238,7 @@ def controller_solve(top, g, saturated, q, zy, gains, work) -> None:
         gains[GAIN_PIPE] += gains[GAIN_STATES + k] * zy[k, 1]
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def saturated(top, omega, set_speed, phi, v, z) -> bool:
     if top[TOP_HAS_NODE] == 0.0 or not top[TOP_MAX_TORQUE] < np.inf:
         return False
@@ -248,7 +248,7 @@ def saturated(top, omega, set_speed, phi, v, z) -> bool:
     return u != free
 
 
-@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def sample_state(row, phi, v, z, n, m) -> None:
     """The state [z, phi_0, v_0, ...] at a step's end, into one row of the output."""
     for i in range(m):
@@ -273,7 +273,7 @@ def finish_run(settings, omega, has_top, small, out) -> None:
     out[OUT_ENDED] = carry[CARRY_T]
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def store_carry(
     carry, t, h, h_accepted, err_accepted, last_rejected, steps, rejected, status
 ) -> None:
@@ -290,7 +290,7 @@ def store_carry(
     carry[CARRY_STATUS] = status
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def store_window(window, bit_max, bit_min, top_integral, next_sample, done) -> None:
     """What the steady window has read so far into its row ``window``: the bit speed's
     extremes [rad/s], the integral of the top speed [rad], the next output sample, and

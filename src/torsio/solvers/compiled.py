@@ -32,7 +32,18 @@ except ImportError:  # pragma: no cover - exercised only without numba
 
     njit = _identity
 
-__all__ = ["HAVE_NUMBA", "kernel_signature", "njit", "numba", "run_signatures"]
+__all__ = ["HAVE_NUMBA", "kernel_signature", "njit", "njit_inner", "numba", "run_signature"]
+
+
+def njit_inner(**options: Any) -> Any:
+    """``njit(**options)`` for a function that only compiled code calls.
+
+    numba then builds no Python wrapper for it, which saves about a tenth of a second of
+    compile for each (a third of the step loop's first compile, :mod:`torsio.kernel_cache`).
+    Such a function cannot be called from Python (numba does not check it; the call would
+    crash the process): a function that Python or a test calls takes :func:`njit`.
+    """
+    return njit(no_cpython_wrapper=True, **options)
 
 
 def kernel_signature() -> Any:
@@ -66,37 +77,22 @@ def kernel_signature() -> Any:
     )
 
 
-def run_signatures() -> tuple[Any, Any]:
-    """Explicit signatures of a single run's two kernels (None, None without numba).
+def run_signature() -> Any:
+    """Explicit signature of a single run's kernel (None without numba).
 
-    ``run_start(chain, top, torque, parameters, settings, wob, Omega_ref, table,
-    vectors, small)`` and ``run_chunk(chain, top, torque, slope, parameters, settings, wob,
-    Omega_ref, table, vectors, small, grid, samples, stop)``, ``table`` the set speed
-    against time (``TABLE_ROWS``, k) (:mod:`torsio.solvers.rodas`).
+    ``run_chunk(chain, top, torque, slope, parameters, settings, wob, Omega_ref, table,
+    vectors, small, grid, samples, stop)``, ``table`` the set speed against time
+    (``TABLE_ROWS``, k) (:func:`torsio.solvers.rodas.advance`).
     """
     if not HAVE_NUMBA:
-        return None, None
+        return None
     from numba import types
 
     from torsio.solvers.law_kernels import law_type
 
     vector, matrix, f8 = types.float64[::1], types.float64[:, ::1], types.float64
     law = law_type()
-    start = types.void(matrix, vector, law, vector, vector, f8, f8, matrix, matrix, matrix)
-    chunk = types.void(
-        matrix,
-        vector,
-        law,
-        law,
-        vector,
-        vector,
-        f8,
-        f8,
-        matrix,
-        matrix,
-        matrix,
-        vector,
-        matrix,
-        types.int64,
-    )
-    return start, chunk
+    return types.void(
+        matrix, vector, law, law, vector, vector, f8, f8, matrix, matrix, matrix, vector,
+        matrix, types.int64,
+    )  # fmt: skip

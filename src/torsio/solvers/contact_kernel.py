@@ -36,7 +36,7 @@ import math
 
 from torsio.solvers import contact_law as law
 from torsio.solvers.chain_kernel import accelerations, forces
-from torsio.solvers.compiled import njit
+from torsio.solvers.compiled import njit, njit_inner
 from torsio.solvers.cycles import hermite
 from torsio.solvers.layouts import (
     CHAIN_CONTACT_DYNAMIC,
@@ -66,7 +66,7 @@ __all__ = [
 ]
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def start_contacts(chain, omega, v, state) -> bool:
     """Each contact's state from its speed (0: stuck); whether the chain has any contact."""
     found = False
@@ -78,26 +78,26 @@ def start_contacts(chain, omega, v, state) -> bool:
     return found
 
 
-@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def is_stuck(chain, state, i) -> bool:
     """Whether node i's contact holds it at rest."""
     return state[i] == 0.0 and chain[CHAIN_CONTACT_STATIC, i] > 0.0
 
 
-@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def _friction(chain, state, i) -> float:
     """Node i's friction torque in its state [N m] (0 stuck or without a contact)."""
     return law.friction(state[i], chain[CHAIN_CONTACT_STATIC, i], chain[CHAIN_CONTACT_DYNAMIC, i])
 
 
-@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def add_friction(chain, state, fv) -> None:
     """fv -= the friction of every moving contact."""
     for i in range(fv.size):
         fv[i] -= _friction(chain, state, i)
 
 
-@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def decouple(chain, state, band) -> None:
     """Zero the couplings of every stuck node in the step matrix's upper band."""
     for i in range(band.size):
@@ -107,7 +107,7 @@ def decouple(chain, state, band) -> None:
                 band[i - 1] = 0.0
 
 
-@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def zero_stuck(chain, state, x) -> None:
     """x_i = 0 at every stuck node (its speed increment, or acceleration)."""
     for i in range(x.size):
@@ -115,7 +115,7 @@ def zero_stuck(chain, state, x) -> None:
             x[i] = 0.0
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def restart(
     chain, top, torque, p, wob, radius, omega, set_speed, top_twist, phi, v, z, f0v, f0z, mpiv,
     mlow, acc, state, contacts,
@@ -130,7 +130,7 @@ def restart(
         zero_stuck(chain, state, acc)
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def restart_at_end(chain, f1, fz1, f0v, f0z, mpiv, mlow, acc, state) -> None:
     """:func:`restart` at the end of a step :func:`check_step` accepted, from the forces
     without friction it computed there (``f1``, ``fz1``): the same numbers, one force
@@ -144,7 +144,7 @@ def restart_at_end(chain, f1, fz1, f0v, f0z, mpiv, mlow, acc, state) -> None:
     zero_stuck(chain, state, acc)
 
 
-@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def _margin(chain, state, omega, speed, holding, i, k) -> float:
     """Margin k of node i (0: speed or holding torque, 1: threshold), falling through 0 at
     its switch; 1.0 where it cannot switch (:func:`torsio.solvers.contact_law.margin`)."""
@@ -152,7 +152,7 @@ def _margin(chain, state, omega, speed, holding, i, k) -> float:
     return law.margin(state[i], static, threshold, omega + speed, holding, k)
 
 
-@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def _slope(state, acc, threshold, k) -> float:
     """d/dt of margin k (:func:`_margin`) of a moving node of acceleration ``acc``."""
     rate = math.copysign(1.0, state) * acc
@@ -163,13 +163,13 @@ def _slope(state, acc, threshold, k) -> float:
     return rate if threshold > 0.0 else 0.0
 
 
-@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def _tolerance(chain, state, omega, i, k) -> float:
     static, threshold = chain[CHAIN_CONTACT_STATIC, i], chain[CHAIN_CONTACT_THRESHOLD, i]
     return law.tolerance(state[i], static, threshold, omega, k)
 
 
-@njit(cache=True, error_model="numpy", _nrt=False, inline="always")
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def _acceleration(chain, state, f, i) -> float:
     """Node i's acceleration from its force without friction f_i [rad/s^2] (lumped mass; 0
     where stuck, or beyond the chain's ends)."""
@@ -224,7 +224,7 @@ def cubic_crossing(chain, state, omega, i, k, u0, u1, d0, d1, start, end, tolera
     return x
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def check_step(
     chain, top, torque, p, wob, radius, omega, set_speed, top_twist, v, f0v, aphi, av, az, kphi,
     kv, kz, acc, phi1, v1, z1, f1, fz1, state, pending, h, h_min,
@@ -302,7 +302,7 @@ def check_step(
     return theta
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def switch(chain, state, omega, v, f, pending) -> int:
     """Switch every contact with a ``pending`` switch at the state with speeds ``v`` and
     forces ``f`` (friction included); a node that sticks gets v_i = -Omega_ref. Returns
@@ -323,7 +323,7 @@ def switch(chain, state, omega, v, f, pending) -> int:
     return made
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def friction_work(chain, state, phi, phi1, omega, h) -> float:
     """The friction's work over a step from twists ``phi`` to ``phi1`` [J] (exact: each
     moving contact's torque is constant in the step)."""

@@ -39,7 +39,7 @@ from __future__ import annotations
 
 import math
 
-from torsio.solvers.compiled import njit
+from torsio.solvers.compiled import njit, njit_inner
 from torsio.solvers.layouts import (
     CROSS_RATE,
     CROSS_TWIST,
@@ -107,7 +107,7 @@ def extremes_of_cubic(
     return vmax, vmin
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def integral_of_cubic(u0: float, u1: float, d0: float, d1: float, lo: float) -> float:
     """Integral over x in [lo, 1] of the cubic Hermite interpolant (in units of the step)."""
     c2 = -3.0 * u0 - 2.0 * d0 + 3.0 * u1 - d1
@@ -143,7 +143,7 @@ def upward_root(u0: float, u1: float, d0: float, d1: float) -> float:
     return x
 
 
-@njit(cache=True, error_model="numpy", _nrt=False)
+@njit_inner(cache=True, error_model="numpy", _nrt=False)
 def track_cycle(
     cycle, t, h, bit0, bit_acc0, phi0, v0, acc0, phi1, v1, acc1, cross, settings
 ) -> bool:

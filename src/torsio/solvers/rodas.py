@@ -1,7 +1,7 @@
 """The compiled kernel: RODAS4 on the chain of :mod:`torsio.physics.dynamics`.
 
 One kernel for every chain length, bit-rock law and top drive, for batches of points
-(:func:`point`) and single runs sampled on an output grid (:func:`start`, :func:`advance`;
+(:func:`point`) and single runs sampled on an output grid (:func:`advance`;
 :mod:`torsio.solvers.single_run`); the entry points that numba compiles with explicit
 signatures are in :mod:`torsio.solvers.rodas_kernels`.
 The chain (n nodes, node n-1 the bit) in twist coordinates about Omega_ref, with
@@ -53,7 +53,7 @@ from torsio.solvers.chain_kernel import (
     store_carry,
     store_window,
 )
-from torsio.solvers.compiled import njit
+from torsio.solvers.compiled import njit, njit_inner
 from torsio.solvers.cycles import extremes_of_cubic, hermite, integral_of_cubic, track_cycle
 from torsio.solvers.set_speed import (
     fill_twists,
@@ -100,15 +100,13 @@ RODAS_ALPHA = np.array([0.0, 0.386, 0.21, 0.63, 1.0, 1.0])
 RODAS_D = np.array([0.25, -0.1043, 0.1035, -0.03620000000000023, 0.0, 0.0])
 
 
-@njit(cache=True, nogil=True, error_model="numpy", _nrt=False)
+@njit_inner(cache=True, nogil=True, error_model="numpy", _nrt=False)
 def start(chain, top, torque, p, settings, wob, omega, table, vectors, small) -> None:
-    """Prepare a run from the state (phi, v, z) already in the work space, at t = 0.
-
-    ``table``: the set speed against time (rows ``TABLE_*``, :mod:`torsio.solvers.set_speed`;
-    one column for a constant set speed, NaN: none). ``vectors`` and ``small``: the work
-    space (:mod:`torsio.solvers.layouts`), zero but for the state; the run's scalars are
-    carried in rows ``SMALL_CARRY`` and ``SMALL_WINDOW``.
-    """
+    """Prepare a run (:func:`advance`'s first call) from the state (phi, v, z) in the work
+    space, at t = 0. ``table``: the set speed against time (rows ``TABLE_*``,
+    :mod:`torsio.solvers.set_speed`; one column for a constant set speed, NaN: none).
+    ``vectors`` and ``small``: the work space (:mod:`torsio.solvers.layouts`), zero but for
+    the state; the run's scalars are carried in rows ``SMALL_CARRY`` and ``SMALL_WINDOW``."""
     n = chain.shape[1]
     mpiv, mlow = vectors[slot.VEC_MASS_PIVOTS], vectors[slot.VEC_MASS_LOWER]
     f0v = vectors[slot.VEC_F0_V]
@@ -140,7 +138,8 @@ def advance(
     samples, stop,
 ) -> None:  # fmt: skip
     """RODAS4 steps from the carried state until t_end, a steady cycle, a failure, or (with
-    an output grid) until the samples up to index ``stop`` are written.
+    an output grid) until the samples up to index ``stop`` are written. The first call on
+    a fresh work space (zero but for the state) prepares the run (:func:`start`).
 
     A set speed that changes in time (``table`` of more than one point, see :func:`start`)
     enters each stage at its time with the stage's df/dt term, and no step crosses a point
@@ -151,6 +150,8 @@ def advance(
     of the step that covers it; empty arrays for none. Chunked calls take the same steps
     as one call: the state, the step and the controller's memory are carried in ``small``.
     """
+    if small[slot.SMALL_CARRY, slot.CARRY_H] == 0.0:  # a new run (a prepared one has h > 0)
+        start(chain, top, torque, p, settings, wob, omega, table, vectors, small)
     t_end = settings[slot.RUN_T_END]
     t_window = settings[slot.RUN_WINDOW_START]
     rtol = settings[slot.RUN_RTOL]
@@ -494,7 +495,6 @@ def point(chain, top, torque, slope, p, settings, wob, omega, omega_set, out, k)
     fill_twists(table, omega[k])
     for i in range(chain.shape[1]):
         vectors[slot.VEC_V, i] = -omega[k]  # start-up from rest: theta' = 0, controller states 0
-    start(chain, top, torque, p, settings, wob[k], omega[k], table, vectors, small)
     advance(chain, top, torque, slope, p, settings, wob[k], omega[k], table, vectors, small,
             np.zeros(0), np.zeros((0, 1)), np.int64(0))  # fmt: skip
     finish_run(settings, omega[k], top[slot.TOP_HAS_NODE] != 0.0, small, out[k])

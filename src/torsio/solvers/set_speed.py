@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from torsio.solvers.compiled import njit
+from torsio.solvers.compiled import njit, njit_inner
 from torsio.solvers.layouts import TABLE_ROWS, TABLE_SPEED, TABLE_TIME, TABLE_TWIST
 
 __all__ = [
@@ -47,7 +47,7 @@ __all__ = [
 ]
 
 
-@njit(cache=True, nogil=True, _nrt=False, error_model="numpy")
+@njit_inner(cache=True, nogil=True, _nrt=False, error_model="numpy")
 def _segment(times, time):  # type: ignore[no-untyped-def,unused-ignore]
     """The index i of the table's segment [times[i], times[i + 1]) that holds ``time``
     (bisection; 0 before the table's second point, the last index from its last on)."""
@@ -65,7 +65,7 @@ def _segment(times, time):  # type: ignore[no-untyped-def,unused-ignore]
     return low
 
 
-@njit(cache=True, nogil=True, _nrt=False, error_model="numpy")
+@njit_inner(cache=True, nogil=True, _nrt=False, error_model="numpy")
 def table_rate(table, time):  # type: ignore[no-untyped-def,unused-ignore]
     """d Omega_set / dt [rad/s^2] on the table's segment from ``time`` on (0 before the
     first point and from the last on)."""
@@ -152,7 +152,7 @@ def table_at(table: Any, time: Any, reference: float) -> tuple[Any, Any]:
     return speeds[()], twists[()]
 
 
-@njit(cache=True, nogil=True, _nrt=False, error_model="numpy")
+@njit_inner(cache=True, nogil=True, _nrt=False, error_model="numpy")
 def next_table_time(table, time):  # type: ignore[no-untyped-def,unused-ignore]
     """The first time [s] of the table after ``time`` (inf: none), where the set speed's
     slope may jump: a step of a lumped engine ends there."""

@@ -145,7 +145,7 @@ def integrate_compiled(
     """
     from torsio.solvers.batch import BatchModel
     from torsio.solvers.batch_options import DEFAULT_MAX_STEPS
-    from torsio.solvers.rodas_kernels import run_chunk, run_start
+    from torsio.solvers.rodas_kernels import run_chunk
 
     model = BatchModel.from_system(system)
     top = model.top  # packed at the system's own operating point
@@ -170,8 +170,6 @@ def integrate_compiled(
     law = (kernel.torque, kernel.slope, kernel.parameters)
     wob = float(system.wob)
     start = time.perf_counter()
-    run_start(model.chain, top, kernel.torque, kernel.parameters, settings, wob, omega, table,
-              vectors, small)  # fmt: skip
 
     def written() -> int:
         return int(small[SMALL_WINDOW, WINDOW_NEXT_SAMPLE])
