@@ -32,7 +32,8 @@ from machine_load import children_cpu, load_average
 
 GRID = ["--wob", "0:80e3:21", "--rpm", "40:120:21"]
 QUICK = ["--wob", "0:80e3:5", "--rpm", "40:120:5"]
-WARM = ["--wob", "0:80e3:2", "--rpm", "40:120:2", "--duration", "2", "--window", "1"]
+# 64 points: a batch that size compiles the batch loop as well (rodas_kernels.SMALL_BATCH)
+WARM = ["--wob", "0:80e3:8", "--rpm", "40:120:8", "--duration", "2", "--window", "1"]
 MODELS = {"wave": [], "B": ["--strategy", "B", "--dp-elements", "10", "--bha-elements", "4"]}
 
 

@@ -73,7 +73,7 @@ def part_cli(points: int, repeat: int) -> None:
         times: dict[str, list[float]] = {name: [] for name in files}
         engines = {}
         for name, path in files.items():  # warm numba's cache
-            _, data = cli_map(path, 3)
+            _, data = cli_map(path, 8)  # 64 points: the batch loop (SMALL_BATCH)
             engines[name] = data["engine"]
         for _ in range(repeat):
             for name, path in files.items():

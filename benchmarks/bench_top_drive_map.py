@@ -62,7 +62,7 @@ def main(argv: list[str] | None = None) -> None:
             times: dict[str, list[float]] = {name: [] for name in files}
             notes = {}
             for path in files.values():
-                cli_map(path, strategy, 3)  # warm numba's cache
+                cli_map(path, strategy, 8)  # warm numba's cache (64 points: the batch loop)
             for _ in range(repeat):
                 for name, path in files.items():
                     seconds, data = cli_map(path, strategy, points)

@@ -33,7 +33,8 @@ from pathlib import Path
 
 from machine_load import children_cpu, load_average
 
-COMPILE = ["--wob", "100kN:100kN:1", "--rpm", "60:60:1", "--duration", "1", "--window", "0.5"]
+# 64 points: a batch that size compiles the lumped batch loop as well (rodas_kernels.SMALL_BATCH)
+COMPILE = ["--wob", "50kN:150kN:8", "--rpm", "60:120:8", "--duration", "1", "--window", "0.5"]
 
 
 def config(

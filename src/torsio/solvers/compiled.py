@@ -39,10 +39,11 @@ def njit_inner(**options: Any) -> Any:
     """``njit(**options)`` for a function that only compiled code calls.
 
     numba then builds no Python wrapper for it, which saves about a tenth of a second of
-    compile for each (a third of the step loop's first compile, :mod:`torsio.kernel_cache`).
-    Such a function cannot be called from Python (numba does not check it; the call would
-    crash the process): a function that Python or a test calls takes :func:`njit`.
-    """
+    compile for each (about 3 s of the step loop's first compile). Such a function cannot
+    be called from Python (numba does not check it; the call would crash the process), nor
+    be an entry point: a function that Python, a doctest or a test calls takes :func:`njit`
+    (``tests/test_compiled_only.py``). numba's cache key does not tell the two apart, so a
+    function is compiled one way only."""
     return njit(no_cpython_wrapper=True, **options)
 
 

@@ -102,6 +102,8 @@ def _compiled(function: Any, signature: Any) -> Any:
     specialization.
     """
     if hasattr(function, "py_func"):
+        if function.targetoptions.get("no_cpython_wrapper"):  # numba's cache key ignores it
+            raise TypeError(f"{function.py_func.__name__} is njit_inner: no entry point")
         flags = {k: v for k, v in function.targetoptions.items() if k != "nopython"}
         function = function.py_func
     else:

@@ -15,7 +15,8 @@ length T to Omega_ref, psi = -Omega_ref T / 2 from T on: the top is half a ramp'
 turns behind a top that turned at Omega_ref from t = 0.
 
 The functions are compiled with numba into the kernels and callable from Python
-(:func:`table_at` over an array of times); without numba they run as plain Python.
+(:func:`table_at` over an array of times), all but the kernels' own search of a segment;
+without numba they run as plain Python.
 
 Examples
 --------
@@ -65,7 +66,7 @@ def _segment(times, time):  # type: ignore[no-untyped-def,unused-ignore]
     return low
 
 
-@njit_inner(cache=True, nogil=True, _nrt=False, error_model="numpy")
+@njit(cache=True, nogil=True, _nrt=False, error_model="numpy")
 def table_rate(table, time):  # type: ignore[no-untyped-def,unused-ignore]
     """d Omega_set / dt [rad/s^2] on the table's segment from ``time`` on (0 before the
     first point and from the last on)."""
@@ -152,7 +153,7 @@ def table_at(table: Any, time: Any, reference: float) -> tuple[Any, Any]:
     return speeds[()], twists[()]
 
 
-@njit_inner(cache=True, nogil=True, _nrt=False, error_model="numpy")
+@njit(cache=True, nogil=True, _nrt=False, error_model="numpy")
 def next_table_time(table, time):  # type: ignore[no-untyped-def,unused-ignore]
     """The first time [s] of the table after ``time`` (inf: none), where the set speed's
     slope may jump: a step of a lumped engine ends there."""
