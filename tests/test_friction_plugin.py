@@ -18,6 +18,7 @@ import shutil
 import subprocess
 import sys
 import warnings
+from importlib import resources
 from pathlib import Path
 
 import attrs
@@ -294,6 +295,45 @@ def test_a_law_without_the_base_class_lists_its_keyword_parameters(
     assert main(["laws"]) == 0
     table = capsys.readouterr().out
     assert "mu_static = 0.8" in table and "decay = required" in table
+
+
+def test_the_report_shows_what_the_file_gave_a_law_without_the_base_class(
+    monkeypatch, fresh_plugins, capsys, tmp_path
+):
+    # a plain class has no `given`: the report's operating point shows the [bit_rock]
+    # parameters of the file (the law reads them in rad/s, the only reading it takes)
+    from torsio.cli import main
+
+    _fake_entry_points(monkeypatch, _FakeEntryPoint("plain_laws", "plain:plugin", _PlainPlugin))
+    text = resources.files("torsio").joinpath("data/ritto2017.toml").read_text("utf-8")
+    start = text.index("[bit_rock]")
+    end = text.index("\n[", start + 1)
+    table = "[bit_rock]\nlaw = 'plain-exponential'\ndecay = 2.0\nlabel = 'shale'\n"
+    path = tmp_path / "plain.toml"
+    path.write_text(text[:start] + table + text[end + 1 :], encoding="utf-8")
+    assert main(["report", str(path), "--json"]) == 0
+    law = json.loads(capsys.readouterr().out)["operation"]["bit_rock_law"]
+    assert law["name"] == "plain-exponential" and law["speed_unit"] == "rad/s"
+    assert law["given"] == {"decay": 2.0, "label": "shale"}
+    assert main(["report", str(path)]) == 0
+    assert "plain-exponential (decay = 2, label = shale; bit speed in rad/s)" in (
+        capsys.readouterr().out
+    )
+
+
+def test_a_law_without_the_base_class_gets_only_a_known_speed_unit():
+    # the configuration's readings (docs/configuration.md): rad/s or rpm, for every law
+    from torsio.plugins import build_law
+
+    class Reading:
+        name = "reading"
+
+        def __init__(self, c=1.0, speed_unit="rad/s"):
+            self.c, self.unit = c, speed_unit
+
+    assert build_law(Reading, {}, "rpm").unit == "rpm"
+    with pytest.raises(ConfigError, match=r"bit_rock\.speed_unit: expected one of .*'rps'"):
+        build_law(Reading, {}, "rps")
 
 
 # --- a fresh environment ---------------------------------------------------------------

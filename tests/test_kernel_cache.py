@@ -4,6 +4,7 @@ editable install of the same sources (torsio.kernel_cache)."""
 from __future__ import annotations
 
 import shutil
+import sys
 from pathlib import Path
 
 import pytest
@@ -28,6 +29,17 @@ def test_the_folder_key_reads_contents_not_paths_or_times(monkeypatch, tmp_path)
     laws = copy / "physics" / "laws.py"
     laws.write_text(laws.read_text(encoding="utf-8") + "\n# changed\n", encoding="utf-8")
     assert kernel_cache._sources_key() != key  # a changed source: another folder
+
+
+def test_the_folder_key_is_the_environments_not_the_interpreters_name(monkeypatch) -> None:
+    # pip writes `#!<venv>/bin/python3` into the console scripts, while a user runs a
+    # script with `<venv>/bin/python`: one environment, one folder (a second one compiled
+    # the step loop again, 15 s); another environment gets its own folder
+    key = kernel_cache._sources_key()
+    monkeypatch.setattr(sys, "executable", str(Path(sys.prefix) / "bin" / "python3.99"))
+    assert kernel_cache._sources_key() == key
+    monkeypatch.setattr(sys, "prefix", str(Path(sys.prefix) / "another-venv"))
+    assert kernel_cache._sources_key() != key
 
 
 def test_torsios_functions_are_filed_by_their_place_in_the_package(tmp_path) -> None:

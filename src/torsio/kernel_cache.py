@@ -8,8 +8,10 @@ cache to the user's cache folder, never into the installed package (a cache insi
 - else ``$TORSIO_CACHE_DIR/numba``, ``$XDG_CACHE_HOME/torsio/numba``, or the platform's
   cache folder: ``~/.cache/torsio/numba`` (Linux), ``~/Library/Caches/torsio/numba``
   (macOS), ``%LOCALAPPDATA%\\torsio\\Cache\\numba`` (Windows); in it, one folder per
-  state of the kernel sources (``kernels-<key>``, the key a hash of torsio's and numba's
-  versions and of the contents of every kernel source file: ``solvers/``, ``axial/``,
+  state of the kernel sources (``kernels-<key>``, the key a hash of torsio's, Python's and
+  numba's versions, of the environment (``sys.prefix``: not the interpreter's name, so
+  ``python`` and ``python3`` share it) and of the contents of every kernel source file:
+  ``solvers/``, ``axial/``,
   ``physics/laws.py`` and ``physics/top_drive_boundary.py``), and in that a folder per
   subpackage (``solvers``, ``axial``, ``physics``).
 
@@ -165,13 +167,15 @@ def kernel_sources() -> list[Path]:
 
 
 def _sources_key() -> str:
-    """A hash of torsio's, Python's and numba's versions and of the kernel sources' contents
-    (not their paths or times: a regular and an editable install of the same sources share
-    the folder)."""
+    """A hash of torsio's, Python's and numba's versions, of the environment's prefix and of
+    the kernel sources' contents (not their paths or times: a regular and an editable
+    install of the same sources share the folder)."""
     import torsio
 
     key = hashlib.sha1()
-    key.update(f"{torsio.__version__} {sys.version} {sys.executable}".encode())
+    # the environment (its prefix), not the interpreter's name: python, python3 and
+    # python3.11 of one virtualenv share the folder (pip's scripts start with python3)
+    key.update(f"{torsio.__version__} {sys.version} {sys.prefix}".encode())
     try:
         import numba
 

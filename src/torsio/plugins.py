@@ -205,7 +205,7 @@ def build_law(cls: type[Any], parameters: dict[str, Any], speed_unit: str = "rad
     """
     import inspect
 
-    from torsio.physics.laws import BitRockLaw
+    from torsio.physics.laws import SPEED_UNITS, BitRockLaw
 
     name = getattr(cls, "name", cls.__name__)
     try:
@@ -216,6 +216,10 @@ def build_law(cls: type[Any], parameters: dict[str, Any], speed_unit: str = "rad
     if signature is not None:
         accepted = signature.parameters
         takes_any = any(p.kind is p.VAR_KEYWORD for p in accepted.values())
+        if speed_unit not in SPEED_UNITS:  # the readings a configuration may give
+            raise ConfigError(
+                "bit_rock.speed_unit", f"expected one of {sorted(SPEED_UNITS)}, got {speed_unit!r}"
+            )
         if "speed_unit" in accepted or issubclass(cls, BitRockLaw):
             values["speed_unit"] = speed_unit
         elif speed_unit != "rad/s":

@@ -24,10 +24,12 @@ def operation_section(ctx: ReportContext) -> ReportSection:
     law_data: dict[str, Any] | None = None
     steady_torque = None
     if law is not None:
+        read = ctx.config.bit_rock  # a law without `given` (a plain class): the file's
+        file_unit, file_given = (read.speed_unit, read.parameters) if read else ("rad/s", {})
         law_data = {
             "name": str(getattr(law, "name", type(law).__name__)),
-            "speed_unit": str(getattr(law, "speed_unit", "rad/s")),
-            "given": dict(getattr(law, "given", {})),
+            "speed_unit": str(getattr(law, "speed_unit", file_unit)),
+            "given": dict(getattr(law, "given", file_given)),
             "parameters_rad_s": law.values() if hasattr(law, "values") else {},
         }
         if op.wob is not None and op.omega is not None and radius is not None:
@@ -52,7 +54,10 @@ def operation_section(ctx: ReportContext) -> ReportSection:
     if law_data is None:
         rows.append(("bit-rock law", "none: no [bit_rock] table (modal analyses only)"))
     else:
-        given = ", ".join(f"{k} = {v:g}" for k, v in law_data["given"].items())
+        given = ", ".join(
+            f"{k} = {v:g}" if isinstance(v, (int, float)) else f"{k} = {v}"
+            for k, v in law_data["given"].items()
+        )
         unit = law_data["speed_unit"]
         rows.append(("bit-rock law", f"{law_data['name']} ({given}; bit speed in {unit})"))
         values = law_data["parameters_rad_s"]
