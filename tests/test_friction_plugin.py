@@ -332,6 +332,9 @@ def test_a_law_without_the_base_class_gets_only_a_known_speed_unit():
             self.c, self.unit = c, speed_unit
 
     assert build_law(Reading, {}, "rpm").unit == "rpm"
+    from torsio.cli.laws import describe  # the table's reading, not one of its parameters
+
+    assert [p["name"] for p in describe(Reading)["parameters"]] == ["c"]
     with pytest.raises(ConfigError, match=r"bit_rock\.speed_unit: expected one of .*'rps'"):
         build_law(Reading, {}, "rps")
 

@@ -46,8 +46,9 @@ def describe(cls: type[Any]) -> dict[str, Any]:
 
 
 def _signature_parameters(cls: type[Any]) -> list[dict[str, Any]]:
-    """The keyword parameters of a plain law class's constructor: ``name`` and ``default``
-    (None where required, its text where not a number), ``unit`` None (not declared)."""
+    """The keyword parameters of a plain law class's constructor but ``speed_unit``:
+    ``name`` and ``default`` (None where required, its text where not a number), ``unit``
+    None (not declared)."""
     try:
         signature = inspect.signature(cls)
     except (TypeError, ValueError):  # a constructor Python cannot inspect
@@ -55,8 +56,8 @@ def _signature_parameters(cls: type[Any]) -> list[dict[str, Any]]:
     named = (inspect.Parameter.POSITIONAL_OR_KEYWORD, inspect.Parameter.KEYWORD_ONLY)
     parameters = []
     for parameter in signature.parameters.values():
-        if parameter.kind not in named:
-            continue
+        if parameter.kind not in named or parameter.name == "speed_unit":
+            continue  # speed_unit is the [bit_rock] table's reading, not a law parameter
         default = None if parameter.default is inspect.Parameter.empty else parameter.default
         if not (default is None or isinstance(default, int | float)):
             default = str(default)
