@@ -420,7 +420,7 @@ def test_guide_example_works(fresh_plugins):
     import types
 
     guide = (Path(__file__).resolve().parents[1] / "docs" / "plugins.md").read_text()
-    module_code, usage_code = _python_blocks(guide)
+    module_code, usage_code = _python_blocks(guide)[:2]
     module = types.ModuleType("linear_weakening")
     # a file name that does not exist: nothing is cached next to the docs
     exec(compile(module_code, "<docs/plugins.md>", "exec"), module.__dict__)
@@ -445,3 +445,23 @@ def test_guide_example_works(fresh_plugins):
     assert np.allclose(law.slope(w, 1e5, 0.1), (ahead - behind) / 2e-6, rtol=1e-6)
     namespace: dict = {}
     exec(compile(usage_code, "docs/plugins.md", "exec"), namespace)
+
+
+def test_guide_plain_class_compiles_as_written():
+    """The plain class of docs/plugins.md ("A plain class is enough") compiles with numba
+    as it is written (law_kernels.python_law_kernel checks it against the Python torque at
+    ten speeds, to 1e-12), and its constructor names the key of a bad value."""
+    import types
+
+    from torsio.solvers.law_kernels import python_law_kernel
+
+    guide = (Path(__file__).resolve().parents[1] / "docs" / "plugins.md").read_text()
+    module = types.ModuleType("stribeck_strengthening")
+    exec(compile(_python_blocks(guide)[2], "<docs/plugins.md>", "exec"), module.__dict__)
+    law = module.StribeckStrengthening(mu_s=0.8, strengthening=0.01)
+    kernel = python_law_kernel(law)
+    # exact at 5 rad/s, 1e5 N, 0.1 m: tanh(100) = 1 to double precision
+    expected = 1e5 * 0.1 * (0.5 + 0.3 * math.exp(-2.5) + 0.01 * 5.0)
+    assert kernel.torque(kernel.parameters, 5.0, 1e5, 0.1) == pytest.approx(expected, rel=1e-12)
+    with pytest.raises(ConfigError, match=r"bit_rock\.mu_d: expected at most"):
+        module.StribeckStrengthening(mu_s=0.4, mu_d=0.5)

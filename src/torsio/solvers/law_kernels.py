@@ -167,7 +167,7 @@ def python_law_kernel(law: Any, wob: float = 1e5, radius: float = 0.1) -> LawKer
 
     import numba
 
-    from torsio.physics.law_slope import bit_slope, central_difference
+    from torsio.physics.law_slope import SLOPE_STEP, bit_slope, central_difference
 
     name = getattr(law, "name", type(law).__name__)
     values = {
@@ -232,9 +232,16 @@ def python_law_kernel(law: Any, wob: float = 1e5, radius: float = 0.1) -> LawKer
             np.broadcast_to(np.asarray(law.torque(speeds, wob, radius), dtype=float), speeds.shape),
             np.broadcast_to(bit_slope(law, speeds, wob, radius), speeds.shape),
         ]
-    for label, ours, theirs in zip(("torque", "slope"), compiled, python, strict=True):
+    # a slope by central difference carries the torque's round-off divided by the step: the
+    # torques agreeing to 1e-12, their difference quotients agree to 1e-12 |T| / step
+    torque_scale = float(np.max(np.abs(python[0]))) + 1e-300
+    steps = SLOPE_STEP * np.maximum(1.0, np.abs(speeds))  # central_difference's
+    quotient = 0.0 if slope3 is not None else 1e-12 * torque_scale / steps
+    for label, ours, theirs, extra in zip(
+        ("torque", "slope"), compiled, python, (0.0, quotient), strict=True
+    ):
         scale = np.maximum(np.abs(theirs), np.max(np.abs(theirs)) * 1e-9 + 1e-300)
-        if not np.all(np.abs(ours - theirs) <= 1e-12 * scale):
+        if not np.all(np.abs(ours - theirs) <= 1e-12 * scale + extra):
             raise ConfigError(
                 "bit_rock.law",
                 f"law {name!r}: its {label} compiled by numba differs from its Python {label} "
