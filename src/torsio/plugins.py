@@ -213,13 +213,13 @@ def build_law(cls: type[Any], parameters: dict[str, Any], speed_unit: str = "rad
     except (TypeError, ValueError):  # a constructor without an inspectable signature
         signature = None
     values = dict(parameters)
+    if speed_unit not in SPEED_UNITS:  # the readings a configuration may give, for every law
+        raise ConfigError(
+            "bit_rock.speed_unit", f"expected one of {sorted(SPEED_UNITS)}, got {speed_unit!r}"
+        )
     if signature is not None:
         accepted = signature.parameters
         takes_any = any(p.kind is p.VAR_KEYWORD for p in accepted.values())
-        if speed_unit not in SPEED_UNITS:  # the readings a configuration may give
-            raise ConfigError(
-                "bit_rock.speed_unit", f"expected one of {sorted(SPEED_UNITS)}, got {speed_unit!r}"
-            )
         if "speed_unit" in accepted or issubclass(cls, BitRockLaw):
             values["speed_unit"] = speed_unit
         elif speed_unit != "rad/s":

@@ -448,7 +448,7 @@ def _run_compiled(arguments: tuple[Any, ...], threads: int | None) -> None:
     Points differ 100x in cost, so a free thread takes the next piece of the points left:
     a piece is an eighth of a thread's share of them (guided scheduling), down to one.
     A batch of fewer than :data:`~torsio.solvers.rodas_kernels.SMALL_BATCH` points runs
-    through the single run's entry points (the same steps), which need no compile of their
+    through the single run's entry point (the same steps), which needs no compile of its
     own after a single run."""
     import threading
     from concurrent.futures import ThreadPoolExecutor

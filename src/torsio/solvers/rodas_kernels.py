@@ -23,7 +23,7 @@ from torsio.solvers.rodas import advance, point
 __all__ = ["SMALL_BATCH", "integrate_serial", "run_chunk", "run_points"]
 
 SMALL_BATCH = 64
-"""Batches of fewer points run point by point through the single run's entry points
+"""Batches of fewer points run point by point through the single run's entry point
 (:func:`run_points`): a short study (the report's critical weight on bit, a bisection step)
 then need not wait for the batch loop's compile (about 4 s of CPU), and costs about 30 µs a
 point more in calls from Python."""
