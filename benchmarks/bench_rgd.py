@@ -164,7 +164,7 @@ def main() -> None:
         f"h = {setup.step * 1e3:.4f} ms ({setup.steps} steps)"
     )
     print(
-        f"  engine: S_SS {run.severity:.6f}  ROP {run.rop_mean * 3600:.4f} m/h  "
+        f"  engine: S_SS {run.severity:.6f}  ROP {run.axial.rop_mean * 3600:.4f} m/h  "
         f"stuck {run.stick_fraction:.4f}"
     )
     print(

@@ -10,13 +10,14 @@ from typing import Any
 
 import numpy as np
 
-from torsio.axial.transient import AxialTransient, simulate_axial
+from torsio.analysis.transient_results import TransientResults
+from torsio.axial.transient import simulate_axial
 
 
 def perturbed_run(
     assembly: Any, bit: Any, wob: float, rpm: float, duration: float, perturbation: float,
     **options: Any,
-) -> AxialTransient:  # fmt: skip
+) -> TransientResults:  # fmt: skip
     """The run of ``duration`` [s] from steady drilling, the bit speed raised by
     ``perturbation``, every step sampled (a window of 1 s; ``options`` to simulate_axial)."""
     return simulate_axial(

@@ -71,7 +71,9 @@ def test_recommended_point_is_not_severe_and_near_the_brute_force_optimum(config
     assert point is not None and unconstrained.complete
     run = alone(config, point)
     assert run.severity <= THRESHOLD
-    assert run.rop_mean == pytest.approx(point["rop"], rel=1e-12)  # the same deterministic run
+    assert run.axial.rop_mean == pytest.approx(
+        point["rop"], rel=1e-12
+    )  # the same deterministic run
     axial = config.axial
     fine = axial_map(
         axial.assembly,
@@ -99,7 +101,7 @@ def test_surface_torque_limit_is_respected(config, unconstrained):
     point = advice.recommended
     assert point is not None
     run = alone(config, point, samples=1500)
-    assert run.top_drive_summary()["mean_surface_torque"] == pytest.approx(
+    assert run.axial.top_drive_summary()["mean_surface_torque"] == pytest.approx(
         point["surface_torque"], rel=1e-12
     )
     assert point["surface_torque"] <= limit < free["surface_torque"]

@@ -158,10 +158,10 @@ def test_a_small_perturbation_of_a_chain_grows_at_the_rightmost_root(hook):
     rpm = 80.0
     root = drilling_stability(chain, BIT, WOB, rpm).roots[0]
     run = perturbed_run(chain, BIT, WOB, rpm, 4.0, 1e-12)
-    rate = envelope_rate(run, "bit_velocity", run.steady.rop, root.imag, 1.0, 4.0)
+    rate = envelope_rate(run, "bit_velocity", run.axial.steady.rop, root.imag, 1.0, 4.0)
     assert root.real > 0
     assert rate == pytest.approx(root.real, rel=5e-3)
-    assert run.growth_rate == root.real
+    assert run.axial.growth_rate == root.real
 
 
 # --- the crossings and the maps -------------------------------------------------------------------
@@ -191,5 +191,5 @@ def test_the_map_gives_the_growth_rate_of_a_chain_and_refuses_a_prescribed_rotat
     assert info.value.key == "growth_rate"
     run = simulate_axial(chain, BIT, WOB, 100.0, duration=1.0, window=0.5, samples=0,
                          bit_rotation=BitRotation())  # fmt: skip
-    assert run.growth_rate is None
-    assert math.isfinite(run.rop_mean)
+    assert run.axial.growth_rate is None
+    assert math.isfinite(run.axial.rop_mean)

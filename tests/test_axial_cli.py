@@ -68,7 +68,7 @@ def test_simulate_json_is_the_python_api(capsys):
         "engine": "axial",
         "method": "fixed-step",
         "scheme": data["solver"]["scheme"],
-        "step": run.step,
+        "step": run.axial.step,
     }
     assert "Euler" in data["solver"]["scheme"]
     growth = drilling_stability(rgd_two_dof_example(), rgd_example(), 100e3, 60.0)

@@ -33,10 +33,10 @@ def test_every_point_of_the_map_is_the_single_run():
             run = simulate_axial(ASSEMBLY, BIT, wob, rpm, duration=30.0, window=15.0, samples=0)
             assert grid.severity[i, j] == pytest.approx(run.severity, rel=1e-12)
             assert grid.stick_fraction[i, j] == run.stick_fraction
-            assert grid.off_bottom_fraction[i, j] == run.off_bottom_fraction
-            assert grid.rop[i, j] == pytest.approx(run.rop_mean, rel=1e-12)
-            assert grid.mse[i, j] == pytest.approx(run.mse_mean, rel=1e-12)
-            assert grid.axial_severity[i, j] == pytest.approx(run.axial_severity, rel=1e-12)
+            assert grid.off_bottom_fraction[i, j] == run.axial.off_bottom_fraction
+            assert grid.rop[i, j] == pytest.approx(run.axial.rop_mean, rel=1e-12)
+            assert grid.mse[i, j] == pytest.approx(run.axial.mse_mean, rel=1e-12)
+            assert grid.axial_severity[i, j] == pytest.approx(run.axial.axial_severity, rel=1e-12)
             assert grid.growth_rate is not None
             rate = drilling_stability(ASSEMBLY, BIT, wob, rpm).growth_rate
             assert grid.growth_rate[i, j] == pytest.approx(rate, rel=1e-12)

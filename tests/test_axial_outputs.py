@@ -170,7 +170,7 @@ def test_an_axial_run_reports_its_progress_as_every_run():
     seen = []
     run = simulate_axial(ASSEMBLY, BIT, 100e3, 60.0, duration=2.0, window=1.0,
                          progress=lambda done, total: seen.append((done, total)))  # fmt: skip
-    steps = round(run.duration / run.step)
+    steps = round(run.duration / run.axial.step)
     assert seen[-1] == (steps, steps) and {total for _, total in seen} == {steps}
     from torsio.analysis.transient import simulate_config
     from torsio.examples import rgd_two_dof_config

@@ -125,9 +125,9 @@ def test_vertical_well_is_bit_identical_to_the_run_without_well():
     assert with_well.contacts.count == 0 and no_well.contacts is None
     a = _run(with_well, duration=4.0, window=2.0)
     b = _run(no_well, duration=4.0, window=2.0)
-    assert np.array_equal(a.samples, b.samples)
-    assert a.summary == b.summary
-    assert a.string_friction_work == 0.0 and a.contact_switches == 0
+    assert np.array_equal(a.axial.samples, b.axial.samples)
+    assert a.axial.summary == b.axial.summary
+    assert a.axial.string_friction_work == 0.0 and a.axial.contact_switches == 0
 
 
 @pytest.mark.parametrize("hook", ["weight", "speed"])
@@ -139,14 +139,14 @@ def test_steady_start_stays_on_the_closed_form(hook):
     run = _run(axial, start="steady", perturbation=0.0, duration=3.0, window=2.0)
     contacts = axial.contacts.at_wob(100e3)
     steady, friction = steady_with_friction(axial.bit, 100e3, 60.0, contacts, hook)
-    assert run.contact_switches == 0
-    assert run.rop_mean == pytest.approx(steady.rop, rel=1e-9)
-    assert run.mse_mean == pytest.approx(steady.mse, rel=1e-9)
-    assert run.weight_mean == pytest.approx(steady.wob, rel=1e-9)
-    assert run.torque_mean == pytest.approx(steady.bit_torque, rel=1e-9)
+    assert run.axial.contact_switches == 0
+    assert run.axial.rop_mean == pytest.approx(steady.rop, rel=1e-9)
+    assert run.axial.mse_mean == pytest.approx(steady.mse, rel=1e-9)
+    assert run.axial.weight_mean == pytest.approx(steady.wob, rel=1e-9)
+    assert run.axial.torque_mean == pytest.approx(steady.bit_torque, rel=1e-9)
     surface = run.signal("surface_torque")
     assert np.max(np.abs(surface / friction.surface_torque - 1.0)) < 1e-9
-    assert abs(run.energy.residual) < 1e-9 * run.energy.top_work  # measured 2.4e-13
+    assert abs(run.axial.energy.residual) < 1e-9 * run.axial.energy.top_work  # measured 2.4e-13
     if hook == "weight":
         assert steady.wob == pytest.approx(100e3 - friction.axial_friction, rel=1e-12)
     else:
@@ -161,8 +161,8 @@ def test_energy_residual_halves_with_the_step():
     for steps in (100, 200, 400):
         run = _run(rgd_deviated_well_config().axial, duration=20.0, window=5.0,
                    steps_per_period=steps, samples=0)  # fmt: skip
-        ratios.append(abs(run.energy.residual) / run.energy.top_work)
-    assert run.energy.string_friction_work > 0.1 * run.energy.top_work
+        ratios.append(abs(run.axial.energy.residual) / run.axial.energy.top_work)
+    assert run.axial.energy.string_friction_work > 0.1 * run.axial.energy.top_work
     orders = [math.log2(ratios[k] / ratios[k + 1]) for k in range(2)]
     assert ratios[0] < 1e-4
     assert all(0.6 < order < 1.3 for order in orders), (ratios, orders)
@@ -179,13 +179,13 @@ def test_perturbed_steady_start_settles_on_the_bit_torque_plus_the_sliding_torqu
         )
         run = _run(axial, wob=80e3, rpm=200.0, start="steady", perturbation=1e-2,
                    duration=30.0, window=10.0)  # fmt: skip
-        top = run.top_drive_summary()
+        top = run.axial.top_drive_summary()
         sliding = float(np.sum(friction_split(axial.contacts.at_wob(80e3), steady.rop,
                                               steady.bit_speed)[1]))  # fmt: skip
         assert friction.surface_torque == pytest.approx(steady.bit_torque + sliding, rel=1e-15)
         assert top["mean_surface_torque"] == pytest.approx(friction.surface_torque, rel=1e-3)
-        assert run.torque_mean == pytest.approx(steady.bit_torque, rel=1e-4)
-        assert run.contact_switches == 0
+        assert run.axial.torque_mean == pytest.approx(steady.bit_torque, rel=1e-4)
+        assert run.axial.contact_switches == 0
 
 
 def _first_motion(hook: str, wob: float):
@@ -307,7 +307,7 @@ def test_growth_of_a_small_perturbation_is_the_linearization_with_the_contacts_d
         axial.assembly, axial.bit, 100e3, 60.0, count=1, contacts=axial.contacts
     ).growth_rate
     without = drilling_stability(axial.assembly, axial.bit, 100e3, 60.0, count=1).growth_rate
-    time, deviation = run.signal("time"), np.abs(run.signal("bit_velocity") - run.steady.rop)
+    time, deviation = run.signal("time"), np.abs(run.signal("bit_velocity") - run.axial.steady.rop)
     peaks = np.flatnonzero((deviation[1:-1] >= deviation[:-2]) & (deviation[1:-1] > deviation[2:]))
     peaks = peaks[(time[peaks + 1] > 0.8) & (time[peaks + 1] < 2.8)] + 1
     fitted = np.polyfit(time[peaks], np.log(deviation[peaks]), 1)[0]

@@ -64,13 +64,13 @@ def test_held_top_is_the_engine_before_the_top_drive():
             ),
         }  # fmt: skip
         for name, run in runs.items():
-            assert (run.severity, run.rop_mean, run.mse_mean) == before[name]
+            assert (run.severity, run.axial.rop_mean, run.axial.mse_mean) == before[name]
             speed = run.signal("top_speed")
-            assert np.all(speed == run.steady.bit_speed)
+            assert np.all(speed == run.axial.steady.bit_speed)
             assert np.array_equal(run.signal("motor_torque"), run.signal("surface_torque"))
             assert np.array_equal(run.signal("surface_torque"), run.signal("top_torque"))
-    assert runs["chain"].top_drive == "constant-speed"
-    assert not runs["chain"].stability_of_held_top
+    assert runs["chain"].axial.top_drive == "constant-speed"
+    assert not runs["chain"].axial.stability_of_held_top
 
 
 @pytest.mark.parametrize("assembly", [rgd_two_dof_example(), CHAIN], ids=["two_dof", "chain"])
@@ -82,10 +82,10 @@ def test_pi_top_drive_stays_on_the_steady_state(assembly):
         assembly, BIT, 100e3, 180.0, duration=6.0, window=3.0, start="steady",
         perturbation=0.0, top_drive=PI, growth_rate=False,
     )  # fmt: skip
-    steady = run.steady
-    top = run.top_drive_summary()
-    assert run.rop_mean == pytest.approx(steady.rop, rel=1e-10)
-    assert run.torque_mean == pytest.approx(steady.bit_torque, rel=1e-10)
+    steady = run.axial.steady
+    top = run.axial.top_drive_summary()
+    assert run.axial.rop_mean == pytest.approx(steady.rop, rel=1e-10)
+    assert run.axial.torque_mean == pytest.approx(steady.bit_torque, rel=1e-10)
     assert top["mean_surface_torque"] == pytest.approx(steady.bit_torque, rel=1e-10)
     assert top["mean_motor_torque"] == pytest.approx(steady.bit_torque, rel=1e-10)
     assert top["top_speed_mean"] == pytest.approx(steady.bit_speed, rel=1e-12)
@@ -173,7 +173,7 @@ def test_refusals_name_their_key():
         rgd_two_dof_example(), BIT, 100e3, 180.0, duration=0.5, window=0.25,
         top_drive=stiff, growth_rate=False, start="steady", perturbation=0.0,
     )  # fmt: skip
-    assert run.step < 2 * np.pi / (100 * 1e8 / 2900.0) * 1.0001
+    assert run.axial.step < 2 * np.pi / (100 * 1e8 / 2900.0) * 1.0001
     with pytest.raises(ConfigError) as info:
         simulate_axial(
             rgd_two_dof_example(), BIT, 100e3, 60.0, duration=1.0, window=0.5, top_drive=PI,
@@ -228,7 +228,7 @@ def test_section_string_gives_the_soft_torque_defaults():
         axial.assembly, axial.bit, 100e3, 60.0, duration=2.0, window=1.0, growth_rate=False,
         **axial.run_options(),
     )  # fmt: skip
-    assert run.top_drive == "soft-torque" and np.isfinite(run.severity)
+    assert run.axial.top_drive == "soft-torque" and np.isfinite(run.severity)
 
 
 def test_wave_pipe_file_refuses_a_top_drive():
@@ -255,7 +255,7 @@ def test_map_with_a_top_drive_is_its_runs():
             growth_rate=False,
         )  # fmt: skip
         assert grid.severity[0, j] == run.severity
-        assert grid.rop[0, j] == run.rop_mean
+        assert grid.rop[0, j] == run.axial.rop_mean
 
 
 def test_pi_top_drive_in_the_linearization_against_the_transient():
@@ -270,9 +270,9 @@ def test_pi_top_drive_in_the_linearization_against_the_transient():
     held = drilling_stability(assembly, BIT, 100e3, 170.0, count=1).roots[0]
     assert root.real < held.real - 0.03
     run = perturbed_run(assembly, BIT, 100e3, 170.0, 60.0, 1e-6, top_drive=PI)
-    assert not run.stability_of_held_top
-    assert run.growth_rate == pytest.approx(root.real, rel=1e-9)
-    rate = envelope_rate(run, "bit_speed", run.steady.bit_speed, root.imag, 15.0, 60.0)
+    assert not run.axial.stability_of_held_top
+    assert run.axial.growth_rate == pytest.approx(root.real, rel=1e-9)
+    rate = envelope_rate(run, "bit_speed", run.axial.steady.bit_speed, root.imag, 15.0, 60.0)
     assert rate == pytest.approx(root.real, rel=2e-3)
     stiff = top_boundary(PITopDrive(inertia=2900.0, kp=1e7, ki=1e8), assembly, 170.0)
     limit = drilling_stability(assembly, BIT, 100e3, 170.0, count=1, top_drive=stiff).roots[0]

@@ -114,15 +114,19 @@ def test_tucker_wang_on_the_axial_chain_is_the_torsional_run():
         assert reference.severity > 1.0
         # the independent engine (RODAS4); 1e-3: see the module docstring
         assert run.severity == pytest.approx(reference.severity, rel=1e-3)
-        assert run.bit_speed_max == pytest.approx(reference.to_dict()["bit_speed_max"], rel=1e-3)
-        assert run.torque_mean == pytest.approx(reference.to_dict()["mean_bit_torque"], rel=1e-3)
+        assert run.axial.bit_speed_max == pytest.approx(
+            reference.to_dict()["bit_speed_max"], rel=1e-3
+        )
+        assert run.axial.torque_mean == pytest.approx(
+            reference.to_dict()["mean_bit_torque"], rel=1e-3
+        )
         # first order: 4 times the steps, at least 2.5 times closer (measured 3.7 to 4.2)
         error, fine_error = (abs(r.severity - reference.severity) for r in (run, fine))
         assert fine_error < error / 2.5
         # the axial motion rests: no penetration, the rock's reaction is the hook weight
-        assert run.rop_mean == 0.0 and run.off_bottom_fraction == 0.0
-        assert run.weight_mean == pytest.approx(WOB, rel=1e-12)  # static equilibrium
-        assert run.energy.relative_residual < 1e-5  # conservation of energy
+        assert run.axial.rop_mean == 0.0 and run.axial.off_bottom_fraction == 0.0
+        assert run.axial.weight_mean == pytest.approx(WOB, rel=1e-12)  # static equilibrium
+        assert run.axial.energy.relative_residual < 1e-5  # conservation of energy
 
 
 def test_steady_start_keeps_tucker_wang_torque_at_the_set_speed():
@@ -132,9 +136,9 @@ def test_steady_start_keeps_tucker_wang_torque_at_the_set_speed():
     w = rpm * math.pi / 30
     law = bit.law
     expected = WOB * 0.108 * law.a0 * (math.tanh(law.a1 * w) + law.a2 * w / (1 + law.a3 * w * w))
-    assert run.steady.bit_torque == pytest.approx(expected, rel=1e-12)  # Eq. 2 in closed form
-    assert run.torque_mean == pytest.approx(expected, rel=1e-6)  # the perturbation decayed
-    assert run.severity < 1e-3 and run.growth_rate is None
+    assert run.axial.steady.bit_torque == pytest.approx(expected, rel=1e-12)  # Eq. 2 in closed form
+    assert run.axial.torque_mean == pytest.approx(expected, rel=1e-6)  # the perturbation decayed
+    assert run.severity < 1e-3 and run.axial.growth_rate is None
     assert run.to_dict()["axial_severity"] is None and run.to_dict()["mse_mean"] is None
 
 

@@ -57,13 +57,13 @@ def test_the_delay_at_constant_speed_is_the_blade_period_and_d_the_lagged_differ
     # at 180 rpm the axial motion is stable (docs/axial.md), so the bit stays on bottom
     run = _every_step(1.0, 180.0, BitRotation(), 1e-2)
     tn0 = 2 * math.pi / (BIT.blades * 180.0 * math.pi / 30)
-    lag = round(tn0 / run.step)
-    assert lag * run.step == pytest.approx(tn0, rel=1e-13)  # the step rule: h = t_n0 / m
+    lag = round(tn0 / run.axial.step)
+    assert lag * run.axial.step == pytest.approx(tn0, rel=1e-13)  # the step rule: h = t_n0 / m
     np.testing.assert_allclose(run.signal("delay"), tn0, rtol=1e-12)
     u, d = run.signal("bit_position"), run.signal("depth_of_cut")
     expected = BIT.blades * (u[lag:] - u[:-lag])
     np.testing.assert_allclose(d[lag:], expected, rtol=0, atol=1e-14 * np.abs(u).max())
-    assert run.off_bottom_fraction == 0.0
+    assert run.axial.off_bottom_fraction == 0.0
 
 
 def test_the_delay_of_a_non_uniform_rotation_matches_brentq_and_the_hermite_spline():
@@ -90,7 +90,7 @@ def test_the_delay_of_a_non_uniform_rotation_matches_brentq_and_the_hermite_spli
     late = t - delay >= 0
     expected = BIT.blades * (u[late] - spline(t[late] - delay[late]))
     np.testing.assert_allclose(d[late], expected, rtol=1e-10, atol=1e-14)
-    assert run.off_bottom_fraction == 0.0
+    assert run.axial.off_bottom_fraction == 0.0
 
 
 # --- the steady state is a fixed point ---------------------------------------------------------
@@ -108,13 +108,13 @@ def test_started_on_the_steady_state_the_run_stays_there(assembly):
     run = simulate_axial(
         assembly, BIT, WOB, 180.0, duration=6.0, window=3.0, start="steady", perturbation=0.0
     )
-    steady = run.steady
-    assert run.rop_mean == pytest.approx(steady.rop, rel=1e-9)
-    assert run.torque_mean == pytest.approx(steady.bit_torque, rel=1e-9)
-    assert run.weight_mean == pytest.approx(WOB, rel=1e-9)
-    assert run.mse_mean == pytest.approx(steady.mse, rel=1e-9)  # the closed form, Teale 1965
-    assert run.severity < 1e-9 and run.axial_severity < 1e-9
-    assert run.stick_fraction == 0.0 and run.off_bottom_fraction == 0.0
+    steady = run.axial.steady
+    assert run.axial.rop_mean == pytest.approx(steady.rop, rel=1e-9)
+    assert run.axial.torque_mean == pytest.approx(steady.bit_torque, rel=1e-9)
+    assert run.axial.weight_mean == pytest.approx(WOB, rel=1e-9)
+    assert run.axial.mse_mean == pytest.approx(steady.mse, rel=1e-9)  # the closed form, Teale 1965
+    assert run.severity < 1e-9 and run.axial.axial_severity < 1e-9
+    assert run.stick_fraction == 0.0 and run.axial.off_bottom_fraction == 0.0
 
 
 # --- convergence ------------------------------------------------------------------------------
@@ -124,10 +124,10 @@ def test_halving_the_step_moves_a_stick_slip_run_by_less_than_one_percent():
         for spp in (100, 200)
     ]
     coarse, fine = runs
-    assert coarse.step == pytest.approx(2 * fine.step, rel=0.02)
+    assert coarse.axial.step == pytest.approx(2 * fine.axial.step, rel=0.02)
     assert coarse.severity > 1.0 and coarse.stick_fraction > 0.05  # stick-slip from rest
     assert abs(coarse.severity / fine.severity - 1) < 0.01
-    assert abs(coarse.rop_mean / fine.rop_mean - 1) < 0.01
+    assert abs(coarse.axial.rop_mean / fine.axial.rop_mean - 1) < 0.01
     assert abs(coarse.stick_fraction - fine.stick_fraction) < 0.01
 
 
@@ -146,11 +146,11 @@ def test_a_small_perturbation_grows_at_the_rightmost_root(
     # the crossing of the 2-DOF model with this damper is 153.25 rpm (docs/axial.md)
     root = drilling_stability(ASSEMBLY, BIT, WOB, rpm).roots[0]
     run = perturbed_run(ASSEMBLY, BIT, WOB, rpm, span[1], perturbation)
-    reference = run.steady.rop if signal == "bit_velocity" else run.steady.bit_speed
+    reference = run.axial.steady.rop if signal == "bit_velocity" else run.axial.steady.bit_speed
     rate = envelope_rate(run, signal, reference, abs(root.imag), *span)
     assert np.sign(rate) == np.sign(root.real) == (1 if rpm < 153.25 else -1)
     assert rate == pytest.approx(root.real, rel=tolerance)
-    assert run.growth_rate == pytest.approx(root.real, rel=1e-12)
+    assert run.axial.growth_rate == pytest.approx(root.real, rel=1e-12)
 
 
 @pytest.mark.parametrize(("rpm", "perturbation"), [(100.0, 1e-12), (170.0, 1e-4)])
@@ -158,7 +158,7 @@ def test_the_axial_model_grows_at_the_root_of_the_axial_equation(rpm, perturbati
     # the bit turning at exactly Ω₀ (k -> infinity): M λ² + n ζ ε a (1 − e^{−λ t_n0}) = 0
     root = rightmost_roots(axial_linearization(BIT, MASS, WOB, rpm), 1, deflate=(0.0,)).roots[0]
     run = perturbed_run(ASSEMBLY, BIT, WOB, rpm, 4.0, perturbation, bit_rotation=BitRotation())
-    rate = envelope_rate(run, "bit_velocity", run.steady.rop, root.imag, 1.0, 4.0)
+    rate = envelope_rate(run, "bit_velocity", run.axial.steady.rop, root.imag, 1.0, 4.0)
     assert rate == pytest.approx(root.real, rel=0.01)
 
 
@@ -179,7 +179,7 @@ def test_a_run_from_rest_sticks_and_reports_its_outputs():
         "axial_severity",
     ):
         assert key in data
-    assert data["steady_state"]["rop"] == pytest.approx(run.steady.rop)
+    assert data["steady_state"]["rop"] == pytest.approx(run.axial.steady.rop)
     assert data["growth_rate"] > 0
 
 
@@ -190,7 +190,7 @@ def test_a_bouncing_bit_leaves_the_bottom_and_the_forces_vanish_there():
     )
     d = run.signal("depth_of_cut")
     off = d <= 0
-    assert run.off_bottom_fraction > 0.1 and off.any()
+    assert run.axial.off_bottom_fraction > 0.1 and off.any()
     assert np.all(run.signal("bit_weight")[off] == 0.0)
     turning = off & (run.signal("bit_speed") > 0)
     assert np.all(run.signal("bit_torque")[turning] == 0.0)
@@ -203,9 +203,9 @@ def test_a_chain_under_a_hook_moving_at_constant_speed_drills_at_that_speed():
     chain = pipe_assembly(10, pipe, MASS, 230.0, hook="speed")
     run = simulate_axial(chain, BIT, WOB, 60.0, samples=0)
     # a chain has its growth rate too (tests/test_axial_chain_stability.py)
-    assert run.growth_rate == drilling_stability(chain, BIT, WOB, 60.0, count=1).growth_rate
+    assert run.axial.growth_rate == drilling_stability(chain, BIT, WOB, 60.0, count=1).growth_rate
     assert run.severity > 1.0 and run.stick_fraction > 0.02
-    assert run.rop_mean == pytest.approx(run.steady.rop, rel=0.01)
+    assert run.axial.rop_mean == pytest.approx(run.axial.steady.rop, rel=0.01)
 
 
 def test_the_assembly_refuses_what_it_cannot_carry():

@@ -98,7 +98,7 @@ def test_the_default_run_carries_no_warning_and_its_balance_closes():
         growth_rate=False,
     )  # fmt: skip
     assert run.warnings == ()
-    assert run.energy.relative_residual < RESIDUAL_TOLERANCE  # conservation law, O(h)
+    assert run.axial.energy.relative_residual < RESIDUAL_TOLERANCE  # conservation law, O(h)
 
 
 def test_the_residual_warning_states_the_tolerance():

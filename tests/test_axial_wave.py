@@ -248,17 +248,17 @@ def test_steady_drilling_is_a_fixed_point_of_the_wave_model(hook):
         perturbation=0.0,
         samples=0,
     )
-    steady = run.steady
-    assert run.rop_mean == pytest.approx(steady.rop, rel=1e-12)
-    assert run.torque_mean == pytest.approx(steady.bit_torque, rel=1e-12)
-    assert run.weight_mean == pytest.approx(WOB, rel=1e-12)
-    assert run.mse_mean == pytest.approx(steady.mse, rel=1e-12)
-    assert run.severity < 1e-12 and run.axial_severity < 1e-12
-    assert run.stick_fraction == 0.0 and run.off_bottom_fraction == 0.0
+    steady = run.axial.steady
+    assert run.axial.rop_mean == pytest.approx(steady.rop, rel=1e-12)
+    assert run.axial.torque_mean == pytest.approx(steady.bit_torque, rel=1e-12)
+    assert run.axial.weight_mean == pytest.approx(WOB, rel=1e-12)
+    assert run.axial.mse_mean == pytest.approx(steady.mse, rel=1e-12)
+    assert run.severity < 1e-12 and run.axial.axial_severity < 1e-12
+    assert run.stick_fraction == 0.0 and run.axial.off_bottom_fraction == 0.0
     # the growth rate of the pipe's own characteristic equation (test_axial_wave_stability)
     twin = _stepped(hook).lumped_twin()
     exact = distributed_stability(_stepped(hook), BIT, WOB, 180.0, twin=twin)
-    assert run.growth_rate == exact.growth_rate
+    assert run.axial.growth_rate == exact.growth_rate
 
 
 def test_one_section_and_two_equal_sections_give_the_same_run():
@@ -272,7 +272,7 @@ def test_one_section_and_two_equal_sections_give_the_same_run():
         assembly = wave_pipe_assembly(pipe, MASS, INERTIA, sections=sections)
         assert pipe_grid(assembly, 1e-3).axial_cells == ((200,) if sections == 1 else (100, 100))
         runs.append(simulate_axial(assembly, BIT, WOB, 60.0, duration=20.0, window=10.0, step=1e-3))
-    np.testing.assert_array_equal(runs[0].samples, runs[1].samples)
+    np.testing.assert_array_equal(runs[0].axial.samples, runs[1].axial.samples)
     assert runs[0].stick_fraction > 0  # the comparison covers the bit's stuck phases
 
 

@@ -64,20 +64,22 @@ def test_steady_sliding_against_torque_and_drag(config, hook):
     # independent integration of the same well) less the axial share of the sliding
     # velocity, 1 - r Omega0/|s0| ~ (V0 / r Omega0)^2 / 2 = 2e-4 (measured 1.1e-4).
     run = _steady_run(config, hook)
-    steady = run.steady_friction
-    top = run.samples[:, slot.TOP_TORQUE]
+    steady = run.axial.steady_friction
+    top = run.axial.samples[:, slot.TOP_TORQUE]
     assert top == pytest.approx(np.full(top.size, steady["surface_torque"]), rel=1e-9)
-    assert run.samples[:, slot.BIT_SPEED] == pytest.approx(run.steady.bit_speed, rel=1e-9)
-    assert run.contact_switches == 0
-    bit_torque = run.steady.bit_torque
+    assert run.axial.samples[:, slot.BIT_SPEED] == pytest.approx(
+        run.axial.steady.bit_speed, rel=1e-9
+    )
+    assert run.axial.contact_switches == 0
+    bit_torque = run.axial.steady.bit_torque
     drag = torque_drag(config.well, config.axial.string, wob=100e3, bit_torque=bit_torque)
     expected = drag.surface_torque_on_bottom - bit_torque
     assert steady["surface_torque"] - bit_torque == pytest.approx(expected, rel=5e-4)
     # the friction's work: its power sum F_a V0 + T_f Omega0 over the run, whose length is
     # whole steps (within one step of 2 s: 7.5e-4 relative)
-    power = steady["axial_friction"] * run.steady.rop
-    power += steady["friction_torque"] * run.steady.bit_speed
-    assert run.string_friction_work == pytest.approx(power * 2.0, rel=run.step / 2.0)
+    power = steady["axial_friction"] * run.axial.steady.rop
+    power += steady["friction_torque"] * run.axial.steady.bit_speed
+    assert run.axial.string_friction_work == pytest.approx(power * 2.0, rel=run.axial.step / 2.0)
     if hook == "speed":  # the hook carries the bit's weight and the axial friction
         assert steady["hook_force"] == pytest.approx(100e3 + steady["axial_friction"], rel=1e-12)
 
@@ -129,8 +131,10 @@ def test_from_rest_against_the_lumped_chain_of_the_same_well():
         runs.append(simulate_axial(axial.assembly, axial.bit, 100e3, 60.0, growth_rate=False,
                                    **axial.run_options()))  # fmt: skip
     pipe, chain = runs
-    assert pipe.string_friction_work == pytest.approx(chain.string_friction_work, rel=3e-4)
-    torques = [run.top_drive_summary()["mean_surface_torque"] for run in runs]
+    assert pipe.axial.string_friction_work == pytest.approx(
+        chain.axial.string_friction_work, rel=3e-4
+    )
+    torques = [run.axial.top_drive_summary()["mean_surface_torque"] for run in runs]
     assert torques[0] == pytest.approx(torques[1], rel=1.5e-2)
     assert pipe.severity == pytest.approx(chain.severity, abs=0.03)
-    assert pipe.rop_mean == pytest.approx(chain.rop_mean, rel=1.2e-2)
+    assert pipe.axial.rop_mean == pytest.approx(chain.axial.rop_mean, rel=1.2e-2)

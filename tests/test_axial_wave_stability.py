@@ -110,7 +110,7 @@ def test_simulate_gives_the_distributed_pipes_growth_rate():
     exact = distributed_stability(
         axial.assembly, axial.bit, WOB, 60.0, twin=axial.stability_assembly
     )
-    assert run.growth_rate == exact.growth_rate
+    assert run.axial.growth_rate == exact.growth_rate
     # the built-in file at 60 rpm: 3.2180 1/s, its 10-node twin's 3.2233 (docs/axial.md)
     assert exact.growth_rate == pytest.approx(3.2180, abs=1e-4)
     assert exact.twin_roots[0].real == pytest.approx(3.2233, abs=1e-4)

@@ -10,7 +10,7 @@ its top drive and friction possibly changed), the same run :func:`torsio.axial.m
 makes at a grid point. The axial map keeps no signals, and the surface torque is a signal:
 here each run keeps :data:`SURFACE_SAMPLES` rows of signals and the surface torque is the
 mean of the ``surface_torque`` column over the window's rows
-(:meth:`~torsio.axial.transient.AxialTransient.top_drive_summary`).
+(:meth:`~torsio.axial.run_results.AxialChannels.top_drive_summary`).
 
 Ctrl-C raises :class:`PointsInterrupted` with the rows of the points that finished.
 
@@ -33,6 +33,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from torsio.analysis.severity import run_times
+from torsio.axial.run_results import channels_of
 from torsio.axial.transient import simulate_axial
 from torsio.errors import ConfigError
 
@@ -70,14 +71,16 @@ class AxialCase:
 
     def __call__(self, wob: float, rpm: float) -> list[float]:
         """The :data:`COLUMNS` of one run at ``wob`` [N] and ``rpm`` [rev/min]."""
-        run = simulate_axial(
-            self.assembly,
-            self.bit,
-            wob,
-            rpm,
-            samples=SURFACE_SAMPLES,
-            growth_rate=False,
-            **self.options,
+        run = channels_of(
+            simulate_axial(
+                self.assembly,
+                self.bit,
+                wob,
+                rpm,
+                samples=SURFACE_SAMPLES,
+                growth_rate=False,
+                **self.options,
+            )
         )
         top = run.top_drive_summary()
         return [

@@ -21,13 +21,16 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import attrs
 import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.physics.laws import law_capabilities
+
+if TYPE_CHECKING:
+    from torsio.analysis.transient_results import TransientResults
 
 __all__ = ["RunCapabilities", "config_map", "run_capabilities", "simulate_axial_config"]
 
@@ -133,7 +136,7 @@ def simulate_axial_config(
     steady_window: float | None = None,
     growth_rate: bool | None = None,
     progress: Any = None,
-) -> Any:
+) -> TransientResults:
     """The run of a configuration with axial dynamics at its operating point (``wob``,
     ``rpm`` override ``[operation]``), its ``[simulation]`` times unless given; progress
     on stderr after 2 s as every long run (``progress=False``: none)."""

@@ -365,10 +365,11 @@ def simulate_config(
     *,
     discretization: Mapping[str, Any] | None = None,
     **overrides: Any,
-) -> Any:
+) -> TransientResults:
     """Simulate a configuration: its System, its ``[simulation]`` options, ``overrides`` on top;
     a configuration with axial dynamics on the axial engine
-    (:func:`torsio.analysis.config_runs.simulate_axial_config`, with ``growth_rate``).
+    (:func:`torsio.analysis.config_runs.simulate_axial_config`, with ``growth_rate``), whose
+    results carry their axial channels.
 
     A wave run from rest with friction along the string whose bit speed has a cycle is
     checked against a coarse twin (:mod:`torsio.analysis.grid_check`: ``grid_check`` in

@@ -1,13 +1,14 @@
 """Results of a transient run: the sampled response, S_SS, JSON, CSV and the plot.
 
-Returned by :func:`torsio.analysis.transient.simulate`; a results object never
-recomputes the analysis.
+Returned by :func:`torsio.analysis.transient.simulate` and, with its axial channels, by
+:func:`torsio.axial.transient.simulate_axial`; a results object never recomputes the
+analysis.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import attrs
 import numpy as np
@@ -17,12 +18,20 @@ from torsio.output_files import save_columns
 from torsio.physics.system import System
 from torsio.units import RPM_TO_RAD_S
 
+if TYPE_CHECKING:
+    from torsio.axial.run_results import AxialChannels
+
 __all__ = ["TransientResults", "window_mask"]
 
 
 @attrs.frozen(eq=False)
 class TransientResults:
-    """The sampled transient response of a System (returned by :func:`simulate`).
+    """The sampled transient response of a run, whatever model and engine made it.
+
+    A torsional run (:func:`simulate`) has its System; an axial-torsional run
+    (:func:`torsio.axial.transient.simulate_axial`) has its axial channels instead
+    (:attr:`axial`): the rate of penetration, the weight on bit, the depth of cut, the MSE,
+    the steady drilling state. Every signal is also read by name (:meth:`signal`).
 
     Attributes
     ----------
@@ -33,7 +42,9 @@ class TransientResults:
     bit_angle : ndarray, shape (m,)
         Absolute bit angle theta_N [rad].
     node_speeds : ndarray, shape (m, dofs)
-        Absolute speed of every degree of freedom [rad/s] (the last is the bit).
+        Absolute speed of every degree of freedom [rad/s] (the last is the bit); shape
+        (m, 0) for an axial run, whose samples keep the bit and the top (as do
+        ``node_twists`` and ``states``).
     node_twists : ndarray, shape (m, dofs)
         Twist phi = theta - Omega_ref t of every degree of freedom [rad]: for a
         held top its angle relative to the top drive (negative: lagging behind).
@@ -53,9 +64,11 @@ class TransientResults:
         Stick threshold as a fraction of Omega.
     solver : dict
         ``method``, ``rtol``, ``atol``, ``nfev``, ``njev``, ``nlu``, ``status``,
-        ``message``, ``wall_time_s``.
-    system : System
-        The system that was integrated.
+        ``message``, ``wall_time_s``; an axial run's ``engine``, ``method``, ``scheme``,
+        ``step``.
+    system : System or None
+        The system that was integrated; None for an axial run (its assembly is
+        ``axial.model``).
     top_speed : ndarray, shape (m,)
         Top-drive speed Omega_0 [rad/s] (constant for a held top).
     motor_torque : ndarray, shape (m,)
@@ -82,6 +95,12 @@ class TransientResults:
         ``bit_first_motion`` [s] (first time the bit is faster than the threshold speed;
         None if never), ``friction_work`` [J], ``threshold_speed`` [rad/s], ``contacts``;
         merged into :meth:`to_dict`. None without a well.
+    axial : AxialChannels or None
+        An axial run's channels and outputs
+        (:class:`~torsio.axial.run_results.AxialChannels`: ``steady``, ``summary`` with
+        ``rop_mean`` and ``mse_mean``, ``growth_rate``, ``energy``, the signals
+        ``bit_weight``, ``depth_of_cut`` ...); None for a torsional run. Its JSON, CSV
+        and terminal table are the run's.
     """
 
     time: np.ndarray
@@ -96,7 +115,7 @@ class TransientResults:
     steady_window: float
     stick_threshold: float
     solver: dict[str, Any]
-    system: System
+    system: System | None
     top_speed: np.ndarray
     motor_torque: np.ndarray
     states: np.ndarray
@@ -105,8 +124,11 @@ class TransientResults:
     bit_speed_extremes: tuple[float, float] | None = None
     warnings: tuple[str, ...] = ()
     well_summary: dict[str, Any] | None = None
+    axial: AxialChannels | None = None
 
     def __repr__(self) -> str:  # short: no time series
+        if self.axial is not None:
+            return f"TransientResults({self.axial!r})"
         return (
             f"TransientResults({self.time.size} samples over {self.time[-1]:g} s, "
             f"S_SS {self.severity:.4g} over the last {self.steady_window:g} s, "
@@ -114,6 +136,28 @@ class TransientResults:
         )
 
     # --- derived views (no recomputation of the analysis) ---------------------------------
+    def _system(self) -> System:
+        """The System of a torsional run."""
+        if self.system is None:
+            raise AttributeError("an axial run has no System: its assembly is axial.model")
+        return self.system
+
+    def signal(self, name: str) -> np.ndarray:
+        """A signal by name: ``time``, ``bit_speed``, ``bit_angle``, ``bit_torque``,
+        ``surface_torque``, ``top_speed``, ``motor_torque`` of every run, and an axial
+        run's :data:`torsio.axial.layouts.SAMPLE_COLUMNS` (``bit_weight``,
+        ``depth_of_cut``, ``bit_velocity`` ...)."""
+        if self.axial is not None:
+            return self.axial.signal(name)
+        if name not in _SIGNALS:
+            raise KeyError(f"{name!r}: a torsional run's signals are {', '.join(_SIGNALS)}")
+        return np.asarray(getattr(self, name))
+
+    @property
+    def wob(self) -> float:
+        """The weight on bit of the run [N] (for a dimensionless system: Pi_2 / R_bit)."""
+        return self.axial.wob if self.axial is not None else float(self._system().wob)
+
     @property
     def _extremes(self) -> tuple[float, float]:
         """(max, min) of the bit speed over the window that S_SS is read from [rad/s]."""
@@ -130,22 +174,29 @@ class TransientResults:
     @property
     def has_top_drive_node(self) -> bool:
         """Whether the top drive has inertia (its speed and motor torque vary)."""
-        return bool(getattr(self.system.top, "name", "") != "constant-speed")
+        if self.axial is not None:
+            return self.axial.top_drive != "constant-speed"
+        return bool(getattr(self._system().top, "name", "") != "constant-speed")
 
     @property
     def has_set_speed(self) -> bool:
         """Whether the top drive turns at a set speed (False for a torque-driven top, and
         for a top that follows a recording: its speed is the record's)."""
-        if getattr(self.system.top, "name", "") == "recorded":
+        if self.axial is not None:
+            return True
+        system = self._system()
+        if getattr(system.top, "name", "") == "recorded":
             return False
-        return bool(np.isfinite(self.system.top.boundary(self.system).set_speed))
+        return bool(np.isfinite(system.top.boundary(system).set_speed))
 
     @property
     def rpm(self) -> float:
         """The rotary speed the run had [rpm]: the set speed, or for a top drive without
         one (``torque``) the mean top-drive speed over the steady window."""
+        if self.axial is not None:
+            return self.axial.rpm
         if self.has_set_speed:
-            return float(self.system.rpm)
+            return float(self._system().rpm)
         return self.top_speed_mean / RPM_TO_RAD_S
 
     @property
@@ -156,7 +207,7 @@ class TransientResults:
     @property
     def duration(self) -> float:
         """Run length [s]."""
-        return float(self.time[-1])
+        return self.axial.duration if self.axial is not None else float(self.time[-1])
 
     @property
     def output_step(self) -> float:
@@ -191,7 +242,7 @@ class TransientResults:
     @property
     def dimensionless(self) -> bool:
         """Whether the system is a dimensionless one (time is tau = omega_1 t)."""
-        return bool(getattr(self.system.law, "dimensionless", False))
+        return self.axial is None and bool(getattr(self._system().law, "dimensionless", False))
 
     # --- output ---------------------------------------------------------------------------
     def to_dict(self, series: bool = False) -> dict[str, Any]:
@@ -202,10 +253,13 @@ class TransientResults:
         window, and ``rpm_source`` says which (``"set"`` or ``"top_speed_mean"``). For a
         dimensionless system ``wob`` and ``rpm`` are those of its System (Pi_2 and
         Pi_1 in rpm form) and ``pi1``, ``pi2`` are added. ``series=True`` adds the
-        time series.
+        time series. An axial run's keys are those of
+        :meth:`torsio.axial.run_results.AxialChannels.to_dict` (DESIGN.md).
         """
+        if self.axial is not None:
+            return self.axial.to_dict(series, self.warnings)
         window = self.window_mask
-        system = self.system
+        system = self._system()
         data: dict[str, Any] = {
             "wob": float(system.wob),
             "rpm": self.rpm,
@@ -255,8 +309,11 @@ class TransientResults:
 
         Columns: ``time_s, bit_speed_rad_s, bit_angle_rad, bit_torque_Nm,
         surface_torque_Nm, top_speed_rad_s, motor_torque_Nm, node_speed_1_rad_s, ...``.
-        Returns the path written.
+        Returns the path written. An axial run's columns are its
+        :data:`torsio.axial.layouts.SAMPLE_COLUMNS` (:meth:`AxialChannels.to_csv`).
         """
+        if self.axial is not None:
+            return self.axial.to_csv(path)
         columns = [self.time, self.bit_speed, self.bit_angle, self.bit_torque]
         columns += [self.surface_torque, self.top_speed, self.motor_torque, *self.node_speeds.T]
         names = ["time_s", "bit_speed_rad_s", "bit_angle_rad", "bit_torque_Nm"]
@@ -268,7 +325,9 @@ class TransientResults:
         """The terminal table of the run (``torsio simulate``): its title and (quantity,
         value) rows, forces and torques in ``units`` (a
         :class:`~torsio.display_units.DisplayUnits`)."""
-        system = self.system
+        if self.axial is not None:
+            return self.axial.summary_rows(self.to_dict(), units)
+        system = self._system()
         solver = self.solver
         title = f"Transient response: {system.model.strategy}, {system.model.dofs} DOF"
         window = self.window_mask
@@ -318,9 +377,9 @@ class TransientResults:
     def plot_label(self) -> str:
         """The operating point, for the plot's title."""
         if self.dimensionless:
-            return f"Pi1 = {self.omega:.4g}, Pi2 = {self.system.wob * self.system.bit_radius:.4g}"
+            return f"Pi1 = {self.omega:.4g}, Pi2 = {self.wob * self._system().bit_radius:.4g}"
         mean = "" if self.has_set_speed else " (mean top speed)"
-        return f"WOB = {self.system.wob / 1e3:.4g} kN, {self.rpm:.4g} rpm{mean}"
+        return f"WOB = {self.wob / 1e3:.4g} kN, {self.rpm:.4g} rpm{mean}"
 
     def plot(self, path: str | Path | None = None, ax: Any = None) -> Any:
         """Bit speed, surface torque and torque on bit against time
@@ -328,6 +387,11 @@ class TransientResults:
         from torsio.plotting.transient_plot import plot_transient
 
         return plot_transient(self, path, ax)
+
+
+_SIGNALS = ("time", "bit_speed", "bit_angle", "bit_torque", "surface_torque", "top_speed",
+            "motor_torque")  # fmt: skip
+"""The signals every run has, by name (:meth:`TransientResults.signal`)."""
 
 
 def window_mask(time_grid: np.ndarray, window: float) -> np.ndarray:

@@ -30,7 +30,7 @@ if TYPE_CHECKING:
     from torsio.axial.maps import axial_map
     from torsio.axial.rgd import RGDBit, rgd_example, rgd_from_table
     from torsio.axial.root_branches import follow_roots
-    from torsio.axial.run_results import AxialTransient
+    from torsio.axial.run_results import AxialChannels
     from torsio.axial.run_setup import BitRotation
     from torsio.axial.stability import (
         DrillingCase,
@@ -79,7 +79,7 @@ _LAZY = {
     "AxialContacts": "torsio.axial.string_contacts",
     "axial_contacts": "torsio.axial.string_contacts",
     "EnergyBalance": "torsio.axial.energy_balance",
-    "AxialTransient": "torsio.axial.run_results",
+    "AxialChannels": "torsio.axial.run_results",
     "simulate_axial": "torsio.axial.transient",
     "PipeSection": "torsio.axial.wave_assembly",
     "WaveDrillingAssembly": "torsio.axial.wave_assembly",
@@ -88,7 +88,7 @@ _LAZY = {
 
 __all__ = [
     "AxialContacts",
-    "AxialTransient",
+    "AxialChannels",
     "BitRotation",
     "DrillingAssembly",
     "DrillingCase",

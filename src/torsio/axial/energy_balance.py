@@ -18,7 +18,7 @@ Examples
 >>> from torsio.axial.transient import simulate_axial
 >>> run = simulate_axial(rgd_two_dof_example(), rgd_example(), 100e3, 60.0, duration=2.0,
 ...                      window=1.0, growth_rate=False)
->>> abs(run.energy.residual) < 0.01 * run.energy.input_work
+>>> abs(run.axial.energy.residual) < 0.01 * run.axial.energy.input_work
 True
 """
 

@@ -48,7 +48,7 @@ from torsio.analysis.map_results import STICK_SLIP_THRESHOLD, SeverityMap
 from torsio.analysis.map_runs import MapWork, drive_map
 from torsio.analysis.severity import SEVERE_THRESHOLD, run_times
 from torsio.axial.assembly import DrillingAssembly, assembly_summary
-from torsio.axial.run_results import SCHEME
+from torsio.axial.run_results import SCHEME, channels_of
 from torsio.axial.torque_law import AxialBit
 from torsio.axial.transient import simulate_axial
 from torsio.axial.wave_assembly import WaveDrillingAssembly
@@ -83,8 +83,9 @@ def run_points(run: PointRun, points: BatchPoints, settings: Any = None) -> NDAr
     (the growth rate NaN when not asked)."""
     rows = []
     for wob, rpm in zip(points.wob, points.rpm, strict=True):
-        one = simulate_axial(run.assembly, run.bit, float(wob), float(rpm), samples=0,
-                             growth_rate=run.growth_rate, **run.options)  # fmt: skip
+        results = simulate_axial(run.assembly, run.bit, float(wob), float(rpm), samples=0,
+                                 growth_rate=run.growth_rate, **run.options)  # fmt: skip
+        one = channels_of(results)
         s = one.summary
         layers = {"rop": s.rop_mean, "mse": s.mse_mean, "stick_fraction": s.stick_fraction,
                   "off_bottom_fraction": s.off_bottom_fraction,

@@ -1,11 +1,13 @@
-"""The results of an axial-torsional run: :class:`AxialTransient`.
+"""The axial channels of a run: :class:`AxialChannels`, and the run's results.
 
-Made by :func:`torsio.axial.transient.simulate_axial`: the window's outputs
+:func:`torsio.axial.transient.simulate_axial` returns the results every run has
+(:class:`~torsio.analysis.transient_results.TransientResults`, made by
+:func:`axial_results`) with these channels in its ``axial``: the window's outputs
 (:class:`~torsio.axial.window_summary.WindowSummary`), the steady state, the growth rate,
-the signals by name (:data:`torsio.axial.layouts.SAMPLE_COLUMNS`), and the outputs every
-run has: JSON (:meth:`AxialTransient.to_dict`), CSV, the plot
-(:func:`torsio.plotting.transient_plot.plot_transient`), the terminal table and, read by
-:meth:`torsio.calibration.recording.Recording.from_transient`, the rig recording.
+the signals by name (:data:`torsio.axial.layouts.SAMPLE_COLUMNS`), and the run's JSON
+(:meth:`AxialChannels.to_dict`, DESIGN.md's keys), CSV and terminal table. The plot
+(:func:`torsio.plotting.transient_plot.plot_transient`) and the rig recording
+(:meth:`torsio.calibration.recording.Recording.from_transient`) read the common signals.
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
+from torsio.analysis.transient_results import TransientResults
 from torsio.axial import layouts as slot
 from torsio.axial.assembly import assembly_summary
 from torsio.axial.energy_balance import EnergyBalance
@@ -26,7 +29,7 @@ from torsio.axial.window_summary import WindowSummary
 from torsio.output_files import save_columns
 from torsio.units import RPM_TO_RAD_S
 
-__all__ = ["SCHEME", "AxialTransient", "run_rows"]
+__all__ = ["SCHEME", "AxialChannels", "axial_results", "channels_of", "run_rows"]
 
 _SUMMARY_NAMES = frozenset(attrs.fields_dict(WindowSummary))
 
@@ -35,8 +38,9 @@ SCHEME = "semi-implicit Euler, set-valued contacts at the velocity level (Moreau
 
 
 @attrs.frozen(eq=False)
-class AxialTransient:
-    """One axial-torsional run with the RGD bit.
+class AxialChannels:
+    """The axial channels and outputs of one axial-torsional run
+    (:attr:`TransientResults.axial <torsio.analysis.transient_results.TransientResults>`).
 
     Attributes
     ----------
@@ -64,11 +68,6 @@ class AxialTransient:
         Whether ``growth_rate`` is that of the top held at Ω₀ while the run's top drive is
         not held: a controller other than a PI speed loop, which the linearization does not
         take (:func:`torsio.axial.linearization.speed_loop`).
-    warnings : tuple of str
-        What limits the meaning of the run, as the torsional runs say it: a top drive at its
-        torque limit or short of its set speed over the window
-        (:func:`torsio.analysis.limits.saturated_motor`), and a window or an energy balance
-        that describe no drilling (:func:`torsio.axial.run_warnings.run_warnings`).
     energy : EnergyBalance or None
         The lumped chain's energy balance over the run
         (:mod:`torsio.axial.energy_balance`; None for the distributed pipe and a prescribed
@@ -85,9 +84,9 @@ class AxialTransient:
         The engine (``engine``, ``method``, ``scheme``, ``step``), the assembly
         (:meth:`~torsio.axial.assembly.DrillingAssembly.describe`) and the bit's law.
 
-    Every column of :attr:`samples` is an attribute by name (``run.time``,
-    ``run.bit_speed``, ``run.surface_torque`` ...), as the torsional runs' signals: the CSV,
-    the plot and the rig recording read them the same way.
+    Every column of :attr:`samples` is an attribute by name (``run.axial.bit_weight``,
+    ``run.axial.depth_of_cut`` ...), and so is every entry of :attr:`summary`
+    (``run.axial.rop_mean``).
     """
 
     wob: float
@@ -102,7 +101,6 @@ class AxialTransient:
     samples: NDArray[np.float64]
     top_drive: str = "constant-speed"
     stability_of_held_top: bool = False
-    warnings: tuple[str, ...] = ()
     energy: EnergyBalance | None = None
     contact_switches: int = 0
     string_friction_work: float = 0.0
@@ -111,29 +109,9 @@ class AxialTransient:
     solver: dict[str, Any] = attrs.field(factory=dict)
     model: dict[str, Any] = attrs.field(factory=dict)
     bit: dict[str, Any] = attrs.field(factory=dict)
-    dimensionless = False
-
-    @property
-    def window_start(self) -> float:
-        """Start of the steady window [s]."""
-        return self.duration - self.window
-
-    @property
-    def omega(self) -> float:
-        """Ω₀ [rad/s]."""
-        return self.rpm * RPM_TO_RAD_S
-
-    @property
-    def has_top_drive_node(self) -> bool:
-        """Whether the top drive has inertia (its speed and motor torque vary)."""
-        return self.top_drive != "constant-speed"
-
-    @property
-    def plot_label(self) -> str:
-        """The operating point, for the plot's title."""
-        return f"WOB = {self.wob / 1e3:.4g} kN, {self.rpm:.4g} rpm"
 
     def __getattr__(self, name: str) -> Any:
+        """An entry of :attr:`summary` or a column of :attr:`samples` by name."""
         if name in _SUMMARY_NAMES:
             return getattr(self.summary, name)
         if name in slot.SAMPLE_COLUMNS:
@@ -141,7 +119,9 @@ class AxialTransient:
         raise AttributeError(name)
 
     def signal(self, name: str) -> NDArray[np.float64]:
-        """One column of :attr:`samples` by name (e.g. ``"bit_speed"``)."""
+        """One column of :attr:`samples` by name (e.g. ``"bit_weight"``)."""
+        if name not in slot.SAMPLE_COLUMNS:
+            raise KeyError(f"{name!r}: an axial run's signals are {', '.join(slot.SAMPLE_COLUMNS)}")
         return self.samples[:, slot.SAMPLE_COLUMNS.index(name)]
 
     def window_rows(self) -> NDArray[np.bool_]:
@@ -169,9 +149,10 @@ class AxialTransient:
         )
         return {key: float(value) for key, value in zip(keys, values, strict=True)}
 
-    def to_dict(self, series: bool = False) -> dict[str, Any]:
-        """DESIGN.md's JSON keys: ``wob``, ``rpm``, ``severity``, ``rop_mean`` (m/s),
-        ``mse_mean`` (Pa; null when the bit did not advance), ``off_bottom_fraction``,
+    def to_dict(self, series: bool = False, warnings: Any = ()) -> dict[str, Any]:
+        """The run's JSON with its ``warnings``, DESIGN.md's keys: ``wob``, ``rpm``,
+        ``severity``, ``rop_mean`` (m/s), ``mse_mean`` (Pa; null when the bit did not
+        advance), ``off_bottom_fraction``,
         ``stick_fraction``, ``axial_severity``, ``steady_state``, ``growth_rate``, the top
         drive's (:meth:`top_drive_summary`, ``top_drive``, ``stability_of_held_top``),
         ``solver``, ``model``, ``bit`` and more; ``series=True`` adds the signals."""
@@ -188,7 +169,7 @@ class AxialTransient:
             start=self.start,
             top_drive=self.top_drive,
             stability_of_held_top=self.stability_of_held_top,
-            warnings=list(self.warnings),
+            warnings=list(warnings),
             string_friction_work=self.string_friction_work,
             contact_switches=self.contact_switches,
             string_contacts=self.string_contacts,
@@ -209,23 +190,56 @@ class AxialTransient:
         names = [f"{name}_{unit}" for name, unit in units]
         return save_columns(path, names, list(self.samples.T))
 
-    def plot(self, path: str | Path | None = None, ax: Any = None) -> Any:
-        """Bit speed, surface torque and torque on bit against time, as every run's
-        (:func:`torsio.plotting.transient_plot.plot_transient`); returns the figure."""
-        from torsio.plotting.transient_plot import plot_transient
-
-        return plot_transient(self, path, ax)
-
-    def summary_rows(self, units: Any) -> tuple[str, list[tuple[str, str]]]:
-        """The terminal table of the run (:func:`run_rows`)."""
-        return run_rows(self.to_dict(), units)
+    def summary_rows(self, data: dict[str, Any], units: Any) -> tuple[str, list[tuple[str, str]]]:
+        """The terminal table of the run from its JSON ``data`` (:func:`run_rows`)."""
+        return run_rows(data, units)
 
     def __repr__(self) -> str:
         s = self.summary
         return (
-            f"AxialTransient(wob={self.wob:g} N, rpm={self.rpm:g}, S_SS={s.severity:.4g}, "
+            f"AxialChannels(wob={self.wob:g} N, rpm={self.rpm:g}, S_SS={s.severity:.4g}, "
             f"stuck={s.stick_fraction:.3g}, rop={s.rop_mean * 3600:.4g} m/h)"
         )
+
+
+def axial_results(channels: AxialChannels, warnings: tuple[str, ...]) -> TransientResults:
+    """The results of an axial run: its ``channels``, the common signals read from their
+    samples, S_SS and the stuck fraction from the window's every step (the bit stuck:
+    Ω_b = 0, hence ``stick_threshold`` 0), and its ``warnings``."""
+    column = channels.signal
+    summary = channels.summary
+    none = np.zeros((channels.samples.shape[0], 0))  # the samples keep the bit and the top
+    return TransientResults(
+        time=column("time"),
+        bit_speed=column("bit_speed"),
+        bit_angle=column("bit_angle"),
+        node_speeds=none,
+        node_twists=none,
+        bit_torque=column("bit_torque"),
+        surface_torque=column("surface_torque"),
+        severity=summary.severity,
+        stick_fraction=summary.stick_fraction,
+        steady_window=channels.window,
+        stick_threshold=0.0,
+        solver=channels.solver,
+        system=None,
+        top_speed=column("top_speed"),
+        motor_torque=column("motor_torque"),
+        states=none,
+        reference_speed=channels.rpm * RPM_TO_RAD_S,
+        severity_speed=channels.steady.bit_speed,
+        bit_speed_extremes=(summary.bit_speed_max, summary.bit_speed_min),
+        warnings=warnings,
+        axial=channels,
+    )
+
+
+def channels_of(run: TransientResults) -> AxialChannels:
+    """The axial channels of ``run`` (:func:`torsio.axial.transient.simulate_axial`'s);
+    a torsional run, which has none, is refused."""
+    if run.axial is None:
+        raise TypeError(f"{run!r} is a torsional run: it has no axial channels")
+    return run.axial
 
 
 NO_GROWTH_RATE = "not computed (--growth-rate asks for it)"
@@ -237,7 +251,7 @@ TORQUE_LAW_GROWTH_RATE = "none for a law of the torque alone (torsio report: the
 
 def run_rows(data: dict[str, Any], units: Any) -> tuple[str, list[tuple[str, str]]]:
     """The terminal table of an axial run (``torsio simulate``) from its JSON ``data``
-    (:meth:`torsio.axial.run_results.AxialTransient.to_dict`): title and (quantity, value)
+    (:meth:`AxialChannels.to_dict`): title and (quantity, value)
     rows, forces and torques in ``units`` (a :class:`~torsio.display_units.DisplayUnits`)."""
     steady = data["steady_state"]
     law = data["bit"]["law"]

@@ -3,10 +3,12 @@
 :func:`simulate_axial` runs a :class:`~torsio.axial.assembly.DrillingAssembly` drilling
 with an :class:`~torsio.axial.rgd.RGDBit` under the weight W₀ with the top turning at Ω₀,
 from rest or from the steady state (:mod:`torsio.axial.run_setup`), with the fixed-step
-scheme of :mod:`torsio.axial.kernel`, and returns :class:`AxialTransient`: the window's
-S_SS, axial severity, stuck and off-bottom fractions, mean ROP and MSE, the bit's
-signals, and the growth rate of the linearization of steady drilling
-(:func:`torsio.axial.stability.drilling_stability`; not with a prescribed bit rotation).
+scheme of :mod:`torsio.axial.kernel`, and returns the results every run has
+(:class:`~torsio.analysis.transient_results.TransientResults`) with its axial channels
+(:class:`~torsio.axial.run_results.AxialChannels`): the window's S_SS, axial severity,
+stuck and off-bottom fractions, mean ROP and MSE, the bit's signals, and the growth rate
+of the linearization of steady drilling (:func:`torsio.axial.stability.drilling_stability`;
+not with a prescribed bit rotation).
 A law of the torque alone (:mod:`torsio.axial.torque_law`: Tucker-Wang, a plugin's) runs on
 a lumped chain the same way, resting axially on the rock, and has no growth rate here.
 
@@ -20,19 +22,18 @@ Examples
 >>> from torsio.axial.rgd import rgd_example
 >>> run = simulate_axial(rgd_two_dof_example(), rgd_example(), 100e3, 60.0, duration=2.0,
 ...                      window=1.0, start="steady", perturbation=0.0)
->>> round(run.rop_mean / run.steady.rop, 12), run.stick_fraction
+>>> round(run.axial.rop_mean / run.axial.steady.rop, 12), run.stick_fraction
 (1.0, 0.0)
 >>> sorted(run.to_dict())[:3]
 ['axial_severity', 'bit', 'bit_speed_max']
->>> run.string_friction_work, run.contact_switches  # no [well]: no contact along the string
+>>> run.axial.string_friction_work, run.axial.contact_switches  # no [well]: no contact
 (0.0, 0)
 """
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import attrs
 import numpy as np
 from numpy.typing import NDArray
 
@@ -42,7 +43,7 @@ from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.energy_balance import energy_balance, stored_energy
 from torsio.axial.kernel import march
-from torsio.axial.run_results import SCHEME, AxialTransient
+from torsio.axial.run_results import SCHEME, AxialChannels, axial_results
 from torsio.axial.run_setup import BitRotation, RunOptions, RunSetup, run_setup
 from torsio.axial.run_warnings import run_warnings
 from torsio.axial.stability import NO_PIPE_FRICTION_RATE, growth_rate_skipped
@@ -55,6 +56,9 @@ from torsio.axial.window_summary import summarize
 from torsio.errors import ConfigError, SolverError
 from torsio.solvers.run_chunks import run_in_chunks
 from torsio.units import as_rpm, as_si
+
+if TYPE_CHECKING:
+    from torsio.analysis.transient_results import TransientResults
 
 __all__ = ["simulate_axial"]
 
@@ -173,8 +177,10 @@ def simulate_axial(
     string: Any = None,
     contacts: Any = None,
     progress: Any = None,
-) -> AxialTransient:
-    """Run the assembly drilling at ``wob`` [N] and ``rpm`` [rev/min].
+) -> TransientResults:
+    """Run the assembly drilling at ``wob`` [N] and ``rpm`` [rev/min]: the run's results
+    with its axial channels (:class:`~torsio.axial.run_results.AxialChannels` in
+    ``axial``).
 
     Parameters
     ----------
@@ -266,7 +272,7 @@ def simulate_axial(
         skipped = growth_rate_skipped(assembly, contacts) if growth_rate is None else None
         if growth_rate or (growth_rate is None and skipped is None):
             rate = _growth_rate(assembly, bit, wob, rpm, boundary, contacts)
-    result = AxialTransient(
+    channels = AxialChannels(
         wob=float(wob),
         rpm=float(rpm),
         steady=setup.steady,
@@ -288,17 +294,17 @@ def simulate_axial(
         model=assembly.describe(),
         bit=bit.to_dict(),
     )
-    texts = warning_list(*run_warnings(result.summary, bit, energy), skipped)
-    if boundary is not None and not boundary.held and result.window_rows().any():
-        in_window = result.window_rows()
+    texts = warning_list(*run_warnings(channels.summary, bit, energy), skipped)
+    if boundary is not None and not boundary.held and channels.window_rows().any():
+        in_window = channels.window_rows()
         motor = saturated_motor(
-            result.signal("motor_torque")[in_window],
+            channels.signal("motor_torque")[in_window],
             boundary.max_torque,
-            float(result.signal("top_speed")[in_window].mean()),
+            float(channels.signal("top_speed")[in_window].mean()),
             boundary.set_speed,
         )
         texts = warning_list(motor, *texts)
-    return attrs.evolve(result, warnings=texts)
+    return axial_results(channels, texts)
 
 
 def _growth_rate(
