@@ -47,7 +47,11 @@ CHAIN = pipe_assembly(4, PipeSection(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5
 
 def test_held_top_is_the_engine_before_the_top_drive():
     # reference: S_SS, mean ROP [m/s], mean MSE [Pa] of the same runs on the engine before
-    # the top drive came in (commit f444b44), equal to the bit
+    # the top drive came in (commit f444b44), equal to the bit; the chain's to 1e-11: its
+    # lumping is now lumped_pipe's, whose masses and inertias equal the old ones to 2e-16
+    # (measured), which the 10 s stick-slip run carries to 1e-13
+    tolerance = {"two_dof": 0.0, "chain": 1e-11}
+    first = {}
     before = {
         "two_dof": (1.0969508830625656, 0.007222174071044282, 104336205.60315032),
         "chain": (0.48715872373428387, 0.009488942412422076, 97425660.33640856),
@@ -64,7 +68,9 @@ def test_held_top_is_the_engine_before_the_top_drive():
             ),
         }  # fmt: skip
         for name, run in runs.items():
-            assert (run.severity, run.axial.rop_mean, run.axial.mse_mean) == before[name]
+            outputs = (run.severity, run.axial.rop_mean, run.axial.mse_mean)
+            assert outputs == pytest.approx(before[name], rel=tolerance[name], abs=0.0)
+            assert first.setdefault(name, outputs) == outputs  # held: the same run to the bit
             speed = run.signal("top_speed")
             assert np.all(speed == run.axial.steady.bit_speed)
             assert np.array_equal(run.signal("motor_torque"), run.signal("surface_torque"))

@@ -14,10 +14,11 @@ import math
 import numpy as np
 import pytest
 
+from torsio.axial.assembly import lumped_pipe
 from torsio.axial.rgd import rgd_example
 from torsio.axial.stability import drilling_stability
 from torsio.axial.transient import simulate_axial
-from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly, lumped_pipe
+from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly
 from torsio.axial.wave_stability import (
     WaveCharacteristic,
     distributed_stability,

@@ -196,8 +196,8 @@ def case_with_values(config: Any, case: Any, values: Mapping[str, float], flag: 
             )
     contacts = None
     if well_values or holes:
+        from torsio.axial.assembly import lumped_node_depths
         from torsio.axial.string_contacts import axial_contacts
-        from torsio.axial.wave_assembly import lumped_node_depths
 
         sections = list(config.well.hole)
         for index in {i for i, _ in holes}:

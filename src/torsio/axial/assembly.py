@@ -31,6 +31,8 @@ Examples
 
 from __future__ import annotations
 
+import math
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 import attrs
@@ -46,6 +48,9 @@ if TYPE_CHECKING:
 __all__ = [
     "DrillingAssembly",
     "assembly_summary",
+    "element_count",
+    "lumped_node_depths",
+    "lumped_pipe",
     "pipe_assembly",
     "rgd_two_dof_example",
     "two_dof_assembly",
@@ -249,7 +254,8 @@ def pipe_assembly(
 ) -> DrillingAssembly:
     """A uniform ``pipe`` section (length [m], E, G [Pa], ρ [kg/m³], A [m²], J [m⁴]:
     :class:`~torsio.axial.wave_assembly.PipeSection`) in ``nodes`` lumps above a rigid BHA
-    on the last one.
+    on the last one: the one-section chain of the lumping of every pipe
+    (:func:`lumped_pipe`, elements of length / ``nodes``).
 
     Springs E A / Δ [N/m] and G J / Δ [N m/rad] with Δ = length / nodes join the top to
     node 0 and each node to the next, so node i is (i + 1) Δ below the top and the last one
@@ -262,18 +268,77 @@ def pipe_assembly(
     """
     if not (isinstance(nodes, int) and nodes >= 1):
         raise ConfigError("nodes", f"{nodes!r} must be a whole number >= 1")
-    spacing = pipe.length / nodes
-    share = np.ones(nodes)
-    share[-1] -= 0.5
-    axial_share = share.copy()
-    if hook == "weight":
-        axial_share[0] += 0.5
-    bottom = np.eye(nodes)[-1]
+    return lumped_pipe([pipe], bha_mass, bha_inertia, pipe.length / nodes, hook)
+
+
+def element_count(length: float, element_length: float) -> int:
+    """Elements of at most ``element_length`` [m] in a section of ``length`` [m]."""
+    return math.ceil(length / element_length - 1e-9)
+
+
+def lumped_node_depths(
+    sections: Sequence[PipeSection], element_length: float
+) -> NDArray[np.float64]:
+    """Depths [m below the pipe's top] of the nodes of :func:`lumped_pipe`: the bottom of
+    each element (the last node carries the rigid BHA)."""
+    depths: list[float] = []
+    top = 0.0
+    for section in sections:
+        count = element_count(section.length, element_length)
+        depths.extend(top + section.length * np.arange(1, count + 1) / count)
+        top += section.length
+    return np.array(depths)
+
+
+def lumped_pipe(
+    sections: Sequence[PipeSection],
+    bha_mass: float,
+    bha_inertia: float,
+    element_length: float,
+    hook: str,
+    beta: float = 0.0,
+) -> DrillingAssembly:
+    """The lumped chain of the pipe ``sections`` above a rigid BHA (``bha_mass`` [kg],
+    ``bha_inertia`` [kg m²]): each section split into elements of at most
+    ``element_length`` [m], with springs E A / Δ [N/m] and G J / Δ [N m/rad] and dampers
+    β k; each element's mass ρ A Δ and inertia ρ J Δ shared by its two end nodes, the BHA
+    rigid on the last node. The top element's upper half of inertia is at the top drive;
+    its upper half of mass at the hook under the speed hook, on node 0 under the weight
+    hook (the top of the pipe is free there). The one lumping of an axial pipe
+    (:func:`torsio.axial.assembly.pipe_assembly` is its uniform case).
+    """
+    inertias: list[float] = []
+    stiffnesses: list[float] = []
+    masses: list[float] = []
+    springs: list[float] = []
+    carry_i = carry_m = 0.0  # the lower half of the element above
+    free_top_mass = 0.0
+    for section in sections:
+        count = element_count(section.length, element_length)
+        spacing = section.length / count
+        element_i = section.density * section.polar_moment * spacing
+        element_m = section.density * section.area * spacing
+        for _ in range(count):
+            if stiffnesses:  # the node between this element and the one above
+                inertias.append(carry_i + element_i / 2)
+                masses.append(carry_m + element_m / 2)
+            elif hook == "weight":  # the free top's half element rides on node 0
+                free_top_mass = element_m / 2
+            stiffnesses.append(section.shear_modulus * section.polar_moment / spacing)
+            springs.append(section.youngs_modulus * section.area / spacing)
+            carry_i, carry_m = element_i / 2, element_m / 2
+    inertias.append(carry_i + bha_inertia)
+    masses.append(carry_m + bha_mass)
+    masses[0] += free_top_mass
+    torsional = np.array(stiffnesses)
+    axial = np.array(springs)
     return DrillingAssembly(
-        inertias=share * pipe.density * pipe.polar_moment * spacing + bottom * bha_inertia,
-        stiffnesses=np.full(nodes, pipe.shear_modulus * pipe.polar_moment / spacing),
-        masses=axial_share * pipe.density * pipe.area * spacing + bottom * bha_mass,
-        axial_stiffnesses=np.full(nodes, pipe.youngs_modulus * pipe.area / spacing),
+        inertias=inertias,
+        stiffnesses=torsional,
+        masses=masses,
+        axial_stiffnesses=axial,
+        damping=beta * torsional,
+        axial_damping=beta * axial,
         hook=hook,
     )
 

@@ -27,19 +27,19 @@ Examples
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable
 from typing import Any
 
 import attrs
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.axial.assembly import HOOKS, DrillingAssembly
+from torsio.axial.assembly import HOOKS, DrillingAssembly, lumped_pipe
 from torsio.errors import ConfigError
 from torsio.model.continuum import bar_frequencies
 from torsio.model.wave import DEFAULT_TRAVEL_TIME_TOLERANCE
 
-__all__ = ["PipeSection", "WaveDrillingAssembly", "lumped_pipe", "wave_pipe_assembly"]
+__all__ = ["PipeSection", "WaveDrillingAssembly", "wave_pipe_assembly"]
 
 
 DEFAULT_ELEMENT_LENGTH = 100.0
@@ -60,7 +60,7 @@ def _positive(key: str, value: Any) -> float:
 @attrs.frozen
 class PipeSection:
     """One uniform section of pipe: of the distributed pipe, or of a lumped chain
-    (:func:`lumped_pipe`, :func:`torsio.axial.assembly.pipe_assembly`).
+    (:func:`~torsio.axial.assembly.lumped_pipe`, :func:`torsio.axial.assembly.pipe_assembly`).
 
     Parameters
     ----------
@@ -214,8 +214,9 @@ class WaveDrillingAssembly:
 
     def lumped_twin(self, element_length: float = DEFAULT_ELEMENT_LENGTH) -> DrillingAssembly:
         """The lumped chain of the same sections and BHA in elements of at most
-        ``element_length`` [m], undamped like the pipe (:func:`lumped_pipe`): what its
-        stability's roots start from."""
+        ``element_length`` [m], undamped like the pipe
+        (:func:`~torsio.axial.assembly.lumped_pipe`): what its stability's roots start
+        from."""
         return lumped_pipe(
             self.sections, self.bha_mass, self.bha_inertia, element_length, self.hook
         )
@@ -255,75 +256,4 @@ def wave_pipe_assembly(
     piece = attrs.evolve(pipe, length=pipe.length / sections)
     return WaveDrillingAssembly(
         [piece] * sections, bha_mass=bha_mass, bha_inertia=bha_inertia, hook=hook
-    )
-
-
-def element_count(length: float, element_length: float) -> int:
-    """Elements of at most ``element_length`` [m] in a section of ``length`` [m]."""
-    return math.ceil(length / element_length - 1e-9)
-
-
-def lumped_node_depths(
-    sections: Sequence[PipeSection], element_length: float
-) -> NDArray[np.float64]:
-    """Depths [m below the pipe's top] of the nodes of :func:`lumped_pipe`: the bottom of
-    each element (the last node carries the rigid BHA)."""
-    depths: list[float] = []
-    top = 0.0
-    for section in sections:
-        count = element_count(section.length, element_length)
-        depths.extend(top + section.length * np.arange(1, count + 1) / count)
-        top += section.length
-    return np.array(depths)
-
-
-def lumped_pipe(
-    sections: Sequence[PipeSection],
-    bha_mass: float,
-    bha_inertia: float,
-    element_length: float,
-    hook: str,
-    beta: float = 0.0,
-) -> DrillingAssembly:
-    """The lumped chain of the pipe ``sections`` above a rigid BHA (``bha_mass`` [kg],
-    ``bha_inertia`` [kg m²]): each section split into elements of at most
-    ``element_length`` [m], with springs E A / Δ [N/m] and G J / Δ [N m/rad] and dampers
-    β k; each element's mass ρ A Δ and inertia ρ J Δ shared by its two end nodes, the BHA
-    rigid on the last node. The top element's upper half of inertia is at the top drive;
-    its upper half of mass at the hook under the speed hook, on node 0 under the weight
-    hook (the top of the pipe is free there), as :func:`torsio.axial.assembly.pipe_assembly`.
-    """
-    inertias: list[float] = []
-    stiffnesses: list[float] = []
-    masses: list[float] = []
-    springs: list[float] = []
-    carry_i = carry_m = 0.0  # the lower half of the element above
-    free_top_mass = 0.0
-    for section in sections:
-        count = element_count(section.length, element_length)
-        spacing = section.length / count
-        element_i = section.density * section.polar_moment * spacing
-        element_m = section.density * section.area * spacing
-        for _ in range(count):
-            if stiffnesses:  # the node between this element and the one above
-                inertias.append(carry_i + element_i / 2)
-                masses.append(carry_m + element_m / 2)
-            elif hook == "weight":  # the free top's half element rides on node 0
-                free_top_mass = element_m / 2
-            stiffnesses.append(section.shear_modulus * section.polar_moment / spacing)
-            springs.append(section.youngs_modulus * section.area / spacing)
-            carry_i, carry_m = element_i / 2, element_m / 2
-    inertias.append(carry_i + bha_inertia)
-    masses.append(carry_m + bha_mass)
-    masses[0] += free_top_mass
-    torsional = np.array(stiffnesses)
-    axial = np.array(springs)
-    return DrillingAssembly(
-        inertias=inertias,
-        stiffnesses=torsional,
-        masses=masses,
-        axial_stiffnesses=axial,
-        damping=beta * torsional,
-        axial_damping=beta * axial,
-        hook=hook,
     )

@@ -33,15 +33,10 @@ from typing import Any
 import attrs
 import numpy as np
 
-from torsio.axial.assembly import HOOKS, DrillingAssembly
+from torsio.axial.assembly import HOOKS, DrillingAssembly, lumped_pipe
 from torsio.axial.rgd import RGDBit, rgd_from_table
 from torsio.axial.torque_law import AxialBit, TorqueLawBit
-from torsio.axial.wave_assembly import (
-    DEFAULT_ELEMENT_LENGTH,
-    PipeSection,
-    WaveDrillingAssembly,
-    lumped_pipe,
-)
+from torsio.axial.wave_assembly import DEFAULT_ELEMENT_LENGTH, PipeSection, WaveDrillingAssembly
 from torsio.config.chain import ChainConfig, _values
 from torsio.config.configuration import BitRockConfig
 from torsio.config.tables import _positive_number, _string, _table
@@ -390,7 +385,7 @@ def lumped_chain(
     hook: str,
     beta: float = 0.0,
 ) -> DrillingAssembly:
-    """The lumped chain of ``sections`` (:func:`torsio.axial.wave_assembly.lumped_pipe`:
+    """The lumped chain of ``sections`` (:func:`torsio.axial.assembly.lumped_pipe`:
     elements of at most ``element_length`` [m], dampers β k), errors named by the file's
     keys."""
     try:

@@ -25,12 +25,9 @@ from typing import Any
 
 import attrs
 
+from torsio.axial.assembly import lumped_node_depths
 from torsio.axial.string_contacts import axial_contacts
-from torsio.axial.wave_assembly import (
-    DEFAULT_ELEMENT_LENGTH,
-    WaveDrillingAssembly,
-    lumped_node_depths,
-)
+from torsio.axial.wave_assembly import DEFAULT_ELEMENT_LENGTH, WaveDrillingAssembly
 from torsio.config.axial import AxialConfig
 from torsio.errors import ConfigError
 from torsio.well.wellbore import Wellbore
