@@ -20,6 +20,8 @@ import numpy as np
 import pytest
 
 from torsio.analysis.map_results import MapInterrupted, load_map
+from torsio.analysis.transient import simulate
+from torsio.analysis.transient_results import TransientResults
 from torsio.axial.assembly import rgd_two_dof_example
 from torsio.axial.layouts import SAMPLE_COLUMNS, SAMPLE_UNITS
 from torsio.axial.maps import _sign_change, axial_map
@@ -28,6 +30,7 @@ from torsio.axial.stability import drilling_stability
 from torsio.axial.transient import simulate_axial
 from torsio.calibration.recording import read_recording
 from torsio.cli import main
+from torsio.examples import builtin_config
 
 EXAMPLE = str(resources.files("torsio").joinpath("data/rgd_2dof.toml"))
 TIMES = ["--duration", "20", "--window", "10"]
@@ -70,6 +73,27 @@ def test_series_of_the_json_are_the_signals():
     series = run.to_dict(series=True)["series"]
     assert list(series) == list(SAMPLE_COLUMNS)
     assert series["surface_torque"] == run.surface_torque.tolist()
+
+
+def test_an_axial_run_is_a_transient_result_with_every_runs_json_keys():
+    # one results class: the keys of a torsional run's JSON that are not its model's are in
+    # an axial run's, each by its definition (TransientResults.run_keys)
+    run = simulate_axial(ASSEMBLY, BIT, 100e3, 60.0, duration=2.0, window=1.0)
+    torsional = simulate(builtin_config().system(strategy="A").at(wob=100e3, rpm=60.0))
+    assert type(run) is type(torsional) is TransientResults and run.system is None
+    data = run.to_dict()
+    model_keys = {"dofs", "strategy", "bit_radius", "output_step_s"}  # the System's
+    assert set(torsional.to_dict()) - model_keys <= set(data)
+    assert set(run.run_keys()) == set(torsional.run_keys())
+    omega = 60.0 * 2 * np.pi / 60  # Ω₀ [rad/s] of 60 rpm
+    assert data["omega_rad_s"] == pytest.approx(omega, rel=1e-15)
+    assert data["severity"] == pytest.approx(
+        (data["bit_speed_max"] - data["bit_speed_min"]) / (2 * omega), rel=1e-12
+    )  # Eq. 12
+    assert data["severe"] == (data["severity"] > 0.8)  # the paper's threshold
+    assert data["mean_bit_torque"] == data["torque_mean"]  # the window's, every step
+    assert (data["stick_threshold"], data["rpm_source"], data["law"]) == (0.0, "set", "rgd")
+    assert data["samples"] == run.time.size and data["duration_s"] == 2.0
 
 
 def test_the_critical_wob_of_an_rgd_map_is_its_severity_threshold_crossing(capsys, tmp_path):

@@ -248,45 +248,28 @@ class TransientResults:
     def to_dict(self, series: bool = False) -> dict[str, Any]:
         """Plain data for JSON: operating point, S_SS, window, solver statistics.
 
-        Keys ``wob`` [N], ``rpm`` and ``severity`` are always present; ``rpm`` is the set
-        speed, or for a top drive without one the mean top-drive speed over the steady
-        window, and ``rpm_source`` says which (``"set"`` or ``"top_speed_mean"``). For a
-        dimensionless system ``wob`` and ``rpm`` are those of its System (Pi_2 and
-        Pi_1 in rpm form) and ``pi1``, ``pi2`` are added. ``series=True`` adds the
-        time series. An axial run's keys are those of
+        The keys of every run (:meth:`run_keys`): ``wob`` [N], ``rpm``, ``severity`` and
+        more. A torsional run adds its top drive's and torques' means over the window, its
+        model (``dofs``, ``strategy``, ``bit_radius``) and, with a well, the well summary;
+        for a dimensionless system ``wob`` and ``rpm`` are those of its System (Pi_2 and
+        Pi_1 in rpm form) and ``pi1``, ``pi2`` are added. An axial run adds the keys of
         :meth:`torsio.axial.run_results.AxialChannels.to_dict` (DESIGN.md).
+        ``series=True`` adds the time series.
         """
         if self.axial is not None:
-            return self.axial.to_dict(series, self.warnings)
+            return {**self.run_keys(), **self.axial.to_dict(series, self.warnings)}
         window = self.window_mask
         system = self._system()
         data: dict[str, Any] = {
-            "wob": float(system.wob),
-            "rpm": self.rpm,
-            "rpm_source": "set" if self.has_set_speed else "top_speed_mean",
-            "severity": float(self.severity),
-            "severe": self.severe,
-            "stick_fraction": float(self.stick_fraction),
-            "stick_threshold": float(self.stick_threshold),
-            "omega_rad_s": float(self.omega),
-            "bit_speed_min": float(self._extremes[1]),
-            "bit_speed_max": float(self._extremes[0]),
+            **self.run_keys(),
             "top_speed_mean": self.top_speed_mean,
-            "top_drive": getattr(system.top, "name", type(system.top).__name__),
             "mean_motor_torque": float(self.motor_torque[window].mean()),
             "mean_bit_torque": float(self.bit_torque[window].mean()),
             "mean_surface_torque": float(self.surface_torque[window].mean()),
-            "duration_s": self.duration,
-            "steady_window_s": float(self.steady_window),
             "output_step_s": self.output_step,
-            "samples": int(self.time.size),
             "dofs": int(system.model.dofs),
             "strategy": system.model.strategy,
-            "law": getattr(system.law, "name", type(system.law).__name__),
             "bit_radius": float(system.bit_radius),
-            "dimensionless": self.dimensionless,
-            "solver": dict(self.solver),
-            "warnings": list(self.warnings),
         }
         if self.well_summary is not None:
             data.update(self.well_summary)
@@ -303,6 +286,42 @@ class TransientResults:
                 "motor_torque": self.motor_torque.tolist(),
             }
         return data
+
+    def run_keys(self) -> dict[str, Any]:
+        """The JSON keys of every run, whatever model and engine made it: ``wob`` [N],
+        ``rpm``, ``rpm_source`` (``"set"``: the set speed; ``"top_speed_mean"``: the mean
+        top-drive speed over the window of a top drive without one), ``severity``,
+        ``severe``, ``stick_fraction``, ``stick_threshold`` (a fraction of Omega; 0 for
+        an axial run, whose bit sticks at Ω_b = 0), ``omega_rad_s``, ``bit_speed_min``,
+        ``bit_speed_max`` [rad/s], ``top_drive``, ``law``, ``duration_s``,
+        ``steady_window_s``, ``samples`` (rows kept), ``dimensionless``, ``solver`` and
+        ``warnings``."""
+        if self.axial is not None:
+            top, law = self.axial.top_drive, self.axial.bit.get("law")
+        else:
+            system = self._system()
+            top = getattr(system.top, "name", type(system.top).__name__)
+            law = getattr(system.law, "name", type(system.law).__name__)
+        return {
+            "wob": self.wob,
+            "rpm": self.rpm,
+            "rpm_source": "set" if self.has_set_speed else "top_speed_mean",
+            "severity": float(self.severity),
+            "severe": self.severe,
+            "stick_fraction": float(self.stick_fraction),
+            "stick_threshold": float(self.stick_threshold),
+            "omega_rad_s": float(self.omega),
+            "bit_speed_min": float(self._extremes[1]),
+            "bit_speed_max": float(self._extremes[0]),
+            "top_drive": top,
+            "law": law,
+            "duration_s": self.duration,
+            "steady_window_s": float(self.steady_window),
+            "samples": int(self.time.size),
+            "dimensionless": self.dimensionless,
+            "solver": dict(self.solver),
+            "warnings": list(self.warnings),
+        }
 
     def to_csv(self, path: str | Path) -> Path:
         """Write the time series as CSV: time, bit speed/angle, torques, node speeds.

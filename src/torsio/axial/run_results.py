@@ -152,14 +152,16 @@ class AxialChannels:
     def to_dict(self, series: bool = False, warnings: Any = ()) -> dict[str, Any]:
         """The run's JSON with its ``warnings``, DESIGN.md's keys: ``wob``, ``rpm``,
         ``severity``, ``rop_mean`` (m/s), ``mse_mean`` (Pa; null when the bit did not
-        advance), ``off_bottom_fraction``,
-        ``stick_fraction``, ``axial_severity``, ``steady_state``, ``growth_rate``, the top
-        drive's (:meth:`top_drive_summary`, ``top_drive``, ``stability_of_held_top``),
-        ``solver``, ``model``, ``bit`` and more; ``series=True`` adds the signals."""
+        advance), ``off_bottom_fraction``, ``stick_fraction``, ``axial_severity``,
+        ``steady_state``, ``growth_rate``, the top drive's (:meth:`top_drive_summary`,
+        ``top_drive``, ``stability_of_held_top``), ``solver``, ``model``, ``bit`` and more
+        (``mean_bit_torque``: ``torque_mean``, as every run names it); ``series=True``
+        adds the signals."""
         data: dict[str, Any] = {"wob": self.wob, "rpm": self.rpm}
         for key, value in attrs.asdict(self.summary).items():
             data[key] = value if math.isfinite(value) else None
         data.update(self.top_drive_summary())
+        data["mean_bit_torque"] = data["torque_mean"]  # under every run's name (run_keys)
         data.update(
             steady_state=self.steady.to_dict(),
             growth_rate=self.growth_rate,
