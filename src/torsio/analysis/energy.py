@@ -192,8 +192,15 @@ def _with_top_node(matrix: np.ndarray, top: float, link: float) -> np.ndarray:
 def energy_balance(results: Any) -> EnergyBalance:
     """The energy balance of a :class:`torsio.analysis.transient.TransientResults`.
 
-    Uses only the sampled response (no re-integration of the equations of motion).
+    Uses only the sampled response (no re-integration of the equations of motion). An axial
+    run keeps no states: its balance is the kernel's, step by step (``results.axial.energy``,
+    :mod:`torsio.axial.energy_balance`).
     """
+    if getattr(results, "axial", None) is not None:
+        raise TypeError(
+            "an axial run keeps the bit's and the top's signals, not its states: its energy "
+            "balance is results.axial.energy, summed by the axial engine over every step"
+        )
     system: System = results.system
     dynamics = Dynamics.from_system(system)
     relative_damping, drag = damping_split(system)
