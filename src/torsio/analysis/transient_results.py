@@ -257,7 +257,7 @@ class TransientResults:
         ``series=True`` adds the time series.
         """
         if self.axial is not None:
-            return {**self.run_keys(), **self.axial.to_dict(series, self.warnings)}
+            return {**self.run_keys(), **self.axial.to_dict(series)}
         window = self.window_mask
         system = self._system()
         data: dict[str, Any] = {

@@ -5,7 +5,8 @@
 :func:`axial_results`) with these channels in its ``axial``: the window's outputs
 (:class:`~torsio.axial.window_summary.WindowSummary`), the steady state, the growth rate,
 the signals by name (:data:`torsio.axial.layouts.SAMPLE_COLUMNS`), and the run's JSON
-(:meth:`AxialChannels.to_dict`, DESIGN.md's keys), CSV and terminal table. The plot
+(:meth:`AxialChannels.to_dict`, DESIGN.md's keys beside every run's), CSV and terminal
+table. The plot
 (:func:`torsio.plotting.transient_plot.plot_transient`) and the rig recording
 (:meth:`torsio.calibration.recording.Recording.from_transient`) read the common signals.
 """
@@ -149,15 +150,15 @@ class AxialChannels:
         )
         return {key: float(value) for key, value in zip(keys, values, strict=True)}
 
-    def to_dict(self, series: bool = False, warnings: Any = ()) -> dict[str, Any]:
-        """The run's JSON with its ``warnings``, DESIGN.md's keys: ``wob``, ``rpm``,
-        ``severity``, ``rop_mean`` (m/s), ``mse_mean`` (Pa; null when the bit did not
-        advance), ``off_bottom_fraction``, ``stick_fraction``, ``axial_severity``,
-        ``steady_state``, ``growth_rate``, the top drive's (:meth:`top_drive_summary`,
-        ``top_drive``, ``stability_of_held_top``), ``solver``, ``model``, ``bit`` and more
-        (``mean_bit_torque``: ``torque_mean``, as every run names it); ``series=True``
-        adds the signals."""
-        data: dict[str, Any] = {"wob": self.wob, "rpm": self.rpm}
+    def to_dict(self, series: bool = False) -> dict[str, Any]:
+        """The axial run's own JSON keys, beside those of every run
+        (:meth:`~torsio.analysis.transient_results.TransientResults.run_keys`), DESIGN.md's:
+        ``rop_mean`` (m/s), ``mse_mean`` (Pa; null when the bit did not advance),
+        ``off_bottom_fraction``, ``axial_severity``, ``steady_state``, ``growth_rate``, the
+        top drive's (:meth:`top_drive_summary`, ``stability_of_held_top``), ``model``,
+        ``bit`` and more (``mean_bit_torque``: ``torque_mean``, as every run names it);
+        ``series=True`` adds the signals."""
+        data: dict[str, Any] = {}
         for key, value in attrs.asdict(self.summary).items():
             data[key] = value if math.isfinite(value) else None
         data.update(self.top_drive_summary())
@@ -169,15 +170,12 @@ class AxialChannels:
             duration=self.duration,
             steady_window=self.window,
             start=self.start,
-            top_drive=self.top_drive,
             stability_of_held_top=self.stability_of_held_top,
-            warnings=list(warnings),
             string_friction_work=self.string_friction_work,
             contact_switches=self.contact_switches,
             string_contacts=self.string_contacts,
             steady_friction=self.steady_friction,
             energy_balance=self.energy.to_dict() if self.energy is not None else None,
-            solver=self.solver,
             model=self.model,
             bit=self.bit,
         )
@@ -253,8 +251,9 @@ TORQUE_LAW_GROWTH_RATE = "none for a law of the torque alone (torsio report: the
 
 def run_rows(data: dict[str, Any], units: Any) -> tuple[str, list[tuple[str, str]]]:
     """The terminal table of an axial run (``torsio simulate``) from its JSON ``data``
-    (:meth:`AxialChannels.to_dict`): title and (quantity, value)
-    rows, forces and torques in ``units`` (a :class:`~torsio.display_units.DisplayUnits`)."""
+    (:meth:`~torsio.analysis.transient_results.TransientResults.to_dict`): title and
+    (quantity, value) rows, forces and torques in ``units`` (a
+    :class:`~torsio.display_units.DisplayUnits`)."""
     steady = data["steady_state"]
     law = data["bit"]["law"]
     title = f"Axial-torsional run: {assembly_summary(data['model'])}, {law} bit"
