@@ -31,6 +31,7 @@ from torsio.axial.transient import simulate_axial
 from torsio.calibration.recording import read_recording
 from torsio.cli import main
 from torsio.examples import builtin_config
+from torsio.physics.top_drives import TorqueTopDrive
 
 EXAMPLE = str(resources.files("torsio").joinpath("data/rgd_2dof.toml"))
 TIMES = ["--duration", "20", "--window", "10"]
@@ -94,6 +95,26 @@ def test_an_axial_run_is_a_transient_result_with_every_runs_json_keys():
     assert data["mean_bit_torque"] == data["torque_mean"]  # the window's, every step
     assert (data["stick_threshold"], data["rpm_source"], data["law"]) == (0.0, "set", "rgd")
     assert data["samples"] == run.time.size and data["duration_s"] == 2.0
+
+
+def test_an_axial_runs_window_and_top_speed_are_its_json_and_a_torque_top_has_no_set_speed():
+    # the window's samples and the mean top speed as the axial engine's JSON reads them
+    # (its samples end before the run: every k-th step); a torque-driven top has no set
+    # speed and the run's rpm is the one it was given (S_SS is read against its Ω₀)
+    top = TorqueTopDrive(inertia=2900.0, torque=6000.0)
+    for samples in (4000, 5):
+        run = simulate_axial(ASSEMBLY, BIT, 100e3, 60.0, duration=5.0, window=2.0,
+                             top_drive=top, samples=samples)  # fmt: skip
+        data = run.to_dict()
+        assert run.time[-1] < run.duration == 5.0
+        assert run.top_speed_mean == data["top_speed_mean"]
+        assert run.top_speed_mean == run.top_speed[run.window_mask].mean()
+        assert (data["rpm"], data["rpm_source"]) == (60.0, "given")
+        assert "no set speed" in run.plot_label
+    empty = simulate_axial(ASSEMBLY, BIT, 100e3, 60.0, duration=2.0, window=1.0, samples=0)
+    assert np.isnan(empty.top_speed_mean) and empty.to_dict()["top_speed_mean"] is None
+    with pytest.raises(AttributeError, match="keeps no twists"):
+        empty.bit_twist  # noqa: B018
 
 
 def test_the_critical_wob_of_an_rgd_map_is_its_severity_threshold_crossing(capsys, tmp_path):

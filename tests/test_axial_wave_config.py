@@ -109,9 +109,10 @@ def test_the_wave_pipe_is_the_files_sections():
 @pytest.mark.parametrize("hook", ["weight", "speed"])
 def test_one_section_lumped_chain_is_pipe_assembly(hook):
     # a one-section pipe + BHA through the file (no [discretization]: the lumped chain,
-    # 1000 m in 250 m elements) against pipe_assembly(4, ...) of the same data: under the
-    # weight hook the free top's half element rides on node 0 in both; torsionally (and
-    # axially under the speed hook) that half is at the top
+    # 1000 m in 250 m elements) against pipe_assembly(4, ...) of the same data and against
+    # the lumped-mass rule written out (each element's ρAΔ and ρJΔ halved onto its end
+    # nodes, the BHA on the last): under the weight hook the free top's half element rides
+    # on node 0; torsionally (and axially under the speed hook) that half is at the top
     data = tomllib.loads(TEXT)
     del data["discretization"]
     data["section"] = [data["section"][0], *data["section"][2:]]
@@ -121,8 +122,18 @@ def test_one_section_lumped_chain_is_pipe_assembly(hook):
     od, inner, _ = PIPE[0]
     section = PipeSection(1000.0, E, G, RHO, _area(od, inner), _polar(od, inner))
     expected = pipe_assembly(4, section, BHA_MASS, BHA_INERTIA, hook=hook)
-    for name in ("masses", "inertias", "stiffnesses", "axial_stiffnesses"):
-        np.testing.assert_allclose(getattr(chain, name), getattr(expected, name), rtol=1e-14)
+    spacing, bottom = 250.0, np.array([0.0, 0.0, 0.0, 1.0])
+    halves = np.array([2.0, 2.0, 2.0, 1.0]) + (hook == "weight") * np.array([1.0, 0, 0, 0])
+    by_hand = {
+        "masses": halves / 2 * RHO * section.area * spacing + bottom * BHA_MASS,
+        "inertias": np.array([1.0, 1.0, 1.0, 0.5]) * RHO * section.polar_moment * spacing
+        + bottom * BHA_INERTIA,
+        "stiffnesses": np.full(4, G * section.polar_moment / spacing),
+        "axial_stiffnesses": np.full(4, E * section.area / spacing),
+    }
+    for name, values in by_hand.items():
+        np.testing.assert_allclose(getattr(chain, name), values, rtol=1e-14)
+        np.testing.assert_allclose(getattr(expected, name), values, rtol=1e-14)
     assert chain.hook == hook and not chain.damping.any()
 
 

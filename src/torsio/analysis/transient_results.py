@@ -7,6 +7,7 @@ analysis.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -36,7 +37,8 @@ class TransientResults:
     Attributes
     ----------
     time : ndarray, shape (m,)
-        Sample times [s] (uniform grid from 0 to the run length).
+        Sample times [s] (uniform grid from 0 to the run length; for an axial run every
+        k-th step, the last at most k steps before the run's end, none with ``samples=0``).
     bit_speed : ndarray, shape (m,)
         Absolute bit speed theta_N' [rad/s].
     bit_angle : ndarray, shape (m,)
@@ -57,7 +59,8 @@ class TransientResults:
     severity : float
         S_SS (Eq. 12) over the steady window.
     stick_fraction : float
-        Fraction of the steady window during which ``|bit speed| < stick_threshold Omega``.
+        Fraction of the steady window during which ``|bit speed| < stick_threshold Omega``
+        (an axial run: the fraction of the window's steps with the bit at rest, Ω_b = 0).
     steady_window : float
         Length of the steady-state window at the end of the run [s].
     stick_threshold : float
@@ -80,7 +83,8 @@ class TransientResults:
         Omega_ref [rad/s] of the twist coordinates.
     severity_speed : float
         Omega [rad/s] that S_SS divides by: the set speed, or the mean top-drive
-        speed over the steady window for a torque-driven top.
+        speed over the steady window for a torque-driven top (an axial run: Ω₀ of its
+        steady state, whatever its top drive).
     bit_speed_extremes : tuple of float or None
         (max, min) of the bit speed over the steady window [rad/s] from the integrator's
         continuous solution (the compiled engine: the cubic interpolant of every step,
@@ -183,7 +187,7 @@ class TransientResults:
         """Whether the top drive turns at a set speed (False for a torque-driven top, and
         for a top that follows a recording: its speed is the record's)."""
         if self.axial is not None:
-            return True
+            return self.axial.has_set_speed
         system = self._system()
         if getattr(system.top, "name", "") == "recorded":
             return False
@@ -200,8 +204,22 @@ class TransientResults:
         return self.top_speed_mean / RPM_TO_RAD_S
 
     @property
+    def rpm_source(self) -> str:
+        """Where :attr:`rpm` comes from: ``"set"``, the top drive's set speed;
+        ``"top_speed_mean"``, the mean top-drive speed over the window (a torsional run's
+        top drive without a set speed); ``"given"``, the speed an axial run was given, its
+        steady state's, which S_SS is read against (its top drive has no set speed)."""
+        if self.has_set_speed:
+            return "set"
+        return "given" if self.axial is not None else "top_speed_mean"
+
+    @property
     def top_speed_mean(self) -> float:
-        """Mean top-drive speed over the steady window [rad/s]."""
+        """Mean top-drive speed over the steady window [rad/s] (NaN for an axial run that
+        kept no samples)."""
+        if self.axial is not None:
+            mean = self.axial.top_drive_summary()["top_speed_mean"]
+            return math.nan if mean is None else mean
         return float(self.top_speed[self.window_mask].mean())
 
     @property
@@ -222,6 +240,8 @@ class TransientResults:
     @property
     def window_mask(self) -> np.ndarray:
         """Boolean mask of the samples in the steady-state window."""
+        if self.axial is not None:  # its samples may end before the run does
+            return self.axial.window_rows()
         return window_mask(self.time, self.steady_window)
 
     @property
@@ -232,6 +252,8 @@ class TransientResults:
     @property
     def bit_twist(self) -> np.ndarray:
         """Twist of the bit, theta_N - Omega_ref t [rad]."""
+        if self.axial is not None:
+            raise AttributeError("an axial run keeps no twists: its bit angle is bit_angle")
         return self.node_twists[:, -1]
 
     @property
@@ -289,8 +311,7 @@ class TransientResults:
 
     def run_keys(self) -> dict[str, Any]:
         """The JSON keys of every run, whatever model and engine made it: ``wob`` [N],
-        ``rpm``, ``rpm_source`` (``"set"``: the set speed; ``"top_speed_mean"``: the mean
-        top-drive speed over the window of a top drive without one), ``severity``,
+        ``rpm``, ``rpm_source`` (:attr:`rpm_source`), ``severity``,
         ``severe``, ``stick_fraction``, ``stick_threshold`` (a fraction of Omega; 0 for
         an axial run, whose bit sticks at Ω_b = 0), ``omega_rad_s``, ``bit_speed_min``,
         ``bit_speed_max`` [rad/s], ``top_drive``, ``law``, ``duration_s``,
@@ -305,7 +326,7 @@ class TransientResults:
         return {
             "wob": self.wob,
             "rpm": self.rpm,
-            "rpm_source": "set" if self.has_set_speed else "top_speed_mean",
+            "rpm_source": self.rpm_source,
             "severity": float(self.severity),
             "severe": self.severe,
             "stick_fraction": float(self.stick_fraction),
@@ -397,8 +418,8 @@ class TransientResults:
         """The operating point, for the plot's title."""
         if self.dimensionless:
             return f"Pi1 = {self.omega:.4g}, Pi2 = {self.wob * self._system().bit_radius:.4g}"
-        mean = "" if self.has_set_speed else " (mean top speed)"
-        return f"WOB = {self.wob / 1e3:.4g} kN, {self.rpm:.4g} rpm{mean}"
+        source = {"set": "", "top_speed_mean": " (mean top speed)", "given": " (no set speed)"}
+        return f"WOB = {self.wob / 1e3:.4g} kN, {self.rpm:.4g} rpm{source[self.rpm_source]}"
 
     def plot(self, path: str | Path | None = None, ax: Any = None) -> Any:
         """Bit speed, surface torque and torque on bit against time

@@ -65,6 +65,9 @@ class AxialChannels:
         :data:`torsio.axial.layouts.SAMPLE_COLUMNS`.
     top_drive : str
         The top drive's kind (``"constant-speed"``: the top held at Ω₀).
+    has_set_speed : bool
+        Whether the top drive has a set speed (False: a torque-driven top; ``rpm`` is then
+        the speed of the steady state the run was given, which S_SS is read against).
     stability_of_held_top : bool
         Whether ``growth_rate`` is that of the top held at Ω₀ while the run's top drive is
         not held: a controller other than a PI speed loop, which the linearization does not
@@ -101,6 +104,7 @@ class AxialChannels:
     start: str
     samples: NDArray[np.float64]
     top_drive: str = "constant-speed"
+    has_set_speed: bool = True
     stability_of_held_top: bool = False
     energy: EnergyBalance | None = None
     contact_switches: int = 0

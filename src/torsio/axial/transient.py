@@ -284,6 +284,7 @@ def simulate_axial(
         start=start,
         samples=table,
         top_drive=kind or "constant-speed",
+        has_set_speed=boundary is None or bool(np.isfinite(boundary.set_speed)),
         stability_of_held_top=rate is not None and _top_held_in_stability(boundary, setup.steady),
         energy=energy,
         contact_switches=int(stats[slot.CONTACT_SWITCHES]),
