@@ -6,9 +6,9 @@
 (:class:`~torsio.axial.window_summary.WindowSummary`), the steady state, the growth rate,
 the signals by name (:data:`torsio.axial.layouts.SAMPLE_COLUMNS`), and the run's JSON
 (:meth:`AxialChannels.to_dict`, DESIGN.md's keys beside every run's), CSV and terminal
-table. The plot
-(:func:`torsio.plotting.transient_plot.plot_transient`) and the rig recording
-(:meth:`torsio.calibration.recording.Recording.from_transient`) read the common signals.
+table. The plot (:func:`torsio.plotting.transient_plot.plot_transient`) and the rig
+recording (:meth:`torsio.calibration.recording.Recording.from_transient`) read the
+common signals.
 """
 
 from __future__ import annotations
