@@ -22,6 +22,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     "torsio.analysis.simulation_options": ("SimulationOptions",),
     "torsio.analysis.transient": ("simulate", "simulate_config"),
     "torsio.analysis.transient_results": ("TransientResults",),
+    "torsio.analysis.run_file": ("load_run",),
     "torsio.errors": ("ConfigError", "PluginError", "SolverError", "TorsioError"),
     "torsio.config.configuration": ("Config",),
     "torsio.config.reading": ("load_config", "parse_config"),
@@ -102,6 +103,7 @@ if TYPE_CHECKING:  # for type checkers and editors; at run time see __getattr__
     from torsio.analysis.map_options import MapOptions
     from torsio.analysis.map_results import SeverityMap, load_map
     from torsio.analysis.maps import dimensionless_map, severity_map
+    from torsio.analysis.run_file import load_run
     from torsio.analysis.simulation_options import SimulationOptions
     from torsio.analysis.stability import (
         StabilityBoundary,

@@ -1,4 +1,4 @@
-"""Every file torsio writes, written whole or not at all.
+"""Every file torsio writes, written whole or not at all, and the saved results read back.
 
 :func:`atomic_output` opens a temporary file beside the target (same folder, so the
 rename stays on one file system), hands it to the writer, flushes it to the disk
@@ -6,6 +6,10 @@ rename stays on one file system), hands it to the writer, flushes it to the disk
 full disk, a quota, an I/O error) or is interrupted removes the temporary file and leaves
 the target as it was: never a truncated file that looks complete. The failure is an
 :class:`~torsio.errors.OutputError` naming the path and the system's reason.
+
+A saved result (a severity map, a transient run) is a numpy ``.npz`` archive of its arrays
+with its other data as a JSON string ``metadata`` (:func:`write_npz`), or JSON
+(:func:`read_saved` reads both).
 
 Examples
 --------
@@ -21,15 +25,25 @@ rotary speed 60 rpm
 from __future__ import annotations
 
 import contextlib
+import json
 import os
 import uuid
+import zipfile
 from collections.abc import Iterator
 from pathlib import Path
 from typing import IO, Any
 
-from torsio.errors import OutputError
+from torsio.errors import ConfigError, OutputError
 
-__all__ = ["atomic_output", "save_columns", "save_figure_file", "write_bytes", "write_text"]
+__all__ = [
+    "atomic_output",
+    "read_saved",
+    "save_columns",
+    "save_figure_file",
+    "write_bytes",
+    "write_npz",
+    "write_text",
+]
 
 
 @contextlib.contextmanager
@@ -106,6 +120,52 @@ def save_figure_file(figure: Any, path: str | os.PathLike[str], **savefig: Any) 
     with atomic_output(target, binary=True) as stream:
         figure.savefig(stream, format=kind, **savefig)
     return target
+
+
+def write_npz(
+    path: str | os.PathLike[str], metadata: dict[str, Any], arrays: dict[str, Any]
+) -> Path:
+    """A compressed ``.npz`` archive of ``arrays`` and the JSON string ``metadata``,
+    written atomically; numpy numbers in ``metadata`` are written as Python's. Returns the
+    path written."""
+    import numpy as np
+
+    text = json.dumps(metadata, default=_plain)
+    with atomic_output(path, binary=True) as stream:
+        np.savez_compressed(stream, metadata=np.array(text), **arrays)
+    return Path(path)
+
+
+def read_saved(path: str | os.PathLike[str], what: str) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The data of a saved ``what`` (e.g. ``"severity map"``): of an ``.npz`` archive
+    (:func:`write_npz`) its metadata and its arrays; of any other file its JSON and no
+    arrays. A file that cannot be read, or is not such a file, is a ConfigError naming
+    ``path``."""
+    import numpy as np
+
+    path = Path(path)
+    try:
+        if path.suffix != ".npz":
+            return json.loads(path.read_text(encoding="utf-8")), {}
+        archive = np.load(path, allow_pickle=False)
+        if not isinstance(archive, np.lib.npyio.NpzFile):
+            raise ValueError(f"an .npy array, not an .npz archive of a {what}")
+        with archive:
+            arrays = {key: archive[key] for key in archive.files if key != "metadata"}
+            return json.loads(str(archive["metadata"])), arrays
+    except OSError as exc:
+        raise ConfigError(
+            "path", f"cannot read {what} file {str(path)!r}: {exc.strerror or exc}"
+        ) from None
+    except (ValueError, KeyError, EOFError, RecursionError, zipfile.BadZipFile) as exc:
+        raise ConfigError("path", f"{str(path)!r} is not a saved {what} ({exc})") from None
+
+
+def _plain(value: Any) -> Any:
+    """A numpy number or array as JSON can write it."""
+    if hasattr(value, "tolist"):
+        return value.tolist()
+    raise TypeError(f"{type(value).__name__} is not JSON serializable")
 
 
 def _remove(path: Path) -> None:

@@ -201,7 +201,12 @@ def energy_balance(results: Any) -> EnergyBalance:
             "an axial run keeps the bit's and the top's signals, not its states: its energy "
             "balance is results.axial.energy, summed by the axial engine over every step"
         )
-    system: System = results.system
+    system: System | None = results.system
+    if system is None:
+        raise TypeError(
+            "this run keeps no System (it was read from a file): its energy balance needs "
+            "the System the run integrated; run it again to have one"
+        )
     dynamics = Dynamics.from_system(system)
     relative_damping, drag = damping_split(system)
     if dynamics.has_top_node:

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import json
 import math
-import zipfile
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -23,7 +22,7 @@ import numpy as np
 from torsio.analysis.limits import stuck_points, warning_list
 from torsio.analysis.map_checks import FORMAT, FORMAT_VERSION, LAYERS, check_map_data
 from torsio.errors import ConfigError
-from torsio.output_files import atomic_output
+from torsio.output_files import atomic_output, read_saved, write_npz, write_text
 from torsio.solvers.batch_results import STATUS_MESSAGES
 from torsio.units import RPM_TO_RAD_S
 
@@ -377,20 +376,15 @@ class SeverityMap:
         directory = path.parent if str(path.parent) else Path(".")
         if not directory.is_dir():
             raise ConfigError("out", f"directory {str(directory)!r} does not exist")
-        with atomic_output(path, binary=True) as stream:
-            if path.suffix == ".npz":
-                arrays: dict[str, Any] = {
-                    key: np.array(data[key], dtype=None if key in _EXACT else float)
-                    for key in _NPZ_ARRAYS
-                }
-                arrays["severity"] = self.severity
-                arrays.update({k: v for k, v in self.layers.items() if v is not None})
-                arrays["critical_bracket"] = self.critical_bracket
-                meta = {k: v for k, v in data.items() if k not in arrays}
-                np.savez_compressed(stream, metadata=np.array(json.dumps(meta)), **arrays)
-            else:
-                stream.write(json.dumps(data, indent=1).encode("utf-8"))
-        return path
+        if path.suffix != ".npz":
+            return write_text(path, json.dumps(data, indent=1))
+        arrays: dict[str, Any] = {
+            key: np.array(data[key], dtype=None if key in _EXACT else float) for key in _NPZ_ARRAYS
+        }
+        arrays["severity"] = self.severity
+        arrays.update({k: v for k, v in self.layers.items() if v is not None})
+        arrays["critical_bracket"] = self.critical_bracket
+        return write_npz(path, {k: v for k, v in data.items() if k not in arrays}, arrays)
 
     def to_csv(self, path: str | Path) -> Path:
         """One row per grid point: rpm, wob [N], Pi_1, Pi_2, S_SS, class, solver status."""
@@ -470,24 +464,8 @@ class SeverityMap:
 
 def load_map(path: str | Path) -> SeverityMap:
     """Read a map written by :meth:`SeverityMap.save` (JSON or ``.npz``)."""
-    path = Path(path)
-    try:
-        if path.suffix == ".npz":
-            archive = np.load(path, allow_pickle=False)
-            if not isinstance(archive, np.lib.npyio.NpzFile):
-                raise ValueError("an .npy array, not an .npz archive of a map")
-            with archive:
-                data = json.loads(str(archive["metadata"]))
-                for key in archive.files:
-                    if key != "metadata":
-                        data[key] = archive[key].tolist()
-        else:
-            data = json.loads(path.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise ConfigError(
-            "path", f"cannot read map file {str(path)!r}: {exc.strerror or exc}"
-        ) from None
-    except (ValueError, KeyError, EOFError, RecursionError, zipfile.BadZipFile) as exc:
-        raise ConfigError("path", f"{str(path)!r} is not a saved severity map ({exc})") from None
+    data, arrays = read_saved(path, "severity map")
+    if arrays:  # an .npz archive's (a JSON file's data is checked as it is)
+        data.update({key: array.tolist() for key, array in arrays.items()})
     check_map_data(data, str(path))
     return SeverityMap.from_dict(data)

@@ -14,15 +14,35 @@ from typing import TYPE_CHECKING, Any
 import attrs
 import numpy as np
 
+from torsio.analysis.run_facts import RunFacts
+from torsio.analysis.run_table import run_table
 from torsio.analysis.severity import SEVERE_THRESHOLD
-from torsio.output_files import save_columns
+from torsio.errors import ConfigError
+from torsio.output_files import save_columns, write_npz
 from torsio.physics.system import System
 from torsio.units import RPM_TO_RAD_S
 
 if TYPE_CHECKING:
     from torsio.axial.run_results import AxialChannels
 
-__all__ = ["TransientResults", "window_mask"]
+__all__ = [
+    "RUN_ARRAYS",
+    "RUN_FORMAT",
+    "RUN_FORMAT_VERSION",
+    "RUN_VALUES",
+    "TransientResults",
+    "window_mask",
+]
+
+RUN_FORMAT, RUN_FORMAT_VERSION = "torsio transient", 1
+"""A saved run's ``format`` and ``version`` (:meth:`TransientResults.save`)."""
+RUN_ARRAYS = ("time", "bit_speed", "bit_angle", "node_speeds", "node_twists", "bit_torque",
+              "surface_torque", "top_speed", "motor_torque", "states")  # fmt: skip
+"""The arrays of a saved torsional run, one per field."""
+RUN_VALUES = ("severity", "stick_fraction", "steady_window", "stick_threshold", "solver",
+              "reference_speed", "severity_speed", "well_summary")  # fmt: skip
+"""The other fields of a saved torsional run, in its metadata (with its facts, warnings
+and bit-speed extremes)."""
 
 
 @attrs.frozen(eq=False)
@@ -105,6 +125,11 @@ class TransientResults:
         ``rop_mean`` and ``mse_mean``, ``growth_rate``, ``energy``, the signals
         ``bit_weight``, ``depth_of_cut`` ...); None for a torsional run. Its JSON, CSV
         and terminal table are the run's.
+    facts : RunFacts
+        The operating point, top drive, law and model the results read
+        (:class:`~torsio.analysis.run_facts.RunFacts`); by default those of ``system``,
+        or of ``axial``. A run read from a file (:func:`torsio.analysis.run_file.load_run`)
+        has its facts and no System.
     """
 
     time: np.ndarray
@@ -129,6 +154,9 @@ class TransientResults:
     warnings: tuple[str, ...] = ()
     well_summary: dict[str, Any] | None = None
     axial: AxialChannels | None = None
+    facts: RunFacts = attrs.field(
+        default=attrs.Factory(lambda run: run._facts_of_source(), takes_self=True)
+    )
 
     def __repr__(self) -> str:  # short: no time series
         if self.axial is not None:
@@ -136,15 +164,24 @@ class TransientResults:
         return (
             f"TransientResults({self.time.size} samples over {self.time[-1]:g} s, "
             f"S_SS {self.severity:.4g} over the last {self.steady_window:g} s, "
-            f"{self.solver.get('method')} rtol {self.solver.get('rtol')}; {self.system!r})"
+            f"{self.solver.get('method')} rtol {self.solver.get('rtol')}; "
+            + (repr(self.system) if self.system is not None else self._read_back)
+            + ")"
         )
 
-    # --- derived views (no recomputation of the analysis) ---------------------------------
-    def _system(self) -> System:
-        """The System of a torsional run."""
+    @property
+    def _read_back(self) -> str:
+        facts = self.facts
+        return f"read from a file: {facts.strategy}, {facts.dofs} DOF, {facts.law}"
+
+    def _facts_of_source(self) -> RunFacts:
+        if self.axial is not None:
+            return self.axial.facts()
         if self.system is None:
-            raise AttributeError("an axial run has no System: its assembly is axial.model")
-        return self.system
+            raise TypeError("TransientResults needs a system, axial channels or its facts")
+        return RunFacts.of_system(self.system)
+
+    # --- derived views (no recomputation of the analysis) ---------------------------------
 
     def signal(self, name: str) -> np.ndarray:
         """A signal by name: ``time``, ``bit_speed``, ``bit_angle``, ``bit_torque``,
@@ -160,7 +197,7 @@ class TransientResults:
     @property
     def wob(self) -> float:
         """The weight on bit of the run [N] (for a dimensionless system: Pi_2 / R_bit)."""
-        return self.axial.wob if self.axial is not None else float(self._system().wob)
+        return self.facts.wob
 
     @property
     def _extremes(self) -> tuple[float, float]:
@@ -178,29 +215,20 @@ class TransientResults:
     @property
     def has_top_drive_node(self) -> bool:
         """Whether the top drive has inertia (its speed and motor torque vary)."""
-        if self.axial is not None:
-            return self.axial.top_drive != "constant-speed"
-        return bool(getattr(self._system().top, "name", "") != "constant-speed")
+        return self.facts.has_top_drive_node
 
     @property
     def has_set_speed(self) -> bool:
         """Whether the top drive turns at a set speed (False for a torque-driven top, and
         for a top that follows a recording: its speed is the record's)."""
-        if self.axial is not None:
-            return self.axial.has_set_speed
-        system = self._system()
-        if getattr(system.top, "name", "") == "recorded":
-            return False
-        return bool(np.isfinite(system.top.boundary(system).set_speed))
+        return self.facts.has_set_speed
 
     @property
     def rpm(self) -> float:
         """The rotary speed the run had [rpm]: the set speed, or for a top drive without
         one (``torque``) the mean top-drive speed over the steady window."""
-        if self.axial is not None:
-            return self.axial.rpm
-        if self.has_set_speed:
-            return float(self._system().rpm)
+        if math.isfinite(self.facts.rpm):
+            return self.facts.rpm
         return self.top_speed_mean / RPM_TO_RAD_S
 
     @property
@@ -211,7 +239,7 @@ class TransientResults:
         steady state's, which S_SS is read against (its top drive has no set speed)."""
         if self.has_set_speed:
             return "set"
-        return "given" if self.axial is not None else "top_speed_mean"
+        return "given" if math.isfinite(self.facts.rpm) else "top_speed_mean"
 
     @property
     def top_speed_mean(self) -> float:
@@ -262,9 +290,15 @@ class TransientResults:
         return bool(self.severity > SEVERE_THRESHOLD)
 
     @property
+    def _pi2(self) -> float:
+        """Pi_2 = W_ob R_bit of a dimensionless system's run (its k_eq is 1)."""
+        assert self.facts.bit_radius is not None  # a torsional model's
+        return float(self.wob * self.facts.bit_radius)
+
+    @property
     def dimensionless(self) -> bool:
         """Whether the system is a dimensionless one (time is tau = omega_1 t)."""
-        return self.axial is None and bool(getattr(self._system().law, "dimensionless", False))
+        return self.facts.dimensionless
 
     # --- output ---------------------------------------------------------------------------
     def to_dict(self, series: bool = False) -> dict[str, Any]:
@@ -281,7 +315,7 @@ class TransientResults:
         if self.axial is not None:
             return {**self.run_keys(), **self.axial.to_dict(series)}
         window = self.window_mask
-        system = self._system()
+        facts = self.facts
         data: dict[str, Any] = {
             **self.run_keys(),
             "top_speed_mean": self.top_speed_mean,
@@ -289,15 +323,15 @@ class TransientResults:
             "mean_bit_torque": float(self.bit_torque[window].mean()),
             "mean_surface_torque": float(self.surface_torque[window].mean()),
             "output_step_s": self.output_step,
-            "dofs": int(system.model.dofs),
-            "strategy": system.model.strategy,
-            "bit_radius": float(system.bit_radius),
+            "dofs": facts.dofs,
+            "strategy": facts.strategy,
+            "bit_radius": facts.bit_radius,
         }
         if self.well_summary is not None:
             data.update(self.well_summary)
         if self.dimensionless:
             data["pi1"] = float(self.omega)
-            data["pi2"] = float(system.wob * system.bit_radius)
+            data["pi2"] = self._pi2
         if series:
             data["series"] = {
                 "time": self.time.tolist(),
@@ -317,12 +351,6 @@ class TransientResults:
         ``bit_speed_max`` [rad/s], ``top_drive``, ``law``, ``duration_s``,
         ``steady_window_s``, ``samples`` (rows kept), ``dimensionless``, ``solver`` and
         ``warnings``."""
-        if self.axial is not None:
-            top, law = self.axial.top_drive, self.axial.bit.get("law")
-        else:
-            system = self._system()
-            top = getattr(system.top, "name", type(system.top).__name__)
-            law = getattr(system.law, "name", type(system.law).__name__)
         return {
             "wob": self.wob,
             "rpm": self.rpm,
@@ -334,8 +362,8 @@ class TransientResults:
             "omega_rad_s": float(self.omega),
             "bit_speed_min": float(self._extremes[1]),
             "bit_speed_max": float(self._extremes[0]),
-            "top_drive": top,
-            "law": law,
+            "top_drive": self.facts.top_drive,
+            "law": self.facts.law,
             "duration_s": self.duration,
             "steady_window_s": float(self.steady_window),
             "samples": int(self.time.size),
@@ -343,6 +371,29 @@ class TransientResults:
             "solver": dict(self.solver),
             "warnings": list(self.warnings),
         }
+
+    def save(self, path: str | Path) -> Path:
+        """Write the run to a numpy ``.npz`` archive, which
+        :func:`torsio.analysis.run_file.load_run` reads back whole: every signal and
+        state, S_SS, the solver's statistics, the warnings and the run's facts (not its
+        System); an axial run its channels (:meth:`AxialChannels.saved`). Written
+        atomically (an :class:`~torsio.errors.OutputError` names the path of a failed
+        write). Returns the path written."""
+        path = Path(path)
+        if path.suffix != ".npz":
+            raise ConfigError(
+                "path",
+                f"{str(path)!r}: a run is saved as a numpy archive of its arrays; expected a "
+                "name ending in .npz (its JSON is to_dict(series=True), torsio simulate --json)",
+            )
+        metadata: dict[str, Any] = {"format": RUN_FORMAT, "version": RUN_FORMAT_VERSION}
+        metadata["warnings"] = list(self.warnings)
+        if self.axial is not None:
+            channels, samples = self.axial.saved()
+            return write_npz(path, {**metadata, "axial": channels}, {"axial_samples": samples})
+        metadata.update({name: getattr(self, name) for name in RUN_VALUES})
+        metadata.update(facts=attrs.asdict(self.facts), bit_speed_extremes=self.bit_speed_extremes)
+        return write_npz(path, metadata, {name: getattr(self, name) for name in RUN_ARRAYS})
 
     def to_csv(self, path: str | Path) -> Path:
         """Write the time series as CSV: time, bit speed/angle, torques, node speeds.
@@ -363,61 +414,17 @@ class TransientResults:
 
     def summary_rows(self, units: Any) -> tuple[str, list[tuple[str, str]]]:
         """The terminal table of the run (``torsio simulate``): its title and (quantity,
-        value) rows, forces and torques in ``units`` (a
-        :class:`~torsio.display_units.DisplayUnits`)."""
+        value) rows (:func:`torsio.analysis.run_table.run_table`), forces and torques in
+        ``units`` (a :class:`~torsio.display_units.DisplayUnits`)."""
         if self.axial is not None:
             return self.axial.summary_rows(self.to_dict(), units)
-        system = self._system()
-        solver = self.solver
-        title = f"Transient response: {system.model.strategy}, {system.model.dofs} DOF"
-        window = self.window_mask
-        rows = [
-            ("weight on bit", units.text("force", system.wob, ".4g")),
-            (
-                "rotary speed",
-                f"{self.rpm:.4g} rpm"
-                + ("" if self.has_set_speed else "  (mean top-drive speed; none is set)"),
-            ),
-            ("bit-rock law", str(getattr(system.law, "name", type(system.law).__name__))),
-            (
-                "run / steady window",
-                f"{self.duration:.4g} s / last {self.steady_window:.4g} s",
-            ),
-            (
-                "bit speed in window",
-                f"{self.bit_speed[window].min() * 30 / 3.141592653589793:.4g} .. "
-                f"{self.bit_speed[window].max() * 30 / 3.141592653589793:.4g} rpm",
-            ),
-            (
-                "S_SS (Eq. 12)",
-                f"{self.severity:.4f}" + ("  severe (> 0.8)" if self.severe else ""),
-            ),
-            (
-                "stick fraction",
-                f"{self.stick_fraction:.3f}  (|bit speed| < {self.stick_threshold:g} Omega)",
-            ),
-            (
-                "mean surface torque",
-                units.text("torque", self.surface_torque[window].mean(), ".4g"),
-            ),
-            ("mean torque on bit", units.text("torque", self.bit_torque[window].mean(), ".4g")),
-            (
-                "solver",
-                f"{solver['method']} ({solver.get('engine', 'scipy')} engine) "
-                f"rtol={solver['rtol']:g} atol={solver['atol']:g}: "
-                + (f"{solver['steps']} steps, " if solver.get("steps") is not None else "")
-                + f"{solver['nfev']} f-evals, {solver['njev']} Jacobians, "
-                f"{solver['wall_time_s']:.2f} s",
-            ),
-        ]
-        rows.extend(_well_rows(self.well_summary, units))
-        return title, rows
+        return run_table(self, units)
 
     @property
     def plot_label(self) -> str:
         """The operating point, for the plot's title."""
         if self.dimensionless:
-            return f"Pi1 = {self.omega:.4g}, Pi2 = {self.wob * self._system().bit_radius:.4g}"
+            return f"Pi1 = {self.omega:.4g}, Pi2 = {self._pi2:.4g}"
         source = {"set": "", "top_speed_mean": " (mean top speed)", "given": " (no set speed)"}
         return f"WOB = {self.wob / 1e3:.4g} kN, {self.rpm:.4g} rpm{source[self.rpm_source]}"
 
@@ -438,32 +445,3 @@ def window_mask(time_grid: np.ndarray, window: float) -> np.ndarray:
     """Boolean mask of the samples of ``time_grid`` [s] in the last ``window`` seconds."""
     start = time_grid[-1] - window
     return np.asarray(time_grid >= start - 1e-9 * max(1.0, abs(time_grid[-1])))
-
-
-def _well_rows(summary: Any, units: Any) -> list[tuple[str, str]]:
-    """Rows of a run with friction along the string (a [well]); none without."""
-    if summary is None:
-        return []
-    first = summary["bit_first_motion"]
-    period = summary["stick_slip_period"]
-    return [
-        (
-            "surface torque in window",
-            f"{units.number('torque', summary['surface_torque_min'], '.4g')} .. "
-            f"{units.text('torque', summary['surface_torque_max'], '.4g')}",
-        ),
-        ("peak surface torque", units.text("torque", summary["surface_torque_peak"], ".4g")),
-        (
-            "surface-torque swing in window",
-            units.text("torque", summary["surface_torque_swing"], ".4g"),
-        ),
-        (
-            "stick-slip period in window",
-            f"none: {summary['stick_slip_period_reason']}" if period is None else f"{period:.4g} s",
-        ),
-        (
-            f"bit first faster than {summary['threshold_speed']:g} rad/s",
-            "never" if first is None else f"at {first:.4g} s",
-        ),
-        ("friction work along the string", units.energy(summary["friction_work"])),
-    ]

@@ -21,6 +21,7 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
+from torsio.analysis.run_facts import RunFacts
 from torsio.analysis.transient_results import TransientResults
 from torsio.axial import layouts as slot
 from torsio.axial.assembly import assembly_summary
@@ -128,6 +129,36 @@ class AxialChannels:
         if name not in slot.SAMPLE_COLUMNS:
             raise KeyError(f"{name!r}: an axial run's signals are {', '.join(slot.SAMPLE_COLUMNS)}")
         return self.samples[:, slot.SAMPLE_COLUMNS.index(name)]
+
+    def facts(self) -> RunFacts:
+        """The run's operating point, top drive and law, as every run's results read them
+        (``rpm``: the set speed, or under a torque-driven top the steady state's)."""
+        return RunFacts(
+            wob=self.wob,
+            rpm=self.rpm,
+            has_set_speed=self.has_set_speed,
+            top_drive=self.top_drive,
+            law=str(self.bit.get("law")),
+            has_top_drive_node=self.top_drive != "constant-speed",
+        )
+
+    def saved(self) -> tuple[dict[str, Any], NDArray[np.float64]]:
+        """Plain data of every field but the samples, and the samples: what a saved run
+        keeps (:meth:`~torsio.analysis.transient_results.TransientResults.save`,
+        :meth:`from_saved`)."""
+        return attrs.asdict(self, filter=lambda field, _: field.name != "samples"), self.samples
+
+    @classmethod
+    def from_saved(cls, data: dict[str, Any], samples: NDArray[np.float64]) -> AxialChannels:
+        """The channels of :meth:`saved`'s ``data`` and ``samples``."""
+        energy = data["energy"]
+        return cls(**{
+            **data,
+            "steady": SteadyDrilling(**data["steady"]),
+            "summary": WindowSummary(**data["summary"]),
+            "energy": None if energy is None else EnergyBalance(**energy),
+            "samples": samples,
+        })  # fmt: skip
 
     def window_rows(self) -> NDArray[np.bool_]:
         """The sample rows inside the steady window."""

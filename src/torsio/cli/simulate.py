@@ -48,6 +48,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         plot="write a PNG of bit speed, surface torque and torque on bit",
     )
     parser.add_argument(
+        "--out",
+        metavar="FILE",
+        help="save the run (.npz: every signal and state, S_SS, the solver's statistics), "
+        "which torsio.load_run reads back",
+    )
+    parser.add_argument(
         "--recording",
         metavar="FILE",
         help="write what a rig records of the run (time, top_rpm, surface_torque, bit_rpm): "
@@ -69,7 +75,9 @@ def run(args: argparse.Namespace) -> int:
     from torsio.analysis.transient import simulate_config
     from torsio.errors import ConfigError
 
-    outputs = common.check_outputs(args, ("csv", "plot", "recording"))
+    outputs = common.check_outputs(args, ("out", "csv", "plot", "recording"))
+    if "out" in outputs and Path(outputs["out"]).suffix != ".npz":
+        raise ConfigError("--out", f"{outputs['out']!r}: expected a file name ending in .npz")
     config = common.load(args)
     given = {
         "growth_rate": ("--growth-rate", args.growth_rate),
