@@ -27,7 +27,7 @@ import numpy as np
 import pytest
 import scipy.optimize
 
-from torsio.axial.assembly import DrillingAssembly, pipe_assembly
+from torsio.axial.assembly import DrillingAssembly, lumped_node_depths, pipe_assembly
 from torsio.axial.run_setup import RunOptions
 from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly
 from torsio.axial.wave_setup import wave_run_setup
@@ -38,6 +38,8 @@ from torsio.config.reading import parse_config, parse_config_text
 from torsio.errors import ConfigError
 from torsio.examples import rgd_wave_pipe_config
 from torsio.model.continuum import bar_frequencies
+from torsio.model.discretize import StrategyC
+from torsio.model.lumped import chain_matrix
 from torsio.report.axial import axial_frequencies, axial_section, torsional_frequencies
 from torsio.report.context import ReportContext
 
@@ -135,6 +137,27 @@ def test_one_section_lumped_chain_is_pipe_assembly(hook):
         np.testing.assert_allclose(getattr(chain, name), values, rtol=1e-14)
         np.testing.assert_allclose(getattr(expected, name), values, rtol=1e-14)
     assert chain.hook == hook and not chain.damping.any()
+
+
+@pytest.mark.parametrize("element_length", [100.0, 70.0, 333.0])
+def test_the_axial_chains_torsional_rows_are_strategy_cs(element_length):
+    # two routes to the lumped-mass chain of the file's stepped string (900 m of drill pipe
+    # and 100 m of HWDP in the pipe, the collars and the bit rigid): the axial chain
+    # (lumped_pipe) and the torsional discretizer of the paper's strategy C (Eqs. 6-7) with
+    # elements of at most the same length; the same element counts, the same node depths,
+    # the same springs G J / Δ and inertias to round-off (G J / L × n against G J / (L/n))
+    data = tomllib.loads(TEXT)
+    del data["discretization"]
+    data["axial"] = {"element_length": element_length}
+    axial = parse_config(data).axial
+    model = StrategyC(max_element_length=element_length).discretize(axial.string)
+    chain = axial.assembly
+    assert chain.nodes == model.dofs
+    np.testing.assert_allclose(chain.inertias, np.diag(model.inertia), rtol=1e-14)
+    np.testing.assert_allclose(chain_matrix(chain.stiffnesses), model.stiffness, rtol=1e-14)
+    np.testing.assert_allclose(
+        lumped_node_depths(axial.sections.pipe, element_length), model.node_depths, rtol=1e-14
+    )
 
 
 # --- the report's frequencies -------------------------------------------------------------

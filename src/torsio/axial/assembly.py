@@ -31,7 +31,6 @@ Examples
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -41,6 +40,7 @@ from numpy.typing import NDArray
 
 from torsio.errors import ConfigError
 from torsio.model.arrays import read_only_vector
+from torsio.model.discretize import element_count, lumped_halves
 
 if TYPE_CHECKING:
     from torsio.axial.wave_assembly import PipeSection
@@ -48,7 +48,6 @@ if TYPE_CHECKING:
 __all__ = [
     "DrillingAssembly",
     "assembly_summary",
-    "element_count",
     "lumped_node_depths",
     "lumped_pipe",
     "pipe_assembly",
@@ -271,11 +270,6 @@ def pipe_assembly(
     return lumped_pipe([pipe], bha_mass, bha_inertia, pipe.length / nodes, hook)
 
 
-def element_count(length: float, element_length: float) -> int:
-    """Elements of at most ``element_length`` [m] in a section of ``length`` [m]."""
-    return math.ceil(length / element_length - 1e-9)
-
-
 def lumped_node_depths(
     sections: Sequence[PipeSection], element_length: float
 ) -> NDArray[np.float64]:
@@ -305,33 +299,24 @@ def lumped_pipe(
     rigid on the last node. The top element's upper half of inertia is at the top drive;
     its upper half of mass at the hook under the speed hook, on node 0 under the weight
     hook (the top of the pipe is free there). The one lumping of an axial pipe
-    (:func:`torsio.axial.assembly.pipe_assembly` is its uniform case).
+    (:func:`torsio.axial.assembly.pipe_assembly` is its uniform case), by the rules of
+    the torsional discretizers (:func:`torsio.model.discretize.element_count`,
+    :func:`~torsio.model.discretize.lumped_halves`): its torsional rows are strategy C's
+    with ``max_element_length`` (tests/test_axial_wave_config.py).
     """
-    inertias: list[float] = []
-    stiffnesses: list[float] = []
-    masses: list[float] = []
-    springs: list[float] = []
-    carry_i = carry_m = 0.0  # the lower half of the element above
-    free_top_mass = 0.0
+    elements: list[tuple[PipeSection, float]] = []  # each element's section and length Δ
     for section in sections:
         count = element_count(section.length, element_length)
-        spacing = section.length / count
-        element_i = section.density * section.polar_moment * spacing
-        element_m = section.density * section.area * spacing
-        for _ in range(count):
-            if stiffnesses:  # the node between this element and the one above
-                inertias.append(carry_i + element_i / 2)
-                masses.append(carry_m + element_m / 2)
-            elif hook == "weight":  # the free top's half element rides on node 0
-                free_top_mass = element_m / 2
-            stiffnesses.append(section.shear_modulus * section.polar_moment / spacing)
-            springs.append(section.youngs_modulus * section.area / spacing)
-            carry_i, carry_m = element_i / 2, element_m / 2
-    inertias.append(carry_i + bha_inertia)
-    masses.append(carry_m + bha_mass)
-    masses[0] += free_top_mass
-    torsional = np.array(stiffnesses)
-    axial = np.array(springs)
+        elements += [(section, section.length / count)] * count
+    torsional = np.array([s.shear_modulus * s.polar_moment / d for s, d in elements])
+    axial = np.array([s.youngs_modulus * s.area / d for s, d in elements])
+    element_masses = np.array([s.density * s.area * d for s, d in elements])
+    inertias = lumped_halves(np.array([s.density * s.polar_moment * d for s, d in elements]))
+    masses = lumped_halves(element_masses)
+    inertias[-1] += bha_inertia
+    masses[-1] += bha_mass
+    if hook == "weight":  # the free top's half element rides on node 0
+        masses[0] += element_masses[0] / 2
     return DrillingAssembly(
         inertias=inertias,
         stiffnesses=torsional,

@@ -77,6 +77,32 @@ def split_count(total: int, sections: Sequence[Section], key: str) -> list[int]:
     return [int(c) + 1 for c in counts]
 
 
+def element_count(length: float, max_element_length: float) -> int:
+    """Elements of at most ``max_element_length`` [m] in a section of ``length`` [m]:
+    ceil(L / max_element_length), at least one (a length within 1e-9 of a whole number of
+    elements takes that number).
+
+    >>> element_count(900.0, 100.0), element_count(150.0, 100.0), element_count(0.3, 100.0)
+    (9, 2, 1)
+    """
+    return max(1, math.ceil(length / max_element_length - 1e-9))
+
+
+def lumped_halves(element_values: np.ndarray) -> np.ndarray:
+    """Half of each element's inertia (or mass) on each of its end nodes, the top node
+    removed: node i carries halves of elements i and i + 1, the last node half of the
+    last element (Eq. 6). The one lumping rule of every chain: the torsional
+    discretizers' and the axial chain's (:func:`torsio.axial.assembly.lumped_pipe`).
+
+    >>> lumped_halves(np.array([6.0, 6.0, 4.0]))
+    array([6., 5., 2.])
+    """
+    halves = np.asarray(element_values, dtype=float) / 2.0
+    nodes = halves.copy()
+    nodes[:-1] += halves[1:]
+    return nodes
+
+
 def _check_count(key: str, value: Any) -> None:
     if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1:
         raise ConfigError(key, f"expected a whole number of elements >= 1, got {value!r}")
@@ -187,7 +213,7 @@ class _ElementDiscretizer(Discretizer):
                 )
             return list(self.section_elements)
         if self.max_element_length is not None:
-            return [max(1, math.ceil(s.length / self.max_element_length - 1e-9)) for s in sections]
+            return [element_count(s.length, self.max_element_length) for s in sections]
         dp = split_count(self.dp_elements or 1, string.drill_pipe_sections, "dp_elements")
         if self.rigid_bha:
             return dp
@@ -255,9 +281,7 @@ def element_inertia_matrix(element_inertias: np.ndarray, consistent: bool | floa
     """
     m = np.asarray(element_inertias, dtype=float)
     weight = float(consistent)
-    diagonal = m / 2.0
-    diagonal[:-1] += m[1:] / 2.0
-    matrix = np.diag(diagonal)
+    matrix = np.diag(lumped_halves(m))
     if weight:
         idx = np.arange(m.size - 1)
         coupling = weight * m[1:] / 6.0
