@@ -32,6 +32,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from torsio.axial import layouts as slot
+from torsio.solvers.set_speed import table_twist
 
 __all__ = ["RESIDUAL_TOLERANCE", "EnergyBalance", "chain_energy", "energy_balance", "stored_energy"]
 
@@ -134,7 +135,8 @@ def stored_energy(setup: Any, time: float) -> float | None:
         return None
     settings = setup.settings
     held = setup.top.top[slot.TOP_HELD] != 0.0
-    top_angle = settings[slot.TOP_SPEED] * time if held else float(setup.top_state[0])
+    table = setup.top.speed_table
+    top_angle = table_twist(table, time, 0.0) if held else float(setup.top_state[0])
     hook = None
     if settings[slot.SPEED_HOOK]:
         hook = settings[slot.HOOK_START] + settings[slot.HOOK_SPEED] * time

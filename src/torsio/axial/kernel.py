@@ -22,9 +22,10 @@ at the velocity level over each step (Moreau's time stepping):
    |s|/r at the step's start is below ``settings[THRESHOLD_SPEED]``), at the bit after the
    bit's contacts; ``contact_stuck`` keeps each contact's state to count its switches. With
    contacts the axial dampers read the node below at the step's start.
-4. Positions from the new velocities: U ← U + h V, θ ← θ + h ω; the top angle Ω₀ t, the
-   hook position U_h0 + V_h t. The new bit state is appended to the history. The works of
-   the energy balance (:mod:`torsio.axial.energy_balance`) are summed on the new velocities.
+4. Positions from the new velocities: U ← U + h V, θ ← θ + h ω; the held top's angle the
+   integral of its set speed (Ω₀ t at a constant one), the hook position U_h0 + V_h t.
+   The new bit state is appended to the history. The works of the energy balance
+   (:mod:`torsio.axial.energy_balance`) are summed on the new velocities.
 
 With a top drive that is not held (``top[TOP_HELD]`` 0), the top is a node (J, drag) with
 a linear controller (:class:`torsio.physics.top_drive_boundary.TopDriveBoundary`), advanced
@@ -38,6 +39,10 @@ evaluation of every engine, :func:`torsio.physics.top_drive_boundary.motor_torqu
 [θ_top (rad), Ω_top (rad/s)], ``controller_state`` z; ``ctrl_a`` (m, m) and ``ctrl_b`` (m, 2)
 row by row,
 ``ctrl_c`` (m,), ``ctrl_d`` (2,), ``ctrl_w`` (m,) the controller's matrices.
+``speed_table`` is the set speed against time, the one table of every engine
+(:func:`torsio.solvers.set_speed.twist_table` for Ω_ref = 0: rows time [s], Ω_set [rad/s]
+and its integral [rad]): what a held top turns at (a recorded speed, or Ω₀) and what a
+controller tracks (a ramp).
 
 The bit's part of steps 1-3 is :mod:`torsio.axial.bit_step`, shared with the distributed
 pipe's loop (:mod:`torsio.axial.wave_kernel`).
@@ -71,6 +76,7 @@ from torsio.axial.history import append
 from torsio.solvers.chain_kernel import compiled_controller_rates, compiled_motor_torque
 from torsio.solvers.compiled import HAVE_NUMBA, njit
 from torsio.solvers.contact_law import cone_step
+from torsio.solvers.set_speed import table_speed, table_twist
 
 __all__ = ["march", "march_signature"]
 
@@ -88,8 +94,8 @@ def march_signature() -> object:
     vector, matrix, law = types.float64[::1], types.float64[:, ::1], law_type()
     return types.void(
         vector, matrix, matrix, vector, vector, vector, vector, vector, matrix, vector, vector,
-        matrix, vector, vector, vector, vector, vector, vector, vector, vector, matrix, vector,
-        law, law, vector,
+        matrix, vector, vector, vector, vector, vector, vector, vector, vector, matrix, matrix,
+        vector, law, law, vector,
     )  # fmt: skip
 
 
@@ -115,6 +121,7 @@ def march(
     ctrl_c,
     ctrl_d,
     ctrl_w,
+    speed_table,
     contacts,
     contact_stuck,
     law_torque,
@@ -199,8 +206,8 @@ def march(
                 v[i] += h * force * axial[0, i]
         # 3. torsional
         tf = tf_per_wf * wf
-        if held:
-            top_angle, top_rate = top_speed * t, top_speed
+        if held:  # at the set speed of the table, turned through its integral
+            top_angle, top_rate = table_twist(speed_table, t, 0.0), table_speed(speed_table, t)
         else:
             top_angle, top_rate = top_state[0], top_state[1]
         top_torque = torsional[1, 0] * (top_angle - theta[0]) + torsional[2, 0] * (
@@ -250,10 +257,8 @@ def march(
             for i in range(nt):
                 theta[i] += h * omega[i]
         if not held:
-            set_speed = top[slot.TOP_SET_SPEED]
-            if top[slot.TOP_RAMP] > 0.0:
-                set_speed *= min(1.0, t / top[slot.TOP_RAMP])
-            error = 0.0 if math.isnan(set_speed) else set_speed - top_rate
+            no_set_speed = math.isnan(top[slot.TOP_SET_SPEED])
+            error = 0.0 if no_set_speed else table_speed(speed_table, t) - top_rate
             motor, free = compiled_motor_torque(
                 top[slot.TOP_U0], ctrl_d[0], ctrl_d[1], top[slot.TOP_MAX_TORQUE], states, ctrl_c,
                 controller_state, error, top_torque,

@@ -147,12 +147,11 @@ TOP_DRIVE = (
     "motor_torque_constant",
     "max_torque",
     "set_speed",
-    "ramp",
 )
 """The entries of the lumped kernel's ``top`` (:mod:`torsio.axial.kernel`): 1 when the top
-is held at Ω₀ (no node), 1/J [1/(kg m²)], drag [N m s/rad], u0 [N m], max_torque [N m]
-(inf: none), Ω_set [rad/s] (NaN: none, the speed error is then 0), the set-speed ramp [s]
-(0: a step)."""
+is held (no node), 1/J [1/(kg m²)], drag [N m s/rad], u0 [N m], max_torque [N m] (inf:
+none), Ω_set [rad/s] (NaN: none, the speed error is then 0). The set speed in time (a
+ramp, a recorded speed) is the run's set-speed table (:mod:`torsio.solvers.set_speed`)."""
 
 (
     TOP_HELD,
@@ -161,7 +160,6 @@ is held at Ω₀ (no node), 1/J [1/(kg m²)], drag [N m s/rad], u0 [N m], max_to
     TOP_U0,
     TOP_MAX_TORQUE,
     TOP_SET_SPEED,
-    TOP_RAMP,
 ) = range(len(TOP_DRIVE))
 
 RUN_SETTINGS = (

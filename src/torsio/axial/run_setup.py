@@ -208,7 +208,7 @@ class RunSetup(KernelSetup):
     omega: NDArray[np.float64]
     u: NDArray[np.float64]
     v: NDArray[np.float64]
-    top: TopDriveArrays = attrs.field(factory=lambda: TopDriveArrays.from_boundary(None))
+    top: TopDriveArrays = attrs.field(factory=lambda: TopDriveArrays.from_boundary(None, 0.0))
     top_state: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(2))
     controller_state: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(0))
     contacts: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros((3, 0)))
@@ -372,11 +372,19 @@ def run_setup(
         steady = steady_state(bit, wob, rpm)
     delay = steady.delay
     driven = top_drive is not None and not top_drive.held
-    if driven and bit_rotation is not None:
+    varying = top_drive is not None and top_drive.varying
+    if (driven or varying) and bit_rotation is not None:
         raise ConfigError(
             "top_drive",
             "a prescribed bit_rotation does not integrate the torsional chain, so it takes no "
-            "top drive (expected top_drive=None or a held top)",
+            "top drive (expected top_drive=None or a top held at a constant speed)",
+        )
+    if varying and options.start == "steady":
+        raise ConfigError(
+            "simulation.start",
+            "'steady' starts the string in steady drilling at Ω₀, but the top drive's set "
+            "speed changes in time from t = 0 (a ramp, a recording): a start-up starts from "
+            "rest (expected start = 'rest')",
         )
     top_rate = 0.0
     if top_drive is not None and driven:
@@ -447,7 +455,7 @@ def run_setup(
         omega=omega,
         u=u,
         v=v,
-        top=TopDriveArrays.from_boundary(top_drive),
+        top=TopDriveArrays.from_boundary(top_drive, omega0),
         top_state=top_state,
         controller_state=controller_state,
         contacts=rows,

@@ -35,6 +35,7 @@ from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.layouts import TOP_DRIVE as TOP_SLOTS
 from torsio.errors import ConfigError
 from torsio.physics.top_drive_boundary import TopDriveBoundary
+from torsio.solvers.set_speed import twist_table
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = [
@@ -65,8 +66,7 @@ def top_boundary(
     Raises
     ------
     ConfigError
-        A top drive with a set speed that changes in time as a table (``recorded``): the
-        lumped axial engine takes a held speed or a controller (with its ``ramp``).
+        A top drive that does not return a :class:`TopDriveBoundary`.
     """
     system = AxialTopSystem(assembly, float(rpm) * RPM_TO_RAD_S, string)
     boundary = top_drive.boundary(system)
@@ -74,22 +74,15 @@ def top_boundary(
         raise ConfigError(
             "top_drive", f"{top_drive!r}.boundary() returned {boundary!r}, not a TopDriveBoundary"
         )
-    if boundary.speed_table is not None:
-        raise ConfigError(
-            "top_drive.kind",
-            f"{getattr(top_drive, 'name', top_drive)!r} drives the top with a speed table; the "
-            "lumped axial engine takes a held speed or a controlled top drive (constant-speed, "
-            "torque, pi, soft-torque, z-torque, plugins)",
-        )
-    if boundary.held and boundary.ramp > 0.0:
-        raise ConfigError("top_drive.ramp", "a held top has no ramp in the axial engine")
     return boundary
 
 
 @attrs.frozen(eq=False)
 class TopDriveArrays:
-    """The compiled loop's top drive: ``top`` (slots :data:`torsio.axial.layouts.TOP_DRIVE`)
-    and the controller matrices a (m, m) and b (m, 2) row by row, c (m,), d (2,), w (m,)."""
+    """The compiled loop's top drive: ``top`` (slots :data:`torsio.axial.layouts.TOP_DRIVE`),
+    the controller matrices a (m, m) and b (m, 2) row by row, c (m,), d (2,), w (m,), and
+    the set speed against time (``speed_table``, :func:`torsio.solvers.set_speed.twist_table`
+    for Ω_ref = 0: rows time [s], Ω_set [rad/s], its integral [rad])."""
 
     top: NDArray[np.float64]
     a: NDArray[np.float64]
@@ -97,14 +90,20 @@ class TopDriveArrays:
     c: NDArray[np.float64]
     d: NDArray[np.float64]
     w: NDArray[np.float64]
+    speed_table: NDArray[np.float64]
 
     @classmethod
-    def from_boundary(cls, boundary: TopDriveBoundary | None) -> TopDriveArrays:
-        """The arrays of ``boundary`` (None or a held one: the top held, no controller)."""
+    def from_boundary(cls, boundary: TopDriveBoundary | None, top_speed: float) -> TopDriveArrays:
+        """The arrays of ``boundary`` (None or a held one: the top held, no controller; at a
+        constant set speed, the run's Ω₀ ``top_speed`` [rad/s] from t = 0)."""
         top = np.zeros(len(TOP_SLOTS))
-        if boundary is None or boundary.held:
+        if boundary is None or (boundary.held and not boundary.varying):
+            boundary = TopDriveBoundary(inertia=0.0, set_speed=top_speed)
+        table = twist_table(boundary.set_speed_table(), 0.0)
+        if boundary.held:
             top[TOP_SLOTS.index("held")] = 1.0
-            return cls(top, np.zeros(0), np.zeros(0), np.zeros(0), np.zeros(2), np.zeros(0))
+            none = np.zeros(0)
+            return cls(top, none, none, none, np.zeros(2), none, table)
         values = {
             "held": 0.0,
             "inverse_inertia": 1.0 / boundary.inertia,
@@ -112,7 +111,6 @@ class TopDriveArrays:
             "motor_torque_constant": boundary.u0,
             "max_torque": boundary.max_torque,
             "set_speed": boundary.set_speed,
-            "ramp": boundary.ramp,
         }
         for slot, value in values.items():
             top[TOP_SLOTS.index(slot)] = value
@@ -124,6 +122,7 @@ class TopDriveArrays:
             np.ascontiguousarray(np.asarray(boundary.c, dtype=float).reshape(m)),
             np.ascontiguousarray(np.asarray(boundary.d, dtype=float).reshape(2)),
             np.ascontiguousarray(np.asarray(boundary.w, dtype=float).reshape(m)),
+            table,
         )
 
 

@@ -37,7 +37,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.analysis.limits import saturated_motor, warning_list
+from torsio.analysis.limits import past_the_record, saturated_motor, warning_list
 from torsio.analysis.severity import run_times
 from torsio.axial import layouts as slot
 from torsio.axial.assembly import DrillingAssembly
@@ -55,7 +55,7 @@ from torsio.axial.wave_setup import WaveRunSetup, wave_chunk, wave_run_setup
 from torsio.axial.window_summary import summarize
 from torsio.errors import ConfigError, SolverError
 from torsio.solvers.run_chunks import run_in_chunks
-from torsio.units import as_rpm, as_si
+from torsio.units import RPM_TO_RAD_S, as_rpm, as_si
 
 if TYPE_CHECKING:
     from torsio.analysis.transient_results import TransientResults
@@ -89,6 +89,7 @@ def _chain_chunk(
         setup.top.c,
         setup.top.d,
         setup.top.w,
+        setup.top.speed_table,
         setup.contacts,
         setup.contact_stuck,
         setup.law.torque,
@@ -210,7 +211,10 @@ def simulate_axial(
         Any registered top drive (:mod:`torsio.physics.top_drives`, plugins; e.g.
         ``PITopDrive(inertia=2900.0, kp=5000.0, ki=1800.0)``) turning the top as a node with
         its controller (:mod:`torsio.axial.top_drive`); None or ``ConstantSpeedTop()``: held
-        at Ω₀. Lumped assemblies only.
+        at Ω₀; ``RecordedTopDrive``: held at the recorded speed, linear between its samples
+        (the one set-speed table of every engine, :mod:`torsio.solvers.set_speed`), the
+        run's Ω₀ (its steady state, S_SS) the last recorded speed, whatever ``rpm`` says.
+        A controller's ``ramp`` raises its set speed from 0. Lumped assemblies only.
     string : DrillString, optional
         The drill string the assembly was built from, for tunings that read the top pipe's
         impedance (``soft-torque``, ``z-torque`` defaults).
@@ -243,6 +247,8 @@ def simulate_axial(
         from torsio.axial.top_drive import top_boundary
 
         boundary = top_boundary(top_drive, assembly, rpm, string)
+        if boundary.speed_table is not None:  # S_SS against the last recorded speed
+            rpm = boundary.set_speed / RPM_TO_RAD_S
     torque_law = isinstance(bit, TorqueLawBit)
     if torque_law and growth_rate:
         raise ConfigError("growth_rate", f"{bit.name!r}: {TorqueLawBit.NO_GROWTH_RATE}")
@@ -284,7 +290,8 @@ def simulate_axial(
         start=start,
         samples=table,
         top_drive=kind or "constant-speed",
-        has_set_speed=boundary is None or bool(np.isfinite(boundary.set_speed)),
+        has_set_speed=boundary is None
+        or (boundary.speed_table is None and bool(np.isfinite(boundary.set_speed))),
         stability_of_held_top=rate is not None and _top_held_in_stability(boundary, setup.steady),
         energy=energy,
         contact_switches=int(stats[slot.CONTACT_SWITCHES]),
@@ -295,7 +302,9 @@ def simulate_axial(
         model=assembly.describe(),
         bit=bit.to_dict(),
     )
-    texts = warning_list(*run_warnings(channels.summary, bit, energy), skipped)
+    texts = warning_list(
+        *run_warnings(channels.summary, bit, energy), skipped, past_the_record(top_drive, duration)
+    )
     if boundary is not None and not boundary.held and channels.window_rows().any():
         in_window = channels.window_rows()
         motor = saturated_motor(

@@ -75,6 +75,19 @@ class BatchPoints:
         return BatchPoints(self.wob[rows], self.rpm[rows], self.torque_driven)
 
 
+def refuse_speed_table(top: Any, boundary: Any) -> None:
+    """A batch (a map) of a ``top`` drive whose ``boundary`` follows a table of speeds (a
+    recording) is a ConfigError (``top_drive.kind``): each point has its own set speed."""
+    if boundary.speed_table is not None:
+        raise ConfigError(
+            "top_drive.kind",
+            f"a batch (a map) runs every point at its own set speed, and the top drive "
+            f"{getattr(top, 'name', top)!r} follows a table of speeds (a recording); map "
+            "with a speed-controlled top drive (a single run, torsio simulate, follows the "
+            "table)",
+        )
+
+
 def batch_points(system: Any, wob: Any, rpm: Any) -> BatchPoints:
     """The points (wob [N], rpm [rpm]) of a batch, broadcast, flat and checked.
 
@@ -85,14 +98,7 @@ def batch_points(system: Any, wob: Any, rpm: Any) -> BatchPoints:
     if isinstance(wob, BatchPoints) and rpm is None:
         return wob
     boundary = system.top.boundary(system)
-    if boundary.speed_table is not None:
-        raise ConfigError(
-            "top_drive.kind",
-            f"a batch (a map) runs every point at its own set speed, and the top drive "
-            f"{getattr(system.top, 'name', system.top)!r} follows a table of speeds (a "
-            "recording); map with a speed-controlled top drive (a single run, torsio "
-            "simulate, follows the table)",
-        )
+    refuse_speed_table(system.top, boundary)
     torque_driven = not boundary.held and not math.isfinite(boundary.set_speed)
     if torque_driven != (rpm is None):
         raise ConfigError(
