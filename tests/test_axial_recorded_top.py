@@ -13,6 +13,8 @@ top's comparison in tests/test_axial_torque_law.py.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 from test_axial_torque_law import TUCKER_WANG, _table
@@ -25,7 +27,9 @@ from torsio.axial.run_setup import BitRotation
 from torsio.calibration.recording import Recording
 from torsio.config.reading import parse_config
 from torsio.errors import ConfigError
+from torsio.examples import rgd_wave_pipe_config
 from torsio.physics.recorded_top import RecordedTopDrive
+from torsio.physics.top_drives import PITopDrive
 from torsio.solvers.set_speed import table_speed
 from torsio.units import RPM_TO_RAD_S
 
@@ -88,3 +92,34 @@ def test_what_a_recording_cannot_drive_is_refused_by_key():
     with pytest.raises(ConfigError, match="follows a table of speeds") as info:
         axial_map(rgd_two_dof_example(), rgd_example(), [WOB], [RPM], top_drive=RAMP)
     assert info.value.key == "top_drive.kind"
+
+
+def test_the_distributed_pipe_follows_a_recording_too():
+    pipe = rgd_wave_pipe_config().axial.assembly
+    args = (pipe, rgd_example(), WOB, RPM)
+    steady = RecordedTopDrive(recording=_recording([0.0, 400.0], [OMEGA, OMEGA]))
+    held = simulate_axial(*args, duration=5.0, window=2.0, growth_rate=False)
+    recorded = simulate_axial(*args, duration=5.0, window=2.0, growth_rate=False,
+                              top_drive=steady)  # fmt: skip
+    np.testing.assert_array_equal(recorded.axial.samples, held.axial.samples)
+    run = simulate_axial(*args, duration=5.0, window=2.0, growth_rate=False, top_drive=RAMP)
+    table = RAMP.boundary(None).set_speed_table()
+    np.testing.assert_array_equal(run.top_speed, [table_speed(table, t) for t in run.time])
+    # d'Alembert: until the first reflection returns from the junction 900 m down (2 L / c),
+    # the top of the drill pipe sends a torque wave Z_t Ω_top(t) down the pipe
+    first = pipe.sections[0]
+    impedance = first.polar_moment * math.sqrt(first.shear_modulus * first.density)
+    echo = 2 * first.length / math.sqrt(first.shear_modulus / first.density)
+    early = (run.time > 0.0) & (run.time < 0.9 * echo)
+    assert early.sum() > 50
+    np.testing.assert_allclose(
+        run.surface_torque[early], impedance * run.top_speed[early], rtol=1e-12
+    )
+
+
+def test_the_distributed_pipe_refuses_a_controller_by_key():
+    pipe = rgd_wave_pipe_config().axial.assembly
+    with pytest.raises(ConfigError) as info:
+        simulate_axial(pipe, rgd_example(), WOB, RPM, top_drive=PITopDrive(
+            inertia=2900.0, kp=5000.0, ki=2067.6))  # fmt: skip
+    assert info.value.key == "top_drive"

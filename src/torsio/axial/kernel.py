@@ -76,6 +76,7 @@ from torsio.axial.history import append
 from torsio.solvers.chain_kernel import compiled_controller_rates, compiled_motor_torque
 from torsio.solvers.compiled import HAVE_NUMBA, njit
 from torsio.solvers.contact_law import cone_step
+from torsio.solvers.layouts import TABLE_SPEED
 from torsio.solvers.set_speed import table_speed, table_twist
 
 __all__ = ["march", "march_signature"]
@@ -146,6 +147,9 @@ def march(
     bt, ba = nt - 1, na - 1
     delayed = np.zeros(2)
     held = top[slot.TOP_HELD] != 0.0
+    no_set_speed = math.isnan(top[slot.TOP_SET_SPEED])
+    constant = speed_table.shape[1] == 1  # a set speed that does not change in time
+    set_speed = speed_table[TABLE_SPEED, 0]
     states = controller_state.size
     rate = np.zeros(states)
     threshold = settings[slot.THRESHOLD_SPEED]
@@ -206,7 +210,9 @@ def march(
                 v[i] += h * force * axial[0, i]
         # 3. torsional
         tf = tf_per_wf * wf
-        if held:  # at the set speed of the table, turned through its integral
+        if held and constant:  # the table's one speed: Ω t, as table_twist gives it
+            top_angle, top_rate = set_speed * t, set_speed
+        elif held:  # at the set speed of the table, turned through its integral
             top_angle, top_rate = table_twist(speed_table, t, 0.0), table_speed(speed_table, t)
         else:
             top_angle, top_rate = top_state[0], top_state[1]
@@ -257,8 +263,9 @@ def march(
             for i in range(nt):
                 theta[i] += h * omega[i]
         if not held:
-            no_set_speed = math.isnan(top[slot.TOP_SET_SPEED])
-            error = 0.0 if no_set_speed else table_speed(speed_table, t) - top_rate
+            if not constant:
+                set_speed = table_speed(speed_table, t)
+            error = 0.0 if no_set_speed else set_speed - top_rate
             motor, free = compiled_motor_torque(
                 top[slot.TOP_U0], ctrl_d[0], ctrl_d[1], top[slot.TOP_MAX_TORQUE], states, ctrl_c,
                 controller_state, error, top_torque,

@@ -64,6 +64,7 @@ __all__ = [
     "RunOptions",
     "RunSetup",
     "bit_law_row",
+    "check_set_speed",
     "kernel_setup",
     "past_times",
     "run_settings",
@@ -216,6 +217,29 @@ class RunSetup(KernelSetup):
     friction: Any = None
     law: Any = None
     """The law's compiled torque and slope (:func:`torsio.axial.torque_law.law_functions`)."""
+
+
+def check_set_speed(
+    top_drive: TopDriveBoundary | None, options: RunOptions, bit_rotation: Any = None
+) -> None:
+    """Refuse what a top drive's boundary cannot run with (ConfigError by key): a prescribed
+    ``bit_rotation`` with a top that is not held at a constant speed (no chain to turn), a
+    steady start under a set speed that changes in time (a start-up starts from rest)."""
+    if top_drive is None:
+        return
+    if bit_rotation is not None and (not top_drive.held or top_drive.varying):
+        raise ConfigError(
+            "top_drive",
+            "a prescribed bit_rotation does not integrate the torsional chain, so it takes no "
+            "top drive (expected top_drive=None or a top held at a constant speed)",
+        )
+    if top_drive.varying and options.start == "steady":
+        raise ConfigError(
+            "simulation.start",
+            "'steady' starts the string in steady drilling at Ω₀, but the top drive's set "
+            "speed changes in time from t = 0 (a ramp, a recording): a start-up starts from "
+            "rest (expected start = 'rest')",
+        )
 
 
 def past_times(step: float, delay: float) -> NDArray[np.float64]:
@@ -372,20 +396,7 @@ def run_setup(
         steady = steady_state(bit, wob, rpm)
     delay = steady.delay
     driven = top_drive is not None and not top_drive.held
-    varying = top_drive is not None and top_drive.varying
-    if (driven or varying) and bit_rotation is not None:
-        raise ConfigError(
-            "top_drive",
-            "a prescribed bit_rotation does not integrate the torsional chain, so it takes no "
-            "top drive (expected top_drive=None or a top held at a constant speed)",
-        )
-    if varying and options.start == "steady":
-        raise ConfigError(
-            "simulation.start",
-            "'steady' starts the string in steady drilling at Ω₀, but the top drive's set "
-            "speed changes in time from t = 0 (a ramp, a recording): a start-up starts from "
-            "rest (expected start = 'rest')",
-        )
+    check_set_speed(top_drive, options, bit_rotation)
     top_rate = 0.0
     if top_drive is not None and driven:
         rates = top_drive_rates(top_drive, assembly.stiffnesses[0], assembly.damping[0])

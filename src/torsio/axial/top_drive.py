@@ -31,7 +31,6 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.layouts import TOP_DRIVE as TOP_SLOTS
 from torsio.errors import ConfigError
 from torsio.physics.top_drive_boundary import TopDriveBoundary
@@ -58,10 +57,9 @@ class AxialTopSystem:
     string: Any = None
 
 
-def top_boundary(
-    top_drive: Any, assembly: DrillingAssembly, rpm: float, string: Any = None
-) -> TopDriveBoundary:
-    """The boundary of ``top_drive`` (any registered kind) on ``assembly`` at ``rpm``.
+def top_boundary(top_drive: Any, assembly: Any, rpm: float, string: Any = None) -> TopDriveBoundary:
+    """The boundary of ``top_drive`` (any registered kind) on ``assembly`` (a chain or the
+    distributed pipe: its ``first_frequency()``) at ``rpm``.
 
     Raises
     ------

@@ -55,6 +55,7 @@ from torsio.axial.wave_setup import WaveRunSetup, wave_chunk, wave_run_setup
 from torsio.axial.window_summary import summarize
 from torsio.errors import ConfigError, SolverError
 from torsio.solvers.run_chunks import run_in_chunks
+from torsio.solvers.set_speed import table_at
 from torsio.units import RPM_TO_RAD_S, as_rpm, as_si
 
 if TYPE_CHECKING:
@@ -127,7 +128,8 @@ def run_kernel(
     run_in_chunks(setup.steps, advance, progress)
     if isinstance(setup, WaveRunSetup):
         state = [setup.axial_p, setup.torsional_p, setup.bha]
-        samples[:, slot.TOP_DRIVE_SPEED] = setup.steady.bit_speed  # held at Ω₀
+        times = samples[:, slot.TIME]  # the held top: at the set speed of its table
+        samples[:, slot.TOP_DRIVE_SPEED] = table_at(setup.speed_table, times, 0.0)[0]
         samples[:, slot.MOTOR_TORQUE] = samples[:, slot.TOP_TORQUE]
         samples[:, slot.SURFACE_TORQUE] = samples[:, slot.TOP_TORQUE]
     else:
@@ -214,7 +216,8 @@ def simulate_axial(
         at Ω₀; ``RecordedTopDrive``: held at the recorded speed, linear between its samples
         (the one set-speed table of every engine, :mod:`torsio.solvers.set_speed`), the
         run's Ω₀ (its steady state, S_SS) the last recorded speed, whatever ``rpm`` says.
-        A controller's ``ramp`` raises its set speed from 0. Lumped assemblies only.
+        A controller's ``ramp`` raises its set speed from 0. The distributed pipe takes a
+        held top only (Ω₀ or a recording).
     string : DrillString, optional
         The drill string the assembly was built from, for tunings that read the top pipe's
         impedance (``soft-torque``, ``z-torque`` defaults).
@@ -236,14 +239,7 @@ def simulate_axial(
     setup: RunSetup | WaveRunSetup
     kind = getattr(top_drive, "name", "constant-speed") if top_drive is not None else None
     boundary = None
-    held = top_drive is None or getattr(top_drive, "name", None) == "constant-speed"
-    if not held and isinstance(assembly, WaveDrillingAssembly):
-        raise ConfigError(
-            "top_drive",
-            f"{kind!r} given with a WaveDrillingAssembly: the distributed pipe's top is held "
-            "at Ω₀ (expected top_drive=None, or a lumped DrillingAssembly)",
-        )
-    if top_drive is not None and isinstance(assembly, DrillingAssembly):
+    if top_drive is not None:
         from torsio.axial.top_drive import top_boundary
 
         boundary = top_boundary(top_drive, assembly, rpm, string)
@@ -261,7 +257,7 @@ def simulate_axial(
             )
         if contacts is not None and growth_rate:
             raise ConfigError("growth_rate", f"True given: {NO_PIPE_FRICTION_RATE}")
-        setup = wave_run_setup(assembly, bit, wob, rpm, options, contacts)
+        setup = wave_run_setup(assembly, bit, wob, rpm, options, contacts, boundary)
     else:
         setup = run_setup(assembly, bit, wob, rpm, options, bit_rotation, boundary, contacts)
     every = max(1, setup.steps // samples) if samples > 0 else 0

@@ -12,7 +12,9 @@ step, from the state at t to t + h:
    (:func:`torsio.axial.bit_step.wear_flat_contact` with the velocity and the inverse
    mass of :func:`torsio.axial.wave_pipe.smooth_end_terms`); the wave sent back up is
    m = p − 2 Z_a V.
-3. Torsional line likewise: the top drive turning at Ω₀, the BHA's I_b Ω' = p − Z_t Ω − T
+3. Torsional line likewise: the top held at the set speed of ``speed_table`` (the one
+   set-speed table of every engine, :mod:`torsio.solvers.set_speed`: Ω₀, or a recorded
+   speed) at the step's end, the BHA's I_b Ω' = p − Z_t Ω − T
    with the bit's no-backward rotation (:func:`torsio.axial.bit_step.forward_rotation`).
    3b. The contacts along the pipe (``contacts``, rows
    :data:`torsio.axial.layouts.WAVE_CONTACT_ROW`; none: zero columns) on the arriving waves
@@ -47,6 +49,7 @@ from torsio.axial.wave_pipe import (
     smooth_end_terms,
 )
 from torsio.solvers.compiled import njit
+from torsio.solvers.set_speed import table_speed
 
 __all__ = ["march"]
 
@@ -55,6 +58,7 @@ __all__ = ["march"]
 def march(
     bit,
     settings,
+    speed_table,
     axial_offsets,
     axial_junctions,
     axial_p,
@@ -74,7 +78,7 @@ def march(
     from the state (the lines, ``bha``), ``stats`` carried over from the steps before."""
     h, steps = settings[slot.STEP], int(settings[slot.STEPS])
     first = int(settings[slot.FIRST_STEP])
-    top_speed, weight = settings[slot.TOP_SPEED], settings[slot.HOOK_WEIGHT]
+    weight = settings[slot.HOOK_WEIGHT]
     speed_hook, hook_speed = settings[slot.SPEED_HOOK] != 0.0, settings[slot.HOOK_SPEED]
     window_start, sample_every = int(settings[slot.WINDOW_START]), int(settings[slot.SAMPLE_EVERY])
     t_start, mass, inertia = (
@@ -131,7 +135,7 @@ def march(
         # 3. torsional line and the BHA's rotation
         arrived = torsional_p[torsional_end]
         advance(torsional_p, torsional_m, torsional_offsets, torsional_junctions)
-        set_top_velocity(torsional_p, torsional_m, zt_top, top_speed)
+        set_top_velocity(torsional_p, torsional_m, zt_top, table_speed(speed_table, t + h))
         torque = 0.5 * (arrived + torsional_p[torsional_end])
         free, inverse_inertia = smooth_end_terms(omega, inertia, zt_bottom, h)
         tf = tf_per_wf * wf

@@ -50,15 +50,23 @@ from numpy.typing import NDArray
 from torsio.axial import layouts as slot
 from torsio.axial import wave_kernel
 from torsio.axial.run_budget import check_run_work
-from torsio.axial.run_setup import BitStart, KernelSetup, RunOptions, kernel_setup
+from torsio.axial.run_setup import (
+    BitStart,
+    KernelSetup,
+    RunOptions,
+    check_set_speed,
+    kernel_setup,
+)
 from torsio.axial.steady import steady_drilling
 from torsio.axial.steady_friction import SteadyFriction, steady_with_friction
 from torsio.axial.string_contacts import AxialContacts
+from torsio.axial.top_drive import TopDriveArrays
 from torsio.axial.torque_law import AxialBit, TorqueLawBit
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_pipe import junction_rows
 from torsio.errors import ConfigError
 from torsio.model.wave_grid import choose_time_step
+from torsio.physics.top_drive_boundary import TopDriveBoundary
 
 __all__ = [
     "PipeGrid",
@@ -190,6 +198,8 @@ class WaveRunSetup(KernelSetup):
         factory=lambda: np.zeros((len(slot.WAVE_CONTACT_ROW), 0))
     )
     friction: SteadyFriction | None = None
+    speed_table: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros((3, 1)))
+    """The held top's set speed against time (:func:`torsio.solvers.set_speed.twist_table`)."""
 
 
 def wave_run_setup(
@@ -199,6 +209,7 @@ def wave_run_setup(
     rpm: float,
     options: RunOptions,
     contacts: AxialContacts | None = None,
+    top_drive: TopDriveBoundary | None = None,
 ) -> WaveRunSetup:
     """The grid, the initial state and the history of a run (see the module docstring) at
     ``wob`` [N] and ``rpm`` [rev/min], set up as ``options`` say; the RGD bit only (a law of
@@ -206,7 +217,8 @@ def wave_run_setup(
     ``contacts``: the pipe's contacts with the borehole at their ``depths``
     (:mod:`torsio.axial.string_contacts`, the normal force at ``wob``), each on the inner
     node of both lines nearest it (:func:`contact_nodes`); the steady start then carries
-    their steady friction (:mod:`torsio.axial.steady_friction`).
+    their steady friction (:mod:`torsio.axial.steady_friction`). ``top_drive``: a held
+    top's boundary (a recorded speed; None: held at Ω₀); the pipe's top has no node.
     """
     if isinstance(bit, TorqueLawBit):
         raise ConfigError(
@@ -221,6 +233,14 @@ def wave_run_setup(
         contacts = contacts.at_wob(wob)
         steady, friction = steady_with_friction(bit, wob, rpm, contacts, assembly.hook)
     options.check()
+    if top_drive is not None and not top_drive.held:
+        raise ConfigError(
+            "top_drive",
+            "a top drive with inertia given with a WaveDrillingAssembly: the distributed "
+            "pipe's top is held (at Ω₀ or a recorded speed); a controller turns a lumped "
+            "chain (expected a held top, or a DrillingAssembly)",
+        )
+    check_set_speed(top_drive, options)
     fastest = assembly.fastest_rate()
     grid = pipe_grid(assembly, options.largest_step(bit, assembly.bha_mass, fastest))
     h = grid.step
@@ -277,6 +297,7 @@ def wave_run_setup(
         bha=bha,
         contacts=table,
         friction=friction,
+        speed_table=TopDriveArrays.from_boundary(top_drive, omega0).speed_table,
     )
 
 
@@ -323,6 +344,7 @@ def wave_chunk(
     wave_kernel.march(
         setup.bit,
         settings,
+        setup.speed_table,
         grid.axial_offsets,
         grid.axial_junctions,
         setup.axial_p,

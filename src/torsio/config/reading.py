@@ -178,12 +178,13 @@ def _axial_top_drive(axial: Any, top_drive: Any) -> Any:
         )
     if top_drive.kind == "constant-speed":
         return axial  # the held top, as without the table
-    if isinstance(axial.assembly, WaveDrillingAssembly):
+    if isinstance(axial.assembly, WaveDrillingAssembly) and top_drive.kind != "recorded":
         raise ConfigError(
             "top_drive",
             f"kind = {top_drive.kind!r} with [discretization] strategy = 'wave': the "
-            "distributed axial pipe's top is held at the set speed (expected no [top_drive], "
-            "kind = 'constant-speed', or a lumped chain: another strategy)",
+            "distributed axial pipe's top is held, at the set speed or a recorded one "
+            "(expected no [top_drive], kind = 'constant-speed' or 'recorded', or a lumped "
+            "chain: another strategy)",
         )
     return attrs.evolve(axial, top_drive=top_drive.build())
 
