@@ -152,7 +152,10 @@ def read_saved(path: str | os.PathLike[str], what: str) -> tuple[dict[str, Any],
             raise ValueError(f"an .npy array, not an .npz archive of a {what}")
         with archive:
             arrays = {key: archive[key] for key in archive.files if key != "metadata"}
-            return json.loads(str(archive["metadata"])), arrays
+            metadata = json.loads(str(archive["metadata"]))
+        if not isinstance(metadata, dict):
+            raise ValueError(f"its metadata is a JSON {type(metadata).__name__}, not an object")
+        return metadata, arrays
     except OSError as exc:
         raise ConfigError(
             "path", f"cannot read {what} file {str(path)!r}: {exc.strerror or exc}"

@@ -234,9 +234,10 @@ class TransientResults:
     @property
     def rpm_source(self) -> str:
         """Where :attr:`rpm` comes from: ``"set"``, the top drive's set speed;
-        ``"top_speed_mean"``, the mean top-drive speed over the window (a torsional run's
-        top drive without a set speed); ``"given"``, the speed an axial run was given, its
-        steady state's, which S_SS is read against (its top drive has no set speed)."""
+        ``"top_speed_mean"``, the mean top-drive speed over the window (a top drive without
+        a set speed on a torsional run, a recorded top speed on any run); ``"given"``, the
+        speed an axial run under a torque-driven top was given, its steady state's, which
+        S_SS is read against."""
         if self.has_set_speed:
             return "set"
         return "given" if math.isfinite(self.facts.rpm) else "top_speed_mean"

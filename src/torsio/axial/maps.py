@@ -49,9 +49,8 @@ from torsio.analysis.map_runs import MapWork, drive_map
 from torsio.analysis.severity import SEVERE_THRESHOLD, run_times
 from torsio.axial.assembly import DrillingAssembly, assembly_summary
 from torsio.axial.run_results import SCHEME, channels_of
-from torsio.axial.top_drive import top_boundary
 from torsio.axial.torque_law import AxialBit
-from torsio.axial.transient import simulate_axial
+from torsio.axial.transient import run_top_boundary, simulate_axial
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.errors import ConfigError
 from torsio.solvers.batch_options import batch_threads
@@ -174,8 +173,8 @@ def axial_map(
             "bit_rotation does not integrate it",
         )
     top = options.get("top_drive")
-    if top is not None and isinstance(assembly, DrillingAssembly) and rpm_grid.size:
-        refuse_speed_table(top, top_boundary(top, assembly, float(rpm_grid[0])))
+    if top is not None and rpm_grid.size:
+        refuse_speed_table(top, run_top_boundary(top, assembly, float(rpm_grid[0])))
     choices = MapOptions(threshold=threshold, refine=refine, timeout=timeout, chunk_size=chunk_size)
     run = PointRun(assembly, bit, {"duration": duration, "window": window, **options}, growth_rate)
     points = wob_grid.size * rpm_grid.size

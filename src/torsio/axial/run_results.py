@@ -132,10 +132,11 @@ class AxialChannels:
 
     def facts(self) -> RunFacts:
         """The run's operating point, top drive and law, as every run's results read them
-        (``rpm``: the set speed, or under a torque-driven top the steady state's)."""
+        (``rpm``: the set speed, or under a torque-driven top the steady state's; none under
+        a recording, whose run reads its mean top speed as a torsional run does)."""
         return RunFacts(
             wob=self.wob,
-            rpm=self.rpm,
+            rpm=math.nan if self.top_drive == "recorded" else self.rpm,
             has_set_speed=self.has_set_speed,
             top_drive=self.top_drive,
             law=str(self.bit.get("law")),

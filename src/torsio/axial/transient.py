@@ -61,7 +61,7 @@ from torsio.units import RPM_TO_RAD_S, as_rpm, as_si
 if TYPE_CHECKING:
     from torsio.analysis.transient_results import TransientResults
 
-__all__ = ["simulate_axial"]
+__all__ = ["run_top_boundary", "simulate_axial"]
 
 
 def _chain_chunk(
@@ -238,13 +238,11 @@ def simulate_axial(
     )
     setup: RunSetup | WaveRunSetup
     kind = getattr(top_drive, "name", "constant-speed") if top_drive is not None else None
-    boundary = None
+    boundary, given_rpm = None, rpm
     if top_drive is not None:
-        from torsio.axial.top_drive import top_boundary
-
-        boundary = top_boundary(top_drive, assembly, rpm, string)
+        boundary = run_top_boundary(top_drive, assembly, rpm, string)
         if boundary.speed_table is not None:  # S_SS against the last recorded speed
-            rpm = boundary.set_speed / RPM_TO_RAD_S
+            rpm = _last_recorded_rpm(boundary)
     torque_law = isinstance(bit, TorqueLawBit)
     if torque_law and growth_rate:
         raise ConfigError("growth_rate", f"{bit.name!r}: {TorqueLawBit.NO_GROWTH_RATE}")
@@ -299,7 +297,10 @@ def simulate_axial(
         bit=bit.to_dict(),
     )
     texts = warning_list(
-        *run_warnings(channels.summary, bit, energy), skipped, past_the_record(top_drive, duration)
+        *run_warnings(channels.summary, bit, energy),
+        skipped,
+        past_the_record(top_drive, duration),
+        _rpm_of_the_record(given_rpm, rpm),
     )
     if boundary is not None and not boundary.held and channels.window_rows().any():
         in_window = channels.window_rows()
@@ -311,6 +312,55 @@ def simulate_axial(
         )
         texts = warning_list(motor, *texts)
     return axial_results(channels, texts)
+
+
+def run_top_boundary(top_drive: Any, assembly: Any, rpm: float, string: Any = None) -> Any:
+    """The boundary of ``top_drive`` on ``assembly`` at ``rpm``
+    (:func:`torsio.axial.top_drive.top_boundary`). The distributed pipe's top is held (at Ω₀
+    or a recorded speed): a top drive with inertia there is a ConfigError naming the kind,
+    whatever its tuning would need."""
+    from torsio.axial.top_drive import top_boundary
+
+    refusal = ConfigError(
+        "top_drive",
+        f"{getattr(top_drive, 'name', top_drive)!r} given with a WaveDrillingAssembly: the "
+        "distributed pipe's top is held, at Ω₀ or at a recorded speed (expected "
+        "top_drive=None, 'constant-speed' or 'recorded', or a lumped DrillingAssembly for a "
+        "top drive with inertia)",
+    )
+    wave = isinstance(assembly, WaveDrillingAssembly)
+    try:
+        boundary = top_boundary(top_drive, assembly, rpm, string)
+    except ConfigError:
+        if wave:  # e.g. a tuning that reads a chain the pipe is not
+            raise refusal from None
+        raise
+    if wave and not boundary.held:
+        raise refusal
+    return boundary
+
+
+def _rpm_of_the_record(given: float, last: float) -> str | None:
+    """The warning for a given rpm that a recording's last speed replaced (else None)."""
+    if abs(given - last) <= 1e-9 * last:
+        return None
+    return (
+        f"the top follows a recording: the run's steady state and S_SS are at its last speed, "
+        f"{last:.6g} rpm, not at the {given:.6g} rpm given"
+    )
+
+
+def _last_recorded_rpm(boundary: Any) -> float:
+    """The last speed [rpm] of a top that follows a table (a recording): the run's Ω₀, its
+    steady state and S_SS, as on the torsional engines; a ConfigError if it is not turning."""
+    last = float(boundary.set_speed)
+    if not last > 0.0:
+        raise ConfigError(
+            "top_drive.recording",
+            f"ends at {last / RPM_TO_RAD_S:.6g} rpm: the run's steady state (its delay, S_SS) "
+            "is at the last recorded speed; expected a recording that ends turning forward",
+        )
+    return last / RPM_TO_RAD_S
 
 
 def _growth_rate(

@@ -233,13 +233,6 @@ def wave_run_setup(
         contacts = contacts.at_wob(wob)
         steady, friction = steady_with_friction(bit, wob, rpm, contacts, assembly.hook)
     options.check()
-    if top_drive is not None and not top_drive.held:
-        raise ConfigError(
-            "top_drive",
-            "a top drive with inertia given with a WaveDrillingAssembly: the distributed "
-            "pipe's top is held (at Ω₀ or a recorded speed); a controller turns a lumped "
-            "chain (expected a held top, or a DrillingAssembly)",
-        )
     check_set_speed(top_drive, options)
     fastest = assembly.fastest_rate()
     grid = pipe_grid(assembly, options.largest_step(bit, assembly.bha_mass, fastest))

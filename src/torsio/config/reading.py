@@ -174,7 +174,8 @@ def _axial_top_drive(axial: Any, top_drive: Any) -> Any:
             "top_drive.kind",
             f"{top_drive.kind!r} has no set speed; the axial engine reads its steady state, "
             "delay and step at the set rpm: expected a kind with a set speed (constant-speed, "
-            "pi, soft-torque, z-torque, plugins), or the torque kind from Python with an rpm",
+            "recorded, pi, soft-torque, z-torque, plugins), or the torque kind from Python "
+            "with an rpm",
         )
     if top_drive.kind == "constant-speed":
         return axial  # the held top, as without the table
