@@ -203,3 +203,18 @@ def test_axial_frequency_of_two_masses_is_the_closed_form():
     pair = DrillingAssembly([1.0, 1.0], [1.0, 1.0], [2.0e3, 3.0e3], axial_stiffnesses=[1e6, 4e6])
     expected = math.sqrt(4e6 * (1 / 2.0e3 + 1 / 3.0e3)) / (2 * math.pi)
     assert axial_frequencies(pair) == pytest.approx([expected], rel=1e-12)
+
+
+def test_youngs_modulus_is_read_once_with_the_material_of_every_string():
+    # E travels in the sections' Material (read with [material] and a section's own table,
+    # which inherits what it does not give); a torsional string checks it too: a bad value
+    # was ignored while no law needed it
+    config = parse_config(STRING)
+    assert {s.material.youngs_modulus for s in config.string.sections} == {207e9}
+    tucker_wang = {"law": "tucker-wang", "radius": 0.108, "a0": 0.221, "a1": 0.2, "a2": 0.89,
+                   "a3": 0.06, "speed_unit": "rpm"}  # fmt: skip
+    torsional = _with(STRING, "bit_rock", tucker_wang)
+    assert parse_config(_with(torsional, "material.youngs_modulus", None)).axial is None
+    with pytest.raises(ConfigError) as info:
+        parse_config(_with(torsional, "material.youngs_modulus", "207 m"))
+    assert info.value.key == "material.youngs_modulus"

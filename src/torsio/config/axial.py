@@ -43,7 +43,6 @@ from torsio.config.tables import _positive_number, _string, _table
 from torsio.errors import ConfigError
 from torsio.model.drillstring import DrillString
 from torsio.model.wave import DEFAULT_TRAVEL_TIME_TOLERANCE
-from torsio.units import to_si
 
 __all__ = [
     "AXIAL_SIMULATION_KEYS",
@@ -318,15 +317,6 @@ def _refuse_axial_tables(table: Mapping[str, Any], needed: str) -> None:
         raise ConfigError(f"simulation.{key}", f"applies to axial dynamics only: give {needed}")
 
 
-def _youngs_modulus(raw: Any, key: str, default: float | None) -> float | None:
-    if not isinstance(raw, Mapping) or "youngs_modulus" not in raw:
-        return default
-    value = to_si(raw["youngs_modulus"], "pressure", key=f"{key}.youngs_modulus")
-    if not (math.isfinite(value) and value > 0):
-        raise ConfigError(f"{key}.youngs_modulus", f"expected a positive modulus, got {value!r}")
-    return value
-
-
 @attrs.frozen
 class AxialSections:
     """A ``[[section]]`` string read once for axial dynamics (:func:`axial_sections`).
@@ -347,14 +337,14 @@ class AxialSections:
     bha_inertia: float
 
 
-def axial_sections(table: Mapping[str, Any], string: DrillString) -> AxialSections:
-    """The pipe sections (with E from ``[material]`` or the section's own) and the rigid
-    BHA's sums: what both the lumped chain and the distributed pipe are built from."""
-    default_e = _youngs_modulus(table.get("material"), "material", None)
+def axial_sections(string: DrillString) -> AxialSections:
+    """The pipe sections (with E of their material, ``[material]`` or the section's own)
+    and the rigid BHA's sums: what both the lumped chain and the distributed pipe are built
+    from."""
     pipe: list[PipeSection] = []
     bha_mass = bha_inertia = 0.0
-    for i, (section, raw_section) in enumerate(zip(string.sections, table["section"], strict=True)):
-        e = _youngs_modulus(raw_section.get("material"), f"section[{i}].material", default_e)
+    for i, section in enumerate(string.sections):
+        e = section.material.youngs_modulus
         area = math.pi * (section.od**2 - section.id**2) / 4
         if section.in_bha:
             bha_mass += section.material.density * area * section.length
@@ -468,7 +458,7 @@ def string_axial(table: Mapping[str, Any], string: DrillString) -> AxialConfig |
         return None
     assert isinstance(raw, Mapping)
     options = _axial_table(table)
-    sections = axial_sections(table, string)
+    sections = axial_sections(string)
     discretization = table.get("discretization", {})
     bit = axial_law_from_table(raw)
     run = {"steps_per_period": options["steps_per_period"], **_simulation_options(table)}

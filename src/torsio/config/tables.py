@@ -29,7 +29,7 @@ SECTION_KEYS = {
 }
 JOINT_KEYS = ("adjusted_weight", "tool_joint_od")
 """Keys of drill pipe and HWDP only (:class:`torsio.model.components.JointedPipe`)."""
-MATERIAL_KEYS = {"shear_modulus", "density", "youngs_modulus"}  # E: config/axial.py
+MATERIAL_KEYS = {"shear_modulus", "density", "youngs_modulus"}
 
 
 # --- tables ---------------------------------------------------------------------------------
@@ -74,10 +74,18 @@ def _material(value: Any, key: str, default: Material) -> Material:
                 key=f"{key}.shear_modulus",
             ),
             density=to_si(table.get("density", default.density), "density", key=f"{key}.density"),
+            youngs_modulus=_optional_modulus(
+                table.get("youngs_modulus", default.youngs_modulus), f"{key}.youngs_modulus"
+            ),
         )
     except ConfigError as exc:
         full_key = exc.key if exc.key.startswith(key) else f"{key}.{exc.key}"
         raise ConfigError(full_key, exc.message) from None
+
+
+def _optional_modulus(value: Any, key: str) -> float | None:
+    """Young's modulus [Pa] of a material table (None: not given; Material checks it)."""
+    return None if value is None else to_si(value, "pressure", key=key)
 
 
 def _section(raw: Any, key: str, default_material: Material) -> Section:

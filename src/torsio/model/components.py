@@ -47,6 +47,11 @@ _positive_finite = _finite("positive", lambda value: value > 0)
 _non_negative_finite = _finite("non-negative", lambda value: value >= 0)
 
 
+def _pressure(value: Any) -> float:
+    """E [Pa] from a number or a string with units (``"207 GPa"``)."""
+    return as_si(value, "pressure", key="youngs_modulus")
+
+
 @attrs.frozen
 class Material:
     """Elastic material of a section.
@@ -57,6 +62,9 @@ class Material:
         Shear modulus G [Pa], or a string with units (``"79.3 GPa"``).
     density : float or str
         Density rho [kg/m^3], or a string with units (``"7.8 g/cm^3"``).
+    youngs_modulus : float or str or None
+        Young's modulus E [Pa] (``"207 GPa"``), which axial dynamics need (springs E A / L,
+        axial waves sqrt(E/rho)); None: not given, the section is torsional only.
 
     Examples
     --------
@@ -66,6 +74,11 @@ class Material:
 
     shear_modulus: float = si_field("pressure", "shear_modulus", validator=_positive_finite)
     density: float = si_field("density", "density", validator=_positive_finite)
+    youngs_modulus: float | None = attrs.field(
+        default=None,
+        converter=attrs.converters.optional(_pressure),
+        validator=attrs.validators.optional(_positive_finite),
+    )
 
     @property
     def wave_speed(self) -> float:
