@@ -166,3 +166,17 @@ def test_simulate_out_refuses_another_suffix_before_it_runs(tmp_path, capsys):
     error = capsys.readouterr().err
     assert "--out" in error and "ending in .npz" in error
     assert not (tmp_path / "run.json").exists()
+
+
+def test_a_saved_run_draws_the_runs_figure(saved, tmp_path):
+    pytest.importorskip("matplotlib")
+    run, again = saved
+    figures = [r.plot(tmp_path / f"{name}.png") for name, r in (("a", run), ("b", again))]
+    for before, after in zip(*(f.axes for f in figures), strict=True):
+        assert before.get_title() == after.get_title()
+        lines = [
+            [(line.get_xdata(), line.get_ydata()) for line in ax.lines] for ax in (before, after)
+        ]
+        for (x0, y0), (x1, y1) in zip(*lines, strict=True):
+            np.testing.assert_array_equal(x1, x0)
+            np.testing.assert_array_equal(y1, y0)
