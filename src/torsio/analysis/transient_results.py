@@ -31,6 +31,7 @@ __all__ = [
     "RUN_FORMAT_VERSION",
     "RUN_VALUES",
     "TransientResults",
+    "run_file_path",
     "window_mask",
 ]
 
@@ -225,8 +226,9 @@ class TransientResults:
 
     @property
     def rpm(self) -> float:
-        """The rotary speed the run had [rpm]: the set speed, or for a top drive without
-        one (``torque``) the mean top-drive speed over the steady window."""
+        """The rotary speed the run had [rpm] (:attr:`rpm_source` says which): the set
+        speed, an axial run's given speed under a torque-driven top, else (a torque-driven
+        top of a torsional run, a recording) the mean top-drive speed over the window."""
         if math.isfinite(self.facts.rpm):
             return self.facts.rpm
         return self.top_speed_mean / RPM_TO_RAD_S
@@ -380,13 +382,7 @@ class TransientResults:
         System); an axial run its channels (:meth:`AxialChannels.saved`). Written
         atomically (an :class:`~torsio.errors.OutputError` names the path of a failed
         write). Returns the path written."""
-        path = Path(path)
-        if path.suffix != ".npz":
-            raise ConfigError(
-                "path",
-                f"{str(path)!r}: a run is saved as a numpy archive of its arrays; expected a "
-                "name ending in .npz (its JSON is to_dict(series=True), torsio simulate --json)",
-            )
+        path = run_file_path(path)
         metadata: dict[str, Any] = {"format": RUN_FORMAT, "version": RUN_FORMAT_VERSION}
         metadata["warnings"] = list(self.warnings)
         if self.axial is not None:
@@ -440,6 +436,19 @@ class TransientResults:
 _SIGNALS = ("time", "bit_speed", "bit_angle", "bit_torque", "surface_torque", "top_speed",
             "motor_torque")  # fmt: skip
 """The signals every run has, by name (:meth:`TransientResults.signal`)."""
+
+
+def run_file_path(path: str | Path, key: str = "path") -> Path:
+    """``path`` of a saved run (:meth:`TransientResults.save`): a name ending in ``.npz``,
+    else a ConfigError on ``key``."""
+    path = Path(path)
+    if path.suffix != ".npz":
+        raise ConfigError(
+            key,
+            f"{str(path)!r}: a run is saved as a numpy archive of its arrays; expected a "
+            "name ending in .npz (its JSON is to_dict(series=True), torsio simulate --json)",
+        )
+    return path
 
 
 def window_mask(time_grid: np.ndarray, window: float) -> np.ndarray:

@@ -73,11 +73,12 @@ def run(args: argparse.Namespace) -> int:
     """Run ``torsio simulate`` with parsed arguments; return the exit status."""
     from torsio.analysis.config_runs import run_capabilities
     from torsio.analysis.transient import simulate_config
+    from torsio.analysis.transient_results import run_file_path
     from torsio.errors import ConfigError
 
     outputs = common.check_outputs(args, ("out", "csv", "plot", "recording"))
-    if "out" in outputs and Path(outputs["out"]).suffix != ".npz":
-        raise ConfigError("--out", f"{outputs['out']!r}: expected a file name ending in .npz")
+    if "out" in outputs:  # before the run, not after it
+        run_file_path(outputs["out"], "--out")
     config = common.load(args)
     given = {
         "growth_rate": ("--growth-rate", args.growth_rate),
