@@ -8,8 +8,9 @@ import tomllib
 from importlib import resources
 from typing import Any
 
-from torsio.axial.assembly import DrillingAssembly, pipe_assembly
+from torsio.axial.assembly import axial_chain, pipe_assembly
 from torsio.axial.wave_assembly import PipeSection
+from torsio.model.lumped import LumpedModel
 
 TEXT = resources.files("torsio").joinpath("data/rgd_2dof.toml").read_text(encoding="utf-8")
 BASE: dict[str, Any] = tomllib.loads(TEXT)
@@ -32,16 +33,16 @@ PIPE = (3, PipeSection(900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5), 29981.3, 
 kg/m³, A = 3.4e-3 m², J = 1.5e-5 m⁴) above the 2-DOF example's BHA (29981.3 kg, 230 kg m²)."""
 
 
-def damped_pipe(hook: str) -> DrillingAssembly:
+def damped_pipe(hook: str) -> LumpedModel:
     """The 3-node :data:`PIPE` with dampers β k (β = 0.06 s, the built-in Rayleigh β) and
     1e-3 s k_a."""
     pipe = pipe_assembly(*PIPE, hook=hook)
-    return DrillingAssembly(
-        pipe.inertias,
-        pipe.stiffnesses,
-        pipe.masses,
-        axial_stiffnesses=pipe.axial_stiffnesses,
-        damping=0.06 * pipe.stiffnesses,
-        axial_damping=1e-3 * pipe.axial_stiffnesses,
+    return axial_chain(
+        pipe.node_inertias,
+        pipe.springs,
+        pipe.axial.masses,
+        axial_stiffnesses=pipe.axial.stiffnesses,
+        dampings=0.06 * pipe.springs,
+        axial_dampings=1e-3 * pipe.axial.stiffnesses,
         hook=hook,
     )

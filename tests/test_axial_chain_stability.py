@@ -18,7 +18,7 @@ import pytest
 from axial_files import PIPE, damped_pipe
 from axial_growth import envelope_rate, perturbed_run
 
-from torsio.axial.assembly import DrillingAssembly, pipe_assembly, two_dof_assembly
+from torsio.axial.assembly import axial_chain, pipe_assembly, two_dof_assembly
 from torsio.axial.linearization import delayed_matrix, drilling_linearization
 from torsio.axial.maps import axial_map
 from torsio.axial.rgd import rgd_example
@@ -38,9 +38,7 @@ WOB = 100e3
 # --- one node is the 2-DOF model ---------------------------------------------------------------
 def test_a_chain_of_one_node_is_the_two_dof_linearization():
     # one node under the weight hook with an axial spring: k_a,0 carries W₀ and is not used
-    node = DrillingAssembly(
-        [INERTIA], [STIFFNESS], [MASS], axial_stiffnesses=[5e6], damping=[DAMPING]
-    )
+    node = axial_chain([INERTIA], [STIFFNESS], [MASS], axial_stiffnesses=[5e6], dampings=[DAMPING])
     two_dof = two_dof_assembly(INERTIA, STIFFNESS, MASS, DAMPING)
     chain, reference = (drilling_linearization(a, BIT, WOB, 90.0) for a in (node, two_dof))
     steady = steady_drilling(BIT, WOB, 90.0)
@@ -59,15 +57,15 @@ def test_a_chain_of_one_node_is_the_two_dof_linearization():
 # --- stiff axial springs: the rigid axial body ---------------------------------------------------
 def test_stiff_axial_springs_tend_to_the_rigid_axial_body():
     chain = pipe_assembly(*PIPE)
-    rigid = DrillingAssembly(chain.inertias, chain.stiffnesses, chain.masses)
+    rigid = axial_chain(chain.node_inertias, chain.springs, chain.axial.masses)
     reference = drilling_stability(rigid, BIT, WOB, 120.0, count=3).roots
     errors = []
     for scale in (1e3, 1e5):
-        stiff = DrillingAssembly(
-            chain.inertias,
-            chain.stiffnesses,
-            chain.masses,
-            axial_stiffnesses=chain.axial_stiffnesses * scale,
+        stiff = axial_chain(
+            chain.node_inertias,
+            chain.springs,
+            chain.axial.masses,
+            axial_stiffnesses=chain.axial.stiffnesses * scale,
         )
         roots = drilling_stability(stiff, BIT, WOB, 120.0, count=3).roots
         errors.append(np.max(np.abs(roots - reference) / np.abs(reference)))
@@ -78,13 +76,13 @@ def test_stiff_axial_springs_tend_to_the_rigid_axial_body():
 
 # --- one node under the hook speed: the determinant by hand ------------------------------------
 AXIAL_SPRING, AXIAL_DAMPER = 2.0e7, 5.0e4  # N/m, N s/m
-SPEED_NODE = DrillingAssembly(
+SPEED_NODE = axial_chain(
     [INERTIA],
     [STIFFNESS],
     [MASS],
     axial_stiffnesses=[AXIAL_SPRING],
-    damping=[DAMPING],
-    axial_damping=[AXIAL_DAMPER],
+    dampings=[DAMPING],
+    axial_dampings=[AXIAL_DAMPER],
     hook="speed",
 )
 
@@ -139,7 +137,7 @@ def test_the_hook_speed_has_no_neutral_root():
 def test_the_hook_weight_has_its_neutral_root_found_and_not_reported():
     chain = pipe_assembly(*PIPE)
     system = drilling_linearization(chain, BIT, WOB, 60.0)
-    shift = np.r_[np.ones(chain.axial_dofs), np.zeros(chain.nodes)]  # u_i = const
+    shift = np.r_[np.ones(chain.axial.dofs), np.zeros(chain.dofs)]  # u_i = const
     np.testing.assert_array_equal(system.stiffness @ shift, 0.0)
     assert abs(system.characteristic_slope(0.0)) > 0  # a simple root
     result = drilling_stability(chain, BIT, WOB, 60.0)

@@ -17,6 +17,7 @@ import pytest
 from axial_files import BASE, STRING
 
 from torsio.axial import rgd_example, rgd_two_dof_example
+from torsio.axial.assembly import assembly_description
 from torsio.config.reading import parse_config
 from torsio.errors import ConfigError
 from torsio.examples import builtin_config, rgd_two_dof_config
@@ -39,8 +40,8 @@ def test_builtin_file_is_the_api_example():
     config = rgd_two_dof_config()
     axial = config.axial
     example = rgd_two_dof_example()
-    assert axial.assembly.describe() == example.describe()
-    assert np.array_equal(axial.assembly.damping, example.damping)
+    assert assembly_description(axial.assembly) == assembly_description(example)
+    assert np.array_equal(axial.assembly.dampers, example.dampers)
     assert axial.bit == rgd_example()
     assert axial.run_options() == {
         "start": "rest",
@@ -69,11 +70,11 @@ def test_axial_keys_are_read_with_units():
     data = _with(data, "simulation.step", "1 ms")
     axial = parse_config(data).axial
     a = axial.assembly
-    assert a.masses.tolist() == [10000.0, 19981.3]
-    assert a.axial_stiffnesses.tolist() == [2e6, 3e6]
-    assert a.axial_damping.tolist() == [100.0, 200.0]
-    assert a.damping.tolist() == pytest.approx([0.05 * 600.0, 0.05 * 700.0])
-    assert a.hook == "speed" and not axial.is_two_dof
+    assert a.axial.masses.tolist() == [10000.0, 19981.3]
+    assert a.axial.stiffnesses.tolist() == [2e6, 3e6]
+    assert a.axial.dampings.tolist() == [100.0, 200.0]
+    assert a.dampers.tolist() == pytest.approx([0.05 * 600.0, 0.05 * 700.0])
+    assert a.axial.hook == axial.hook == "speed" and not axial.is_two_dof
     assert axial.run_options() == {
         "start": "steady",
         "perturbation": 0.01,
@@ -89,27 +90,27 @@ def test_string_chain_from_youngs_modulus():
     a = config.axial.assembly
     string = config.string
     pipe, collars, bit = string.sections
-    assert a.nodes == 10  # 1000 m of pipe in 100 m elements, the BHA rigid on the last node
+    assert a.dofs == 10  # 1000 m of pipe in 100 m elements, the BHA rigid on the last node
     area = math.pi * (pipe.od**2 - pipe.id**2) / 4
-    assert a.axial_stiffnesses == pytest.approx(207e9 * area / 100.0)
-    assert a.stiffnesses == pytest.approx(79.3e9 * pipe.polar_moment / 100.0)
+    assert a.axial.stiffnesses == pytest.approx(207e9 * area / 100.0)
+    assert a.springs == pytest.approx(79.3e9 * pipe.polar_moment / 100.0)
     bha_mass = sum(7850 * math.pi * (s.od**2 - s.id**2) / 4 * s.length for s in (collars, bit))
     pipe_mass = 7850 * area * 1000.0
     # under the weight hook the top of the pipe is free: the chain carries the whole mass
     # (the top element's upper half on node 0, as pipe_assembly); torsionally that half
     # inertia is at the top drive
-    assert a.masses.sum() == pytest.approx(bha_mass + pipe_mass, rel=1e-14)
-    assert a.inertias.sum() == pytest.approx(
+    assert a.axial.masses.sum() == pytest.approx(bha_mass + pipe_mass, rel=1e-14)
+    assert a.node_inertias.sum() == pytest.approx(
         string.bha_inertia + 7850 * pipe.polar_moment * 950.0, rel=1e-14
     )
     speed = parse_config(_with(_with(STRING, "axial.hook", "speed"), "damping", None)).axial
-    assert speed.assembly.masses.sum() == pytest.approx(
+    assert speed.assembly.axial.masses.sum() == pytest.approx(
         bha_mass + pipe_mass - 7850 * area * 50.0, rel=1e-14
     )
-    assert a.damping == pytest.approx(0.06 * a.stiffnesses)
-    assert a.axial_damping == pytest.approx(0.06 * a.axial_stiffnesses)
+    assert a.dampers == pytest.approx(0.06 * a.springs)
+    assert a.axial.dampings == pytest.approx(0.06 * a.axial.stiffnesses)
     coarse = parse_config(_with(STRING, "axial.element_length", "250 m")).axial.assembly
-    assert coarse.nodes == 4
+    assert coarse.dofs == 4
 
 
 REFUSALS = [
@@ -196,11 +197,11 @@ def test_existing_configurations_have_no_axial_dynamics():
 
 
 def test_axial_frequency_of_two_masses_is_the_closed_form():
-    from torsio.axial import DrillingAssembly
+    from torsio.axial import axial_chain
     from torsio.report.axial import axial_frequencies
 
     # top free under the weight hook: two masses on one spring, ω² = k (1/m1 + 1/m2)
-    pair = DrillingAssembly([1.0, 1.0], [1.0, 1.0], [2.0e3, 3.0e3], axial_stiffnesses=[1e6, 4e6])
+    pair = axial_chain([1.0, 1.0], [1.0, 1.0], [2.0e3, 3.0e3], axial_stiffnesses=[1e6, 4e6])
     expected = math.sqrt(4e6 * (1 / 2.0e3 + 1 / 3.0e3)) / (2 * math.pi)
     assert axial_frequencies(pair) == pytest.approx([expected], rel=1e-12)
 

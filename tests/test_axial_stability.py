@@ -232,7 +232,7 @@ def test_the_growth_rate_crossing_brackets_and_refines_a_change_of_sign():
         ("chain.inertias[0]", {"inertia": 0.0}),
         ("chain.stiffnesses[0]", {"stiffness": -1.0}),
         ("chain.masses[0]", {"mass": float("nan")}),
-        ("chain.damping[0]", {"damping": -1.0}),
+        ("chain.dampings[0]", {"damping": -1.0}),
         ("wob", {"wob": 60e3}),
     ],
 )

@@ -225,7 +225,7 @@ def test_slow_start_up_breaks_free_at_the_break_off_torque(hook):
     contacts = config.axial.contacts.at_wob(72e3)
     assert contacts.static_torque == pytest.approx(reference.torque, rel=1e-12)
     assert held == pytest.approx(reference.torque, rel=5e-3)
-    compliance = float(np.sum(1.0 / config.axial.assembly.stiffnesses))
+    compliance = float(np.sum(1.0 / config.axial.assembly.springs))
     assert angle == pytest.approx(reference.twist + own * compliance, rel=5e-3)
 
 

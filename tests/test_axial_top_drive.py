@@ -106,7 +106,7 @@ def test_stuck_bit_against_the_matrix_exponential():
     # (measured 2.0007, 2.0003, 2.0002 for 256 .. 2048 steps per delay).
     assembly = rgd_two_dof_example()
     boundary = top_boundary(PI, assembly, 60.0)
-    matrix = top_drive_matrix(boundary, assembly.stiffnesses[0], assembly.damping[0])
+    matrix = top_drive_matrix(boundary, assembly.springs[0], assembly.dampers[0])
     n = matrix.shape[0]
     affine = np.zeros((n + 1, n + 1))
     affine[:n, :n] = matrix
@@ -125,7 +125,7 @@ def test_stuck_bit_against_the_matrix_exponential():
         assert run.signal("time")[k] == pytest.approx(horizon, abs=1e-12)
         assert np.all(run.signal("bit_speed")[: k + 1] == 0.0)  # stuck throughout
         errors.append(abs(run.signal("top_speed")[k] - exact[1]))
-        surface = assembly.stiffnesses[0] * exact[0] + assembly.damping[0] * exact[1]
+        surface = assembly.springs[0] * exact[0] + assembly.dampers[0] * exact[1]
         assert run.signal("surface_torque")[k] == pytest.approx(surface, rel=2e-3)
     assert errors[1] < 1e-3 * abs(exact[1])
     assert errors[0] / errors[1] == pytest.approx(2.0, abs=0.05)
@@ -137,7 +137,7 @@ def test_soft_torque_lowers_stick_slip_against_the_held_top():
     # with kp the chain's impedance √(k I) = 384.7 N m s/rad and ki = ω₁² J (the default)
     # measured 1.059 and 0.036, Z-Torque (ζ = √(k I), the defaults) 0.423 and 0.
     assembly = rgd_two_dof_example()
-    impedance = float(np.sqrt(assembly.stiffnesses[0] * assembly.inertias[0]))
+    impedance = float(np.sqrt(assembly.springs[0] * assembly.bit_inertia))
     options = {"duration": 100.0, "window": 50.0, "growth_rate": False}
     held = simulate_axial(assembly, BIT, 100e3, 60.0, **options)
     soft = simulate_axial(
@@ -215,7 +215,7 @@ def test_section_string_gives_the_soft_torque_defaults():
     # reference: kp = ζ = J_p √(G ρ) of the top pipe (torsio.physics.top_drive_boundary),
     # ki = ω₁² J with ω₁ of the assembly's torsional chain, top held: the lowest root of
     # the dense generalized eigenproblem K x = ω² I x solved here (the package solves it
-    # as a tridiagonal one, torsio.model.modal.pencil_first_frequency)
+    # as a tridiagonal one, LumpedModel.first_frequency)
     from torsio.config.reading import parse_config
     from torsio.model.lumped import chain_matrix
     from torsio.physics.top_drive_boundary import top_pipe_impedance
@@ -226,7 +226,7 @@ def test_section_string_gives_the_soft_torque_defaults():
     zeta = top_pipe_impedance(axial)
     assert boundary.kp == pytest.approx(zeta, rel=1e-15)
     assembly = axial.assembly
-    stiffness, inertia = chain_matrix(assembly.stiffnesses), np.diag(assembly.inertias)
+    stiffness, inertia = chain_matrix(assembly.springs), np.diag(assembly.node_inertias)
     omega1 = math.sqrt(scipy.linalg.eigh(stiffness, inertia, eigvals_only=True)[0])
     assert assembly.first_frequency() == pytest.approx(omega1, rel=1e-12)
     assert boundary.c[0] == pytest.approx(omega1**2 * 2900.0, rel=1e-12)

@@ -17,7 +17,7 @@ import scipy.interpolate
 import scipy.optimize
 from axial_growth import envelope_rate, perturbed_run
 
-from torsio.axial.assembly import DrillingAssembly, pipe_assembly, rgd_two_dof_example
+from torsio.axial.assembly import axial_chain, pipe_assembly, rgd_two_dof_example
 from torsio.axial.delay_roots import rightmost_roots
 from torsio.axial.linearization import axial_linearization
 from torsio.axial.rgd import rgd_example
@@ -210,9 +210,9 @@ def test_a_chain_under_a_hook_moving_at_constant_speed_drills_at_that_speed():
 
 def test_the_assembly_refuses_what_it_cannot_carry():
     with pytest.raises(ConfigError, match="chain.masses"):
-        DrillingAssembly([1.0, 2.0], [1.0, 2.0], [1.0])
+        axial_chain([1.0, 2.0], [1.0, 2.0], [1.0])
     with pytest.raises(ConfigError, match="axial.hook"):
-        DrillingAssembly([1.0], [1.0], [1.0], hook="speed")
+        axial_chain([1.0], [1.0], [1.0], hook="speed")
     with pytest.raises(ConfigError, match="simulation.start"):
         simulate_axial(ASSEMBLY, BIT, WOB, 60.0, duration=1.0, window=0.5, start="moving")
     with pytest.raises(ConfigError, match="bit_rotation.amplitude"):

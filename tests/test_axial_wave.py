@@ -191,8 +191,8 @@ def test_the_grid_frequencies_with_the_weight_hook_are_those_of_a_free_top():
 
 def _lumped_frequencies(nodes: int, line: str) -> np.ndarray:
     chain = pipe_assembly(nodes, UNIFORM, MASS, INERTIA, hook="speed")
-    springs = chain.axial_stiffnesses if line == "axial" else chain.stiffnesses
-    masses = chain.masses if line == "axial" else chain.inertias
+    springs = chain.axial.stiffnesses if line == "axial" else chain.springs
+    masses = chain.axial.masses if line == "axial" else chain.node_inertias
     values = scipy.linalg.eigh(chain_matrix(springs), np.diag(masses), eigvals_only=True)
     return np.sqrt(values[:3])
 

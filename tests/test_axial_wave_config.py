@@ -27,7 +27,7 @@ import numpy as np
 import pytest
 import scipy.optimize
 
-from torsio.axial.assembly import DrillingAssembly, lumped_node_depths, pipe_assembly
+from torsio.axial.assembly import pipe_assembly
 from torsio.axial.run_setup import RunOptions
 from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly
 from torsio.axial.wave_setup import wave_run_setup
@@ -39,7 +39,7 @@ from torsio.errors import ConfigError
 from torsio.examples import rgd_wave_pipe_config
 from torsio.model.continuum import bar_frequencies
 from torsio.model.discretize import StrategyC
-from torsio.model.lumped import chain_matrix
+from torsio.model.lumped import LumpedModel
 from torsio.report.axial import axial_frequencies, axial_section, torsional_frequencies
 from torsio.report.context import ReportContext
 
@@ -94,12 +94,12 @@ def test_the_wave_pipe_is_the_files_sections():
     assert pipe.hook == "weight" and pipe.travel_time_tolerance == 3e-4
     # the stability's lumped twin: the same sections in 100 m elements, no dampers
     twin = axial.lumped_twin
-    assert isinstance(twin, DrillingAssembly) and twin.nodes == 10
+    assert isinstance(twin, LumpedModel) and twin.dofs == 10
     assert DEFAULT_ELEMENT_LENGTH == 100.0
-    assert twin.masses.sum() == pytest.approx(
+    assert twin.axial.masses.sum() == pytest.approx(
         BHA_MASS + sum(RHO * _area(od, i) * length for od, i, length in PIPE), rel=1e-14
     )
-    assert not twin.damping.any() and not twin.axial_damping.any()
+    assert not twin.dampers.any() and not twin.axial.dampings.any()
     assert axial.stability_model == "lumped twin, 10 nodes (elements of at most 100 m)"
     # a section's own modulus and the travel-time tolerance are passed on
     own = _config(**{'bha = false': 'bha = false\nmaterial = { youngs_modulus = "200 GPa" }',
@@ -127,16 +127,19 @@ def test_one_section_lumped_chain_is_pipe_assembly(hook):
     spacing, bottom = 250.0, np.array([0.0, 0.0, 0.0, 1.0])
     halves = np.array([2.0, 2.0, 2.0, 1.0]) + (hook == "weight") * np.array([1.0, 0, 0, 0])
     by_hand = {
-        "masses": halves / 2 * RHO * section.area * spacing + bottom * BHA_MASS,
-        "inertias": np.array([1.0, 1.0, 1.0, 0.5]) * RHO * section.polar_moment * spacing
+        lambda a: a.axial.masses: halves / 2 * RHO * section.area * spacing + bottom * BHA_MASS,
+        lambda a: a.node_inertias: np.array([1.0, 1.0, 1.0, 0.5])
+        * RHO
+        * section.polar_moment
+        * spacing
         + bottom * BHA_INERTIA,
-        "stiffnesses": np.full(4, G * section.polar_moment / spacing),
-        "axial_stiffnesses": np.full(4, E * section.area / spacing),
+        lambda a: a.springs: np.full(4, G * section.polar_moment / spacing),
+        lambda a: a.axial.stiffnesses: np.full(4, E * section.area / spacing),
     }
-    for name, values in by_hand.items():
-        np.testing.assert_allclose(getattr(chain, name), values, rtol=1e-14)
-        np.testing.assert_allclose(getattr(expected, name), values, rtol=1e-14)
-    assert chain.hook == hook and not chain.damping.any()
+    for rows, values in by_hand.items():
+        np.testing.assert_allclose(rows(chain), values, rtol=1e-14)
+        np.testing.assert_allclose(rows(expected), values, rtol=1e-14)
+    assert chain.axial.hook == hook and not chain.dampers.any()
 
 
 @pytest.mark.parametrize("element_length", [100.0, 70.0, 333.0])
@@ -152,12 +155,10 @@ def test_the_axial_chains_torsional_rows_are_strategy_cs(element_length):
     axial = parse_config(data).axial
     model = StrategyC(max_element_length=element_length).discretize(axial.string)
     chain = axial.assembly
-    assert chain.nodes == model.dofs
-    np.testing.assert_allclose(chain.inertias, np.diag(model.inertia), rtol=1e-14)
-    np.testing.assert_allclose(chain_matrix(chain.stiffnesses), model.stiffness, rtol=1e-14)
-    np.testing.assert_allclose(
-        lumped_node_depths(axial.sections.pipe, element_length), model.node_depths, rtol=1e-14
-    )
+    assert chain.dofs == model.dofs
+    np.testing.assert_allclose(chain.inertia, model.inertia, rtol=1e-14)
+    np.testing.assert_allclose(chain.stiffness, model.stiffness, rtol=1e-14)
+    np.testing.assert_allclose(chain.node_depths, model.node_depths, rtol=1e-14)
 
 
 # --- the report's frequencies -------------------------------------------------------------
@@ -366,5 +367,5 @@ def test_beta_stays_with_the_lumped_chain():
     text = _text("travel_time_tolerance = 3e-4", "", text)
     chain = parse_config_text(_text("[operation]", "[damping]\nbeta = 0.06\n[operation]", text))
     assembly = chain.axial.assembly
-    np.testing.assert_allclose(assembly.damping, 0.06 * assembly.stiffnesses, rtol=1e-15)
+    np.testing.assert_allclose(assembly.dampers, 0.06 * assembly.springs, rtol=1e-15)
     assert chain.axial.lumped_twin is None and chain.axial.stability_model == "the assembly"

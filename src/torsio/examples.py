@@ -8,7 +8,7 @@
 'Ritto et al. (2017)'
 >>> deviated_well_config().well.survey.depth
 2500.0
->>> rgd_two_dof_config().axial.assembly.masses.tolist()
+>>> rgd_two_dof_config().axial.assembly.axial.masses.tolist()
 [29981.3]
 >>> rgd_wave_pipe_config().axial.assembly.lengths.tolist()
 [900.0, 100.0]

@@ -196,7 +196,6 @@ def case_with_values(config: Any, case: Any, values: Mapping[str, float], flag: 
             )
     contacts = None
     if well_values or holes:
-        from torsio.axial.assembly import lumped_node_depths
         from torsio.axial.string_contacts import axial_contacts
 
         sections = list(config.well.hole)
@@ -204,8 +203,7 @@ def case_with_values(config: Any, case: Any, values: Mapping[str, float], flag: 
             drawn = {key: value for (i, key), value in holes.items() if i == index}
             sections[index] = attrs.evolve(sections[index], **_factors(sections[index], drawn))
         well = attrs.evolve(config.well, hole=tuple(sections), **_factors(config.well, well_values))
-        depths = lumped_node_depths(axial.sections.pipe, axial.element_length)
-        contacts = axial_contacts(well, axial.string, depths)
+        contacts = axial_contacts(well, axial.string, axial.stability_assembly.node_depths)
     bit = attrs.evolve(case.bit, **bit_values) if bit_values else None
     return case_with(case, contacts=contacts, bit=bit)
 

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from torsio.axial.assembly import (
-        DrillingAssembly,
+        axial_chain,
         pipe_assembly,
         rgd_two_dof_example,
         two_dof_assembly,
@@ -51,7 +51,7 @@ if TYPE_CHECKING:
 # the transient and the maps numba, so that reading an RGD bit (``torsio laws``, a
 # configuration) stays cheap.
 _LAZY = {
-    "DrillingAssembly": "torsio.axial.assembly",
+    "axial_chain": "torsio.axial.assembly",
     "pipe_assembly": "torsio.axial.assembly",
     "rgd_two_dof_example": "torsio.axial.assembly",
     "two_dof_assembly": "torsio.axial.assembly",
@@ -90,7 +90,6 @@ __all__ = [
     "AxialContacts",
     "AxialChannels",
     "BitRotation",
-    "DrillingAssembly",
     "DrillingCase",
     "DrillingStability",
     "EnergyBalance",
@@ -102,6 +101,7 @@ __all__ = [
     "SteadyDrilling",
     "SteadyFriction",
     "WaveDrillingAssembly",
+    "axial_chain",
     "axial_contacts",
     "axial_linearization",
     "axial_map",

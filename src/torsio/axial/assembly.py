@@ -1,16 +1,12 @@
-"""Lumped drilling assemblies that move axially and torsionally: nodes on a chain.
+"""Lumped drilling assemblies: chains whose nodes turn and move axially, the bit on the last.
 
-Each node i has a torsional inertia I_i and an axial mass m_i. Torsionally, spring k_i and
-damper c_i join node i − 1 to node i, node −1 being the top drive turning at Ω₀; the last
-node carries the bit. Axially, spring k_a,i and damper c_a,i join node i − 1 to node i,
-node −1 being the hook:
-
-- ``hook = "weight"``: the hook weight W₀ acts on node 0 (the string above it carries W₀
-  whatever its stiffness, so k_a,0 is not used). Without axial springs the nodes move
-  axially as one rigid body of mass Σ m_i (RGD 2007's form: the axial stiffness of the
-  string neglected).
-- ``hook = "speed"``: the hook moves down at a constant speed, the steady rate of
-  penetration V₀ of the run's (W₀, Ω₀), through k_a,0 and c_a,0; it needs axial springs.
+A lumped drilling assembly is a :class:`~torsio.model.lumped.LumpedModel` with axial rows
+(:class:`~torsio.model.axial_rows.AxialRows`): node i has a torsional inertia I_i and an
+axial mass m_i; torsionally, spring k_i and damper c_i join node i − 1 to node i, node −1
+being the top drive turning at Ω₀; axially, spring k_a,i and damper c_a,i join node i − 1
+to node i, node −1 being the hook (its boundaries: :mod:`torsio.model.axial_rows`).
+:func:`axial_chain` builds one from its vectors; the functions below read what the axial
+engine needs from it (its kernel rows, its fastest rates, its steady offsets).
 
 The 2-DOF model of Richard, Germay and Detournay (2007) is one node, no axial spring:
 :func:`two_dof_assembly`. :func:`pipe_assembly` splits a uniform pipe section
@@ -20,12 +16,12 @@ G J / L (L the node spacing) and the BHA on the last node.
 Examples
 --------
 >>> assembly = rgd_two_dof_example()
->>> assembly.nodes, assembly.axial_dofs, assembly.hook
+>>> assembly.dofs, assembly.axial.dofs, assembly.axial.hook
 (1, 1, 'weight')
 >>> from torsio.axial.wave_assembly import PipeSection
 >>> pipe = PipeSection(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5)
 >>> chain = pipe_assembly(4, pipe, 3.0e4, 230.0)
->>> round(float(chain.axial_stiffnesses[1]) / 1e6, 3)  # E A / (L / n), MN/m
+>>> round(float(chain.axial.stiffnesses[1]) / 1e6, 3)  # E A / (L / n), MN/m
 2.72
 """
 
@@ -34,214 +30,155 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
-import attrs
 import numpy as np
 from numpy.typing import NDArray
 
 from torsio.errors import ConfigError
-from torsio.model.arrays import read_only_vector
+from torsio.model.axial_rows import AxialRows, node_rates
 from torsio.model.discretize import element_count, lumped_halves
+from torsio.model.lumped import LumpedModel
 
 if TYPE_CHECKING:
     from torsio.axial.wave_assembly import PipeSection
 
 __all__ = [
-    "DrillingAssembly",
+    "assembly_description",
     "assembly_summary",
+    "axial_chain",
+    "axial_rows",
+    "chain_rows",
+    "fastest_damping_rate",
+    "fastest_frequency",
+    "is_two_dof",
     "lumped_node_depths",
     "lumped_pipe",
     "pipe_assembly",
     "rgd_two_dof_example",
+    "steady_angles",
     "two_dof_assembly",
 ]
 
-HOOKS = ("weight", "speed")
-"""The boundaries at the hook: a constant weight on the top node, or a constant speed."""
 
-
-def _check(key: str, values: NDArray[np.float64], allow_zero: bool) -> None:
-    bad = ~np.isfinite(values) | ((values < 0) if allow_zero else (values <= 0))
-    if bad.any():
-        i = int(np.argmax(bad))
-        expected = "non-negative" if allow_zero else "positive"
-        raise ConfigError(f"{key}[{i}]", f"expected a {expected} finite value, got {values[i]!r}")
-
-
-def _same_size(key: str, values: NDArray[np.float64], size: int) -> None:
-    if values.size != size:
-        raise ConfigError(key, f"has {values.size} values; expected {size}, one per node")
-
-
-@attrs.frozen(eq=False)
-class DrillingAssembly:
+def axial_chain(
+    inertias: Any,
+    stiffnesses: Any,
+    masses: Any,
+    axial_stiffnesses: Any = (),
+    dampings: Any = None,
+    axial_dampings: Any = None,
+    hook: str = "weight",
+    node_depths: Any = None,
+) -> LumpedModel:
     """A lumped chain of nodes that turn and move axially, the bit on the last one.
 
     Parameters
     ----------
-    inertias : array (n,)
-        Torsional inertias I_i [kg m²].
-    stiffnesses : array (n,)
-        Torsional springs k_i [N m/rad]; k_0 joins the top drive to node 0.
-    masses : array (n,)
-        Axial masses m_i [kg].
-    axial_stiffnesses : array (n,) or empty
-        Axial springs k_a,i [N/m]; k_a,0 joins the hook to node 0. Empty: the nodes move
-        axially as one body (weight hook only).
-    damping : array (n,)
-        Torsional dampers c_i [N m s/rad] in parallel with the springs (default none).
-    axial_damping : array (n,)
-        Axial dampers c_a,i [N s/m] in parallel with the axial springs (default none).
+    inertias, stiffnesses, dampings : array (n,)
+        Torsional inertias I_i [kg m²], springs k_i [N m/rad] (k_0 joins the top drive to
+        node 0) and dampers c_i [N m s/rad] in parallel with them (default none).
+    masses, axial_stiffnesses, axial_dampings : array (n,)
+        Axial masses m_i [kg], springs k_a,i [N/m] (k_a,0 joins the hook to node 0; empty:
+        the nodes move axially as one body, weight hook only) and dampers c_a,i [N s/m].
     hook : str
-        ``"weight"`` or ``"speed"`` (see the module docstring).
+        ``"weight"`` or ``"speed"`` (:mod:`torsio.model.axial_rows`).
+    node_depths : array (n,), optional
+        Depth of each node [m]; defaults to 1, 2, ..., n.
+
+    Errors name the file's keys (``chain.inertias[0]``, ``chain.masses``, ``axial.hook``).
     """
-
-    inertias: NDArray[np.float64] = attrs.field(converter=read_only_vector)
-    stiffnesses: NDArray[np.float64] = attrs.field(converter=read_only_vector)
-    masses: NDArray[np.float64] = attrs.field(converter=read_only_vector)
-    axial_stiffnesses: NDArray[np.float64] = attrs.field(converter=read_only_vector, factory=tuple)
-    damping: NDArray[np.float64] = attrs.field(converter=read_only_vector, default=None)
-    axial_damping: NDArray[np.float64] = attrs.field(converter=read_only_vector, default=None)
-    hook: str = "weight"
-
-    def __attrs_post_init__(self) -> None:
-        n = self.inertias.size
-        if n == 0:
-            raise ConfigError("chain.inertias", "is empty; expected one inertia per node")
-        _check("chain.inertias", self.inertias, False)
-        for key, values, zero in (
-            ("chain.stiffnesses", self.stiffnesses, False),
-            ("chain.masses", self.masses, False),
-        ):
-            _same_size(key, values, n)
-            _check(key, values, zero)
-        if not self.damping.size:  # none given: no dampers
-            object.__setattr__(self, "damping", read_only_vector(np.zeros(n)))
-        _same_size("chain.damping", self.damping, n)
-        _check("chain.damping", self.damping, True)
-        if self.axial_stiffnesses.size:
-            _same_size("chain.axial_stiffnesses", self.axial_stiffnesses, n)
-            _check("chain.axial_stiffnesses", self.axial_stiffnesses, False)
-        m = self.axial_dofs
-        if not self.axial_damping.size:
-            object.__setattr__(self, "axial_damping", read_only_vector(np.zeros(m)))
-        _same_size("chain.axial_damping", self.axial_damping, m)
-        _check("chain.axial_damping", self.axial_damping, True)
-        if self.hook not in HOOKS:
-            raise ConfigError("axial.hook", f"{self.hook!r} is not one of {', '.join(HOOKS)}")
-        if self.hook == "speed" and not self.axial_stiffnesses.size:
-            raise ConfigError(
-                "axial.hook",
-                "'speed' needs chain.axial_stiffnesses (the spring k_a,0 joins the hook to "
-                "node 0); with none the string is rigid and only 'weight' applies",
-            )
-
-    @property
-    def nodes(self) -> int:
-        """The number of torsional nodes n (the last one carries the bit)."""
-        return int(self.inertias.size)
-
-    @property
-    def axial_dofs(self) -> int:
-        """Axial degrees of freedom: n with axial springs, 1 (the rigid body) without."""
-        return int(self.masses.size) if self.axial_stiffnesses.size else 1
-
-    @property
-    def is_two_dof(self) -> bool:
-        """Whether this is the 2-DOF model of RGD (2007): one node under the weight hook
-        (:func:`two_dof_assembly`), whose characteristic equation
-        :func:`torsio.axial.linearization.characteristic_function` writes out."""
-        return self.nodes == 1 and self.hook == "weight"
-
-    @property
-    def bit_mass(self) -> float:
-        """The axial mass [kg] of the degree of freedom that carries the bit."""
-        return float(self.masses[-1] if self.axial_stiffnesses.size else self.masses.sum())
-
-    def axial_rows(self) -> NDArray[np.float64]:
-        """The kernel's axial rows 1/m, k_a, c_a (:mod:`torsio.axial.kernel`)."""
-        if self.axial_stiffnesses.size:
-            return np.ascontiguousarray(
-                [1.0 / self.masses, self.axial_stiffnesses, self.axial_damping], dtype=float
-            )
-        return np.array([[1.0 / self.masses.sum()], [0.0], [0.0]])
-
-    def torsional_rows(self) -> NDArray[np.float64]:
-        """The kernel's torsional rows 1/I, k, c (:mod:`torsio.axial.kernel`)."""
-        return np.ascontiguousarray([1.0 / self.inertias, self.stiffnesses, self.damping])
-
-    def first_frequency(self) -> float:
-        """ω₁ [rad/s] of the torsional chain, top held, undamped
-        (:func:`torsio.model.modal.pencil_first_frequency`)."""
-        from torsio.model.lumped import chain_matrix  # scipy: not at import
-        from torsio.model.modal import pencil_first_frequency
-
-        return pencil_first_frequency(chain_matrix(self.stiffnesses), np.diag(self.inertias))
-
-    def fastest_frequency(self) -> float:
-        """An upper bound [rad/s] of the chain's node frequencies, √((k_i + k_i+1)/I_i) and
-        √((k_a,i + k_a,i+1)/m_i): what the explicit step must resolve."""
-        frequencies = [_node_frequencies(self.stiffnesses, self.inertias)]
-        if self.axial_stiffnesses.size:
-            frequencies.append(_node_frequencies(self.axial_stiffnesses, self.masses))
-        return float(max(f.max() for f in frequencies))
-
-    def fastest_damping_rate(self) -> float:
-        """An upper bound [1/s] of the dampers' rates, the eigenvalues of M⁻¹C:
-        2 (c_i + c_i+1)/I_i and 2 (c_a,i + c_a,i+1)/m_i (Gershgorin's discs; a uniform chain
-        reaches it at its shortest wave). The explicit dampers' step keeps h times it at
-        most :data:`torsio.axial.run_setup.DAMPER_STEP`."""
-        rates = [2.0 * _node_rates(self.damping, self.inertias)]
-        if self.axial_stiffnesses.size:
-            rates.append(2.0 * _node_rates(self.axial_damping, self.masses))
-        return float(max(r.max() for r in rates))
-
-    def steady_offsets(self, torque: Any, weight: Any) -> tuple[NDArray, NDArray]:
-        """Node angles [rad] relative to the top and positions [m] relative to the bit in
-        steady drilling: each torsional spring carries the bit torque, each axial spring
-        the weight (or, as arrays, spring j its own: with friction along the string,
-        :func:`torsio.axial.steady_friction.steady_loads`). Angles −Σ_j≤i T_j/k_j;
-        positions Σ_j>i W_j/k_a,j (0 at the bit)."""
-        angles = -np.cumsum(torque / self.stiffnesses)
-        if not self.axial_stiffnesses.size:
-            return angles, np.zeros(1)
-        springs = weight / self.axial_stiffnesses
-        positions = np.concatenate([np.cumsum(springs[:0:-1])[::-1], [0.0]])
-        return angles, positions
-
-    def describe(self) -> dict[str, Any]:
-        """Plain data for reports and JSON."""
-        return {
-            "kind": "lumped",
-            "nodes": self.nodes,
-            "axial_dofs": self.axial_dofs,
-            "hook": self.hook,
-            "inertias": self.inertias.tolist(),
-            "stiffnesses": self.stiffnesses.tolist(),
-            "masses": self.masses.tolist(),
-            "axial_stiffnesses": self.axial_stiffnesses.tolist(),
-        }
+    if not np.size(inertias):
+        raise ConfigError("chain.inertias", "is empty; expected one inertia per node")
+    try:
+        chain = LumpedModel.from_chain(
+            inertias, stiffnesses, dampings=dampings, node_depths=node_depths, strategy="chain"
+        )
+    except ConfigError as exc:  # from_chain names its arguments; the file names chain.*
+        raise ConfigError(f"chain.{exc.key}", exc.message) from None
+    return chain.with_axial(AxialRows(masses, axial_stiffnesses, axial_dampings, hook))
 
 
-def _node_frequencies(springs: NDArray, inertias: NDArray) -> NDArray:
-    return np.sqrt(_node_rates(springs, inertias))
+def axial_rows(assembly: LumpedModel) -> AxialRows:
+    """The axial rows of a lumped assembly (a ConfigError on ``chain.masses`` without)."""
+    if assembly.axial is None:
+        raise ConfigError(
+            "chain.masses", "missing: the chain has no axial rows (LumpedModel.with_axial)"
+        )
+    return assembly.axial
 
 
-def _node_rates(elements: NDArray, inertias: NDArray) -> NDArray:
-    """(e_i + e_i+1)/I_i: each node's share of its two elements (springs or dampers)."""
-    total = elements.copy()
-    total[:-1] += elements[1:]
-    return total / inertias
+def is_two_dof(assembly: Any) -> bool:
+    """Whether ``assembly`` is the 2-DOF model of RGD (2007): one node under the weight hook
+    (:func:`two_dof_assembly`), whose characteristic equation
+    :func:`torsio.axial.linearization.characteristic_function` writes out."""
+    return bool(
+        assembly.linearizable and assembly.dofs == 1 and axial_rows(assembly).hook == "weight"
+    )
+
+
+def chain_rows(assembly: LumpedModel) -> NDArray[np.float64]:
+    """The kernel's torsional rows 1/I, k, c (:mod:`torsio.axial.kernel`)."""
+    return np.ascontiguousarray(
+        [1.0 / assembly.node_inertias, assembly.springs, assembly.dampers], dtype=float
+    )
+
+
+def fastest_frequency(assembly: LumpedModel) -> float:
+    """An upper bound [rad/s] of the chain's node frequencies, √((k_i + k_i+1)/I_i) and
+    √((k_a,i + k_a,i+1)/m_i): what the explicit step must resolve."""
+    axial = axial_rows(assembly)
+    rates = [node_rates(assembly.springs, assembly.node_inertias)]
+    if axial.stiffnesses.size:
+        rates.append(node_rates(axial.stiffnesses, axial.masses))
+    return float(np.sqrt(max(r.max() for r in rates)))
+
+
+def fastest_damping_rate(assembly: LumpedModel) -> float:
+    """An upper bound [1/s] of the dampers' rates, the eigenvalues of M⁻¹C:
+    2 (c_i + c_i+1)/I_i and 2 (c_a,i + c_a,i+1)/m_i (Gershgorin's discs; a uniform chain
+    reaches it at its shortest wave). The explicit dampers' step keeps h times it at
+    most :data:`torsio.axial.run_setup.DAMPER_STEP`."""
+    axial = axial_rows(assembly)
+    rates = [2.0 * node_rates(assembly.dampers, assembly.node_inertias)]
+    if axial.stiffnesses.size:
+        rates.append(2.0 * node_rates(axial.dampings, axial.masses))
+    return float(max(r.max() for r in rates))
+
+
+def steady_angles(assembly: LumpedModel, torque: Any) -> NDArray[np.float64]:
+    """Node angles [rad] relative to the top in steady drilling, each torsional spring
+    carrying the bit torque [N m] (or, as an array, spring j its own: with friction along
+    the string, :func:`torsio.axial.steady_friction.steady_loads`): −Σ_j≤i T_j/k_j. The
+    axial positions: :meth:`~torsio.model.axial_rows.AxialRows.steady_positions`."""
+    return -np.cumsum(torque / assembly.springs)
+
+
+def assembly_description(assembly: Any) -> dict[str, Any]:
+    """Plain data on a lumped or distributed assembly, for reports and JSON: a chain's
+    kind, nodes, axial DOFs, hook and vectors; a distributed pipe's ``describe()``."""
+    if not assembly.has_matrices:  # the distributed pipe
+        return dict(assembly.describe())
+    axial = axial_rows(assembly)
+    return {
+        "kind": "lumped",
+        "nodes": assembly.dofs,
+        "axial_dofs": axial.dofs,
+        "hook": axial.hook,
+        "inertias": assembly.node_inertias.tolist(),
+        "stiffnesses": assembly.springs.tolist(),
+        "masses": axial.masses.tolist(),
+        "axial_stiffnesses": axial.stiffnesses.tolist(),
+    }
 
 
 def two_dof_assembly(
     inertia: float, stiffness: float, mass: float, damping: float = 0.0
-) -> DrillingAssembly:
+) -> LumpedModel:
     """The 2-DOF model of RGD (2007): the BHA (I [kg m²], M [kg]) under the hook weight,
     a torsional spring k [N m/rad] and damper c [N m s/rad] to the top drive."""
-    return DrillingAssembly([inertia], [stiffness], [mass], damping=[damping])
+    return axial_chain([inertia], [stiffness], [mass], dampings=[damping])
 
 
-def rgd_two_dof_example() -> DrillingAssembly:
+def rgd_two_dof_example() -> LumpedModel:
     """The 2-DOF example of docs/axial.md: I = 455.65 kg m², k = 324.857 N m/rad (strategy A
     of the built-in Ritto 2017 string), M = 29981.3 kg (DESIGN.md's ``[chain] masses``),
     c = β k = 19.49 N m s/rad (the built-in β = 0.06 s)."""
@@ -250,7 +187,7 @@ def rgd_two_dof_example() -> DrillingAssembly:
 
 def pipe_assembly(
     nodes: int, pipe: PipeSection, bha_mass: float, bha_inertia: float, *, hook: str = "weight"
-) -> DrillingAssembly:
+) -> LumpedModel:
     """A uniform ``pipe`` section (length [m], E, G [Pa], ρ [kg/m³], A [m²], J [m⁴]:
     :class:`~torsio.axial.wave_assembly.PipeSection`) in ``nodes`` lumps above a rigid BHA
     on the last one: the one-section chain of the lumping of every pipe
@@ -291,7 +228,7 @@ def lumped_pipe(
     element_length: float,
     hook: str,
     beta: float = 0.0,
-) -> DrillingAssembly:
+) -> LumpedModel:
     """The lumped chain of the pipe ``sections`` above a rigid BHA (``bha_mass`` [kg],
     ``bha_inertia`` [kg m²]): each section split into elements of at most
     ``element_length`` [m], with springs E A / Δ [N/m] and G J / Δ [N m/rad] and dampers
@@ -317,14 +254,15 @@ def lumped_pipe(
     masses[-1] += bha_mass
     if hook == "weight":  # the free top's half element rides on node 0
         masses[0] += element_masses[0] / 2
-    return DrillingAssembly(
+    return axial_chain(
         inertias=inertias,
         stiffnesses=torsional,
         masses=masses,
         axial_stiffnesses=axial,
-        damping=beta * torsional,
-        axial_damping=beta * axial,
+        dampings=beta * torsional,
+        axial_dampings=beta * axial,
         hook=hook,
+        node_depths=lumped_node_depths(sections, element_length),
     )
 
 

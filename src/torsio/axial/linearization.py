@@ -28,7 +28,7 @@ and the characteristic equation, with E(λ) = 1 − e^{−λ t_n0}, is
 
     Δ(λ) = (M λ² + n ζ ε a E)(I λ² + c λ + k) − n (ε a² / 2)(V₀/Ω₀) M λ² E = 0.
 
-**A chain** (:class:`~torsio.axial.assembly.DrillingAssembly`, n nodes, m axial DOFs) is
+**A chain** (:func:`~torsio.axial.assembly.axial_chain`, n nodes, m axial DOFs) is
 linearized the same way about its steady state (every node at Ω₀ and V₀, every spring
 carrying T₀ and W₀): x = (u_0 .. u_m−1, φ_0 .. φ_n−1), M = diag(m_i, I_i), C and K block
 diagonal with the chain's tridiagonal matrices (:func:`chain_matrices`), and D the 2 × 2
@@ -80,13 +80,13 @@ from typing import Any
 
 import numpy as np
 
-from torsio.axial.assembly import DrillingAssembly
+from torsio.axial.assembly import axial_rows, is_two_dof
 from torsio.axial.delay_roots import LinearDelaySystem
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 from torsio.axial.steady_friction import drilling_state, friction_damping
 from torsio.errors import ConfigError
-from torsio.model.lumped import chain_matrix
+from torsio.model.lumped import LumpedModel, chain_matrix
 
 
 def _positive(key: str, value: float, what: str) -> float:
@@ -107,7 +107,7 @@ def delayed_matrix(bit: RGDBit, steady: SteadyDrilling) -> np.ndarray:
     return n * np.array([[weight, -weight * ratio], [torque, -torque * ratio]])
 
 
-def two_dof_parameters(assembly: DrillingAssembly) -> tuple[float, float, float, float]:
+def two_dof_parameters(assembly: LumpedModel) -> tuple[float, float, float, float]:
     """(I [kg m²], k [N m/rad], M [kg], c [N m s/rad]) of a 2-DOF assembly
     (:func:`~torsio.axial.assembly.two_dof_assembly`: one node under the weight hook), for
     the characteristic equation written out (:func:`characteristic_function`).
@@ -117,22 +117,23 @@ def two_dof_parameters(assembly: DrillingAssembly) -> tuple[float, float, float,
     ConfigError
         An assembly of more than one node, or with the speed hook.
     """
-    if not assembly.is_two_dof:
+    axial = axial_rows(assembly)
+    if not is_two_dof(assembly):
         raise ConfigError(
             "assembly",
-            f"{assembly.nodes} node(s) with the {assembly.hook!r} hook: Δ(λ) is written out "
+            f"{assembly.dofs} node(s) with the {axial.hook!r} hook: Δ(λ) is written out "
             "for the 2-DOF model only (one node under the weight hook); "
             "drilling_linearization(...).characteristic is that of any assembly",
         )
     return (
-        float(assembly.inertias[0]),
-        float(assembly.stiffnesses[0]),
-        assembly.bit_mass,
-        float(assembly.damping[0]),
+        assembly.bit_inertia,
+        float(assembly.springs[0]),
+        axial.bit_mass,
+        float(assembly.dampers[0]),
     )
 
 
-def axial_matrices(assembly: DrillingAssembly) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def axial_matrices(assembly: LumpedModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(M [kg], C [N s/m], K [N/m]) of the axial DOFs u_0 .. u_m−1 about steady drilling.
 
     Spring and damper i join node i − 1 to node i (:mod:`torsio.axial.assembly`): under
@@ -140,16 +141,17 @@ def axial_matrices(assembly: DrillingAssembly) -> tuple[np.ndarray, np.ndarray, 
     perturbation); under the hook weight node 0 has none (the weight is constant); with no
     axial springs the string is one rigid body of mass Σ m_i (K = C = 0).
     """
-    if not assembly.axial_stiffnesses.size:
-        return np.array([[assembly.bit_mass]]), np.zeros((1, 1)), np.zeros((1, 1))
-    springs = np.array(assembly.axial_stiffnesses, dtype=float)
-    dampers = np.array(assembly.axial_damping, dtype=float)
-    if assembly.hook == "weight":
+    axial = axial_rows(assembly)
+    if not axial.stiffnesses.size:
+        return np.array([[axial.bit_mass]]), np.zeros((1, 1)), np.zeros((1, 1))
+    springs = np.array(axial.stiffnesses, dtype=float)
+    dampers = np.array(axial.dampings, dtype=float)
+    if axial.hook == "weight":
         springs[0] = dampers[0] = 0.0
-    return np.diag(assembly.masses), chain_matrix(dampers), chain_matrix(springs)
+    return np.diag(axial.masses), chain_matrix(dampers), chain_matrix(springs)
 
 
-def chain_matrices(assembly: DrillingAssembly) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def chain_matrices(assembly: LumpedModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(M, C, K) of x = (u_0 .. u_m−1 [m], φ_0 .. φ_n−1 [rad]) about steady drilling: the
     axial block of :func:`axial_matrices`, then the torsional chain, its spring and damper 0
     to the top drive (held at Ω₀ t: the ground of the perturbation). SI units of the DOFs.
@@ -162,10 +164,11 @@ def chain_matrices(assembly: DrillingAssembly) -> tuple[np.ndarray, np.ndarray, 
     ([30000.0, 455.65], [0.0, 19.49], [0.0, 324.857])
     """
     axial_mass, axial_damping, axial_stiffness = axial_matrices(assembly)
+    damping = np.zeros_like(assembly.stiffness) if assembly.damping is None else assembly.damping
     return (
-        _block_diagonal(axial_mass, np.diag(assembly.inertias)),
-        _block_diagonal(axial_damping, chain_matrix(assembly.damping)),
-        _block_diagonal(axial_stiffness, chain_matrix(assembly.stiffnesses)),
+        _block_diagonal(axial_mass, assembly.inertia),
+        _block_diagonal(axial_damping, damping),
+        _block_diagonal(axial_stiffness, assembly.stiffness),
     )
 
 
@@ -196,15 +199,15 @@ def speed_loop(boundary: Any, torque: float, speed: float) -> tuple[float, float
 
 
 def friction_damping_matrix(
-    assembly: DrillingAssembly, contacts: Any, rop: float, speed: float, angles_from: int
+    assembly: LumpedModel, contacts: Any, rop: float, speed: float, angles_from: int
 ) -> np.ndarray:
     """The contacts' damping in x = (u .., φ ..) [SI of the DOFs]: each node's
     :func:`~torsio.axial.steady_friction.friction_damping` at V₀ = ``rop`` [m/s] and
     Ω₀ = ``speed`` [rad/s] on (u_i, φ_i), φ_i at ``angles_from`` + i."""
-    size = angles_from + assembly.nodes
+    size = angles_from + assembly.dofs
     matrix = np.zeros((size, size))
     blocks = friction_damping(contacts, rop, speed)
-    for i in range(assembly.nodes):
+    for i in range(assembly.dofs):
         r = contacts.radius[i]
         dofs = [i, angles_from + i]
         scale = np.array([1.0, r])
@@ -213,7 +216,7 @@ def friction_damping_matrix(
 
 
 def drilling_linearization(
-    assembly: DrillingAssembly,
+    assembly: LumpedModel,
     bit: RGDBit,
     wob: float,
     rpm: float,
@@ -223,13 +226,13 @@ def drilling_linearization(
     """Steady drilling of ``assembly`` linearized about its steady state (module docstring).
 
     x = (u_0 .. u_m−1 [m], φ_0 .. φ_n−1 [rad]): the m axial DOFs
-    (:attr:`~torsio.axial.assembly.DrillingAssembly.axial_dofs`), then the n angles; the
+    (:attr:`~torsio.model.axial_rows.AxialRows.dofs`), then the n angles; the
     bit's are the last of each. For the 2-DOF model x = (u, φ).
 
     Parameters
     ----------
-    assembly : DrillingAssembly
-        Any lumped assembly, both hooks (:mod:`torsio.axial.assembly`).
+    assembly : LumpedModel
+        Any lumped chain with axial rows, both hooks (:mod:`torsio.axial.assembly`).
     bit : RGDBit
         The bit law.
     wob : float
@@ -247,26 +250,27 @@ def drilling_linearization(
     ConfigError
         A weight on bit at which the bit does not cut.
     """
-    steady, friction = drilling_state(bit, wob, rpm, contacts, assembly.hook)
+    axial = axial_rows(assembly)
+    steady, friction = drilling_state(bit, wob, rpm, contacts, axial.hook)
     surface = steady.bit_torque if friction is None else friction.surface_torque
     mass, damping, stiffness = chain_matrices(assembly)
     loop = speed_loop(top_drive, surface, steady.bit_speed)
     if loop is not None:  # the top node φ_top first among the angles
         inertia, loop_damping, loop_stiffness = loop
         axial_mass, axial_damping, axial_stiffness = axial_matrices(assembly)
-        mass = _block_diagonal(axial_mass, np.diag([inertia, *assembly.inertias]))
+        mass = _block_diagonal(axial_mass, np.diag([inertia, *assembly.node_inertias]))
         damping = _block_diagonal(
-            axial_damping, chain_matrix(np.array([loop_damping, *assembly.damping]))
+            axial_damping, chain_matrix(np.array([loop_damping, *assembly.dampers]))
         )
         stiffness = _block_diagonal(
-            axial_stiffness, chain_matrix(np.array([loop_stiffness, *assembly.stiffnesses]))
+            axial_stiffness, chain_matrix(np.array([loop_stiffness, *assembly.springs]))
         )
     if contacts is not None:
-        angles_from = mass.shape[0] - assembly.nodes
+        angles_from = mass.shape[0] - assembly.dofs
         damping = damping + friction_damping_matrix(
             assembly, contacts.at_wob(wob), steady.rop, steady.bit_speed, angles_from
         )
-    bit_dofs = [assembly.axial_dofs - 1, mass.shape[0] - 1]
+    bit_dofs = [axial.dofs - 1, mass.shape[0] - 1]
     delayed = np.zeros_like(mass)
     delayed[np.ix_(bit_dofs, bit_dofs)] = delayed_matrix(bit, steady)
     return LinearDelaySystem(
@@ -275,12 +279,12 @@ def drilling_linearization(
         stiffness=stiffness,
         delayed=delayed,
         delay=steady.delay,
-        neutral_roots=(0.0,) if assembly.hook == "weight" else (),
+        neutral_roots=(0.0,) if axial.hook == "weight" else (),
     )
 
 
 def characteristic_function(
-    assembly: DrillingAssembly, bit: RGDBit, wob: float, rpm: float
+    assembly: LumpedModel, bit: RGDBit, wob: float, rpm: float
 ) -> Callable[[complex], complex]:
     """Δ(λ) of the module docstring, written out (a check on the matrix form).
 

@@ -47,12 +47,13 @@ from torsio.analysis.map_options import MapOptions
 from torsio.analysis.map_results import STICK_SLIP_THRESHOLD, SeverityMap
 from torsio.analysis.map_runs import MapWork, drive_map
 from torsio.analysis.severity import SEVERE_THRESHOLD, run_times
-from torsio.axial.assembly import DrillingAssembly, assembly_summary
+from torsio.axial.assembly import assembly_description, assembly_summary
 from torsio.axial.run_results import SCHEME, channels_of
 from torsio.axial.torque_law import AxialBit
 from torsio.axial.transient import run_top_boundary, simulate_axial
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.errors import ConfigError
+from torsio.model.lumped import LumpedModel
 from torsio.solvers.batch_options import batch_threads
 from torsio.solvers.batch_results import refuse_speed_table
 
@@ -71,7 +72,7 @@ class PointRun:
     Module-level and frozen, so it pickles to the workers with the points.
     """
 
-    assembly: DrillingAssembly | WaveDrillingAssembly
+    assembly: LumpedModel | WaveDrillingAssembly
     bit: AxialBit
     options: dict[str, Any]
     growth_rate: bool
@@ -114,7 +115,7 @@ def _check_threads(threads: Any, executor: Any) -> int | None:
 
 
 def axial_map(
-    assembly: DrillingAssembly | WaveDrillingAssembly,
+    assembly: LumpedModel | WaveDrillingAssembly,
     bit: AxialBit,
     wobs: ArrayLike,
     rpms: ArrayLike,
@@ -179,7 +180,7 @@ def axial_map(
     run = PointRun(assembly, bit, {"duration": duration, "window": window, **options}, growth_rate)
     points = wob_grid.size * rpm_grid.size
     info = {"engine": "axial", "scheme": SCHEME, "start": options.get("start", "rest")}
-    info.update(model=assembly.describe(), duration=duration, steady_window=window)
+    info.update(model=assembly_description(assembly), duration=duration, steady_window=window)
     info["label"] = f"{assembly_summary(info['model'])}, {bit.name} bit"
     pool = None
     if executor is None or executor == "serial":  # this process: a point per task, on threads
@@ -195,7 +196,7 @@ def axial_map(
     chain = assembly.lumped_twin() if isinstance(assembly, WaveDrillingAssembly) else assembly
     scales = {"wob": wob_grid, "rpm": rpm_grid, "threshold": choices.threshold,
               "stick_slip_threshold": STICK_SLIP_THRESHOLD,
-              "k_eq": float(1.0 / np.sum(1.0 / chain.stiffnesses)),
+              "k_eq": chain.equivalent_stiffness,
               "omega1": assembly.first_frequency(), "bit_radius": bit.radius,
               "engine": "axial"}  # fmt: skip
     work = MapWork(run_points, run, None, size, "the axial engine", LAYERS)

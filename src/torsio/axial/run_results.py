@@ -87,7 +87,7 @@ class AxialChannels:
         (:meth:`~torsio.axial.steady_friction.SteadyFriction.to_dict`); None without them.
     solver, model, bit : dict
         The engine (``engine``, ``method``, ``scheme``, ``step``), the assembly
-        (:meth:`~torsio.axial.assembly.DrillingAssembly.describe`) and the bit's law.
+        (:func:`~torsio.axial.assembly.assembly_description`) and the bit's law.
 
     Every column of :attr:`samples` is an attribute by name (``run.axial.bit_weight``,
     ``run.axial.depth_of_cut`` ...), and so is every entry of :attr:`summary`

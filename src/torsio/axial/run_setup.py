@@ -46,7 +46,13 @@ from numpy.typing import NDArray
 
 from torsio.analysis.severity import check_window
 from torsio.axial import layouts as slot
-from torsio.axial.assembly import DrillingAssembly
+from torsio.axial.assembly import (
+    axial_rows,
+    chain_rows,
+    fastest_damping_rate,
+    fastest_frequency,
+    steady_angles,
+)
 from torsio.axial.run_budget import check_run_work
 from torsio.axial.steady import SteadyDrilling
 from torsio.axial.steady_friction import steady_loads, steady_with_friction
@@ -55,6 +61,7 @@ from torsio.axial.string_contacts import AxialContacts, contact_rows
 from torsio.axial.top_drive import TopDriveArrays, top_drive_rates
 from torsio.axial.torque_law import AxialBit, TorqueLawBit, law_functions, steady_state
 from torsio.errors import ConfigError
+from torsio.model.lumped import LumpedModel
 from torsio.physics.top_drive_boundary import TopDriveBoundary
 
 __all__ = [
@@ -352,7 +359,7 @@ def kernel_setup(
 
 
 def run_setup(
-    assembly: DrillingAssembly,
+    assembly: LumpedModel,
     bit: AxialBit,
     wob: float,
     rpm: float,
@@ -373,6 +380,7 @@ def run_setup(
     weight hook).
     """
     options.check()
+    axial = axial_rows(assembly)
     hook_force = float(wob)
     if isinstance(bit, TorqueLawBit) and (bit_rotation is not None or contacts is not None):
         raise ConfigError(
@@ -382,14 +390,14 @@ def run_setup(
             "(law = 'rgd'); expected neither",
         )
     if contacts is not None and not isinstance(bit, TorqueLawBit):  # refused above
-        if bit_rotation is not None or assembly.axial_dofs != assembly.nodes:
+        if bit_rotation is not None or axial.dofs != assembly.dofs:
             raise ConfigError(
                 "well",
                 "friction along the string needs every node to turn and move axially "
                 "(expected axial springs between the nodes and no prescribed bit_rotation)",
             )
         contacts = contacts.at_wob(wob)
-        steady, friction = steady_with_friction(bit, wob, rpm, contacts, assembly.hook)
+        steady, friction = steady_with_friction(bit, wob, rpm, contacts, axial.hook)
         hook_force = friction.hook_force
         torques, forces = steady_loads(steady, friction)
     else:
@@ -399,13 +407,13 @@ def run_setup(
     check_set_speed(top_drive, options, bit_rotation)
     top_rate = 0.0
     if top_drive is not None and driven:
-        rates = top_drive_rates(top_drive, assembly.stiffnesses[0], assembly.damping[0])
+        rates = top_drive_rates(top_drive, assembly.springs[0], assembly.dampers[0])
         top_rate = float(np.abs(rates).max())
-    dampers = 2 * math.pi * assembly.fastest_damping_rate() / options.steps_per_period
-    chain_fastest = max(assembly.fastest_frequency(), top_rate, dampers / DAMPER_STEP)
-    law_rate = bit.rate(wob, assembly.inertias[-1]) if isinstance(bit, TorqueLawBit) else 0.0
+    dampers = 2 * math.pi * fastest_damping_rate(assembly) / options.steps_per_period
+    chain_fastest = max(fastest_frequency(assembly), top_rate, dampers / DAMPER_STEP)
+    law_rate = bit.rate(wob, assembly.bit_inertia) if isinstance(bit, TorqueLawBit) else 0.0
     fastest = max(chain_fastest, law_rate)
-    h_max = options.largest_step(bit, assembly.bit_mass, fastest)
+    h_max = options.largest_step(bit, axial.bit_mass, fastest)
     h = delay / math.ceil(delay / h_max - 1e-9)
     if top_rate * h > TOP_DRIVE_STEP_LIMIT:
         raise ConfigError(
@@ -415,32 +423,33 @@ def run_setup(
             f"{TOP_DRIVE_STEP_LIMIT:g}, a step of at most {TOP_DRIVE_STEP_LIMIT / top_rate:.6g} s "
             "(or more steps per period)",
         )
-    nodes = assembly.nodes + assembly.axial_dofs
+    nodes = assembly.dofs + axial.dofs
     what = "bit_rock" if law_rate > chain_fastest else "chain"
-    check_run_work(options, h, delay, nodes, bit, assembly.bit_mass, fastest, what)
+    check_run_work(options, h, delay, nodes, bit, axial.bit_mass, fastest, what)
     omega0, v0 = steady.bit_speed, steady.rop
     if contacts is not None:  # each spring carries the bit's load and the friction below it
-        angles, positions = assembly.steady_offsets(torques, forces)
+        angles, positions = steady_angles(assembly, torques), axial.steady_positions(forces)
     else:
-        angles, positions = assembly.steady_offsets(steady.bit_torque, wob)
+        angles = steady_angles(assembly, steady.bit_torque)
+        positions = axial.steady_positions(wob)
     on_steady = options.start == "steady"
     if bit_rotation is not None:
         theta, omega = np.zeros(1), np.array([omega0])
     elif on_steady:
-        theta, omega = angles.copy(), np.full(assembly.nodes, omega0)
+        theta, omega = angles.copy(), np.full(assembly.dofs, omega0)
         omega[-1] *= 1.0 + options.perturbation
     else:
-        theta, omega = np.zeros(assembly.nodes), np.zeros(assembly.nodes)
+        theta, omega = np.zeros(assembly.dofs), np.zeros(assembly.dofs)
     u = positions.copy()
     v = np.full(u.size, v0 if on_steady else 0.0)
     if bit_rotation is not None and on_steady:
         v[-1] *= 1.0 + options.perturbation
     hook_start = 0.0
-    if assembly.hook == "speed":
-        hook_start = u[0] + hook_force / assembly.axial_stiffnesses[0]
+    if axial.hook == "speed":
+        hook_start = u[0] + hook_force / axial.stiffnesses[0]
     bit_start = BitStart(theta[-1], u[-1], omega[-1], v[-1], bit_rotation)
     size = len(slot.CHAIN_SETTINGS)
-    kernel = kernel_setup(steady, bit, h, options, size, assembly.hook, bit_start)
+    kernel = kernel_setup(steady, bit, h, options, size, axial.hook, bit_start)
     rotation = bit_rotation or BitRotation()
     top_state, controller_state = np.zeros(2), np.zeros(0)
     if top_drive is not None and driven:
@@ -453,15 +462,15 @@ def run_setup(
     settings = kernel.settings
     settings[slot.HOOK_START] = hook_start
     settings[slot.HOOK_WEIGHT] = hook_force
-    rows = contact_rows(contacts, assembly.nodes)
+    rows = contact_rows(contacts, assembly.dofs)
     settings[slot.THRESHOLD_SPEED] = contacts.threshold_speed if contacts is not None else 0.0
     settings[slot.PRESCRIBED] = 1.0 if bit_rotation is not None else 0.0
     settings[slot.AMPLITUDE], settings[slot.FREQUENCY] = rotation.amplitude, rotation.frequency
     settings[slot.ROCK_SURFACE] = u[-1]
     return RunSetup(
         **attrs.asdict(kernel, recurse=False),
-        torsional=assembly.torsional_rows(),
-        axial=assembly.axial_rows(),
+        torsional=chain_rows(assembly),
+        axial=axial.kernel_rows(),
         theta=theta,
         omega=omega,
         u=u,
@@ -470,7 +479,7 @@ def run_setup(
         top_state=top_state,
         controller_state=controller_state,
         contacts=rows,
-        contact_stuck=np.full(assembly.nodes, 0.0 if on_steady else 1.0),
+        contact_stuck=np.full(assembly.dofs, 0.0 if on_steady else 1.0),
         friction=friction if contacts is not None else None,
         law=law_functions(bit),
     )

@@ -31,13 +31,14 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.axial.assembly import DrillingAssembly
+from torsio.axial.assembly import axial_rows
 from torsio.axial.delay_roots import DelayRoots, LinearDelaySystem, rightmost_roots
 from torsio.axial.linearization import drilling_linearization
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling
 from torsio.axial.steady_friction import drilling_state
 from torsio.errors import ConfigError
+from torsio.model.lumped import LumpedModel
 
 AXIAL_MODE_SHARE = 0.5
 """A mode whose axial share (:func:`axial_share`) is above this is called axial."""
@@ -69,9 +70,9 @@ def growth_rate_skipped(assembly: Any, contacts: Any = None) -> str | None:
     >>> growth_rate_skipped(rgd_two_dof_example()) is None
     True
     """
-    if not isinstance(assembly, DrillingAssembly):
+    if not assembly.linearizable:  # the distributed pipe
         return None if contacts is None else f"growth rate not computed: {NO_PIPE_FRICTION_RATE}"
-    dofs = assembly.nodes + assembly.axial_dofs
+    dofs = assembly.dofs + axial_rows(assembly).dofs
     if dofs <= MAX_AUTO_DOFS:
         return None
     return (
@@ -98,7 +99,7 @@ class DrillingCase:
     False
     """
 
-    assembly: DrillingAssembly
+    assembly: LumpedModel
     bit: RGDBit
     wob: float
     top_drive: Any = None
@@ -189,7 +190,7 @@ def axial_share(system: LinearDelaySystem, root: complex, axial_dofs: int) -> fl
 
 
 def drilling_stability(
-    assembly: DrillingAssembly,
+    assembly: LumpedModel,
     bit: RGDBit,
     wob: float,
     rpm: float,
@@ -217,9 +218,9 @@ def drilling_stability(
         order = system.default_order()
     found = rightmost_roots(system, count, order=order)
     growth = float(found.roots[0].real)
-    shares = [axial_share(system, root, assembly.axial_dofs) for root in found.roots]
+    shares = [axial_share(system, root, axial_rows(assembly).dofs) for root in found.roots]
     return DrillingStability(
-        steady=drilling_state(bit, wob, rpm, contacts, assembly.hook)[0],
+        steady=drilling_state(bit, wob, rpm, contacts, axial_rows(assembly).hook)[0],
         roots=found.roots,
         axial_shares=np.array(shares),
         growth_rate=growth,
@@ -426,7 +427,7 @@ def each_mode_crossing(
     for branch in follow_roots(system_at, grid, count, order=order):
         for crossing in branch_crossings(system_at, branch):
             root = 1j * crossing.frequency
-            share = axial_share(system_at(crossing.parameter), root, case.assembly.axial_dofs)
+            share = axial_share(system_at(crossing.parameter), root, axial_rows(case.assembly).dofs)
             mode = ModeCrossing(
                 crossing.parameter, crossing.frequency, share, crossing.destabilizing
             )

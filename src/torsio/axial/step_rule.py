@@ -23,7 +23,7 @@ DEFAULT_STEPS_PER_PERIOD = 100
 
 DAMPER_STEP = 1.0
 """The largest h δ, δ the bound of the dampers' rates (the eigenvalues of M⁻¹C,
-:meth:`~torsio.axial.assembly.DrillingAssembly.fastest_damping_rate`): half the bound
+:func:`~torsio.axial.assembly.fastest_damping_rate`): half the bound
 h δ < 2 − (h ω)²/2 within which semi-implicit Euler keeps a damped mode x'' + δ x' + ω² x
 = 0 stable (its step matrix has determinant 1 − h δ and trace 2 − h δ − (h ω)²). The 4 m
 chain of ``rgd_deviated_well.toml`` with β = 0.01 s diverged at h δ = 2 and closes its

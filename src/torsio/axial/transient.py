@@ -1,6 +1,6 @@
 """Axial-torsional transients with the RGD bit on the compiled engine.
 
-:func:`simulate_axial` runs a :class:`~torsio.axial.assembly.DrillingAssembly` drilling
+:func:`simulate_axial` runs a lumped assembly (:mod:`torsio.axial.assembly`) drilling
 with an :class:`~torsio.axial.rgd.RGDBit` under the weight W₀ with the top turning at Ω₀,
 from rest or from the steady state (:mod:`torsio.axial.run_setup`), with the fixed-step
 scheme of :mod:`torsio.axial.kernel`, and returns the results every run has
@@ -40,7 +40,7 @@ from numpy.typing import NDArray
 from torsio.analysis.limits import past_the_record, saturated_motor, warning_list
 from torsio.analysis.severity import run_times
 from torsio.axial import layouts as slot
-from torsio.axial.assembly import DrillingAssembly
+from torsio.axial.assembly import assembly_description
 from torsio.axial.energy_balance import energy_balance, stored_energy
 from torsio.axial.kernel import march
 from torsio.axial.run_results import SCHEME, AxialChannels, axial_results
@@ -54,6 +54,7 @@ from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_setup import WaveRunSetup, wave_chunk, wave_run_setup
 from torsio.axial.window_summary import summarize
 from torsio.errors import ConfigError, SolverError
+from torsio.model.lumped import LumpedModel
 from torsio.solvers.run_chunks import run_in_chunks
 from torsio.solvers.set_speed import table_at
 from torsio.units import RPM_TO_RAD_S, as_rpm, as_si
@@ -162,7 +163,7 @@ def _steady_friction(setup: RunSetup | WaveRunSetup) -> dict[str, Any] | None:
 
 
 def simulate_axial(
-    assembly: DrillingAssembly | WaveDrillingAssembly,
+    assembly: LumpedModel | WaveDrillingAssembly,
     bit: AxialBit,
     wob: float,
     rpm: float,
@@ -187,7 +188,7 @@ def simulate_axial(
 
     Parameters
     ----------
-    assembly : DrillingAssembly or WaveDrillingAssembly
+    assembly : LumpedModel or WaveDrillingAssembly
         A lumped chain (:mod:`torsio.axial.kernel`) or a distributed pipe above a lumped
         BHA (:mod:`torsio.axial.wave_kernel`).
     duration, window : float, optional
@@ -293,7 +294,7 @@ def simulate_axial(
         string_contacts=contacts.at_wob(wob).describe() if contacts is not None else None,
         steady_friction=_steady_friction(setup),
         solver={"engine": "axial", "method": "fixed-step", "scheme": SCHEME, "step": setup.step},
-        model=assembly.describe(),
+        model=assembly_description(assembly),
         bit=bit.to_dict(),
     )
     texts = warning_list(
@@ -325,7 +326,7 @@ def run_top_boundary(top_drive: Any, assembly: Any, rpm: float, string: Any = No
         "top_drive",
         f"{getattr(top_drive, 'name', top_drive)!r} given with a WaveDrillingAssembly: the "
         "distributed pipe's top is held, at Ω₀ or at a recorded speed (expected "
-        "top_drive=None, 'constant-speed' or 'recorded', or a lumped DrillingAssembly for a "
+        "top_drive=None, 'constant-speed' or 'recorded', or a lumped assembly for a "
         "top drive with inertia)",
     )
     wave = isinstance(assembly, WaveDrillingAssembly)
@@ -369,7 +370,7 @@ def _growth_rate(
     """The growth rate of steady drilling: a chain's linearization (with its ``contacts``'
     damping), or a distributed pipe's characteristic equation from its lumped twin's roots
     (its top held)."""
-    if isinstance(assembly, DrillingAssembly):
+    if assembly.linearizable:  # a lumped chain
         from torsio.axial.stability import drilling_stability
 
         return drilling_stability(

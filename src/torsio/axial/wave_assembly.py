@@ -28,15 +28,17 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
-from typing import Any
+from typing import Any, ClassVar
 
 import attrs
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.axial.assembly import HOOKS, DrillingAssembly, lumped_pipe
+from torsio.axial.assembly import lumped_pipe
 from torsio.errors import ConfigError
+from torsio.model.axial_rows import HOOKS
 from torsio.model.continuum import bar_frequencies
+from torsio.model.lumped import LumpedModel
 from torsio.model.wave import DEFAULT_TRAVEL_TIME_TOLERANCE
 
 __all__ = ["PipeSection", "WaveDrillingAssembly", "wave_pipe_assembly"]
@@ -119,6 +121,12 @@ class WaveDrillingAssembly:
         steps (the step rule of :mod:`torsio.axial.wave_setup`); in (0, 0.5).
     """
 
+    linearizable: ClassVar[bool] = False
+    """:func:`~torsio.axial.linearization.drilling_linearization` is of lumped chains; the
+    pipe's stability is its characteristic equation (:mod:`torsio.axial.wave_stability`)."""
+    has_matrices: ClassVar[bool] = False
+    """No mass and stiffness matrices: the pipe's modes are its exact continuum's."""
+
     sections: tuple[PipeSection, ...] = attrs.field(converter=_sections)
     bha_mass: float = attrs.field(kw_only=True)
     bha_inertia: float = attrs.field(kw_only=True)
@@ -141,11 +149,6 @@ class WaveDrillingAssembly:
 
     def _column(self, name: str) -> NDArray[np.float64]:
         return np.array([getattr(s, name) for s in self.sections], dtype=float)
-
-    @property
-    def is_two_dof(self) -> bool:
-        """False: not the 2-DOF model of RGD (2007) (no linear growth rate)."""
-        return False
 
     @property
     def bit_mass(self) -> float:
@@ -212,7 +215,7 @@ class WaveDrillingAssembly:
             )
         )
 
-    def lumped_twin(self, element_length: float = DEFAULT_ELEMENT_LENGTH) -> DrillingAssembly:
+    def lumped_twin(self, element_length: float = DEFAULT_ELEMENT_LENGTH) -> LumpedModel:
         """The lumped chain of the same sections and BHA in elements of at most
         ``element_length`` [m], undamped like the pipe
         (:func:`~torsio.axial.assembly.lumped_pipe`): what its stability's roots start

@@ -224,7 +224,7 @@ def wave_run_setup(
         raise ConfigError(
             "bit_rock.law",
             f"{bit.name!r} is a law of the torque alone: it runs on a lumped chain only "
-            "(expected a DrillingAssembly, or law = 'rgd' on the distributed pipe)",
+            "(expected a lumped chain (axial_chain), or law = 'rgd' on the distributed pipe)",
         )
     friction = None
     if contacts is None:

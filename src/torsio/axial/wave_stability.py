@@ -52,7 +52,6 @@ import attrs
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from torsio.axial.assembly import DrillingAssembly
 from torsio.axial.delay_roots import newton_root
 from torsio.axial.linearization import delayed_matrix
 from torsio.axial.rgd import RGDBit
@@ -60,6 +59,7 @@ from torsio.axial.stability import drilling_stability
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.errors import SolverError
+from torsio.model.lumped import LumpedModel
 
 __all__ = ["DistributedStability", "distributed_stability", "end_stiffness", "WaveCharacteristic"]
 
@@ -219,7 +219,7 @@ def distributed_stability(
     wob: float,
     rpm: float,
     *,
-    twin: DrillingAssembly,
+    twin: LumpedModel,
     count: int = 6,
 ) -> DistributedStability:
     """The rightmost roots of the distributed pipe's Δ(λ) by Newton from the ``count``
@@ -250,7 +250,7 @@ def distributed_stability(
             found.append(root)
     if not found:
         raise SolverError(
-            f"no root of the lumped twin ({twin.nodes} nodes) refines to a root of the "
+            f"no root of the lumped twin ({twin.dofs} nodes) refines to a root of the "
             "distributed pipe near it; give the twin shorter elements"
         )
     order = np.argsort([-r.real for r in found], kind="stable")

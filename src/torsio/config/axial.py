@@ -8,7 +8,8 @@ alone (Tucker-Wang, a plugin's), whose axial motion rests on the rock under the 
 bit (:class:`~torsio.axial.torque_law.TorqueLawBit`).
 :func:`chain_axial` and :func:`string_axial` build an :class:`AxialConfig` that
 :func:`torsio.axial.transient.simulate_axial` and :func:`torsio.axial.maps.axial_map` run:
-a lumped chain (:func:`lumped_chain`, elements of at most ``[axial] element_length``), or
+a lumped chain (:func:`~torsio.axial.assembly.lumped_pipe`, elements of at most
+``[axial] element_length``), or
 with ``[discretization] strategy = "wave"`` the distributed pipe
 (:class:`~torsio.axial.wave_assembly.WaveDrillingAssembly`), which takes no element
 length and no damping (both refused by key).
@@ -17,7 +18,7 @@ Examples
 --------
 >>> from torsio.examples import rgd_two_dof_config
 >>> axial = rgd_two_dof_config().axial
->>> axial.assembly.nodes, axial.assembly.hook, axial.bit.blades
+>>> axial.assembly.dofs, axial.hook, axial.bit.blades
 (1, 'weight', 4)
 >>> sorted(axial.run_options().items())  # doctest: +NORMALIZE_WHITESPACE
 [('perturbation', 0.001), ('start', 'rest'), ('step', None), ('steps_per_period', 100),
@@ -33,7 +34,7 @@ from typing import Any
 import attrs
 import numpy as np
 
-from torsio.axial.assembly import HOOKS, DrillingAssembly, lumped_pipe
+from torsio.axial.assembly import axial_chain, is_two_dof, lumped_pipe
 from torsio.axial.rgd import RGDBit, rgd_from_table
 from torsio.axial.torque_law import AxialBit, TorqueLawBit
 from torsio.axial.wave_assembly import DEFAULT_ELEMENT_LENGTH, PipeSection, WaveDrillingAssembly
@@ -41,7 +42,9 @@ from torsio.config.chain import ChainConfig, _values
 from torsio.config.configuration import BitRockConfig
 from torsio.config.tables import _positive_number, _string, _table
 from torsio.errors import ConfigError
+from torsio.model.axial_rows import HOOKS
 from torsio.model.drillstring import DrillString
+from torsio.model.lumped import LumpedModel
 from torsio.model.wave import DEFAULT_TRAVEL_TIME_TOLERANCE
 
 __all__ = [
@@ -51,7 +54,6 @@ __all__ = [
     "axial_law_from_table",
     "axial_sections",
     "chain_axial",
-    "lumped_chain",
     "string_axial",
 ]
 
@@ -69,9 +71,10 @@ class AxialConfig:
 
     Attributes
     ----------
-    assembly : DrillingAssembly or WaveDrillingAssembly
-        The lumped nodes that turn and move axially, the bit on the last one; or the
-        distributed pipe above the rigid BHA (``[discretization] strategy = "wave"``).
+    assembly : LumpedModel or WaveDrillingAssembly
+        The lumped nodes that turn and move axially, the bit on the last one (a chain with
+        axial rows); or the distributed pipe above the rigid BHA (``[discretization]
+        strategy = "wave"``).
     bit : RGDBit or TorqueLawBit
         The RGD bit of ``[bit_rock]``, or (``[chain] masses`` only) a law of the torque
         alone on the bit's radius.
@@ -87,27 +90,23 @@ class AxialConfig:
         The ``[top_drive]`` (None: absent, the top held at Ω₀).
     string : DrillString or None
         The ``[[section]]`` string the assembly was built from (None for ``[chain]``).
-    lumped_twin : DrillingAssembly or None
+    lumped_twin : LumpedModel or None
         With the distributed pipe: the lumped chain of the same sections in elements of at
         most :data:`DEFAULT_ELEMENT_LENGTH`, on which its linear stability is computed
         (the distributed pipe has no linearization yet); None with a lumped assembly.
-    sections, element_length : AxialSections or None, float or None
-        What a ``[[section]]`` string's lumped chain was built from (None otherwise).
     contacts : AxialContacts or None
         The string's contacts with the ``[well]`` (:mod:`torsio.config.axial_well`).
     """
 
-    assembly: DrillingAssembly | WaveDrillingAssembly
+    assembly: LumpedModel | WaveDrillingAssembly
     bit: AxialBit
     start: str = "rest"
     perturbation: float = 1e-3
     step: float | None = None
     steps_per_period: int = 100
-    lumped_twin: DrillingAssembly | None = None
+    lumped_twin: LumpedModel | None = None
     top_drive: Any = None
     string: Any = None
-    sections: Any = None
-    element_length: float | None = None
     contacts: Any = None
 
     def run_options(self) -> dict[str, Any]:
@@ -123,10 +122,18 @@ class AxialConfig:
         }
 
     @property
-    def stability_assembly(self) -> DrillingAssembly:
+    def hook(self) -> str:
+        """The hook's boundary, ``"weight"`` or ``"speed"`` (:mod:`torsio.model.axial_rows`)."""
+        if isinstance(self.assembly, WaveDrillingAssembly):
+            return self.assembly.hook
+        assert self.assembly.axial is not None
+        return self.assembly.axial.hook
+
+    @property
+    def stability_assembly(self) -> LumpedModel:
         """The lumped chain whose linearization gives the growth rate and crossings: the
         assembly itself, or the distributed pipe's :attr:`lumped_twin`."""
-        if isinstance(self.assembly, DrillingAssembly):
+        if not isinstance(self.assembly, WaveDrillingAssembly):
             return self.assembly
         assert self.lumped_twin is not None
         return self.lumped_twin
@@ -135,18 +142,18 @@ class AxialConfig:
     def stability_model(self) -> str:
         """What :attr:`stability_assembly` is, for reports: ``"the assembly"`` or
         ``"lumped twin, N nodes (elements of at most 100 m)"``."""
-        if isinstance(self.assembly, DrillingAssembly):
+        if not isinstance(self.assembly, WaveDrillingAssembly):
             return "the assembly"
         return (
-            f"lumped twin, {self.stability_assembly.nodes} nodes (elements of at most "
+            f"lumped twin, {self.stability_assembly.dofs} nodes (elements of at most "
             f"{DEFAULT_ELEMENT_LENGTH:g} m)"
         )
 
     @property
     def is_two_dof(self) -> bool:
         """One node under the weight hook: RGD (2007)'s model
-        (:attr:`torsio.axial.assembly.DrillingAssembly.is_two_dof`)."""
-        return self.assembly.is_two_dof
+        (:func:`torsio.axial.assembly.is_two_dof`)."""
+        return is_two_dof(self.assembly)
 
 
 def _axial_table(table: Mapping[str, Any]) -> dict[str, Any]:
@@ -279,13 +286,13 @@ def chain_axial(
     )
     if not dampers and springs:
         dampers = tuple(_dampers(table, np.asarray(springs)))
-    assembly = _assembly(
+    assembly = axial_chain(
         inertias=chain.inertias,
         stiffnesses=chain.stiffnesses,
         masses=masses,
         axial_stiffnesses=springs,
-        damping=damping,
-        axial_damping=dampers or None,
+        dampings=damping,
+        axial_dampings=dampers or None,
         hook=options["hook"],
     )
     return AxialConfig(
@@ -299,14 +306,6 @@ def _optional(raw: Mapping[str, Any], key: str, dimension: str, positive: bool) 
     if key not in raw or raw[key] == []:
         return ()
     return _values(raw[key], f"chain.{key}", dimension, positive)
-
-
-def _assembly(**kwargs: Any) -> DrillingAssembly:
-    try:
-        return DrillingAssembly(**kwargs)
-    except ConfigError as exc:  # the assembly names its arrays; the file's key is plural
-        key = exc.key.replace("chain.axial_damping", "chain.axial_dampings")
-        raise ConfigError(key, exc.message) from None
 
 
 def _refuse_axial_tables(table: Mapping[str, Any], needed: str) -> None:
@@ -367,24 +366,6 @@ def axial_sections(string: DrillString) -> AxialSections:
     if not pipe:
         raise ConfigError("section", "axial dynamics need a flexible pipe above the BHA")
     return AxialSections(tuple(pipe), bha_mass, bha_inertia)
-
-
-def lumped_chain(
-    sections: AxialSections,
-    element_length: float,
-    hook: str,
-    beta: float = 0.0,
-) -> DrillingAssembly:
-    """The lumped chain of ``sections`` (:func:`torsio.axial.assembly.lumped_pipe`:
-    elements of at most ``element_length`` [m], dampers β k), errors named by the file's
-    keys."""
-    try:
-        return lumped_pipe(
-            sections.pipe, sections.bha_mass, sections.bha_inertia, element_length, hook, beta
-        )
-    except ConfigError as exc:  # the assembly names its arrays; the file's key is plural
-        key = exc.key.replace("chain.axial_damping", "chain.axial_dampings")
-        raise ConfigError(key, exc.message) from None
 
 
 WAVE_REFUSED_DISCRETIZATION = {
@@ -448,8 +429,8 @@ def string_axial(table: Mapping[str, Any], string: DrillString) -> AxialConfig |
     With ``[discretization] strategy = "wave"`` the distributed pipe
     (:class:`~torsio.axial.wave_assembly.WaveDrillingAssembly`, one section per pipe
     section, the BHA rigid; its lumped twin at :data:`DEFAULT_ELEMENT_LENGTH` for the linear
-    stability); otherwise the lumped chain of :func:`lumped_chain` with elements of at most
-    ``[axial] element_length`` [m].
+    stability); otherwise the lumped chain of :func:`~torsio.axial.assembly.lumped_pipe`
+    with elements of at most ``[axial] element_length`` [m].
     """
     raw = table.get("bit_rock")
     law = raw.get("law", "tucker-wang") if isinstance(raw, Mapping) else None
@@ -467,5 +448,7 @@ def string_axial(table: Mapping[str, Any], string: DrillString) -> AxialConfig |
         return AxialConfig(pipe, bit, lumped_twin=pipe.lumped_twin(), string=string, **run)
     beta = _damping_beta(table)
     length = options["element_length"]
-    chain = lumped_chain(sections, length, options["hook"], beta)
-    return AxialConfig(chain, bit, string=string, sections=sections, element_length=length, **run)
+    chain = lumped_pipe(
+        sections.pipe, sections.bha_mass, sections.bha_inertia, length, options["hook"], beta
+    )
+    return AxialConfig(chain, bit, string=string, **run)

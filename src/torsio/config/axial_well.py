@@ -1,7 +1,7 @@
 """``[well]`` with axial dynamics: the contacts of the lumped chain's nodes with the borehole.
 
 A ``[[section]]`` string with ``law = "rgd"`` is a lumped axial-torsional chain
-(:func:`torsio.config.axial.lumped_chain`); with ``[well]`` each of its nodes gets the
+(:func:`torsio.axial.assembly.lumped_pipe`); with ``[well]`` each of its nodes gets the
 Coulomb contact of its share of the string (:func:`torsio.axial.string_contacts.axial_contacts`,
 the normal force of the well's model at the run's weight on bit). The distributed axial pipe
 (``[discretization] strategy = "wave"``) gets the contacts of its lumped twin's nodes
@@ -25,9 +25,7 @@ from typing import Any
 
 import attrs
 
-from torsio.axial.assembly import lumped_node_depths
 from torsio.axial.string_contacts import axial_contacts
-from torsio.axial.wave_assembly import DEFAULT_ELEMENT_LENGTH, WaveDrillingAssembly
 from torsio.config.axial import AxialConfig
 from torsio.errors import ConfigError
 from torsio.well.wellbore import Wellbore
@@ -40,18 +38,7 @@ def with_well(axial: AxialConfig, table: Mapping[str, Any], well: Wellbore | Non
     ``well`` (the parsed ``[well]`` of ``table``; None: absent, ``axial`` unchanged)."""
     if "well" not in table:
         return axial
-    if isinstance(axial.assembly, WaveDrillingAssembly):
-        if well is None or axial.string is None:
-            raise ConfigError("well", "[well] needs a drill-string ([[section]]), not a [chain]")
-        depths = lumped_node_depths(axial.assembly.sections, DEFAULT_ELEMENT_LENGTH)
-        return attrs.evolve(axial, contacts=axial_contacts(well, axial.string, depths))
-    if well is None or axial.sections is None or axial.element_length is None:
+    if well is None or axial.string is None:
         raise ConfigError("well", "[well] needs a drill-string ([[section]]), not a [chain]")
-    depths = lumped_node_depths(axial.sections.pipe, axial.element_length)
-    if depths.size != axial.assembly.nodes:
-        raise ConfigError(
-            "axial.element_length",
-            f"{depths.size} node depths for a chain of {axial.assembly.nodes} nodes",
-        )
-    contacts = axial_contacts(well, axial.string, depths)
-    return attrs.evolve(axial, contacts=contacts)
+    depths = axial.stability_assembly.node_depths  # the chain's nodes, or the lumped twin's
+    return attrs.evolve(axial, contacts=axial_contacts(well, axial.string, depths))

@@ -16,7 +16,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["read_only", "read_only_vector"]
+from torsio.errors import ConfigError
+
+__all__ = ["check_values", "read_only", "read_only_vector"]
 
 
 def read_only(values: Any) -> NDArray[np.float64]:
@@ -29,3 +31,13 @@ def read_only(values: Any) -> NDArray[np.float64]:
 def read_only_vector(values: Any) -> NDArray[np.float64]:
     """:func:`read_only` flattened to one dimension; ``None`` gives an empty vector."""
     return read_only(np.reshape(np.asarray(() if values is None else values, dtype=float), -1))
+
+
+def check_values(key: str, values: NDArray[np.float64], allow_zero: bool) -> None:
+    """Raise a ConfigError naming ``key[i]`` at the first value that is not finite and
+    positive (non-negative with ``allow_zero``)."""
+    bad = ~np.isfinite(values) | ((values < 0) if allow_zero else (values <= 0))
+    if bad.any():
+        i = int(np.argmax(bad))
+        expected = "non-negative" if allow_zero else "positive"
+        raise ConfigError(f"{key}[{i}]", f"expected a {expected} finite value, got {values[i]!r}")

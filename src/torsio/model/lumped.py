@@ -25,7 +25,8 @@ import attrs
 import numpy as np
 
 from torsio.errors import ConfigError
-from torsio.model.arrays import read_only, read_only_vector
+from torsio.model.arrays import check_values, read_only, read_only_vector
+from torsio.model.axial_rows import AxialRows
 from torsio.model.protocol import ModelEngines
 
 LUMPED_ENGINES = ModelEngines(
@@ -42,14 +43,6 @@ def exact_row_sums(matrix: np.ndarray) -> np.ndarray:
     bound = matrix.shape[1] * np.finfo(float).eps * np.abs(matrix).sum(axis=1)
     sums[np.abs(sums) <= bound] = 0.0
     return sums
-
-
-def _check_chain_values(key: str, values: np.ndarray, allow_zero: bool) -> None:
-    bad = ~np.isfinite(values) | ((values < 0) if allow_zero else (values <= 0))
-    if bad.any():
-        i = int(np.argmax(bad))
-        expected = "non-negative" if allow_zero else "positive"
-        raise ConfigError(f"{key}[{i}]", f"expected a {expected} finite value, got {values[i]!r}")
 
 
 def chain_matrix(springs: np.ndarray) -> np.ndarray:
@@ -104,6 +97,11 @@ class LumpedModel:
     contacts : StringContacts or None
         Coulomb contacts of the nodes with the borehole (one capacity per node,
         :class:`torsio.model.contacts.StringContacts`; None: no contact); lumped mass only.
+    axial : AxialRows or None
+        The nodes' axial masses, springs and dampers and the hook
+        (:class:`torsio.model.axial_rows.AxialRows`, :meth:`with_axial`; None: the chain
+        turns only). A chain with axial rows runs on the axial engine
+        (:func:`torsio.axial.transient.simulate_axial`).
     """
 
     linearizable: ClassVar[bool] = True
@@ -125,6 +123,7 @@ class LumpedModel:
     )
     details: dict[str, Any] = attrs.field(factory=dict, eq=False)
     contacts: Any = attrs.field(default=None, eq=False)
+    axial: AxialRows | None = attrs.field(default=None, eq=False)
     _memo: dict[str, Any] = attrs.field(factory=dict, init=False, eq=False, repr=False)
     """What analyses derived from the (never modified) matrices, e.g. omega_1, kept so that
     each is computed once per model (:func:`torsio.model.modal.first_natural_frequency`)."""
@@ -136,6 +135,7 @@ class LumpedModel:
             f"{depths[0]:g}..{depths[-1]:g} m, total inertia {np.trace(self.inertia):.5g} kg m^2"
             + ("" if self.has_lumped_mass else ", consistent mass")
             + ("" if self.damping is None else ", own dampers")
+            + ("" if self.axial is None else f", axial rows, hook {self.axial.hook}")
             + ")"
         )
 
@@ -188,6 +188,29 @@ class LumpedModel:
             )
         return attrs.evolve(self, contacts=contacts)
 
+    def with_axial(self, axial: AxialRows) -> LumpedModel:
+        """The same chain whose nodes also move axially (:class:`AxialRows`, one mass per
+        node).
+
+        Raises
+        ------
+        ConfigError
+            On ``chain.masses`` for another number of masses than nodes, and on
+            ``discretization.strategy`` for consistent mass (the axial engine steps lumped
+            nodes).
+        """
+        if axial.masses.size != self.dofs:
+            raise ConfigError(
+                "chain.masses",
+                f"has {axial.masses.size} values; expected {self.dofs}, one per node",
+            )
+        if not self.has_lumped_mass:
+            raise ConfigError(
+                "discretization.strategy",
+                f"axial dynamics need a lumped-mass chain; {self.strategy!r} has consistent mass",
+            )
+        return attrs.evolve(self, axial=axial)
+
     # --- constructors ---------------------------------------------------------------------
     @classmethod
     def from_chain(
@@ -236,8 +259,8 @@ class LumpedModel:
             raise ConfigError(
                 "stiffnesses", f"expected {n} values (one per inertia), got {spring_values.size}"
             )
-        _check_chain_values("inertias", inertia_values, allow_zero=False)
-        _check_chain_values("stiffnesses", spring_values, allow_zero=False)
+        check_values("inertias", inertia_values, allow_zero=False)
+        check_values("stiffnesses", spring_values, allow_zero=False)
         depths = np.arange(1.0, n + 1) if node_depths is None else node_depths
         damping = top_damping = None
         if dampings is not None or drag is not None:
@@ -246,7 +269,7 @@ class LumpedModel:
             for key, values in (("dampings", c), ("drag", d)):
                 if values.size != n:
                     raise ConfigError(key, f"expected {n} values, got {values.size}")
-                _check_chain_values(key, values, allow_zero=True)
+                check_values(key, values, allow_zero=True)
             damping = chain_matrix(c) + np.diag(d)
             top_damping = np.zeros(n)
             top_damping[0] = c[0]
@@ -278,6 +301,29 @@ class LumpedModel:
         (False, array([1., 0., 0.]))
         """
         return exact_row_sums(self.stiffness)
+
+    @property
+    def node_inertias(self) -> np.ndarray:
+        """The inertia of each node, the diagonal of [I] [kg m^2] (a lumped-mass chain's)."""
+        return np.diag(self.inertia).copy()
+
+    @property
+    def springs(self) -> np.ndarray:
+        """The chain's springs k_1..k_n [N m/rad], k_i joining node i-1 to node i (node 0 the
+        top): -[K]_(i-1,i), and k_1 = ([K] 1)_1 (:attr:`top_stiffness`).
+
+        >>> LumpedModel.from_chain([1.0, 1.0], [3.0, 2.0]).springs
+        array([3., 2.])
+        """
+        return np.concatenate([self.top_stiffness[:1], 0.0 - np.diag(self.stiffness, 1)])
+
+    @property
+    def dampers(self) -> np.ndarray:
+        """The chain's own dampers c_1..c_n [N m s/rad] in parallel with its springs
+        (:attr:`damping`, :attr:`top_damping`; zeros without them)."""
+        if self.damping is None or self.top_damping is None:
+            return np.zeros(self.dofs)
+        return np.concatenate([self.top_damping[:1], 0.0 - np.diag(self.damping, 1)])
 
     @property
     def equivalent_stiffness(self) -> float:

@@ -268,12 +268,6 @@ def modal_analysis(
     return ModalResults(model, frequencies, normalize_shape(vectors), vectors, string)
 
 
-def pencil_first_frequency(stiffness: np.ndarray, inertia: np.ndarray) -> float:
-    """omega_1 [rad/s] of the pencil (K in N m/rad, I in kg m^2), top held, undamped: the
-    one solve of a chain's first frequency (a lumped model's, an axial assembly's)."""
-    return float(np.sqrt(_eigen(stiffness, inertia, (0, 0), vectors=False)[0][0]))
-
-
 def _eigen(
     stiffness: np.ndarray, inertia: np.ndarray, indices: tuple[int, int], vectors: bool = True
 ) -> tuple[np.ndarray, np.ndarray]:

@@ -31,16 +31,16 @@ import functools
 import math
 from typing import Any
 
-import numpy as np
 import scipy.linalg
 from rich.table import Table
 
-from torsio.axial.assembly import DrillingAssembly, assembly_summary
+from torsio.axial.assembly import assembly_description, assembly_summary, axial_rows
 from torsio.axial.linearization import axial_matrices
 from torsio.axial.torque_law import TorqueLawBit
 from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.display_units import DisplayUnits
-from torsio.model.lumped import chain_matrix
+from torsio.model.lumped import LumpedModel
+from torsio.model.modal import natural_frequencies
 from torsio.report.context import ReportContext, ReportSection
 
 __all__ = ["CROSSING_RANGE", "axial_frequencies", "axial_section", "torsional_frequencies"]
@@ -55,7 +55,7 @@ DISTRIBUTED_MODES = 10
 
 
 def axial_frequencies(
-    assembly: DrillingAssembly | WaveDrillingAssembly, count: int = DISTRIBUTED_MODES
+    assembly: LumpedModel | WaveDrillingAssembly, count: int = DISTRIBUTED_MODES
 ) -> list[float]:
     """The axial natural frequencies [Hz] of the assembly with the bit free, undamped:
     the top free under the weight hook (its rigid-body zero left out) or held by k_a,0
@@ -75,27 +75,24 @@ def axial_frequencies(
     if isinstance(assembly, WaveDrillingAssembly):
         omega = assembly.axial_frequencies(count, free_top=assembly.hook == "weight")
         return [float(w) / (2 * math.pi) for w in omega]
-    if not assembly.axial_stiffnesses.size:
+    if not axial_rows(assembly).stiffnesses.size:
         return []
     mass, _, stiffness = axial_matrices(assembly)
     values = scipy.linalg.eigh(stiffness, mass, eigvals_only=True)
-    if assembly.hook == "weight":
+    if axial_rows(assembly).hook == "weight":
         values = values[1:]
     return [math.sqrt(max(v, 0.0)) / (2 * math.pi) for v in values]
 
 
 def torsional_frequencies(
-    assembly: DrillingAssembly | WaveDrillingAssembly, count: int = DISTRIBUTED_MODES
+    assembly: LumpedModel | WaveDrillingAssembly, count: int = DISTRIBUTED_MODES
 ) -> list[float]:
     """The torsional natural frequencies [Hz], the top drive held and the bit free,
     undamped (a chain: all of its own; a distributed pipe: the first ``count`` of its
     exact continuum)."""
     if isinstance(assembly, WaveDrillingAssembly):
         return [float(w) / (2 * math.pi) for w in assembly.torsional_frequencies(count)]
-    values = scipy.linalg.eigh(
-        chain_matrix(assembly.stiffnesses), np.diag(assembly.inertias), eigvals_only=True
-    )
-    return [math.sqrt(v) / (2 * math.pi) for v in values]
+    return [float(w) / (2 * math.pi) for w in natural_frequencies(assembly)]
 
 
 def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
@@ -197,7 +194,7 @@ def axial_section(ctx: ReportContext) -> ReportSection | None:
     assembly = axial.assembly
     count = ctx.requested_modes
     data: dict[str, Any] = {
-        "model": assembly.describe(),
+        "model": assembly_description(assembly),
         "bit": axial.bit.to_dict(),
         "torsional_frequencies_hz": torsional_frequencies(assembly, count)[:count],
         "axial_frequencies_hz": axial_frequencies(assembly, count)[:count],
@@ -223,9 +220,7 @@ def axial_section(ctx: ReportContext) -> ReportSection | None:
             "the bit does not cut"
         )
     else:
-        steady, friction = drilling_state(
-            axial.bit, op.wob, op.rpm, axial.contacts, axial.assembly.hook
-        )
+        steady, friction = drilling_state(axial.bit, op.wob, op.rpm, axial.contacts, axial.hook)
         if friction is not None:
             data.update(_friction(steady, friction, axial.contacts.at_wob(op.wob)))
         data["steady_state"] = steady.to_dict()
