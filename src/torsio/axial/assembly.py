@@ -84,7 +84,10 @@ def axial_chain(
     node_depths : array (n,), optional
         Depth of each node [m]; defaults to 1, 2, ..., n.
 
-    Errors name the file's keys (``chain.inertias[0]``, ``chain.masses``, ``axial.hook``).
+    Raises
+    ------
+    ConfigError
+        Naming the file's keys (``chain.inertias[0]``, ``chain.masses``, ``axial.hook``).
     """
     if not np.size(inertias):
         raise ConfigError("chain.inertias", "is empty; expected one inertia per node")

@@ -304,7 +304,7 @@ class LumpedModel:
 
     @property
     def node_inertias(self) -> np.ndarray:
-        """The inertia of each node, the diagonal of [I] [kg m^2] (a lumped-mass chain's)."""
+        """The inertia of each node [kg m^2]: the diagonal of [I] (a lumped-mass chain's)."""
         return np.diag(self.inertia).copy()
 
     @property
