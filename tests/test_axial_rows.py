@@ -1,8 +1,8 @@
 """An axial assembly is the torsional core's LumpedModel with axial rows (model/axial_rows.py).
 
 References: the chain's matrices by construction (chain_matrix of the springs, the paper's
-Eq. 6-7), IEEE 754 rounding for the one spring read back through a sum, the closed form
-ω = √(k/I) of one node on one spring, and the [chain] table's own torsional model.
+Eq. 6-7), IEEE 754 rounding of a sum, the closed form ω = √(k/I) of one node on one spring,
+scipy's dense generalized eigensolver, and the [chain] table's own torsional model.
 """
 
 from __future__ import annotations
@@ -11,8 +11,14 @@ import math
 
 import numpy as np
 import pytest
+import scipy.linalg
 
-from torsio.axial.assembly import axial_chain, pipe_assembly, rgd_two_dof_example
+from torsio.axial.assembly import (
+    assembly_description,
+    axial_chain,
+    pipe_assembly,
+    rgd_two_dof_example,
+)
 from torsio.axial.wave_assembly import PipeSection
 from torsio.errors import ConfigError
 from torsio.examples import rgd_two_dof_config
@@ -22,14 +28,23 @@ from torsio.model.modal import modal_analysis
 from torsio.report.axial import torsional_frequencies
 
 
-def test_the_chains_springs_and_dampers_read_back_from_its_matrices():
-    # k_i (i >= 1) and c_i are stored as they are (-[K]_(i-1,i), the top damper): exact;
-    # k_0 comes back through the row sum (k_0 + k_1) - k_1, one rounding of the sum away
+def test_the_chains_springs_and_dampers_come_back_as_given():
+    # k_i (i >= 1) and c_i are stored as they are (-[K]_(i-1,i), the top damper) and k_0
+    # with the chain (top_spring): every one exact. Through [K] alone k_0 comes back as
+    # (k_0 + k_1) - k_1, here 0.10000000000000003: one rounding of the sum away
     springs, dampers = np.array([0.1, 0.2, 0.7]), np.array([0.3, 0.01, 0.02])
     model = LumpedModel.from_chain([1.0, 2.0, 3.0], springs, dampings=dampers)
-    np.testing.assert_array_equal(model.springs[1:], springs[1:])
-    assert abs(model.springs[0] - springs[0]) <= np.finfo(float).eps * (springs[0] + springs[1])
+    np.testing.assert_array_equal(model.springs, springs)
     np.testing.assert_array_equal(model.dampers, dampers)
+    bare = LumpedModel(model.inertia, model.stiffness, model.node_depths)
+    assert bare.springs[0] != springs[0]
+    assert abs(bare.springs[0] - springs[0]) <= np.finfo(float).eps * (springs[0] + springs[1])
+    with pytest.raises(ConfigError) as info:  # a top spring [K] does not have
+        LumpedModel(model.inertia, model.stiffness, model.node_depths, top_spring=0.2)
+    assert info.value.key == "top_spring"
+    # the JSON of a run gives the file's springs back
+    chain = axial_chain([1.0, 2.0], [324.857, 698.063], [1.0, 1.0], axial_stiffnesses=[1.0, 1.0])
+    assert assembly_description(chain)["stiffnesses"] == [324.857, 698.063]
     np.testing.assert_array_equal(chain_matrix(model.springs), model.stiffness)
     np.testing.assert_array_equal(model.node_inertias, [1.0, 2.0, 3.0])
     undamped = LumpedModel.from_chain([1.0], [2.0])
@@ -53,12 +68,15 @@ def test_a_chain_file_gives_one_model_turning_and_moving_axially():
 
 
 def test_the_modal_analysis_of_an_axial_chain_is_its_torsional_chains():
-    # a LumpedModel with axial rows is a lumped model: its modes are those of [K], [I]
+    # a LumpedModel with axial rows is a lumped model: its modes are those of [K], [I],
+    # here against scipy's dense generalized eigensolver of the same matrices
     pipe = PipeSection(900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5)
     chain = pipe_assembly(6, pipe, 29981.3, 230.0)
-    bare = LumpedModel(chain.inertia, chain.stiffness, chain.node_depths)
-    ours, theirs = modal_analysis(chain), modal_analysis(bare)
-    np.testing.assert_array_equal(ours.frequencies_rad, theirs.frequencies_rad)
+    dense = np.sqrt(scipy.linalg.eigh(chain.stiffness, chain.inertia, eigvals_only=True))
+    np.testing.assert_allclose(modal_analysis(chain).frequencies_rad, dense, rtol=1e-12)
+    hz = np.array(torsional_frequencies(chain))
+    np.testing.assert_allclose(2 * math.pi * hz, dense, rtol=1e-12)
+    # the nodes at the bottoms of the 900 m / 6 = 150 m elements
     np.testing.assert_allclose(chain.node_depths, 150.0 * np.arange(1, 7), rtol=1e-15)
     assert "axial rows, hook weight" in repr(chain)
 
@@ -77,6 +95,20 @@ def test_the_modal_analysis_of_an_axial_chain_is_its_torsional_chains():
         (lambda: axial_chain([1.0], [0.0], [1.0]), "chain.stiffnesses[0]"),
         (lambda: axial_chain([1.0], [1.0], [1.0], dampings=[1.0, 2.0]), "chain.dampings"),
         (lambda: axial_chain([1.0, 1.0], [1.0, 1.0], [1.0]), "chain.masses"),
+        (  # the masses' count is checked first, not the springs' against the masses
+            lambda: axial_chain([1.0, 1.0], [1.0, 1.0], [1.0], axial_stiffnesses=[1.0, 1.0]),
+            "chain.masses",
+        ),
+        (
+            lambda: LumpedModel.from_chain([1.0], [1.0], drag=[5.0]).with_axial(AxialRows([1.0])),
+            "chain.drag",
+        ),
+        (  # not a chain: node 2 tied to the top too
+            lambda: LumpedModel(
+                np.eye(2), np.array([[3.0, -1.0], [-1.0, 2.0]]), [1.0, 2.0]
+            ).with_axial(AxialRows([1.0, 1.0])),
+            "discretization.strategy",
+        ),
         (
             lambda: LumpedModel(
                 np.array([[2.0, 1.0], [1.0, 2.0]]), np.eye(2), [1.0, 2.0]
@@ -91,12 +123,26 @@ def test_bad_axial_rows_name_the_key(build, key):
     assert info.value.key == key
 
 
-def test_a_torsional_chain_has_no_axial_rows_to_drill_with():
+def test_each_engine_refuses_the_chain_it_cannot_move():
     from torsio.axial.rgd import rgd_example
     from torsio.axial.transient import simulate_axial
+    from torsio.physics.laws import ConstantTorque
+    from torsio.physics.system import System
 
     torsional = LumpedModel.from_chain([455.65], [324.857])
     with pytest.raises(ConfigError) as info:
         simulate_axial(torsional, rgd_example(), 100e3, 60.0, duration=1.0, window=0.5)
     assert info.value.key == "chain.masses"
-    assert rgd_two_dof_example().axial is not None
+    with pytest.raises(ConfigError) as info:  # the torsional engines would not move it axially
+        System(model=rgd_two_dof_example(), law=ConstantTorque(torque_on_bit=1.0), bit_radius=0.108)
+    assert info.value.key == "model" and "simulate_axial" in info.value.message
+    assert (
+        System(model=torsional, law=ConstantTorque(torque_on_bit=1.0), bit_radius=0.108).model
+        is torsional
+    )
+
+
+def test_empty_dampers_are_none():
+    # dampings=[] and axial_dampings=[] both mean no dampers, as in a [chain] file
+    chain = axial_chain([1.0], [2.0], [3.0], dampings=[], axial_dampings=[])
+    assert chain.dampers.tolist() == [0.0] and chain.axial.dampings.tolist() == [0.0]

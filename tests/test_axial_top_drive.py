@@ -217,7 +217,6 @@ def test_section_string_gives_the_soft_torque_defaults():
     # the dense generalized eigenproblem K x = ω² I x solved here (the package solves it
     # as a tridiagonal one, LumpedModel.first_frequency)
     from torsio.config.reading import parse_config
-    from torsio.model.lumped import chain_matrix
     from torsio.physics.top_drive_boundary import top_pipe_impedance
 
     data = {**STRING, "top_drive": {"kind": "soft-torque", "inertia": 2900.0}}
@@ -226,7 +225,7 @@ def test_section_string_gives_the_soft_torque_defaults():
     zeta = top_pipe_impedance(axial)
     assert boundary.kp == pytest.approx(zeta, rel=1e-15)
     assembly = axial.assembly
-    stiffness, inertia = chain_matrix(assembly.springs), np.diag(assembly.node_inertias)
+    stiffness, inertia = assembly.stiffness, assembly.inertia
     omega1 = math.sqrt(scipy.linalg.eigh(stiffness, inertia, eigvals_only=True)[0])
     assert assembly.first_frequency() == pytest.approx(omega1, rel=1e-12)
     assert boundary.c[0] == pytest.approx(omega1**2 * 2900.0, rel=1e-12)

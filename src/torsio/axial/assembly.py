@@ -6,7 +6,7 @@ axial mass m_i; torsionally, spring k_i and damper c_i join node i − 1 to node
 being the top drive turning at Ω₀; axially, spring k_a,i and damper c_a,i join node i − 1
 to node i, node −1 being the hook (its boundaries: :mod:`torsio.model.axial_rows`).
 :func:`axial_chain` builds one from its vectors; the functions below read what the axial
-engine needs from it (its kernel rows, its fastest rates, its steady offsets).
+engine needs from it (its kernel rows, its fastest rates, its steady angles and positions).
 
 The 2-DOF model of Richard, Germay and Detournay (2007) is one node, no axial spring:
 :func:`two_dof_assembly`. :func:`pipe_assembly` splits a uniform pipe section
@@ -34,7 +34,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from torsio.errors import ConfigError
-from torsio.model.axial_rows import AxialRows, node_rates
+from torsio.model.arrays import check_count, read_only_vector
+from torsio.model.axial_rows import AxialRows
 from torsio.model.discretize import element_count, lumped_halves
 from torsio.model.lumped import LumpedModel
 
@@ -45,16 +46,17 @@ __all__ = [
     "assembly_description",
     "assembly_summary",
     "axial_chain",
-    "axial_rows",
-    "chain_rows",
+    "axial_kernel_rows",
     "fastest_damping_rate",
     "fastest_frequency",
     "is_two_dof",
-    "lumped_node_depths",
     "lumped_pipe",
     "pipe_assembly",
+    "require_axial",
     "rgd_two_dof_example",
     "steady_angles",
+    "steady_positions",
+    "torsional_kernel_rows",
     "two_dof_assembly",
 ]
 
@@ -91,16 +93,19 @@ def axial_chain(
     """
     if not np.size(inertias):
         raise ConfigError("chain.inertias", "is empty; expected one inertia per node")
+    dampings = dampings if dampings is None or np.size(dampings) else None  # []: none
     try:
         chain = LumpedModel.from_chain(
             inertias, stiffnesses, dampings=dampings, node_depths=node_depths, strategy="chain"
         )
     except ConfigError as exc:  # from_chain names its arguments; the file names chain.*
-        raise ConfigError(f"chain.{exc.key}", exc.message) from None
+        known = exc.key.split("[")[0] in ("inertias", "stiffnesses", "dampings")
+        raise ConfigError(f"chain.{exc.key}" if known else exc.key, exc.message) from None
+    check_count("chain.masses", read_only_vector(masses), chain.dofs)
     return chain.with_axial(AxialRows(masses, axial_stiffnesses, axial_dampings, hook))
 
 
-def axial_rows(assembly: LumpedModel) -> AxialRows:
+def require_axial(assembly: LumpedModel) -> AxialRows:
     """The axial rows of a lumped assembly (a ConfigError on ``chain.masses`` without)."""
     if assembly.axial is None:
         raise ConfigError(
@@ -114,24 +119,41 @@ def is_two_dof(assembly: Any) -> bool:
     (:func:`two_dof_assembly`), whose characteristic equation
     :func:`torsio.axial.linearization.characteristic_function` writes out."""
     return bool(
-        assembly.linearizable and assembly.dofs == 1 and axial_rows(assembly).hook == "weight"
+        assembly.linearizable and assembly.dofs == 1 and require_axial(assembly).hook == "weight"
     )
 
 
-def chain_rows(assembly: LumpedModel) -> NDArray[np.float64]:
-    """The kernel's torsional rows 1/I, k, c (:mod:`torsio.axial.kernel`)."""
+def torsional_kernel_rows(assembly: LumpedModel) -> NDArray[np.float64]:
+    """The axial kernel's torsional rows 1/I, k, c (:mod:`torsio.axial.kernel`)."""
     return np.ascontiguousarray(
         [1.0 / assembly.node_inertias, assembly.springs, assembly.dampers], dtype=float
     )
 
 
+def axial_kernel_rows(assembly: LumpedModel) -> NDArray[np.float64]:
+    """The axial kernel's axial rows 1/m, k_a, c_a; one row of the rigid body's Σ m
+    without axial springs (:mod:`torsio.axial.kernel`)."""
+    axial = require_axial(assembly)
+    if axial.stiffnesses.size:
+        return np.ascontiguousarray([1.0 / axial.masses, axial.stiffnesses, axial.dampings])
+    return np.array([[1.0 / axial.masses.sum()], [0.0], [0.0]])
+
+
+def _node_rates(elements: NDArray[np.float64], inertias: NDArray[np.float64]) -> NDArray:
+    """(e_i + e_i+1)/I_i: each node's share of its two elements (springs [1/s²] or dampers
+    [1/s]) over its inertia or mass."""
+    total = np.array(elements, dtype=float)
+    total[:-1] += elements[1:]
+    return total / inertias
+
+
 def fastest_frequency(assembly: LumpedModel) -> float:
     """An upper bound [rad/s] of the chain's node frequencies, √((k_i + k_i+1)/I_i) and
     √((k_a,i + k_a,i+1)/m_i): what the explicit step must resolve."""
-    axial = axial_rows(assembly)
-    rates = [node_rates(assembly.springs, assembly.node_inertias)]
+    axial = require_axial(assembly)
+    rates = [_node_rates(assembly.springs, assembly.node_inertias)]
     if axial.stiffnesses.size:
-        rates.append(node_rates(axial.stiffnesses, axial.masses))
+        rates.append(_node_rates(axial.stiffnesses, axial.masses))
     return float(np.sqrt(max(r.max() for r in rates)))
 
 
@@ -140,19 +162,29 @@ def fastest_damping_rate(assembly: LumpedModel) -> float:
     2 (c_i + c_i+1)/I_i and 2 (c_a,i + c_a,i+1)/m_i (Gershgorin's discs; a uniform chain
     reaches it at its shortest wave). The explicit dampers' step keeps h times it at
     most :data:`torsio.axial.run_setup.DAMPER_STEP`."""
-    axial = axial_rows(assembly)
-    rates = [2.0 * node_rates(assembly.dampers, assembly.node_inertias)]
+    axial = require_axial(assembly)
+    rates = [2.0 * _node_rates(assembly.dampers, assembly.node_inertias)]
     if axial.stiffnesses.size:
-        rates.append(2.0 * node_rates(axial.dampings, axial.masses))
+        rates.append(2.0 * _node_rates(axial.dampings, axial.masses))
     return float(max(r.max() for r in rates))
 
 
 def steady_angles(assembly: LumpedModel, torque: Any) -> NDArray[np.float64]:
     """Node angles [rad] relative to the top in steady drilling, each torsional spring
     carrying the bit torque [N m] (or, as an array, spring j its own: with friction along
-    the string, :func:`torsio.axial.steady_friction.steady_loads`): −Σ_j≤i T_j/k_j. The
-    axial positions: :meth:`~torsio.model.axial_rows.AxialRows.steady_positions`."""
+    the string, :func:`torsio.axial.steady_friction.steady_loads`): −Σ_j≤i T_j/k_j."""
     return -np.cumsum(torque / assembly.springs)
+
+
+def steady_positions(assembly: LumpedModel, weight: Any) -> NDArray[np.float64]:
+    """Axial positions [m] relative to the bit in steady drilling, each axial spring
+    carrying the weight [N] (or, as an array, spring j its own): Σ_j>i W_j/k_a,j (0 at the
+    bit); the rigid body's one position 0."""
+    axial = require_axial(assembly)
+    if not axial.stiffnesses.size:
+        return np.zeros(1)
+    springs = weight / axial.stiffnesses
+    return np.concatenate([np.cumsum(springs[:0:-1])[::-1], [0.0]])
 
 
 def assembly_description(assembly: Any) -> dict[str, Any]:
@@ -160,7 +192,7 @@ def assembly_description(assembly: Any) -> dict[str, Any]:
     kind, nodes, axial DOFs, hook and vectors; a distributed pipe's ``describe()``."""
     if not assembly.has_matrices:  # the distributed pipe
         return dict(assembly.describe())
-    axial = axial_rows(assembly)
+    axial = require_axial(assembly)
     return {
         "kind": "lumped",
         "nodes": assembly.dofs,
@@ -210,20 +242,6 @@ def pipe_assembly(
     return lumped_pipe([pipe], bha_mass, bha_inertia, pipe.length / nodes, hook)
 
 
-def lumped_node_depths(
-    sections: Sequence[PipeSection], element_length: float
-) -> NDArray[np.float64]:
-    """Depths [m below the pipe's top] of the nodes of :func:`lumped_pipe`: the bottom of
-    each element (the last node carries the rigid BHA)."""
-    depths: list[float] = []
-    top = 0.0
-    for section in sections:
-        count = element_count(section.length, element_length)
-        depths.extend(top + section.length * np.arange(1, count + 1) / count)
-        top += section.length
-    return np.array(depths)
-
-
 def lumped_pipe(
     sections: Sequence[PipeSection],
     bha_mass: float,
@@ -235,8 +253,9 @@ def lumped_pipe(
     """The lumped chain of the pipe ``sections`` above a rigid BHA (``bha_mass`` [kg],
     ``bha_inertia`` [kg m²]): each section split into elements of at most
     ``element_length`` [m], with springs E A / Δ [N/m] and G J / Δ [N m/rad] and dampers
-    β k; each element's mass ρ A Δ and inertia ρ J Δ shared by its two end nodes, the BHA
-    rigid on the last node. The top element's upper half of inertia is at the top drive;
+    β k (``beta`` [s]); each element's mass ρ A Δ and inertia ρ J Δ shared by its two end
+    nodes, the BHA rigid on the last node; its nodes' depths [m below the pipe's top] the
+    bottoms of the elements. The top element's upper half of inertia is at the top drive;
     its upper half of mass at the hook under the speed hook, on node 0 under the weight
     hook (the top of the pipe is free there). The one lumping of an axial pipe
     (:func:`torsio.axial.assembly.pipe_assembly` is its uniform case), by the rules of
@@ -245,9 +264,13 @@ def lumped_pipe(
     with ``max_element_length`` (tests/test_axial_wave_config.py).
     """
     elements: list[tuple[PipeSection, float]] = []  # each element's section and length Δ
+    depths: list[float] = []  # each node's, at the bottom of its element [m below the top]
+    top = 0.0
     for section in sections:
         count = element_count(section.length, element_length)
         elements += [(section, section.length / count)] * count
+        depths.extend(top + section.length * np.arange(1, count + 1) / count)
+        top += section.length
     torsional = np.array([s.shear_modulus * s.polar_moment / d for s, d in elements])
     axial = np.array([s.youngs_modulus * s.area / d for s, d in elements])
     element_masses = np.array([s.density * s.area * d for s, d in elements])
@@ -262,10 +285,10 @@ def lumped_pipe(
         stiffnesses=torsional,
         masses=masses,
         axial_stiffnesses=axial,
-        dampings=beta * torsional,
+        dampings=beta * torsional if beta else None,
         axial_dampings=beta * axial,
         hook=hook,
-        node_depths=lumped_node_depths(sections, element_length),
+        node_depths=depths,
     )
 
 

@@ -80,7 +80,7 @@ from typing import Any
 
 import numpy as np
 
-from torsio.axial.assembly import axial_rows, is_two_dof
+from torsio.axial.assembly import is_two_dof, require_axial
 from torsio.axial.delay_roots import LinearDelaySystem
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
@@ -117,7 +117,7 @@ def two_dof_parameters(assembly: LumpedModel) -> tuple[float, float, float, floa
     ConfigError
         An assembly of more than one node, or with the speed hook.
     """
-    axial = axial_rows(assembly)
+    axial = require_axial(assembly)
     if not is_two_dof(assembly):
         raise ConfigError(
             "assembly",
@@ -141,7 +141,7 @@ def axial_matrices(assembly: LumpedModel) -> tuple[np.ndarray, np.ndarray, np.nd
     perturbation); under the hook weight node 0 has none (the weight is constant); with no
     axial springs the string is one rigid body of mass Σ m_i (K = C = 0).
     """
-    axial = axial_rows(assembly)
+    axial = require_axial(assembly)
     if not axial.stiffnesses.size:
         return np.array([[axial.bit_mass]]), np.zeros((1, 1)), np.zeros((1, 1))
     springs = np.array(axial.stiffnesses, dtype=float)
@@ -250,7 +250,7 @@ def drilling_linearization(
     ConfigError
         A weight on bit at which the bit does not cut.
     """
-    axial = axial_rows(assembly)
+    axial = require_axial(assembly)
     steady, friction = drilling_state(bit, wob, rpm, contacts, axial.hook)
     surface = steady.bit_torque if friction is None else friction.surface_torque
     mass, damping, stiffness = chain_matrices(assembly)

@@ -47,11 +47,13 @@ from numpy.typing import NDArray
 from torsio.analysis.severity import check_window
 from torsio.axial import layouts as slot
 from torsio.axial.assembly import (
-    axial_rows,
-    chain_rows,
+    axial_kernel_rows,
     fastest_damping_rate,
     fastest_frequency,
+    require_axial,
     steady_angles,
+    steady_positions,
+    torsional_kernel_rows,
 )
 from torsio.axial.run_budget import check_run_work
 from torsio.axial.steady import SteadyDrilling
@@ -380,7 +382,7 @@ def run_setup(
     weight hook).
     """
     options.check()
-    axial = axial_rows(assembly)
+    axial = require_axial(assembly)
     hook_force = float(wob)
     if isinstance(bit, TorqueLawBit) and (bit_rotation is not None or contacts is not None):
         raise ConfigError(
@@ -428,10 +430,10 @@ def run_setup(
     check_run_work(options, h, delay, nodes, bit, axial.bit_mass, fastest, what)
     omega0, v0 = steady.bit_speed, steady.rop
     if contacts is not None:  # each spring carries the bit's load and the friction below it
-        angles, positions = steady_angles(assembly, torques), axial.steady_positions(forces)
+        angles, positions = steady_angles(assembly, torques), steady_positions(assembly, forces)
     else:
         angles = steady_angles(assembly, steady.bit_torque)
-        positions = axial.steady_positions(wob)
+        positions = steady_positions(assembly, wob)
     on_steady = options.start == "steady"
     if bit_rotation is not None:
         theta, omega = np.zeros(1), np.array([omega0])
@@ -469,8 +471,8 @@ def run_setup(
     settings[slot.ROCK_SURFACE] = u[-1]
     return RunSetup(
         **attrs.asdict(kernel, recurse=False),
-        torsional=chain_rows(assembly),
-        axial=axial.kernel_rows(),
+        torsional=torsional_kernel_rows(assembly),
+        axial=axial_kernel_rows(assembly),
         theta=theta,
         omega=omega,
         u=u,

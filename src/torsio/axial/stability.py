@@ -31,7 +31,7 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.axial.assembly import axial_rows
+from torsio.axial.assembly import require_axial
 from torsio.axial.delay_roots import DelayRoots, LinearDelaySystem, rightmost_roots
 from torsio.axial.linearization import drilling_linearization
 from torsio.axial.rgd import RGDBit
@@ -72,7 +72,7 @@ def growth_rate_skipped(assembly: Any, contacts: Any = None) -> str | None:
     """
     if not assembly.linearizable:  # the distributed pipe
         return None if contacts is None else f"growth rate not computed: {NO_PIPE_FRICTION_RATE}"
-    dofs = assembly.dofs + axial_rows(assembly).dofs
+    dofs = assembly.dofs + require_axial(assembly).dofs
     if dofs <= MAX_AUTO_DOFS:
         return None
     return (
@@ -218,9 +218,9 @@ def drilling_stability(
         order = system.default_order()
     found = rightmost_roots(system, count, order=order)
     growth = float(found.roots[0].real)
-    shares = [axial_share(system, root, axial_rows(assembly).dofs) for root in found.roots]
+    shares = [axial_share(system, root, require_axial(assembly).dofs) for root in found.roots]
     return DrillingStability(
-        steady=drilling_state(bit, wob, rpm, contacts, axial_rows(assembly).hook)[0],
+        steady=drilling_state(bit, wob, rpm, contacts, require_axial(assembly).hook)[0],
         roots=found.roots,
         axial_shares=np.array(shares),
         growth_rate=growth,
@@ -427,7 +427,9 @@ def each_mode_crossing(
     for branch in follow_roots(system_at, grid, count, order=order):
         for crossing in branch_crossings(system_at, branch):
             root = 1j * crossing.frequency
-            share = axial_share(system_at(crossing.parameter), root, axial_rows(case.assembly).dofs)
+            share = axial_share(
+                system_at(crossing.parameter), root, require_axial(case.assembly).dofs
+            )
             mode = ModeCrossing(
                 crossing.parameter, crossing.frequency, share, crossing.destabilizing
             )

@@ -151,11 +151,6 @@ class WaveDrillingAssembly:
         return np.array([getattr(s, name) for s in self.sections], dtype=float)
 
     @property
-    def bit_mass(self) -> float:
-        """The axial mass [kg] of the body that carries the bit: the BHA's."""
-        return self.bha_mass
-
-    @property
     def lengths(self) -> NDArray[np.float64]:
         """Section lengths L [m], from the top down."""
         return self._column("length")

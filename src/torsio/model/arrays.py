@@ -1,4 +1,5 @@
-"""Read-only float arrays: the converter of the frozen classes that hold arrays.
+"""Read-only float arrays: the converter of the frozen classes that hold arrays, and the
+checks of their values (:func:`check_values`, :func:`check_count`) that name the key.
 
 Examples
 --------
@@ -18,7 +19,7 @@ from numpy.typing import NDArray
 
 from torsio.errors import ConfigError
 
-__all__ = ["check_values", "read_only", "read_only_vector"]
+__all__ = ["check_count", "check_values", "read_only", "read_only_vector"]
 
 
 def read_only(values: Any) -> NDArray[np.float64]:
@@ -31,6 +32,12 @@ def read_only(values: Any) -> NDArray[np.float64]:
 def read_only_vector(values: Any) -> NDArray[np.float64]:
     """:func:`read_only` flattened to one dimension; ``None`` gives an empty vector."""
     return read_only(np.reshape(np.asarray(() if values is None else values, dtype=float), -1))
+
+
+def check_count(key: str, values: NDArray[np.float64], size: int) -> None:
+    """Raise a ConfigError naming ``key`` unless ``values`` has ``size`` values, one per node."""
+    if values.size != size:
+        raise ConfigError(key, f"has {values.size} values; expected {size}, one per node")
 
 
 def check_values(key: str, values: NDArray[np.float64], allow_zero: bool) -> None:

@@ -22,22 +22,19 @@ Examples
 
 from __future__ import annotations
 
+from typing import Any
+
 import attrs
 import numpy as np
 from numpy.typing import NDArray
 
 from torsio.errors import ConfigError
-from torsio.model.arrays import check_values, read_only_vector
+from torsio.model.arrays import check_count, check_values, read_only_vector
 
-__all__ = ["HOOKS", "AxialRows", "node_rates"]
+__all__ = ["HOOKS", "AxialRows"]
 
 HOOKS = ("weight", "speed")
 """The boundaries at the hook: a constant weight on the top node, or a constant speed."""
-
-
-def _same_size(key: str, values: NDArray[np.float64], size: int) -> None:
-    if values.size != size:
-        raise ConfigError(key, f"has {values.size} values; expected {size}, one per node")
 
 
 @attrs.frozen(eq=False)
@@ -68,11 +65,11 @@ class AxialRows:
             raise ConfigError("chain.masses", "is empty; expected one mass per node")
         check_values("chain.masses", self.masses, False)
         if self.stiffnesses.size:
-            _same_size("chain.axial_stiffnesses", self.stiffnesses, n)
+            check_count("chain.axial_stiffnesses", self.stiffnesses, n)
             check_values("chain.axial_stiffnesses", self.stiffnesses, False)
         if not self.dampings.size:  # none given: no dampers
             object.__setattr__(self, "dampings", read_only_vector(np.zeros(self.dofs)))
-        _same_size("chain.axial_dampings", self.dampings, self.dofs)
+        check_count("chain.axial_dampings", self.dampings, self.dofs)
         check_values("chain.axial_dampings", self.dampings, True)
         if self.hook not in HOOKS:
             raise ConfigError("axial.hook", f"{self.hook!r} is not one of {', '.join(HOOKS)}")
@@ -93,27 +90,14 @@ class AxialRows:
         """The axial mass [kg] of the degree of freedom that carries the bit."""
         return float(self.masses[-1] if self.stiffnesses.size else self.masses.sum())
 
-    def kernel_rows(self) -> NDArray[np.float64]:
-        """The axial kernel's rows 1/m, k_a, c_a (:mod:`torsio.axial.kernel`)."""
-        if self.stiffnesses.size:
-            return np.ascontiguousarray(
-                [1.0 / self.masses, self.stiffnesses, self.dampings], dtype=float
-            )
-        return np.array([[1.0 / self.masses.sum()], [0.0], [0.0]])
+    def describe(self) -> dict[str, Any]:
+        """Plain data for reports and JSON: the axial DOFs, the hook, the total mass [kg].
 
-    def steady_positions(self, weight: NDArray[np.float64] | float) -> NDArray[np.float64]:
-        """Node positions [m] relative to the bit in steady drilling, each spring carrying
-        the weight [N] (or, as an array, spring j its own): Σ_j>i W_j/k_a,j (0 at the bit);
-        the rigid body's one position 0."""
-        if not self.stiffnesses.size:
-            return np.zeros(1)
-        springs = weight / self.stiffnesses
-        return np.concatenate([np.cumsum(springs[:0:-1])[::-1], [0.0]])
-
-
-def node_rates(elements: NDArray[np.float64], inertias: NDArray[np.float64]) -> NDArray:
-    """(e_i + e_i+1)/I_i [1/s or 1/s²]: each node's share of its two elements (springs or
-    dampers) over its inertia or mass."""
-    total = np.array(elements, dtype=float)
-    total[:-1] += elements[1:]
-    return total / inertias
+        >>> AxialRows([1.0e4, 2.0e4], stiffnesses=[5.0e6, 5.0e6], hook="speed").describe()
+        {'axial_dofs': 2, 'hook': 'speed', 'total_mass_kg': 30000.0}
+        """
+        return {
+            "axial_dofs": self.dofs,
+            "hook": self.hook,
+            "total_mass_kg": float(self.masses.sum()),
+        }

@@ -25,9 +25,10 @@ import attrs
 import numpy as np
 
 from torsio.errors import ConfigError
-from torsio.model.arrays import check_values, read_only, read_only_vector
+from torsio.model.arrays import check_count, check_values, read_only, read_only_vector
 from torsio.model.axial_rows import AxialRows
 from torsio.model.protocol import ModelEngines
+from torsio.model.tridiagonal import is_tridiagonal
 
 LUMPED_ENGINES = ModelEngines(
     transient="torsio.analysis.transient:simulate_lumped",
@@ -101,7 +102,11 @@ class LumpedModel:
         The nodes' axial masses, springs and dampers and the hook
         (:class:`torsio.model.axial_rows.AxialRows`, :meth:`with_axial`; None: the chain
         turns only). A chain with axial rows runs on the axial engine
-        (:func:`torsio.axial.transient.simulate_axial`).
+        (:func:`torsio.axial.transient.simulate_axial`); a System refuses it.
+    top_spring : float or None
+        The spring k_1 [N m/rad] that ties node 1 to the top, as given (:meth:`from_chain`;
+        None: read from [K], :attr:`springs`). [K] holds k_1 only inside k_1 + k_2, which
+        does not give it back to the last bit.
     """
 
     linearizable: ClassVar[bool] = True
@@ -124,6 +129,7 @@ class LumpedModel:
     details: dict[str, Any] = attrs.field(factory=dict, eq=False)
     contacts: Any = attrs.field(default=None, eq=False)
     axial: AxialRows | None = attrs.field(default=None, eq=False)
+    top_spring: float | None = attrs.field(default=None, eq=False)
     _memo: dict[str, Any] = attrs.field(factory=dict, init=False, eq=False, repr=False)
     """What analyses derived from the (never modified) matrices, e.g. omega_1, kept so that
     each is computed once per model (:func:`torsio.model.modal.first_natural_frequency`)."""
@@ -165,6 +171,15 @@ class LumpedModel:
                 raise ConfigError("damping", f"expected a symmetric {n}x{n} matrix")
             if self.top_damping is None or self.top_damping.shape != (n,):
                 raise ConfigError("top_damping", f"expected {n} values with a damping matrix")
+        if self.top_spring is not None:
+            row = self.stiffness[0]
+            bound = n * np.finfo(float).eps * np.abs(row).sum()
+            if not abs(self.top_spring - row.sum()) <= bound:
+                raise ConfigError(
+                    "top_spring",
+                    f"{self.top_spring!r} N m/rad is not the top coupling of [K], "
+                    f"{row.sum()!r} (its first row's sum)",
+                )
 
     def with_contacts(self, contacts: Any) -> LumpedModel:
         """The same chain with Coulomb contacts at its nodes (a
@@ -192,22 +207,39 @@ class LumpedModel:
         """The same chain whose nodes also move axially (:class:`AxialRows`, one mass per
         node).
 
+        The axial engine steps a chain: lumped mass, each node tied to its neighbours (and
+        node 1 to the top) by a spring and a damper, nothing else (its torsional rows are
+        :attr:`node_inertias`, :attr:`springs` and :attr:`dampers`).
+
         Raises
         ------
         ConfigError
-            On ``chain.masses`` for another number of masses than nodes, and on
-            ``discretization.strategy`` for consistent mass (the axial engine steps lumped
-            nodes).
+            On ``chain.masses`` for another number of masses than nodes; on
+            ``discretization.strategy`` for consistent mass or a [K] that is not a chain
+            tied to the top at node 1; on ``chain.drag`` for dampers that are not a chain's
+            (drag to the borehole: the axial engine has none); on ``well`` for torsional
+            contacts (the axial engine takes its own, ``AxialContacts``).
         """
-        if axial.masses.size != self.dofs:
-            raise ConfigError(
-                "chain.masses",
-                f"has {axial.masses.size} values; expected {self.dofs}, one per node",
-            )
-        if not self.has_lumped_mass:
+        check_count("chain.masses", axial.masses, self.dofs)
+        tied_once = not np.any(self.top_stiffness[1:]) and is_tridiagonal(self.stiffness)
+        if not (self.has_lumped_mass and tied_once):
             raise ConfigError(
                 "discretization.strategy",
-                f"axial dynamics need a lumped-mass chain; {self.strategy!r} has consistent mass",
+                f"axial dynamics need a lumped-mass chain tied to the top at node 1; "
+                f"{self.strategy!r} is not one",
+            )
+        if self.damping is not None and not np.array_equal(
+            self.damping, chain_matrix(self.dampers)
+        ):
+            raise ConfigError(
+                "chain.drag",
+                "axial dynamics take dampers between the nodes only (no drag to the borehole)",
+            )
+        if self.contacts is not None:
+            raise ConfigError(
+                "well",
+                "the axial engine takes its contacts along the string as AxialContacts "
+                "(simulate_axial(contacts=...)), not the torsional model's",
             )
         return attrs.evolve(self, axial=axial)
 
@@ -280,6 +312,7 @@ class LumpedModel:
             strategy=strategy,
             damping=damping,
             top_damping=top_damping,
+            top_spring=float(spring_values[0]),
         )
 
     # --- derived quantities ---------------------------------------------------------------
@@ -310,12 +343,14 @@ class LumpedModel:
     @property
     def springs(self) -> np.ndarray:
         """The chain's springs k_1..k_n [N m/rad], k_i joining node i-1 to node i (node 0 the
-        top): -[K]_(i-1,i), and k_1 = ([K] 1)_1 (:attr:`top_stiffness`).
+        top): -[K]_(i-1,i), and k_1 as given (:attr:`top_spring`), else ([K] 1)_1
+        (:attr:`top_stiffness`, to the rounding of k_1 + k_2).
 
-        >>> LumpedModel.from_chain([1.0, 1.0], [3.0, 2.0]).springs
-        array([3., 2.])
+        >>> LumpedModel.from_chain([1.0, 1.0], [0.1, 0.2]).springs
+        array([0.1, 0.2])
         """
-        return np.concatenate([self.top_stiffness[:1], 0.0 - np.diag(self.stiffness, 1)])
+        top = self.top_stiffness[0] if self.top_spring is None else self.top_spring
+        return np.concatenate([[top], 0.0 - np.diag(self.stiffness, 1)])
 
     @property
     def dampers(self) -> np.ndarray:
@@ -365,6 +400,7 @@ class LumpedModel:
             "equivalent_stiffness_N_m_rad": self.equivalent_stiffness,
             "elements": dict(self.details.get("elements", {})),
             **({} if self.contacts is None else {"contacts": self.contacts.describe()}),
+            **({} if self.axial is None else {"axial": self.axial.describe()}),
         }
 
     @property

@@ -63,6 +63,13 @@ def _check_model(instance: Any, attribute: Any, value: Any) -> None:
             "LumpedModel from a discretizer or a chain, or the wave strategy's grid), got "
             f"{value!r}",
         )
+    if getattr(value, "axial", None) is not None:
+        raise ConfigError(
+            "model",
+            "a chain with axial rows moves axially too, which the torsional engines do not "
+            "step: run it with torsio.axial.transient.simulate_axial (or give the chain "
+            "without them)",
+        )
 
 
 def _check_law(instance: Any, attribute: Any, value: Any) -> None:

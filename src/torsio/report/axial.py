@@ -34,7 +34,7 @@ from typing import Any
 import scipy.linalg
 from rich.table import Table
 
-from torsio.axial.assembly import assembly_description, assembly_summary, axial_rows
+from torsio.axial.assembly import assembly_description, assembly_summary, require_axial
 from torsio.axial.linearization import axial_matrices
 from torsio.axial.torque_law import TorqueLawBit
 from torsio.axial.wave_assembly import WaveDrillingAssembly
@@ -75,11 +75,11 @@ def axial_frequencies(
     if isinstance(assembly, WaveDrillingAssembly):
         omega = assembly.axial_frequencies(count, free_top=assembly.hook == "weight")
         return [float(w) / (2 * math.pi) for w in omega]
-    if not axial_rows(assembly).stiffnesses.size:
+    if not require_axial(assembly).stiffnesses.size:
         return []
     mass, _, stiffness = axial_matrices(assembly)
     values = scipy.linalg.eigh(stiffness, mass, eigvals_only=True)
-    if axial_rows(assembly).hook == "weight":
+    if require_axial(assembly).hook == "weight":
         values = values[1:]
     return [math.sqrt(max(v, 0.0)) / (2 * math.pi) for v in values]
 
