@@ -146,3 +146,25 @@ def test_empty_dampers_are_none():
     # dampings=[] and axial_dampings=[] both mean no dampers, as in a [chain] file
     chain = axial_chain([1.0], [2.0], [3.0], dampings=[], axial_dampings=[])
     assert chain.dampers.tolist() == [0.0] and chain.axial.dampings.tolist() == [0.0]
+
+
+def test_a_discretizers_chain_drills_as_the_two_dof_model():
+    # strategy A of the built-in string is the torsional chain of the 2-DOF model of
+    # docs/axial.md (I = 455.65 kg m², k = 324.857 N m/rad there: within half their last
+    # digit); with its mass M = 29981.3 kg and no dampers the linearization of steady
+    # drilling is the 2-DOF model's to that rounding (1.1e-5 relative at most in I): the
+    # growth rate within 1e-5 (measured 3e-9: the unstable root is the axial mode's)
+    from torsio import StrategyA, ritto2017_string
+    from torsio.axial.assembly import two_dof_assembly
+    from torsio.axial.rgd import rgd_example
+    from torsio.axial.stability import drilling_stability
+
+    chain = StrategyA().discretize(ritto2017_string()).with_axial(AxialRows([29981.3]))
+    np.testing.assert_allclose(chain.node_inertias, [455.65], rtol=0, atol=0.005)
+    np.testing.assert_allclose(chain.springs, [324.857], rtol=0, atol=0.0005)
+    ours = drilling_stability(chain, rgd_example(), 100e3, 90.0)
+    reference = drilling_stability(
+        two_dof_assembly(455.65, 324.857, 29981.3), rgd_example(), 100e3, 90.0
+    )
+    assert ours.growth_rate == pytest.approx(reference.growth_rate, rel=1e-5)
+    assert ours.stable == reference.stable
