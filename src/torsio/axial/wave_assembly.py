@@ -36,7 +36,7 @@ from numpy.typing import NDArray
 
 from torsio.axial.assembly import lumped_pipe
 from torsio.errors import ConfigError
-from torsio.model.axial_rows import HOOKS
+from torsio.model.axial_rows import check_hook
 from torsio.model.continuum import bar_frequencies
 from torsio.model.lumped import LumpedModel
 from torsio.model.wave import DEFAULT_TRAVEL_TIME_TOLERANCE
@@ -138,8 +138,7 @@ class WaveDrillingAssembly:
             raise ConfigError("sections", "is empty; expected at least one PipeSection")
         object.__setattr__(self, "bha_mass", _positive("bha_mass", self.bha_mass))
         object.__setattr__(self, "bha_inertia", _positive("bha_inertia", self.bha_inertia))
-        if self.hook not in HOOKS:
-            raise ConfigError("axial.hook", f"{self.hook!r} is not one of {', '.join(HOOKS)}")
+        check_hook(self.hook)
         tolerance = self.travel_time_tolerance
         if not (isinstance(tolerance, int | float) and 0 < tolerance < 0.5):
             raise ConfigError(

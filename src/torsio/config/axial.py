@@ -34,7 +34,7 @@ from typing import Any
 import attrs
 import numpy as np
 
-from torsio.axial.assembly import axial_chain, is_two_dof, lumped_pipe
+from torsio.axial.assembly import axial_chain, is_two_dof, lumped_pipe, require_axial
 from torsio.axial.rgd import RGDBit, rgd_from_table
 from torsio.axial.torque_law import AxialBit, TorqueLawBit
 from torsio.axial.wave_assembly import DEFAULT_ELEMENT_LENGTH, PipeSection, WaveDrillingAssembly
@@ -42,7 +42,6 @@ from torsio.config.chain import ChainConfig, _values
 from torsio.config.configuration import BitRockConfig
 from torsio.config.tables import _positive_number, _string, _table
 from torsio.errors import ConfigError
-from torsio.model.axial_rows import HOOKS
 from torsio.model.drillstring import DrillString
 from torsio.model.lumped import LumpedModel
 from torsio.model.wave import DEFAULT_TRAVEL_TIME_TOLERANCE
@@ -126,8 +125,7 @@ class AxialConfig:
         """The hook's boundary, ``"weight"`` or ``"speed"`` (:mod:`torsio.model.axial_rows`)."""
         if isinstance(self.assembly, WaveDrillingAssembly):
             return self.assembly.hook
-        assert self.assembly.axial is not None
-        return self.assembly.axial.hook
+        return require_axial(self.assembly).hook
 
     @property
     def stability_assembly(self) -> LumpedModel:
@@ -159,8 +157,7 @@ class AxialConfig:
 def _axial_table(table: Mapping[str, Any]) -> dict[str, Any]:
     raw = _table(table.get("axial", {}), "axial", AXIAL_KEYS)
     options: dict[str, Any] = {"hook": _string(raw.get("hook", "weight"), "axial.hook")}
-    if options["hook"] not in HOOKS:
-        raise ConfigError("axial.hook", f"{options['hook']!r} is not one of {', '.join(HOOKS)}")
+    # its value is checked by the model it builds (torsio.model.axial_rows.check_hook)
     spp = raw.get("steps_per_period", 100)
     if isinstance(spp, bool) or not isinstance(spp, int) or spp < 10:
         raise ConfigError(

@@ -31,10 +31,17 @@ from numpy.typing import NDArray
 from torsio.errors import ConfigError
 from torsio.model.arrays import check_count, check_values, read_only_vector
 
-__all__ = ["HOOKS", "AxialRows"]
+__all__ = ["HOOKS", "AxialRows", "check_hook"]
 
 HOOKS = ("weight", "speed")
 """The boundaries at the hook: a constant weight on the top node, or a constant speed."""
+
+
+def check_hook(hook: str) -> None:
+    """Raise a ConfigError on ``axial.hook`` unless ``hook`` is one of :data:`HOOKS` (the
+    lumped chain's and the distributed pipe's one check)."""
+    if hook not in HOOKS:
+        raise ConfigError("axial.hook", f"{hook!r} is not one of {', '.join(HOOKS)}")
 
 
 @attrs.frozen(eq=False)
@@ -71,8 +78,7 @@ class AxialRows:
             object.__setattr__(self, "dampings", read_only_vector(np.zeros(self.dofs)))
         check_count("chain.axial_dampings", self.dampings, self.dofs)
         check_values("chain.axial_dampings", self.dampings, True)
-        if self.hook not in HOOKS:
-            raise ConfigError("axial.hook", f"{self.hook!r} is not one of {', '.join(HOOKS)}")
+        check_hook(self.hook)
         if self.hook == "speed" and not self.stiffnesses.size:
             raise ConfigError(
                 "axial.hook",
