@@ -143,22 +143,28 @@ def test_one_section_lumped_chain_is_pipe_assembly(hook):
 
 
 @pytest.mark.parametrize("element_length", [100.0, 70.0, 333.0])
-def test_the_axial_chains_torsional_rows_are_strategy_cs(element_length):
+def test_the_pipes_lumped_twin_is_the_files_strategy_c_chain(element_length):
     # two routes to the lumped-mass chain of the file's stepped string (900 m of drill pipe
-    # and 100 m of HWDP in the pipe, the collars and the bit rigid): the axial chain
-    # (lumped_pipe) and the torsional discretizer of the paper's strategy C (Eqs. 6-7) with
-    # elements of at most the same length; the same element counts, the same node depths,
-    # the same springs G J / Δ and inertias to round-off (G J / L × n against G J / (L/n))
+    # and 100 m of HWDP in the pipe, the collars and the bit rigid): the file without
+    # strategy = "wave" (the paper's strategy C, Eqs. 6-7, with axial rows) and the
+    # distributed pipe's lumped twin (lumped_pipe of its PipeSections); the same element
+    # counts, node depths, springs and inertias to round-off (G J / L × n against
+    # G J / (L/n)), the same masses and axial springs
     data = tomllib.loads(TEXT)
     del data["discretization"]
     data["axial"] = {"element_length": element_length}
     axial = parse_config(data).axial
-    model = StrategyC(max_element_length=element_length).discretize(axial.string)
     chain = axial.assembly
-    assert chain.dofs == model.dofs
-    np.testing.assert_allclose(chain.inertia, model.inertia, rtol=1e-14)
-    np.testing.assert_allclose(chain.stiffness, model.stiffness, rtol=1e-14)
-    np.testing.assert_allclose(chain.node_depths, model.node_depths, rtol=1e-14)
+    model = StrategyC(max_element_length=element_length).discretize(axial.string)
+    np.testing.assert_array_equal(chain.stiffness, model.stiffness)
+    twin = rgd_wave_pipe_config().axial.assembly.lumped_twin(element_length)
+    assert twin.dofs == chain.dofs
+    for rows in ("inertia", "stiffness", "node_depths"):
+        np.testing.assert_allclose(getattr(twin, rows), getattr(chain, rows), rtol=1e-14)
+    for rows in ("masses", "stiffnesses"):
+        np.testing.assert_allclose(
+            getattr(twin.axial, rows), getattr(chain.axial, rows), rtol=1e-14
+        )
 
 
 # --- the report's frequencies -------------------------------------------------------------

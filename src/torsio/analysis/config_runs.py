@@ -40,7 +40,7 @@ _FIXED_STEP = (
 )
 _ASSEMBLY = (
     "the axial engine runs the file's assembly as it is ([chain] masses, or [[section]] "
-    "with [axial]); change its nodes there"
+    "lumped by its [discretization] and [axial]); change its nodes there"
 )
 _AXIAL_CANNOT = {
     "strategy": _ASSEMBLY,

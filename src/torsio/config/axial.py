@@ -8,7 +8,7 @@ alone (Tucker-Wang, a plugin's), whose axial motion rests on the rock under the 
 bit (:class:`~torsio.axial.torque_law.TorqueLawBit`).
 :func:`chain_axial` and :func:`string_axial` build an :class:`AxialConfig` that
 :func:`torsio.axial.transient.simulate_axial` and :func:`torsio.axial.maps.axial_map` run:
-a lumped chain (:func:`~torsio.axial.assembly.lumped_pipe`, elements of at most
+a lumped chain (the file's discretizer with axial rows, elements of at most
 ``[axial] element_length``), or
 with ``[discretization] strategy = "wave"`` the distributed pipe
 (:class:`~torsio.axial.wave_assembly.WaveDrillingAssembly`), which takes no element
@@ -27,21 +27,21 @@ Examples
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from typing import Any
 
 import attrs
 import numpy as np
 
-from torsio.axial.assembly import axial_chain, is_two_dof, lumped_pipe, require_axial
+from torsio.axial.assembly import is_two_dof, require_axial
 from torsio.axial.rgd import RGDBit, rgd_from_table
 from torsio.axial.torque_law import AxialBit, TorqueLawBit
 from torsio.axial.wave_assembly import DEFAULT_ELEMENT_LENGTH, PipeSection, WaveDrillingAssembly
 from torsio.config.chain import ChainConfig, _values
-from torsio.config.configuration import BitRockConfig
+from torsio.config.configuration import BitRockConfig, DiscretizationConfig
 from torsio.config.tables import _positive_number, _string, _table
 from torsio.errors import ConfigError
+from torsio.model.axial_rows import AxialRows
 from torsio.model.drillstring import DrillString
 from torsio.model.lumped import LumpedModel
 from torsio.model.wave import DEFAULT_TRAVEL_TIME_TOLERANCE
@@ -234,11 +234,6 @@ def _bit(table: Mapping[str, Any], bit_rock: BitRockConfig | None, given: str) -
     return TorqueLawBit(bit_rock.build(), bit_rock.radius)
 
 
-def _dampers(table: Mapping[str, Any], springs: np.ndarray) -> np.ndarray:
-    """Dampers β k [N m s/rad or N s/m] from ``[damping] beta``; alpha and ratios refused."""
-    return _damping_beta(table) * springs
-
-
 def _damping_beta(table: Mapping[str, Any]) -> float:
     """β [s] of ``[damping]`` (default 0); alpha and ratios refused."""
     raw = table.get("damping", {})
@@ -277,21 +272,12 @@ def chain_axial(
         raise ConfigError(
             "chain.axial_dampings", "goes with chain.axial_stiffnesses (dampers join nodes)"
         )
-    torsional = np.asarray(chain.stiffnesses)
-    damping = (
-        np.asarray(chain.dampings) if chain.dampings is not None else _dampers(table, torsional)
-    )
+    model = chain.model()
+    if chain.dampings is None:
+        model = model.with_dampers(_damping_beta(table) * model.springs)
     if not dampers and springs:
-        dampers = tuple(_dampers(table, np.asarray(springs)))
-    assembly = axial_chain(
-        inertias=chain.inertias,
-        stiffnesses=chain.stiffnesses,
-        masses=masses,
-        axial_stiffnesses=springs,
-        dampings=damping,
-        axial_dampings=dampers or None,
-        hook=options["hook"],
-    )
+        dampers = tuple(_damping_beta(table) * np.asarray(springs))
+    assembly = model.with_axial(AxialRows(masses, springs, dampers or None, options["hook"]))
     return AxialConfig(
         assembly, _bit(table, bit_rock, "[chain] masses"),
         steps_per_period=options["steps_per_period"],
@@ -315,7 +301,7 @@ def _refuse_axial_tables(table: Mapping[str, Any], needed: str) -> None:
 
 @attrs.frozen
 class AxialSections:
-    """A ``[[section]]`` string read once for axial dynamics (:func:`axial_sections`).
+    """A ``[[section]]`` string read for the distributed axial pipe (:func:`axial_sections`).
 
     Attributes
     ----------
@@ -335,13 +321,13 @@ class AxialSections:
 
 def axial_sections(string: DrillString) -> AxialSections:
     """The pipe sections (with E of their material, ``[material]`` or the section's own)
-    and the rigid BHA's sums: what both the lumped chain and the distributed pipe are built
-    from."""
+    and the rigid BHA's sums: what the distributed pipe is built from (the lumped chain is
+    its discretizer's, :func:`_lumped_chain`)."""
     pipe: list[PipeSection] = []
     bha_mass = bha_inertia = 0.0
     for i, section in enumerate(string.sections):
         e = section.material.youngs_modulus
-        area = math.pi * (section.od**2 - section.id**2) / 4
+        area = section.area
         if section.in_bha:
             bha_mass += section.material.density * area * section.length
             bha_inertia += section.inertia
@@ -419,15 +405,17 @@ def _wave_pipe(
     )
 
 
-def string_axial(table: Mapping[str, Any], string: DrillString) -> AxialConfig | None:
+def string_axial(
+    table: Mapping[str, Any], string: DrillString, discretization: DiscretizationConfig
+) -> AxialConfig | None:
     """The axial dynamics of a ``[[section]]`` file (None unless its law declares
     ``needs_axial``: ``law = "rgd"``; a law of the torque alone keeps a string torsional).
 
     With ``[discretization] strategy = "wave"`` the distributed pipe
     (:class:`~torsio.axial.wave_assembly.WaveDrillingAssembly`, one section per pipe
     section, the BHA rigid; its lumped twin at :data:`DEFAULT_ELEMENT_LENGTH` for the linear
-    stability); otherwise the lumped chain of :func:`~torsio.axial.assembly.lumped_pipe`
-    with elements of at most ``[axial] element_length`` [m].
+    stability); otherwise the lumped chain of the file's discretizer with axial rows
+    (:func:`_lumped_chain`).
     """
     raw = table.get("bit_rock")
     law = raw.get("law", "tucker-wang") if isinstance(raw, Mapping) else None
@@ -436,16 +424,54 @@ def string_axial(table: Mapping[str, Any], string: DrillString) -> AxialConfig |
         return None
     assert isinstance(raw, Mapping)
     options = _axial_table(table)
-    sections = axial_sections(string)
-    discretization = table.get("discretization", {})
     bit = axial_law_from_table(raw)
     run = {"steps_per_period": options["steps_per_period"], **_simulation_options(table)}
-    if isinstance(discretization, Mapping) and discretization.get("strategy") == "wave":
-        pipe = _wave_pipe(table, sections, options["hook"])
+    if discretization.strategy == "wave":
+        pipe = _wave_pipe(table, axial_sections(string), options["hook"])
         return AxialConfig(pipe, bit, lumped_twin=pipe.lumped_twin(), string=string, **run)
-    beta = _damping_beta(table)
-    length = options["element_length"]
-    chain = lumped_pipe(
-        sections.pipe, sections.bha_mass, sections.bha_inertia, length, options["hook"], beta
-    )
+    chain = _lumped_chain(table, string, discretization, options)
     return AxialConfig(chain, bit, string=string, **run)
+
+
+ELEMENT_COUNT_KEYS = ("dp_elements", "bha_elements", "section_elements", "max_element_length")
+"""``[discretization]`` keys that count a discretizer's elements."""
+
+
+def _lumped_chain(
+    table: Mapping[str, Any],
+    string: DrillString,
+    discretization: DiscretizationConfig,
+    options: Mapping[str, Any],
+) -> LumpedModel:
+    """The lumped chain of a ``[[section]]`` string with axial rows: the file's discretizer
+    (strategy C by default) builds its torsional and axial rows on the same elements
+    (:meth:`~torsio.model.discretize.StrategyC.axial_rows`), of at most ``[axial]
+    element_length`` unless ``[discretization]`` counts them; dampers β k on every spring
+    (``[damping] beta``)."""
+    strategy = discretization.strategy
+    if not callable(getattr(discretization.build(), "axial_rows", None)):
+        raise ConfigError(
+            "discretization.strategy",
+            f"{strategy!r} builds no axial rows (springs E A / L and masses on its "
+            "elements); axial dynamics take 'B', 'C' (the default) or 'wave'",
+        )
+    counted = [key for key in ELEMENT_COUNT_KEYS if key in discretization.options]
+    if counted and "element_length" in table.get("axial", {}):
+        raise ConfigError(
+            "axial.element_length",
+            f"{table['axial']['element_length']!r} given, and discretization.{counted[0]} "
+            "counts the chain's elements too; give one of them",
+        )
+    counting = {} if counted else {"max_element_length": options["element_length"]}
+    discretizer = DiscretizationConfig(strategy, {**discretization.options, **counting}).build()
+    try:
+        chain = discretizer.discretize(string)
+        rows = discretizer.axial_rows(string, options["hook"])
+    except ConfigError as exc:
+        if exc.key.split("[")[0] not in ELEMENT_COUNT_KEYS:
+            raise
+        raise ConfigError(f"discretization.{exc.key}", exc.message) from None
+    beta = _damping_beta(table)
+    if beta:
+        chain = chain.with_dampers(beta * chain.springs)
+    return chain.with_axial(attrs.evolve(rows, dampings=beta * rows.stiffnesses))

@@ -201,11 +201,10 @@ def _string_config(table: Mapping[str, Any], name: str, source: str) -> Config:
     ]
     string = DrillString(sections, name=name)
     discretization = _discretization(table.get("discretization", {}))
-    axial = string_axial(table, string)
+    axial = string_axial(table, string, discretization)
     discretizer = discretization.build()
     if axial is None and hasattr(discretizer, "element_counts"):
-        # (the axial engine builds its own chain or pipe: the torsional element counts
-        # do not apply to it)
+        # (with axial dynamics the chain is built at once: torsio.config.axial)
         try:
             discretizer.element_counts(string)
         except ConfigError as exc:

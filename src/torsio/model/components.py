@@ -164,6 +164,12 @@ class Section:
         return math.pi / 32.0 * (self.od**4 - self.id**4)
 
     @property
+    def area(self) -> float:
+        """Cross-section of the body, pi (od^2 - id^2) / 4 [m^2]: its axial springs E A / L
+        and masses rho A L."""
+        return math.pi * (self.od**2 - self.id**2) / 4
+
+    @property
     def inertia(self) -> float:
         """Mass moment of inertia about the axis, rho J L [kg m^2]."""
         return self.material.density * self.polar_moment * self.length

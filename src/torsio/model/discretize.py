@@ -20,7 +20,9 @@ Strategies B, C and ``consistent`` split sections into elements. Give one of
 With lumped mass each element is a spring G J L_e^-1 with half its inertia
 rho J L_e on each end node (Eq. 6); the node at the top is prescribed, so the
 model has one degree of freedom per element. The bit's inertia (and in strategy
-C the whole rigid BHA's) is added to the last node (Eq. 7).
+C the whole rigid BHA's) is added to the last node (Eq. 7). The same elements carry a
+string's axial rows (``axial_rows``: springs E A L_e^-1, masses rho A L_e halved onto
+the end nodes) for axial dynamics.
 
 Examples
 --------
@@ -41,6 +43,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from torsio.errors import ConfigError
+from torsio.model.axial_rows import AxialRows
 from torsio.model.components import Section
 from torsio.model.drillstring import DrillString
 from torsio.model.lumped import LumpedModel, chain_matrix
@@ -109,7 +112,8 @@ def _check_count(key: str, value: Any) -> None:
 
 
 class Discretizer:
-    """Base class of discretizers: subclasses set ``name`` and implement ``discretize``."""
+    """Base class of discretizers: subclasses set ``name`` and implement ``discretize`` (and,
+    to lump strings for axial dynamics, ``axial_rows``: :meth:`StrategyC.axial_rows`)."""
 
     name: ClassVar[str] = ""
     description: ClassVar[str] = ""
@@ -228,7 +232,9 @@ class _ElementDiscretizer(Discretizer):
         bha_total = self.bha_elements if self.bha_elements is not None else len(bha_sections)
         return dp + split_count(bha_total, bha_sections, "bha_elements")
 
-    def discretize(self, string: DrillString) -> LumpedModel:
+    def _split(self, string: DrillString) -> tuple[tuple[Section, ...], list[int]]:
+        """The sections split into elements (drill pipes only when the BHA is rigid) and
+        the count of each: the one partition of :meth:`discretize` and :meth:`axial_rows`."""
         if self.rigid_bha:
             _require_drill_pipe(string, self.name)
         sections = string.drill_pipe_sections if self.rigid_bha else string.flexible_sections
@@ -240,6 +246,10 @@ class _ElementDiscretizer(Discretizer):
                 f"exceed the limit of {MAX_DOFS}: the model's matrices are dense "
                 f"({sum(counts) ** 2 * 8 / 1e9:.1f} GB each)",
             )
+        return sections, counts
+
+    def discretize(self, string: DrillString) -> LumpedModel:
+        sections, counts = self._split(string)
         springs, inertias, depths = [], [], []
         top = 0.0
         for section, count in zip(sections, counts, strict=True):
@@ -261,8 +271,51 @@ class _ElementDiscretizer(Discretizer):
         if self.rigid_bha:
             elements["BHA"] = "rigid"
         return LumpedModel(
-            inertia, stiffness, depths, strategy=self.name, details={"elements": elements}
+            inertia,
+            stiffness,
+            depths,
+            strategy=self.name,
+            details={"elements": elements},
+            top_spring=springs[0],
         )
+
+    def axial_rows(self, string: DrillString, hook: str) -> AxialRows:
+        """The axial rows of :meth:`discretize`'s chain, on its elements
+        (:meth:`~torsio.model.lumped.LumpedModel.with_axial`).
+
+        Each element of length Δ is a spring E A / Δ [N/m] with half its mass ρ A Δ [kg]
+        on each end node (A the body's cross-section, :attr:`Section.area`); what lies
+        below the last element (the rigid BHA, or the bit) rides on the last node. Under
+        the weight hook the top of the pipe is free, so the top element's upper half rides
+        on node 1 as well; under the speed hook it moves with the hook
+        (:mod:`torsio.model.axial_rows`). No dampers: give them with
+        ``attrs.evolve(rows, dampings=...)``.
+
+        Raises
+        ------
+        ConfigError
+            On ``material.youngs_modulus`` for a section without E.
+        """
+        sections, counts = self._split(string)
+        springs, element_masses = [], []
+        for section, count in zip(sections, counts, strict=True):
+            youngs_modulus = section.material.youngs_modulus
+            if youngs_modulus is None:
+                raise ConfigError(
+                    "material.youngs_modulus",
+                    f"missing: axial dynamics need Young's modulus E of {section.describe()} "
+                    "for its springs E A / L (e.g. youngs_modulus = '207 GPa')",
+                )
+            length = section.length / count
+            springs += [youngs_modulus * section.area / length] * count
+            element_masses += [section.material.density * section.area * length] * count
+        masses = lumped_halves(np.array(element_masses))
+        masses[-1] += sum(
+            s.material.density * s.area * s.length for s in string.sections[len(sections) :]
+        )
+        if hook == "weight":  # the free top's half element rides on node 1
+            masses[0] += element_masses[0] / 2
+        return AxialRows(masses, springs, hook=hook)
 
 
 def element_inertia_matrix(element_inertias: np.ndarray, consistent: bool | float) -> np.ndarray:

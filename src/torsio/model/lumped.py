@@ -181,6 +181,20 @@ class LumpedModel:
                     f"{row.sum()!r} (its first row's sum)",
                 )
 
+    def with_dampers(self, dampings: Any) -> LumpedModel:
+        """The same chain with dampers c_1..c_n [N m s/rad] in parallel with its springs
+        (replacing its own; c_1 to the top).
+
+        >>> LumpedModel.from_chain([1.0, 1.0], [0.1, 0.2]).with_dampers([0.01, 0.02]).dampers
+        array([0.01, 0.02])
+        """
+        dampers = read_only_vector(dampings)
+        check_count("dampings", dampers, self.dofs)
+        check_values("dampings", dampers, allow_zero=True)
+        top = np.zeros(self.dofs)
+        top[0] = dampers[0]
+        return attrs.evolve(self, damping=chain_matrix(dampers), top_damping=top)
+
     def with_contacts(self, contacts: Any) -> LumpedModel:
         """The same chain with Coulomb contacts at its nodes (a
         :class:`torsio.model.contacts.StringContacts` with one capacity per node; None: none).
