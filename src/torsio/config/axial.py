@@ -2,10 +2,10 @@
 
 A configuration has axial dynamics when ``[chain]`` gives ``masses`` (each node also moves
 axially) or a ``[[section]]`` string has a law that declares ``needs_axial``, ``[bit_rock]
-law = "rgd"`` (its axial data from E, ρ and the sections: :func:`axial_sections`, read
-once). On ``[chain] masses`` any registered law runs: the RGD bit, or a law of the torque
-alone (Tucker-Wang, a plugin's), whose axial motion rests on the rock under the weight on
-bit (:class:`~torsio.axial.torque_law.TorqueLawBit`).
+law = "rgd"``, or an ``[axial]`` table (its axial data from E, ρ and the sections). Any
+registered law runs on a chain: the RGD bit, or a law of the torque alone (Tucker-Wang, a
+plugin's), whose axial motion rests on the rock under the weight on bit
+(:class:`~torsio.axial.torque_law.TorqueLawBit`).
 :func:`chain_axial` and :func:`string_axial` build an :class:`AxialConfig` that
 :func:`torsio.axial.transient.simulate_axial` and :func:`torsio.axial.maps.axial_map` run:
 a lumped chain (the file's discretizer with axial rows, elements of at most
@@ -218,9 +218,15 @@ def axial_law_from_table(raw: Mapping[str, Any]) -> RGDBit:
     return rgd_from_table(raw)
 
 
-def _bit(table: Mapping[str, Any], bit_rock: BitRockConfig | None, given: str) -> AxialBit:
+def _bit(
+    table: Mapping[str, Any],
+    bit_rock: BitRockConfig | None,
+    given: str,
+    bit_radius: float | None = None,
+) -> AxialBit:
     """The bit of axial dynamics (``given`` says what gave them): the RGD bit, or any other
-    law on its ``[bit_rock] radius`` as a law of the torque alone."""
+    law as a law of the torque alone on its ``[bit_rock] radius`` (default ``bit_radius``
+    [m], the bit section's od/2)."""
     raw = table.get("bit_rock")
     if bit_rock is None or not isinstance(raw, Mapping):
         raise ConfigError(
@@ -230,8 +236,9 @@ def _bit(table: Mapping[str, Any], bit_rock: BitRockConfig | None, given: str) -
         )
     if needs_axial(bit_rock.law):
         return axial_law_from_table(raw)
-    assert bit_rock.radius is not None  # required with [chain] (config/reading.py)
-    return TorqueLawBit(bit_rock.build(), bit_rock.radius)
+    radius = bit_radius if bit_rock.radius is None else bit_rock.radius
+    assert radius is not None  # required with [chain] (config/reading.py)
+    return TorqueLawBit(bit_rock.build(), radius)
 
 
 def _damping_beta(table: Mapping[str, Any]) -> float:
@@ -406,10 +413,14 @@ def _wave_pipe(
 
 
 def string_axial(
-    table: Mapping[str, Any], string: DrillString, discretization: DiscretizationConfig
+    table: Mapping[str, Any],
+    string: DrillString,
+    discretization: DiscretizationConfig,
+    bit_rock: BitRockConfig | None = None,
 ) -> AxialConfig | None:
     """The axial dynamics of a ``[[section]]`` file (None unless its law declares
-    ``needs_axial``: ``law = "rgd"``; a law of the torque alone keeps a string torsional).
+    ``needs_axial``, ``law = "rgd"``, or it has an ``[axial]`` table: then a law of the
+    torque alone, ``bit_rock``, runs on the axial chain, its bit resting on the rock).
 
     With ``[discretization] strategy = "wave"`` the distributed pipe
     (:class:`~torsio.axial.wave_assembly.WaveDrillingAssembly`, one section per pipe
@@ -419,12 +430,15 @@ def string_axial(
     """
     raw = table.get("bit_rock")
     law = raw.get("law", "tucker-wang") if isinstance(raw, Mapping) else None
-    if not (isinstance(law, str) and needs_axial(law)):
-        _refuse_axial_tables(table, "[bit_rock] law = 'rgd' and [material] youngs_modulus")
+    if not (isinstance(law, str) and needs_axial(law)) and "axial" not in table:
+        _refuse_axial_tables(
+            table,
+            "[bit_rock] law = 'rgd', or an [axial] table for a law of the torque alone, "
+            "and [material] youngs_modulus",
+        )
         return None
-    assert isinstance(raw, Mapping)
     options = _axial_table(table)
-    bit = axial_law_from_table(raw)
+    bit = _bit(table, bit_rock, "[axial]", string.bit.radius)
     run = {"steps_per_period": options["steps_per_period"], **_simulation_options(table)}
     if discretization.strategy == "wave":
         pipe = _wave_pipe(table, axial_sections(string), options["hook"])

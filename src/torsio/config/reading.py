@@ -201,7 +201,8 @@ def _string_config(table: Mapping[str, Any], name: str, source: str) -> Config:
     ]
     string = DrillString(sections, name=name)
     discretization = _discretization(table.get("discretization", {}))
-    axial = string_axial(table, string, discretization)
+    bit_rock = _bit_rock(table["bit_rock"]) if "bit_rock" in table else None
+    axial = string_axial(table, string, discretization, bit_rock)
     discretizer = discretization.build()
     if axial is None and hasattr(discretizer, "element_counts"):
         # (with axial dynamics the chain is built at once: torsio.config.axial)
@@ -214,7 +215,7 @@ def _string_config(table: Mapping[str, Any], name: str, source: str) -> Config:
     return Config(
         name=name,
         string=string,
-        bit_rock=_bit_rock(table["bit_rock"]) if "bit_rock" in table else None,
+        bit_rock=bit_rock,
         damping=_damping(table.get("damping", {})),
         discretization=discretization,
         operation=_operation(table.get("operation", {})),
