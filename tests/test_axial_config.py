@@ -160,7 +160,7 @@ def test_every_bad_value_names_its_key(base, path, value, key):
     assert info.value.key == key
 
 
-def test_axial_keys_without_axial_dynamics_are_refused():
+def test_axial_keys_without_axial_dynamics_are_refused_and_axial_gives_them():
     torsional = _with(_with(BASE, "chain.masses", None), "axial", None)
     torsional = _with(_with(torsional, "chain.axial_stiffnesses", None), "simulation", None)
     for path, key in (

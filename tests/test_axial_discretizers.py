@@ -60,20 +60,28 @@ def _frequencies(chain, count: int) -> np.ndarray:
     return np.sqrt(squares[:count])
 
 
-def test_strategy_b_keeps_the_bha_flexible_and_converges_to_the_stepped_bar():
-    # strategy B splits the collars too; the bit (0.3 m) is the tip mass. The exact stepped
-    # bar of E A, L, √(E/ρ) per section above the bit's ρ A L: errors 8.1e-5, 1.4e-3, 4.8e-3
-    # at 50 m elements (modes 1-3), falling 4.00 times per halving (measured 3.996-4.000)
-    rigidities = [E * _area(od, inner) for od, inner, _ in SECTIONS[:3]]
-    lengths = [length for *_, length in SECTIONS[:3]]
-    bit_mass = RHO * _area(*SECTIONS[3][:2]) * SECTIONS[3][2]
-    exact = bar_frequencies(rigidities, lengths, [math.sqrt(E / RHO)] * 3, bit_mass, count=3)
+@pytest.mark.parametrize(
+    ("strategy", "flexible", "bounds"),
+    [("B", 3, [1e-4, 2e-3, 6e-3]), ("C", 2, [2e-4, 2e-3, 6e-3])],
+)
+def test_the_axial_chain_converges_to_the_stepped_bar(strategy, flexible, bounds):
+    # strategy B splits the collars too, the bit (0.3 m) its tip mass; strategy C keeps the
+    # collars and the bit rigid, their mass the tip. The exact stepped bar of E A, L, √(E/ρ)
+    # per flexible section above that tip mass: at 50 m elements (modes 1-3) the errors are
+    # 8.1e-5, 1.4e-3, 4.8e-3 (B) and 1.3e-4, 1.5e-3, 5.1e-3 (C), falling 4.00 times per
+    # halving (measured 3.994-4.000): second order, as a lumped-mass chain must
+    rigidities = [E * _area(od, inner) for od, inner, _ in SECTIONS[:flexible]]
+    lengths = [length for *_, length in SECTIONS[:flexible]]
+    tip = sum(RHO * _area(od, inner) * length for od, inner, length in SECTIONS[flexible:])
+    speeds = [math.sqrt(E / RHO)] * flexible
+    exact = bar_frequencies(rigidities, lengths, speeds, tip, count=3)
     errors = []
     for element_length in (50.0, 25.0):
-        chain = _axial({"strategy": "B", "max_element_length": element_length}, "speed").assembly
-        assert chain.dofs == 1000 / element_length + math.ceil(150 / element_length)
+        options = {"strategy": strategy, "max_element_length": element_length}
+        chain = _axial(options, "speed").assembly
+        assert chain.dofs == sum(math.ceil(length / element_length) for length in lengths)
         errors.append(np.abs(_frequencies(chain, 3) / exact - 1))
-    assert np.all(errors[0] < [1e-4, 2e-3, 6e-3])
+    assert np.all(errors[0] < bounds)
     np.testing.assert_allclose(errors[0] / errors[1], 4.0, rtol=0.01)
 
 
@@ -126,7 +134,12 @@ def test_the_speed_hook_holds_the_top_half_element_and_beta_damps_every_spring()
             {"discretization": {"strategy": "B", "dp_elements": 0}},
             "discretization.dp_elements",
             ">= 1",
-        ),  # fmt: skip
+        ),
+        (
+            {"discretization": {}, "axial": {"element_length": "0.1 m"}},
+            "axial.element_length",
+            "exceed the limit of 5000",
+        ),
     ],
 )
 def test_a_strategy_without_axial_rows_is_refused_by_key(tables, key, words):

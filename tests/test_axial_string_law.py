@@ -92,11 +92,17 @@ def test_without_axial_a_law_of_the_torque_alone_stays_torsional():
     assert caught.value.key == "simulation.start" and "[axial]" in caught.value.message
 
 
-def test_the_distributed_pipe_refuses_a_law_of_the_torque_alone_by_key():
+def test_the_distributed_pipe_and_the_well_refuse_a_law_of_the_torque_alone_by_key():
     table = _table(TUCKER_WANG)
     table["discretization"] = {"strategy": "wave"}
     del table["damping"]
-    axial = parse_config(table).axial
     with pytest.raises(ConfigError) as caught:
-        simulate_axial(axial.assembly, axial.bit, WOB, 60.0, **axial.run_options())
-    assert caught.value.key == "bit_rock.law"
+        parse_config(table)
+    assert caught.value.key == "discretization.strategy" and "RGD bit only" in str(caught.value)
+    well = tomllib.loads(
+        resources.files("torsio").joinpath("data/rgd_deviated_well.toml").read_text("utf-8")
+    )["well"]
+    with pytest.raises(ConfigError) as caught:
+        parse_config({**_table(TUCKER_WANG), "well": well})
+    assert caught.value.key == "well" and "remove [axial]" in caught.value.message
+    parse_config({**_table(TUCKER_WANG, axial=False), "well": well})  # torsionally: runs

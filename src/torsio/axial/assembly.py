@@ -36,7 +36,7 @@ from numpy.typing import NDArray
 from torsio.errors import ConfigError
 from torsio.model.arrays import check_count, read_only_vector
 from torsio.model.axial_rows import AxialRows
-from torsio.model.discretize import element_count, lumped_halves
+from torsio.model.discretize import element_axial_rows, element_count, lumped_halves
 from torsio.model.lumped import LumpedModel
 
 if TYPE_CHECKING:
@@ -273,17 +273,14 @@ def lumped_pipe(
         top += section.length
     torsional = np.array([s.shear_modulus * s.polar_moment / d for s, d in elements])
     axial = np.array([s.youngs_modulus * s.area / d for s, d in elements])
-    element_masses = np.array([s.density * s.area * d for s, d in elements])
+    element_masses = [s.density * s.area * d for s, d in elements]
     inertias = lumped_halves(np.array([s.density * s.polar_moment * d for s, d in elements]))
-    masses = lumped_halves(element_masses)
     inertias[-1] += bha_inertia
-    masses[-1] += bha_mass
-    if hook == "weight":  # the free top's half element rides on node 0
-        masses[0] += element_masses[0] / 2
+    rows = element_axial_rows(axial, element_masses, bha_mass, hook)
     return axial_chain(
         inertias=inertias,
         stiffnesses=torsional,
-        masses=masses,
+        masses=rows.masses,
         axial_stiffnesses=axial,
         dampings=beta * torsional if beta else None,
         axial_dampings=beta * axial,

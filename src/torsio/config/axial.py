@@ -38,7 +38,7 @@ from torsio.axial.rgd import RGDBit, rgd_from_table
 from torsio.axial.torque_law import AxialBit, TorqueLawBit
 from torsio.axial.wave_assembly import DEFAULT_ELEMENT_LENGTH, PipeSection, WaveDrillingAssembly
 from torsio.config.chain import ChainConfig, _values
-from torsio.config.configuration import BitRockConfig, DiscretizationConfig
+from torsio.config.configuration import BitRockConfig, DiscretizationConfig, bit_radius
 from torsio.config.tables import _positive_number, _string, _table
 from torsio.errors import ConfigError
 from torsio.model.axial_rows import AxialRows
@@ -75,8 +75,8 @@ class AxialConfig:
         axial rows); or the distributed pipe above the rigid BHA (``[discretization]
         strategy = "wave"``).
     bit : RGDBit or TorqueLawBit
-        The RGD bit of ``[bit_rock]``, or (``[chain] masses`` only) a law of the torque
-        alone on the bit's radius.
+        The RGD bit of ``[bit_rock]``, or a law of the torque alone on the bit's radius
+        (``[chain] masses``, or a string with ``[axial]``).
     start : str
         ``"rest"`` or ``"steady"`` (``[simulation] start``).
     perturbation : float
@@ -222,11 +222,10 @@ def _bit(
     table: Mapping[str, Any],
     bit_rock: BitRockConfig | None,
     given: str,
-    bit_radius: float | None = None,
+    string: DrillString | None = None,
 ) -> AxialBit:
     """The bit of axial dynamics (``given`` says what gave them): the RGD bit, or any other
-    law as a law of the torque alone on its ``[bit_rock] radius`` (default ``bit_radius``
-    [m], the bit section's od/2)."""
+    law as a law of the torque alone on its radius (:func:`bit_radius` of ``string``)."""
     raw = table.get("bit_rock")
     if bit_rock is None or not isinstance(raw, Mapping):
         raise ConfigError(
@@ -236,9 +235,7 @@ def _bit(
         )
     if needs_axial(bit_rock.law):
         return axial_law_from_table(raw)
-    radius = bit_radius if bit_rock.radius is None else bit_rock.radius
-    assert radius is not None  # required with [chain] (config/reading.py)
-    return TorqueLawBit(bit_rock.build(), radius)
+    return TorqueLawBit(bit_rock.build(), bit_radius(bit_rock, string))
 
 
 def _damping_beta(table: Mapping[str, Any]) -> float:
@@ -416,7 +413,7 @@ def string_axial(
     table: Mapping[str, Any],
     string: DrillString,
     discretization: DiscretizationConfig,
-    bit_rock: BitRockConfig | None = None,
+    bit_rock: BitRockConfig | None,
 ) -> AxialConfig | None:
     """The axial dynamics of a ``[[section]]`` file (None unless its law declares
     ``needs_axial``, ``law = "rgd"``, or it has an ``[axial]`` table: then a law of the
@@ -438,9 +435,16 @@ def string_axial(
         )
         return None
     options = _axial_table(table)
-    bit = _bit(table, bit_rock, "[axial]", string.bit.radius)
+    bit = _bit(table, bit_rock, "[axial]", string)
     run = {"steps_per_period": options["steps_per_period"], **_simulation_options(table)}
     if discretization.strategy == "wave":
+        if isinstance(bit, TorqueLawBit):
+            raise ConfigError(
+                "discretization.strategy",
+                f"'wave' builds the distributed axial pipe, which takes the RGD bit only; "
+                f"{bit.name!r} is a law of the torque alone: choose 'B' or 'C' (the lumped "
+                "chain), or remove [axial] for the torsional wave model",
+            )
         pipe = _wave_pipe(table, axial_sections(string), options["hook"])
         return AxialConfig(pipe, bit, lumped_twin=pipe.lumped_twin(), string=string, **run)
     chain = _lumped_chain(table, string, discretization, options)
@@ -467,7 +471,8 @@ def _lumped_chain(
         raise ConfigError(
             "discretization.strategy",
             f"{strategy!r} builds no axial rows (springs E A / L and masses on its "
-            "elements); axial dynamics take 'B', 'C' (the default) or 'wave'",
+            "elements); axial dynamics take a discretizer with axial_rows ('B', 'C', the "
+            "default, or a plugin's) or 'wave'",
         )
     counted = [key for key in ELEMENT_COUNT_KEYS if key in discretization.options]
     if counted and "element_length" in table.get("axial", {}):
@@ -482,6 +487,9 @@ def _lumped_chain(
         chain = discretizer.discretize(string)
         rows = discretizer.axial_rows(string, options["hook"])
     except ConfigError as exc:
+        if exc.key == "discretization" and not counted:  # too many elements of [axial]'s
+            length = table.get("axial", {}).get("element_length", options["element_length"])
+            raise ConfigError("axial.element_length", f"{length!r}: {exc.message}") from None
         if exc.key.split("[")[0] not in ELEMENT_COUNT_KEYS:
             raise
         raise ConfigError(f"discretization.{exc.key}", exc.message) from None

@@ -1,7 +1,8 @@
 """``[well]`` with axial dynamics: the contacts of the lumped chain's nodes with the borehole.
 
-A ``[[section]]`` string with ``law = "rgd"`` is a lumped axial-torsional chain
-(:func:`torsio.axial.assembly.lumped_pipe`); with ``[well]`` each of its nodes gets the
+A ``[[section]]`` string with axial dynamics is a lumped axial-torsional chain (its
+discretizer's, :func:`torsio.config.axial.string_axial`); with ``[well]`` each of its nodes
+gets the
 Coulomb contact of its share of the string (:func:`torsio.axial.string_contacts.axial_contacts`,
 the normal force of the well's model at the run's weight on bit). The distributed axial pipe
 (``[discretization] strategy = "wave"``) gets the contacts of its lumped twin's nodes
@@ -26,6 +27,7 @@ from typing import Any
 import attrs
 
 from torsio.axial.string_contacts import axial_contacts
+from torsio.axial.torque_law import TorqueLawBit
 from torsio.config.axial import AxialConfig
 from torsio.errors import ConfigError
 from torsio.well.wellbore import Wellbore
@@ -40,5 +42,12 @@ def with_well(axial: AxialConfig, table: Mapping[str, Any], well: Wellbore | Non
         return axial
     if well is None or axial.string is None:
         raise ConfigError("well", "[well] needs a drill-string ([[section]]), not a [chain]")
+    if isinstance(axial.bit, TorqueLawBit):
+        raise ConfigError(
+            "well",
+            f"friction along the string on the axial engine needs the RGD bit; the "
+            f"{axial.bit.name!r} bit rests on the rock (a law of the torque alone): remove "
+            "[axial] to run it with the well on the torsional engines, or [well]",
+        )
     depths = axial.stability_assembly.node_depths  # the chain's nodes, or the lumped twin's
     return attrs.evolve(axial, contacts=axial_contacts(well, axial.string, depths))

@@ -43,6 +43,7 @@ __all__ = [
     "DiscretizationConfig",
     "OperationConfig",
     "SimulationConfig",
+    "bit_radius",
 ]
 
 
@@ -66,6 +67,18 @@ class BitRockConfig:
 
             self._built.append(build_bit_law(self.law, self.parameters, speed_unit=self.speed_unit))
         return self._built[0]
+
+
+def bit_radius(bit_rock: BitRockConfig | None, string: Any) -> float:
+    """R_bit [m]: ``[bit_rock] radius``, else half the outer diameter of the bit section of
+    ``string`` (a ConfigError on ``bit_rock.radius`` with none: a ``[chain]``)."""
+    if bit_rock is None or bit_rock.radius is None:
+        if string is None:
+            raise ConfigError(
+                "bit_rock.radius", "required with [chain]: a chain has no bit section"
+            )
+        return float(string.bit.radius)
+    return bit_rock.radius
 
 
 @attrs.frozen
@@ -156,14 +169,9 @@ class Config:
 
     @property
     def bit_radius(self) -> float:
-        """R_bit [m]: ``bit_rock.radius``, else half the bit's outer diameter."""
-        if self.bit_rock is None or self.bit_rock.radius is None:
-            if self.string is None:
-                raise ConfigError(
-                    "bit_rock.radius", "required with [chain]: a chain has no bit section"
-                )
-            return self.string.bit.radius
-        return self.bit_rock.radius
+        """R_bit [m]: ``bit_rock.radius``, else half the bit's outer diameter
+        (:func:`bit_radius`)."""
+        return bit_radius(self.bit_rock, self.string)
 
     def model_damping(self, model: Any) -> Any:
         """The damping of ``model``: the chain's own dampers, else ``[damping]`` (Rayleigh)."""

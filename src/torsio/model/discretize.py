@@ -95,7 +95,7 @@ def lumped_halves(element_values: np.ndarray) -> np.ndarray:
     """Half of each element's inertia (or mass) on each of its end nodes, the top node
     removed: node i carries halves of elements i and i + 1, the last node half of the
     last element (Eq. 6). The one lumping rule of every chain: the torsional
-    discretizers' and the axial chain's (:func:`torsio.axial.assembly.lumped_pipe`).
+    discretizers' and the axial rows' (:func:`element_axial_rows`).
 
     >>> lumped_halves(np.array([6.0, 6.0, 4.0]))
     array([6., 5., 2.])
@@ -104,6 +104,26 @@ def lumped_halves(element_values: np.ndarray) -> np.ndarray:
     nodes = halves.copy()
     nodes[:-1] += halves[1:]
     return nodes
+
+
+def element_axial_rows(
+    springs: Any, element_masses: Sequence[float], below: float, hook: str
+) -> AxialRows:
+    """The axial rows of a chain of elements, their springs E A / Δ [N/m] and masses ρ A Δ
+    [kg] from the top down: each element's mass halved onto its end nodes
+    (:func:`lumped_halves`), the mass ``below`` [kg] the last element on the last node.
+    Under the weight hook the top of the pipe is free, so the top element's upper half
+    rides on node 0 as well; under the speed hook it moves with the hook
+    (:mod:`torsio.model.axial_rows`).
+
+    >>> element_axial_rows([4.0, 4.0], [2.0, 2.0], 10.0, "weight").masses
+    array([ 3., 11.])
+    """
+    masses = lumped_halves(np.asarray(element_masses, dtype=float))
+    masses[-1] += below
+    if hook == "weight":
+        masses[0] += element_masses[0] / 2
+    return AxialRows(masses, springs, hook=hook)
 
 
 def _check_count(key: str, value: Any) -> None:
@@ -285,10 +305,8 @@ class _ElementDiscretizer(Discretizer):
 
         Each element of length Δ is a spring E A / Δ [N/m] with half its mass ρ A Δ [kg]
         on each end node (A the body's cross-section, :attr:`Section.area`); what lies
-        below the last element (the rigid BHA, or the bit) rides on the last node. Under
-        the weight hook the top of the pipe is free, so the top element's upper half rides
-        on node 1 as well; under the speed hook it moves with the hook
-        (:mod:`torsio.model.axial_rows`). No dampers: give them with
+        below the last element (the rigid BHA, or the bit) rides on the last node
+        (:func:`element_axial_rows`). No dampers: give them with
         ``attrs.evolve(rows, dampings=...)``.
 
         Raises
@@ -309,13 +327,9 @@ class _ElementDiscretizer(Discretizer):
             length = section.length / count
             springs += [youngs_modulus * section.area / length] * count
             element_masses += [section.material.density * section.area * length] * count
-        masses = lumped_halves(np.array(element_masses))
-        masses[-1] += sum(
-            s.material.density * s.area * s.length for s in string.sections[len(sections) :]
-        )
-        if hook == "weight":  # the free top's half element rides on node 1
-            masses[0] += element_masses[0] / 2
-        return AxialRows(masses, springs, hook=hook)
+        rigid = string.sections[len(sections) :]  # below the chain: on its last node
+        below = sum(s.material.density * s.area * s.length for s in rigid)
+        return element_axial_rows(springs, element_masses, below, hook)
 
 
 def element_inertia_matrix(element_inertias: np.ndarray, consistent: bool | float) -> np.ndarray:
