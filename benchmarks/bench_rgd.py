@@ -111,7 +111,7 @@ def plain_loop(p, h, steps, window_start, past, hist):  # noqa: C901
         if step >= window_start:
             wmax = max(wmax, omega)
             wmin = min(wmin, omega)
-            if omega == 0.0:
+            if abs(omega) < 0.1 * top:  # stuck below 0.1 Ω₀, torsio's stick threshold
                 stuck += 1
     count = steps - window_start
     return (wmax - wmin) / (2 * top), (u - u_start) / (count * h), stuck / count

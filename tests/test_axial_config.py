@@ -48,6 +48,7 @@ def test_builtin_file_is_the_api_example():
         "perturbation": 1e-3,
         "step": None,
         "steps_per_period": 100,
+        "stick_threshold": 0.1,  # every engine's default (analysis.severity)
         "top_drive": None,
         "string": None,
     }
@@ -68,6 +69,7 @@ def test_axial_keys_are_read_with_units():
     data = _with(data, "simulation.start", "steady")
     data = _with(data, "simulation.perturbation", 0.01)
     data = _with(data, "simulation.step", "1 ms")
+    data = _with(data, "simulation.stick_threshold", 0.05)
     axial = parse_config(data).axial
     a = axial.assembly
     assert a.axial.masses.tolist() == [10000.0, 19981.3]
@@ -80,6 +82,7 @@ def test_axial_keys_are_read_with_units():
         "perturbation": 0.01,
         "step": 1e-3,
         "steps_per_period": 50,
+        "stick_threshold": 0.05,
         "top_drive": None,
         "string": None,
     }

@@ -131,6 +131,26 @@ def test_halving_the_step_moves_a_stick_slip_run_by_less_than_one_percent():
     assert abs(coarse.stick_fraction - fine.stick_fraction) < 0.01
 
 
+def test_the_stuck_fraction_is_the_steps_below_the_stick_threshold():
+    # recounted from the bit speed sampled at every step of the window: |Ω_b| < 0.1 Ω₀
+    # (torsio.analysis.severity.DEFAULT_STICK_THRESHOLD, every engine's); the samples are
+    # taken at the start of a step and the count at its end, so the two may differ by one
+    # step of the window's 5160 (measured 0.30601 and 0.30620). With a threshold of 1e-9
+    # Ω₀ it counts the RGD bit's stuck phase, Ω_b = 0 exactly
+    runs = [
+        simulate_axial(ASSEMBLY, BIT, WOB, 60.0, duration=20.0, window=10.0, samples=10**9,
+                       growth_rate=False, stick_threshold=threshold)
+        for threshold in (0.1, 1e-9)
+    ]  # fmt: skip
+    for run, threshold in zip(runs, (0.1, 1e-9), strict=True):
+        speed = run.signal("bit_speed")[run.axial.window_rows()]
+        recount = np.mean(np.abs(speed) < threshold * run.axial.steady.bit_speed)
+        assert run.stick_threshold == threshold
+        assert run.stick_fraction == pytest.approx(recount, abs=1.5 / speed.size)
+    assert np.mean(speed == 0.0) == pytest.approx(runs[1].stick_fraction, abs=1.5 / speed.size)
+    assert runs[0].stick_fraction > runs[1].stick_fraction > 0.1  # creeping counts at 0.1 Ω₀
+
+
 # --- the growth of a small perturbation -----------------------------------------------------------
 @pytest.mark.parametrize(
     ("rpm", "perturbation", "signal", "span", "tolerance"),

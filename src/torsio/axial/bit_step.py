@@ -166,16 +166,16 @@ def law_rotation(
 
 @njit(cache=True, error_model="numpy", _nrt=False)
 def add_to_window(
-    stats, speed, velocity, depth, on_bottom, step, weight, torque
+    stats, speed, velocity, depth, on_bottom, step, weight, torque, stick_speed
 ) -> None:  # pragma: no cover - compiled
-    """Add one step of the window to ``stats``: extremes of Ω_b and V_b, stuck and off-bottom
-    (not ``on_bottom``) steps, the work (W V_b + T Ω_b) h [J], the integrals of T and W, the
-    largest d."""
+    """Add one step of the window to ``stats``: extremes of Ω_b and V_b, stuck (|Ω_b| below
+    ``stick_speed`` [rad/s]) and off-bottom (not ``on_bottom``) steps, the work
+    (W V_b + T Ω_b) h [J], the integrals of T and W, the largest d."""
     stats[SPEED_MAX] = max(stats[SPEED_MAX], speed)
     stats[SPEED_MIN] = min(stats[SPEED_MIN], speed)
     stats[VELOCITY_MAX] = max(stats[VELOCITY_MAX], velocity)
     stats[VELOCITY_MIN] = min(stats[VELOCITY_MIN], velocity)
-    if speed == 0.0:
+    if abs(speed) < stick_speed:
         stats[STUCK] += 1.0
     if not on_bottom:
         stats[OFF_BOTTOM] += 1.0
@@ -224,14 +224,15 @@ def record_step(
     torque,
     delay,
     top_torque,
+    stick_speed,
 ) -> int:  # pragma: no cover - compiled
     """What one step of ``step`` [s] leaves: its part of the window's statistics
     (:func:`add_to_window`, when ``in_window``; ``on_bottom`` whether the bit touched the
-    rock) and, when ``sampled``, the rest of row
+    rock; the bit stuck below ``stick_speed`` [rad/s]) and, when ``sampled``, the rest of row
     ``row`` of ``samples``: d [m per rev], the bit's weight [N] and torque [N m], the delay
     t − t_n [s], the top torque [N m]. Returns the next row to sample."""
     if in_window:
-        add_to_window(stats, speed, velocity, depth, on_bottom, step, weight, torque)
+        add_to_window(stats, speed, velocity, depth, on_bottom, step, weight, torque, stick_speed)
     if not sampled:
         return row
     samples[row, DEPTH_OF_CUT] = depth

@@ -305,6 +305,7 @@ def march(
         row = bit_step.record_step(
             stats, samples, row, step >= window_start, sampled, omega[bt], v[ba], depth,
             on_bottom, h, wc + wf, bit_torque, t - delayed[0], top_torque,
+            settings[slot.STICK_SPEED],
         )  # fmt: skip
     stats[slot.POSITION_END] = u[ba]
     stats[slot.STEPS_DONE] = steps

@@ -173,11 +173,13 @@ RUN_SETTINGS = (
     "sample_every",
     "start_time",
     "first_step",
+    "stick_speed",
 )
 """The head of both kernels' ``settings``: h [s], the step a call stops before, Ω₀ [rad/s],
 W₀ [N], the hook (0 weight, 1 speed), V_h [m/s], the window's first step, sample every (0:
 never), t at step 0 [s], the step a call starts at (a run goes in chunks of steps
-``first_step`` .. ``steps`` - 1: :func:`torsio.axial.transient.run_kernel`)."""
+``first_step`` .. ``steps`` - 1: :func:`torsio.axial.transient.run_kernel`), the speed
+[rad/s] below which the bit counts as stuck (the stick threshold times Ω₀)."""
 
 (
     STEP,
@@ -190,6 +192,7 @@ never), t at step 0 [s], the step a call starts at (a run goes in chunks of step
     SAMPLE_EVERY,
     START_TIME,
     FIRST_STEP,
+    STICK_SPEED,
 ) = range(len(RUN_SETTINGS))
 
 CHAIN_SETTINGS = (

@@ -88,6 +88,9 @@ class AxialChannels:
     solver, model, bit : dict
         The engine (``engine``, ``method``, ``scheme``, ``step``), the assembly
         (:func:`~torsio.axial.assembly.assembly_description`) and the bit's law.
+    stick_threshold : float
+        The bit counted stuck while |Ω_b| < stick_threshold Ω₀ (0 in a run saved before
+        the threshold: stuck at Ω_b = 0 exactly).
 
     Every column of :attr:`samples` is an attribute by name (``run.axial.bit_weight``,
     ``run.axial.depth_of_cut`` ...), and so is every entry of :attr:`summary`
@@ -115,6 +118,7 @@ class AxialChannels:
     solver: dict[str, Any] = attrs.field(factory=dict)
     model: dict[str, Any] = attrs.field(factory=dict)
     bit: dict[str, Any] = attrs.field(factory=dict)
+    stick_threshold: float = 0.0
 
     def __getattr__(self, name: str) -> Any:
         """An entry of :attr:`summary` or a column of :attr:`samples` by name."""
@@ -240,8 +244,8 @@ class AxialChannels:
 
 def axial_results(channels: AxialChannels, warnings: tuple[str, ...]) -> TransientResults:
     """The results of an axial run: its ``channels``, the common signals read from their
-    samples, S_SS and the stuck fraction from the window's every step (the bit stuck:
-    Ω_b = 0, hence ``stick_threshold`` 0), and its ``warnings``."""
+    samples, S_SS and the stuck fraction from the window's every step (the bit stuck while
+    |Ω_b| < ``stick_threshold`` Ω₀), and its ``warnings``."""
     column = channels.signal
     summary = channels.summary
     none = np.zeros((channels.samples.shape[0], 0))  # the samples keep the bit and the top
@@ -256,7 +260,7 @@ def axial_results(channels: AxialChannels, warnings: tuple[str, ...]) -> Transie
         severity=summary.severity,
         stick_fraction=summary.stick_fraction,
         steady_window=channels.window,
-        stick_threshold=0.0,
+        stick_threshold=channels.stick_threshold,
         solver=channels.solver,
         system=None,
         top_speed=column("top_speed"),

@@ -44,7 +44,7 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.analysis.severity import check_window
+from torsio.analysis.severity import DEFAULT_STICK_THRESHOLD, check_window
 from torsio.axial import layouts as slot
 from torsio.axial.assembly import (
     axial_kernel_rows,
@@ -138,8 +138,10 @@ class RunOptions:
     """How a run is set up, lumped (:func:`run_setup`) or distributed
     (:func:`torsio.axial.wave_setup.wave_run_setup`): its length ``duration`` and the
     ``window`` at its end [s], its ``start`` (:data:`STARTS`; on the steady start the bit's
-    speed raised by ``perturbation``, relative) and its step rule (``steps_per_period``, a
-    given ``step`` [s] capping h; see the module docstring). :meth:`check` validates them.
+    speed raised by ``perturbation``, relative), its step rule (``steps_per_period``, a
+    given ``step`` [s] capping h; see the module docstring) and the ``stick_threshold``
+    (the bit stuck while |Ω_b| < stick_threshold Ω₀, as on every engine:
+    :data:`torsio.analysis.severity.DEFAULT_STICK_THRESHOLD`). :meth:`check` validates them.
     ``default_duration`` [s] is the run length torsio would choose for the model (None: not
     known): :func:`torsio.axial.run_budget.check_run_work` tells by it a long run from a fast
     model.
@@ -152,6 +154,7 @@ class RunOptions:
     step: float | None = None
     steps_per_period: int = DEFAULT_STEPS_PER_PERIOD
     default_duration: float | None = None
+    stick_threshold: float = DEFAULT_STICK_THRESHOLD
 
     def check(self) -> None:
         """A ConfigError unless ``start`` is one of :data:`STARTS`, -1 < perturbation < 1 and
@@ -168,6 +171,11 @@ class RunOptions:
                 "no longer a perturbation of steady drilling)",
             )
         check_window(self.duration, self.window)
+        if not 0 < self.stick_threshold < math.inf:
+            raise ConfigError(
+                "simulation.stick_threshold",
+                f"{self.stick_threshold!r}: expected a positive fraction of Ω₀",
+            )
 
     def largest_step(self, bit: AxialBit, mass: float, fastest: float) -> float:
         """h_max = 2π/(ω_fast × ``steps_per_period``) [s], ω_fast the larger of the bit's
@@ -304,7 +312,7 @@ def run_settings(
     """A kernel's ``settings`` of ``size`` entries with the head both kernels share filled in
     (:data:`torsio.axial.layouts.RUN_SETTINGS`: the step h [s], the steps, Ω₀ and W₀ of
     ``steady``, the ``hook`` and its speed V₀ when it is ``"speed"``, the window of the last
-    ``window_steps``), the rest 0."""
+    ``window_steps``), the rest 0 (the stick speed: :func:`kernel_setup`)."""
     settings = np.zeros(size)
     settings[slot.STEP], settings[slot.STEPS] = step, steps
     settings[slot.TOP_SPEED], settings[slot.HOOK_WEIGHT] = steady.bit_speed, steady.wob
@@ -338,6 +346,8 @@ def kernel_setup(
         angle, speed = rotation.angle(omega0, times), rotation.speed(omega0, times)
     else:
         angle, speed = bit_start.angle + omega0 * times, np.full(times.size, omega0)
+    settings = run_settings(settings_size, steady, step, steps, window_steps, hook)
+    settings[slot.STICK_SPEED] = options.stick_threshold * omega0  # |Ω_b| below it: stuck
     history, cursor = start_history(
         times,
         angle,
@@ -354,7 +364,7 @@ def kernel_setup(
         steps=steps,
         window_steps=window_steps,
         bit=bit_law_row(bit),
-        settings=run_settings(settings_size, steady, step, steps, window_steps, hook),
+        settings=settings,
         history=history,
         cursor=cursor,
     )

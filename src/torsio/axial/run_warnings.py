@@ -39,10 +39,11 @@ def depth_beyond_geometry(depth: float, blades: int, radius: float) -> str | Non
     )
 
 
-def run_warnings(summary: Any, bit: Any, energy: Any) -> tuple[str, ...]:
+def run_warnings(summary: Any, bit: Any, energy: Any, stick_threshold: float) -> tuple[str, ...]:
     """The warnings of a run's window ``summary``
-    (:class:`~torsio.axial.window_summary.WindowSummary`) with the RGD ``bit`` and its ``energy``
-    balance (:class:`~torsio.axial.energy_balance.EnergyBalance`, None: not known)."""
+    (:class:`~torsio.axial.window_summary.WindowSummary`) with the RGD ``bit``, its ``energy``
+    balance (:class:`~torsio.axial.energy_balance.EnergyBalance`, None: not known) and the
+    ``stick_threshold`` its stuck fraction was counted with."""
     upward = None
     if summary.rop_mean < 0:
         upward = (
@@ -57,7 +58,7 @@ def run_warnings(summary: Any, bit: Any, energy: Any) -> tuple[str, ...]:
             "describe drilling"
         )
     return warning_list(
-        stuck_throughout(summary.stick_fraction, 0.0),
+        stuck_throughout(summary.stick_fraction, stick_threshold),
         upward,
         negative_mse,
         depth_beyond_geometry(summary.depth_of_cut_max, bit.blades, bit.radius),

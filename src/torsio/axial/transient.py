@@ -38,7 +38,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from torsio.analysis.limits import past_the_record, saturated_motor, warning_list
-from torsio.analysis.severity import run_times
+from torsio.analysis.severity import DEFAULT_STICK_THRESHOLD, run_times
 from torsio.axial import layouts as slot
 from torsio.axial.assembly import assembly_description
 from torsio.axial.energy_balance import energy_balance, stored_energy
@@ -174,6 +174,7 @@ def simulate_axial(
     perturbation: float = 1e-3,
     step: float | None = None,
     steps_per_period: int = DEFAULT_STEPS_PER_PERIOD,
+    stick_threshold: float = DEFAULT_STICK_THRESHOLD,
     samples: int = 4000,
     bit_rotation: BitRotation | None = None,
     growth_rate: bool | None = None,
@@ -199,6 +200,9 @@ def simulate_axial(
     step, steps_per_period : float, int
         The step rule of :mod:`torsio.axial.run_setup` (lumped) or
         :mod:`torsio.axial.wave_setup` (distributed).
+    stick_threshold : float
+        The bit counts as stuck while |Ω_b| < ``stick_threshold`` Ω₀, as on the torsional
+        engines (:data:`~torsio.analysis.severity.DEFAULT_STICK_THRESHOLD`).
     samples : int
         About how many rows of signals to keep (0: none; every step at most).
     bit_rotation : BitRotation, optional
@@ -235,8 +239,9 @@ def simulate_axial(
     typical, _ = run_times(assembly, None, None)
     duration, window = run_times(assembly, duration, window)
     options = RunOptions(
-        duration, window, start, perturbation, step, steps_per_period, default_duration=typical
-    )
+        duration, window, start, perturbation, step, steps_per_period,
+        default_duration=typical, stick_threshold=stick_threshold,
+    )  # fmt: skip
     setup: RunSetup | WaveRunSetup
     kind = getattr(top_drive, "name", "constant-speed") if top_drive is not None else None
     boundary, given_rpm = None, rpm
@@ -284,6 +289,7 @@ def simulate_axial(
         window=setup.window_steps * setup.step,
         start=start,
         samples=table,
+        stick_threshold=stick_threshold,
         top_drive=kind or "constant-speed",
         has_set_speed=boundary is None
         or (boundary.speed_table is None and bool(np.isfinite(boundary.set_speed))),
@@ -298,7 +304,7 @@ def simulate_axial(
         bit=bit.to_dict(),
     )
     texts = warning_list(
-        *run_warnings(channels.summary, bit, energy),
+        *run_warnings(channels.summary, bit, energy, stick_threshold),
         skipped,
         past_the_record(top_drive, duration),
         _rpm_of_the_record(given_rpm, rpm),

@@ -158,6 +158,7 @@ def march(
         row = bit_step.record_step(
             stats, samples, row, step >= window_start, sampled, omega_new, v_new, depth,
             depth > 0.0, h, wc + wf, bit_torque, t - delayed[0], top_torque,
+            settings[slot.STICK_SPEED],
         )  # fmt: skip
     stats[slot.POSITION_END] = bha[slot.BHA_POSITION]
     stats[slot.STEPS_DONE] = steps

@@ -1,7 +1,7 @@
 """``[well]`` with axial dynamics: the contacts of the lumped chain's nodes with the borehole.
 
 A ``[[section]]`` string with axial dynamics is a lumped axial-torsional chain (its
-discretizer's, :func:`torsio.config.axial.string_axial`); with ``[well]`` each of its nodes
+discretizer's, :func:`torsio.config.axial_string.string_axial`); with ``[well]`` each of its nodes
 gets the
 Coulomb contact of its share of the string (:func:`torsio.axial.string_contacts.axial_contacts`,
 the normal force of the well's model at the run's weight on bit). The distributed axial pipe

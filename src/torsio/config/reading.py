@@ -47,8 +47,8 @@ from torsio.config.axial import (
     axial_law_from_table,
     chain_axial,
     needs_axial,
-    string_axial,
 )
+from torsio.config.axial_string import string_axial
 from torsio.config.axial_well import with_well
 from torsio.config.chain import parse_chain
 from torsio.config.configuration import (
