@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 import pytest
-from axial_files import BASE, STRING
+from axial_files import BASE, STRING, TEXT
 
 from torsio.axial import rgd_example, rgd_two_dof_example
 from torsio.axial.assembly import assembly_description
@@ -222,3 +222,24 @@ def test_youngs_modulus_is_read_once_with_the_material_of_every_string():
     with pytest.raises(ConfigError) as info:
         parse_config(_with(torsional, "material.youngs_modulus", "207 m"))
     assert info.value.key == "material.youngs_modulus"
+
+
+def test_the_stick_threshold_reaches_an_axial_run_and_a_map_says_it_keeps_its_own(tmp_path, capsys):
+    # simulate_config passes stick_threshold on (1e-9 Ω₀: the bit at rest, Ω_b = 0) and
+    # refuses by name an option an axial run has not; a map counts at every map's 0.1 Ω
+    # and says that the file's threshold applies to single runs
+    from torsio.analysis.transient import simulate_config
+    from torsio.cli import main
+
+    config = rgd_two_dof_config()
+    run = simulate_config(
+        config, duration=5.0, steady_window=2.0, stick_threshold=1e-9, progress=False
+    )
+    assert run.stick_threshold == 1e-9 and run.to_dict()["stick_threshold"] == 1e-9
+    with pytest.raises(ConfigError) as caught:
+        simulate_config(config, duration=5.0, samples=10)
+    assert caught.value.key == "samples"
+    path = tmp_path / "stick.toml"
+    path.write_text(TEXT.replace("[simulation]", "[simulation]\nstick_threshold = 0.05"))
+    assert main(["map", str(path), "--wob", "100kN:100kN:1", "--rpm", "60:60:1", "--json"]) == 0
+    assert "stick_threshold apply to single runs" in capsys.readouterr().err

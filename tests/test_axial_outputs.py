@@ -93,7 +93,8 @@ def test_an_axial_run_is_a_transient_result_with_every_runs_json_keys():
     )  # Eq. 12
     assert data["severe"] == (data["severity"] > 0.8)  # the paper's threshold
     assert data["mean_bit_torque"] == data["torque_mean"]  # the window's, every step
-    assert (data["stick_threshold"], data["rpm_source"], data["law"]) == (0.0, "set", "rgd")
+    # the stuck fraction counted below every engine's threshold (analysis.severity)
+    assert (data["stick_threshold"], data["rpm_source"], data["law"]) == (0.1, "set", "rgd")
     assert data["samples"] == run.time.size and data["duration_s"] == 2.0
 
 

@@ -117,7 +117,7 @@ def test_the_depth_bound_is_per_blade():
 
 
 def test_a_bit_stuck_throughout_the_window_is_said():
-    # the axial bit is stuck when its speed is 0 (torsio.axial.bit_step.record_step); a run
+    # the axial bit is stuck below 0.1 Ω₀ (torsio.axial.bit_step.record_step); a run
     # started from rest whose window ends before the string's torque T = k Ω0 t reaches the
     # bit's torque at rest (T_c + T_f >= μ γ a² σ l / 2 = 2309 N m: t >= 2309 / (324.857 x
     # 2π) = 1.13 s) never turns the bit over the window

@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any
 import attrs
 import numpy as np
 
+from torsio.analysis.severity import DEFAULT_STICK_THRESHOLD
 from torsio.errors import ConfigError
 from torsio.physics.laws import law_capabilities
 
@@ -58,6 +59,13 @@ _AXIAL_CANNOT = {
 }
 """What the axial engine cannot take, by option, and what to do instead."""
 
+
+SINGLE_RUNS_ONLY = (
+    "apply to single runs (torsio simulate, report) only: the map integrates every point "
+    "with its own engine (--engine), reads S_SS from the extremes of the bit speed and "
+    "counts the bit stuck below 0.1 Ω, as every map"
+)
+"""What a map says of the ``[simulation]`` keys it does not use."""
 
 _AXIAL_MAP_OPTIONS = ("duration", "threshold", "refine", "timeout", "chunk_size")
 """The map options :func:`torsio.axial.maps.axial_map` takes by the same name."""
@@ -135,11 +143,13 @@ def simulate_axial_config(
     duration: float | None = None,
     steady_window: float | None = None,
     growth_rate: bool | None = None,
+    stick_threshold: float | None = None,
     progress: Any = None,
 ) -> TransientResults:
     """The run of a configuration with axial dynamics at its operating point (``wob``,
-    ``rpm`` override ``[operation]``), its ``[simulation]`` times unless given; progress
-    on stderr after 2 s as every long run (``progress=False``: none)."""
+    ``rpm`` override ``[operation]``), its ``[simulation]`` times and stick threshold
+    unless given; progress on stderr after 2 s as every long run (``progress=False``:
+    none)."""
     from torsio.axial.transient import simulate_axial
     from torsio.solvers.run_chunks import run_progress
 
@@ -148,9 +158,12 @@ def simulate_axial_config(
         duration or times.get("duration"),
         steady_window or times.get("steady_window"),
     )
+    options = axial.run_options()
+    if stick_threshold is not None:
+        options["stick_threshold"] = stick_threshold
     with run_progress(progress) as report:
         return simulate_axial(axial.assembly, axial.bit, point["wob"], point["rpm"],
-                              duration=duration, window=steady_window, **axial.run_options(),
+                              duration=duration, window=steady_window, **options,
                               growth_rate=growth_rate, progress=report)  # fmt: skip
 
 
@@ -185,8 +198,11 @@ def config_map(
                 note(f"warning: {skipped}")
                 grow = False
         chosen = {name: getattr(options, name) for name in _AXIAL_MAP_OPTIONS}
+        run = axial.run_options()
+        if run.pop("stick_threshold") != DEFAULT_STICK_THRESHOLD:  # as on every map
+            note(f"[simulation] stick_threshold {SINGLE_RUNS_ONLY}")
         return axial_map(axial.assembly, axial.bit, wob, rpm, window=options.steady_window,
-                         **chosen, **axial.run_options(), growth_rate=grow, executor=executor,
+                         **chosen, **run, growth_rate=grow, executor=executor,
                          progress=progress)  # fmt: skip
     from torsio.analysis.maps import dimensionless_map, severity_map
 
@@ -201,11 +217,7 @@ def config_map(
             note(integrator_note(unused))
     single_run_only = sorted(set(simulation) & {"method", "output_step", "stick_threshold"})
     if single_run_only:
-        note(
-            f"[simulation] {', '.join(single_run_only)} apply to single runs (torsio "
-            "simulate, report) only: the map integrates every point with its own engine "
-            "(--engine) and reads S_SS from the extremes of the bit speed"
-        )
+        note(f"[simulation] {', '.join(single_run_only)} {SINGLE_RUNS_ONLY}")
     run_on = {"executor": executor, "progress": progress}
     if dimensionless:
         return dimensionless_map(system, rpm, wob, options, **run_on)

@@ -41,7 +41,7 @@ __all__ = [
 
 def stuck_throughout(stick_fraction: float, stick_threshold: float) -> str | None:
     """The warning for a bit that sticks at every sample of the window, else None
-    (``stick_threshold`` 0: the axial engine's bit, stuck when its speed is 0)."""
+    (``stick_threshold`` 0: an axial run saved when its bit counted stuck at speed 0)."""
     if stick_fraction < 1.0:
         return None
     at_rest = (

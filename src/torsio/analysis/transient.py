@@ -400,7 +400,10 @@ def simulate_config(
 
         given = {**overrides, **(discretization or {})}
         run_capabilities(config).refuse({key: (key, value) for key, value in given.items()})
-        kept = ("duration", "steady_window", "growth_rate", "progress")
+        kept = ("duration", "steady_window", "growth_rate", "progress", "stick_threshold")
+        for key, value in given.items():
+            if value is not None and key not in kept:
+                raise ConfigError(key, f"{value!r}: not an option of an axial run ({kept})")
         return simulate_axial_config(config, wob, rpm, **{k: given[k] for k in kept if k in given})
     initial_state = overrides.pop("initial_state", None)
     progress = overrides.pop("progress", None)

@@ -81,7 +81,7 @@ class TransientResults:
         S_SS (Eq. 12) over the steady window.
     stick_fraction : float
         Fraction of the steady window during which ``|bit speed| < stick_threshold Omega``
-        (an axial run: the fraction of the window's steps with the bit at rest, Ω_b = 0).
+        (an axial run: of the window's steps).
     steady_window : float
         Length of the steady-state window at the end of the run [s].
     stick_threshold : float
@@ -350,7 +350,8 @@ class TransientResults:
         """The JSON keys of every run, whatever model and engine made it: ``wob`` [N],
         ``rpm``, ``rpm_source`` (:attr:`rpm_source`), ``severity``,
         ``severe``, ``stick_fraction``, ``stick_threshold`` (a fraction of Omega; 0 for
-        an axial run, whose bit sticks at Ω_b = 0), ``omega_rad_s``, ``bit_speed_min``,
+        an axial run saved before it counted below the threshold), ``omega_rad_s``,
+        ``bit_speed_min``,
         ``bit_speed_max`` [rad/s], ``top_drive``, ``law``, ``duration_s``,
         ``steady_window_s``, ``samples`` (rows kept), ``dimensionless``, ``solver`` and
         ``warnings``."""

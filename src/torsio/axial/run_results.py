@@ -315,7 +315,10 @@ def run_rows(data: dict[str, Any], units: Any) -> tuple[str, list[tuple[str, str
         ("start", data["start"]),
         ("S_SS (Eq. 12)", f"{data['severity']:.4f}"),
         ("axial severity", "none (no rate of penetration)" if axial is None else f"{axial:.4f}"),
-        ("stuck fraction", f"{data['stick_fraction']:.3f}"),
+        (
+            "stuck fraction",
+            f"{data['stick_fraction']:.3f} (|Ω_b| < {data['stick_threshold']:g} Ω₀)",
+        ),
         ("off-bottom fraction", f"{data['off_bottom_fraction']:.3f}"),
         *(drilling if steady["rop"] > 0 else resting),
         ("steady bit torque", units.text("torque", steady["bit_torque"], ".4g")),

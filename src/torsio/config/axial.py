@@ -156,7 +156,9 @@ class AxialConfig:
         return is_two_dof(self.assembly)
 
 
-def _axial_table(table: Mapping[str, Any]) -> dict[str, Any]:
+def axial_table(table: Mapping[str, Any]) -> dict[str, Any]:
+    """The ``[axial]`` table of ``table``, checked: ``hook``, ``steps_per_period`` (a whole
+    number >= 10) and ``element_length`` [m] (default :data:`DEFAULT_ELEMENT_LENGTH`)."""
     raw = _table(table.get("axial", {}), "axial", AXIAL_KEYS)
     options: dict[str, Any] = {"hook": _string(raw.get("hook", "weight"), "axial.hook")}
     # its value is checked by the model it builds (torsio.model.axial_rows.check_hook)
@@ -175,7 +177,9 @@ def _axial_table(table: Mapping[str, Any]) -> dict[str, Any]:
     return options
 
 
-def _simulation_options(table: Mapping[str, Any]) -> dict[str, Any]:
+def axial_simulation_options(table: Mapping[str, Any]) -> dict[str, Any]:
+    """The axial run's options of ``[simulation]``: ``start``, ``perturbation``, ``step``
+    [s] and ``stick_threshold`` when given; the torsional integrator's keys refused."""
     raw = table.get("simulation", {})
     raw = raw if isinstance(raw, Mapping) else {}
     for key in TORSIONAL_ONLY_SIMULATION_KEYS:
@@ -224,7 +228,7 @@ def axial_law_from_table(raw: Mapping[str, Any]) -> RGDBit:
     return rgd_from_table(raw)
 
 
-def _bit(
+def axial_bit(
     table: Mapping[str, Any],
     bit_rock: BitRockConfig | None,
     given: str,
@@ -244,7 +248,7 @@ def _bit(
     return TorqueLawBit(bit_rock.build(), bit_radius(bit_rock, string))
 
 
-def _damping_beta(table: Mapping[str, Any]) -> float:
+def damping_beta(table: Mapping[str, Any]) -> float:
     """β [s] of ``[damping]`` (default 0); alpha and ratios refused."""
     raw = table.get("damping", {})
     raw = raw if isinstance(raw, Mapping) else {}
@@ -268,11 +272,11 @@ def chain_axial(
         for key in ("axial_stiffnesses", "axial_dampings"):
             if key in raw:
                 raise ConfigError(f"chain.{key}", "goes with chain.masses (axial dynamics)")
-        _refuse_axial_tables(table, "[chain] masses")
+        refuse_axial_tables(table, "[chain] masses")
         return None
     if chain.drag is not None:
         raise ConfigError("chain.drag", "the axial engine has no damping to the borehole")
-    options = _axial_table(table)
+    options = axial_table(table)
     if "element_length" in table.get("axial", {}):
         raise ConfigError("axial.element_length", "goes with a [[section]] string, not [chain]")
     masses = _values(raw["masses"], "chain.masses", "mass", True)
@@ -284,14 +288,14 @@ def chain_axial(
         )
     model = chain.model()
     if chain.dampings is None:
-        model = model.with_dampers(_damping_beta(table) * model.springs)
+        model = model.with_dampers(damping_beta(table) * model.springs)
     if not dampers and springs:
-        dampers = tuple(_damping_beta(table) * np.asarray(springs))
+        dampers = tuple(damping_beta(table) * np.asarray(springs))
     assembly = model.with_axial(AxialRows(masses, springs, dampers or None, options["hook"]))
     return AxialConfig(
-        assembly, _bit(table, bit_rock, "[chain] masses"),
+        assembly, axial_bit(table, bit_rock, "[chain] masses"),
         steps_per_period=options["steps_per_period"],
-        **_simulation_options(table),
+        **axial_simulation_options(table),
     )  # fmt: skip
 
 
@@ -301,7 +305,9 @@ def _optional(raw: Mapping[str, Any], key: str, dimension: str, positive: bool) 
     return _values(raw[key], f"chain.{key}", dimension, positive)
 
 
-def _refuse_axial_tables(table: Mapping[str, Any], needed: str) -> None:
+def refuse_axial_tables(table: Mapping[str, Any], needed: str) -> None:
+    """A ConfigError on ``[axial]`` or an axial ``[simulation]`` key in a file without axial
+    dynamics, saying what would give them (``needed``)."""
     if "axial" in table:
         raise ConfigError("axial", f"[axial] goes with axial dynamics: give {needed}")
     simulation = table.get("simulation", {})

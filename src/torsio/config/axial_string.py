@@ -19,12 +19,12 @@ from torsio.axial.torque_law import TorqueLawBit
 from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly
 from torsio.config.axial import (
     AxialConfig,
-    _axial_table,
-    _bit,
-    _damping_beta,
-    _refuse_axial_tables,
-    _simulation_options,
+    axial_bit,
+    axial_simulation_options,
+    axial_table,
+    damping_beta,
     needs_axial,
+    refuse_axial_tables,
 )
 from torsio.config.configuration import BitRockConfig, DiscretizationConfig
 from torsio.errors import ConfigError
@@ -153,22 +153,23 @@ def string_axial(
 
     With ``[discretization] strategy = "wave"`` the distributed pipe
     (:class:`~torsio.axial.wave_assembly.WaveDrillingAssembly`, one section per pipe
-    section, the BHA rigid; its lumped twin at :data:`DEFAULT_ELEMENT_LENGTH` for the linear
-    stability); otherwise the lumped chain of the file's discretizer with axial rows
+    section, the BHA rigid; its lumped twin in elements of at most
+    :data:`~torsio.axial.wave_assembly.DEFAULT_ELEMENT_LENGTH` for the linear stability);
+    otherwise the lumped chain of the file's discretizer with axial rows
     (:func:`_lumped_chain`).
     """
     raw = table.get("bit_rock")
     law = raw.get("law", "tucker-wang") if isinstance(raw, Mapping) else None
     if not (isinstance(law, str) and needs_axial(law)) and "axial" not in table:
-        _refuse_axial_tables(
+        refuse_axial_tables(
             table,
             "[bit_rock] law = 'rgd', or an [axial] table for a law of the torque alone, "
             "and [material] youngs_modulus",
         )
         return None
-    options = _axial_table(table)
-    bit = _bit(table, bit_rock, "[axial]", string)
-    run = {"steps_per_period": options["steps_per_period"], **_simulation_options(table)}
+    options = axial_table(table)
+    bit = axial_bit(table, bit_rock, "[axial]", string)
+    run = {"steps_per_period": options["steps_per_period"], **axial_simulation_options(table)}
     if discretization.strategy == "wave":
         if isinstance(bit, TorqueLawBit):
             raise ConfigError(
@@ -225,7 +226,7 @@ def _lumped_chain(
         if exc.key.split("[")[0] not in ELEMENT_COUNT_KEYS:
             raise
         raise ConfigError(f"discretization.{exc.key}", exc.message) from None
-    beta = _damping_beta(table)
+    beta = damping_beta(table)
     if beta:
         chain = chain.with_dampers(beta * chain.springs)
     return chain.with_axial(attrs.evolve(rows, dampings=beta * rows.stiffnesses))
