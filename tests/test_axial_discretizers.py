@@ -157,3 +157,41 @@ def test_a_section_without_youngs_modulus_is_named():
     with pytest.raises(ConfigError) as caught:
         parse_config(data)
     assert caught.value.key == "material.youngs_modulus"
+
+
+class _CountedOnly:
+    """A plugin discretizer of the documented contract that takes its element count only."""
+
+    name = "counted-only"
+
+    def __init__(self, dp_elements: int = 2) -> None:
+        self._inner = StrategyC(dp_elements=dp_elements)
+
+    def discretize(self, string):
+        return self._inner.discretize(string)
+
+    def axial_rows(self, string, hook):
+        return self._inner.axial_rows(string, hook)
+
+
+def test_a_plugin_discretizer_without_max_element_length_is_refused_by_key(monkeypatch):
+    import torsio.plugins
+
+    registered = {**torsio.plugins.discretizers(), "counted-only": _CountedOnly}
+    monkeypatch.setattr(torsio.plugins, "discretizers", lambda: registered)
+    data = tomllib.loads(TEXT)
+    data["discretization"] = {"strategy": "counted-only"}  # no count: [axial]'s would apply
+    with pytest.raises(ConfigError) as caught:
+        parse_config(data)
+    assert caught.value.key == "discretization.strategy"
+    assert "max_element_length" in caught.value.message
+    # with its own count, the same plugin lumps the string: strategy C's chain, 2 DP elements
+    data["discretization"] = {"strategy": "counted-only", "dp_elements": 2}
+    axial = parse_config(data).axial
+    reference = StrategyC(dp_elements=2)
+    np.testing.assert_array_equal(
+        axial.assembly.stiffness, reference.discretize(axial.string).stiffness
+    )
+    np.testing.assert_array_equal(
+        axial.assembly.axial.masses, reference.axial_rows(axial.string, "weight").masses
+    )

@@ -215,7 +215,17 @@ def _lumped_chain(
             "counts the chain's elements too; give one of them",
         )
     counting = {} if counted else {"max_element_length": options["element_length"]}
-    discretizer = DiscretizationConfig(strategy, {**discretization.options, **counting}).build()
+    try:
+        discretizer = DiscretizationConfig(strategy, {**discretization.options, **counting}).build()
+    except TypeError as exc:
+        if not counting:
+            raise
+        raise ConfigError(
+            "discretization.strategy",
+            f"{strategy!r} takes no max_element_length ({exc}), which counts the chain's "
+            "elements by [axial] element_length when [discretization] counts none; give "
+            "the strategy's own element counts in [discretization]",
+        ) from None
     try:
         chain = discretizer.discretize(string)
         rows = discretizer.axial_rows(string, options["hook"])
