@@ -202,7 +202,7 @@ def test_the_bisected_critical_wob_is_bracketed_by_single_runs():
 @pytest.mark.parametrize(
     ("flags", "flag"),
     [(["simulate", "--rtol", "1e-3"], "--rtol"), (["map", "--pi1", "1:2:2", "--pi2", "1:2:2"],
-     "--pi1"), (["map", "--strategy", "A"], "--strategy")],
+     "--pi1"), (["simulate", "--output-step", "0.1"], "--output-step")],
 )  # fmt: skip
 def test_a_refusal_names_the_flag_and_what_would_work(capsys, flags, flag):
     command, *rest = flags

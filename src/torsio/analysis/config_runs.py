@@ -40,8 +40,9 @@ _FIXED_STEP = (
     "no error control"
 )
 _ASSEMBLY = (
-    "the axial engine runs the file's assembly as it is ([chain] masses, or [[section]] "
-    "lumped by its [discretization] and [axial]); change its nodes there"
+    "the axial engine runs the assembly of the file as read ([chain] masses, or [[section]] "
+    "lumped by its [discretization] and [axial]): read it with other options "
+    "(torsio.config.reading.rediscretized, as the command line's --strategy does)"
 )
 _AXIAL_CANNOT = {
     "strategy": _ASSEMBLY,
@@ -173,7 +174,7 @@ def config_map(
     rpm: np.ndarray,
     options: Any,
     *,
-    discretization: dict[str, Any],
+    discretization: dict[str, Any] | None = None,
     dimensionless: bool = False,
     executor: Any = None,
     progress: bool | None = None,
@@ -184,9 +185,16 @@ def config_map(
     ``dimensionless``) with the map ``options``
     (:class:`~torsio.analysis.map_options.MapOptions`), on its engine; ``note(text)``
     says what of the file the map does not use; ``rtol``: the tolerance asked for
-    explicitly (refused on a fixed-step model)."""
+    explicitly (refused on a fixed-step model); ``discretization`` overrides
+    ``[discretization]`` of a torsional model (an axial chain is lumped when the file is
+    read: :func:`torsio.config.reading.rediscretized`)."""
+    discretization = {k: v for k, v in (discretization or {}).items() if v is not None}
     if config.axial is not None:
         from torsio.axial.maps import axial_map
+
+        run_capabilities(config).refuse(
+            {key: (key, value) for key, value in discretization.items()}
+        )
 
         axial = config.axial
         grow = axial.bit.needs_axial
@@ -206,7 +214,7 @@ def config_map(
                          progress=progress)  # fmt: skip
     from torsio.analysis.maps import dimensionless_map, severity_map
 
-    system = config.system(**{k: v for k, v in discretization.items() if v is not None})
+    system = config.system(**discretization)
     simulation = dict(config.simulation.options)
     if system.model.time_step is not None:  # fixed steps, no integrator: --rtol is an error
         from torsio.analysis.wave import integrator_note, refuse_integrator_options

@@ -242,12 +242,9 @@ def add_discretization_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def discretization_overrides(args: argparse.Namespace) -> dict[str, Any]:
-    """The discretization options given on the command line."""
-    return {
-        "strategy": args.strategy,
-        "dp_elements": args.dp_elements,
-        "bha_elements": args.bha_elements,
-    }
+    """The discretization options given on the command line (:func:`load` applies them to
+    the configuration; ``torsio fit`` reads its strategy from them too)."""
+    return {name: getattr(args, name) for name in DISCRETIZATION_FLAGS}
 
 
 def parse_time(value: str | None, key: str, *, allow_zero: bool = False) -> float | None:
@@ -384,12 +381,32 @@ def warn_small_bare_wob(text: str | None, option: str = "--wob") -> None:
         )
 
 
+DISCRETIZATION_FLAGS = {
+    "strategy": "--strategy",
+    "dp_elements": "--dp-elements",
+    "bha_elements": "--bha-elements",
+}
+"""The ``[discretization]`` options a command line may override, by flag."""
+
+
 def load(args: argparse.Namespace) -> Config:
-    """The configuration named on the command line, or the built-in one."""
-    from torsio.config.reading import load_config
+    """The configuration named on the command line, or the built-in one, discretized as
+    --strategy, --dp-elements and --bha-elements say where the command takes them
+    (:func:`torsio.config.reading.rediscretized`: the axial chain too); an error in one of
+    them names its flag."""
+    from torsio.config.reading import load_config, rediscretized
     from torsio.examples import builtin_config
 
-    return builtin_config() if args.config is None else load_config(args.config)
+    config = builtin_config() if args.config is None else load_config(args.config)
+    overrides = {name: getattr(args, name, None) for name in DISCRETIZATION_FLAGS}
+    try:
+        return rediscretized(config, **overrides)
+    except ConfigError as exc:
+        name = exc.key.removeprefix("discretization.")
+        if overrides.get(name) is None:
+            raise
+        flag = DISCRETIZATION_FLAGS[name]
+        raise ConfigError(flag if name == exc.key else f"{flag} ({exc.key})", exc.message) from None
 
 
 def _clean(value: Any) -> Any:

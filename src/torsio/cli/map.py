@@ -133,7 +133,7 @@ def _range_bounds(text: str, option: str, kind: str) -> tuple[float, float, int]
     return start, stop, count
 
 
-_ENGINE_FLAGS = ("strategy", "dp_elements", "bha_elements", "pi1", "pi2")
+_ENGINE_FLAGS = ("pi1", "pi2")
 """Flags that are not map options and that an engine may not take."""
 _RUN_ARGUMENTS = ("wob", "rpm", "pi1", "pi2", "workers", "scheduler", "out")
 _ARGUMENTS = {"grid": "--wob/--rpm", **{name: f"--{name}" for name in _RUN_ARGUMENTS}}
@@ -214,7 +214,6 @@ def _run(args: argparse.Namespace) -> int:
             y,
             x,
             options,
-            discretization=common.discretization_overrides(args),
             dimensionless=dimensionless,
             executor=executor,
             progress=(not args.json) and sys.stdout.isatty() or None,

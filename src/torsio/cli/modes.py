@@ -39,7 +39,7 @@ def run(args: argparse.Namespace) -> int:
     from torsio.report.model import modes_table
 
     config = common.load(args)
-    model = config.model(**common.discretization_overrides(args))
+    model = config.model()
     if args.count is not None and args.count < 1:
         raise ConfigError("--count", f"expected a whole number of modes >= 1, got {args.count}")
     if not model.has_matrices:  # the distributed model: the exact continuum of its grid

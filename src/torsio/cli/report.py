@@ -42,6 +42,8 @@ def run(args: argparse.Namespace) -> int:
         raise ConfigError("--modes", f"expected a whole number of modes >= 1, got {args.modes}")
     outputs = common.check_outputs(args, ("html",))
     config = common.load(args)
+    # the overrides again: the model is already the file's read with them (common.load),
+    # and the report says what they overrode
     options = {**common.discretization_overrides(args), "modes": args.modes, "units": args.units}
     ctx = ReportContext(config, **options)  # computed once, shared by every output
     failed: dict[str, OutputError] = {}

@@ -106,7 +106,6 @@ def run(args: argparse.Namespace) -> int:
             config,
             wob=args.wob,
             rpm=args.rpm,
-            discretization=common.discretization_overrides(args),
             **overrides,
         )
     except ConfigError as exc:
@@ -135,8 +134,7 @@ def _refuse_integrator_options(config: Any, args: argparse.Namespace, given: dic
     """The wave model has no integrator: --method/--rtol/--atol are errors, the file's a note."""
     import sys
 
-    strategy = common.discretization_overrides(args).get("strategy")
-    if (strategy or config.discretization.strategy) != "wave" or config.chain is not None:
+    if config.discretization.strategy != "wave" or config.chain is not None:
         return
     # only now: importing the wave model's stepping compiles it (seconds, on a first run)
     from torsio.analysis.wave import INTEGRATOR_OPTIONS, integrator_note, refuse_integrator_options
@@ -149,7 +147,7 @@ def _refuse_integrator_options(config: Any, args: argparse.Namespace, given: dic
         print(f"torsio simulate: {integrator_note(unused)}", file=sys.stderr)
 
 
-_ENGINE_FLAGS = ("strategy", "dp_elements", "bha_elements", "method", "rtol", "atol", "output_step")
+_ENGINE_FLAGS = ("method", "rtol", "atol", "output_step")
 """Options that an engine may not take (:mod:`torsio.analysis.config_runs`)."""
 
 _OPTIONS = {

@@ -104,6 +104,21 @@ class DiscretizationConfig:
 
         return get_discretizer(self.strategy)(**self.options)
 
+    def overridden(self, **overrides: Any) -> DiscretizationConfig:
+        """These options with ``overrides`` (None: not given): ``strategy`` changes the
+        strategy, and the table's options are kept only if it is unchanged.
+
+        >>> given = DiscretizationConfig("B", {"dp_elements": 3})
+        >>> given.overridden(bha_elements=2, strategy=None).options
+        {'dp_elements': 3, 'bha_elements': 2}
+        >>> given.overridden(strategy="A").options
+        {}
+        """
+        given = {k: v for k, v in overrides.items() if v is not None}
+        strategy = given.pop("strategy", None) or self.strategy
+        kept = dict(self.options) if strategy == self.strategy else {}
+        return DiscretizationConfig(strategy, {**kept, **given})
+
 
 @attrs.frozen
 class OperationConfig:
@@ -145,6 +160,9 @@ class Config:
     top_drive: TopDriveConfig = attrs.field(factory=TopDriveConfig)
     well: Wellbore | None = None  # [well] (config/well.py); None: vertical, no contact
     axial: AxialConfig | None = None  # axial dynamics (config/axial.py); None: torsional only
+    table: Mapping[str, Any] = attrs.field(factory=dict, eq=False, repr=False)
+    """The file's tables as read (:func:`torsio.config.reading.rediscretized` reads them
+    again)."""
 
     def model(self, **overrides: Any) -> Any:
         """Discretize the string: the configured strategy, with ``overrides`` of its options.
@@ -160,12 +178,7 @@ class Config:
                 )
             return self.chain.model()
         assert self.string is not None
-        strategy = overrides.pop("strategy", None) or self.discretization.strategy
-        options = (
-            dict(self.discretization.options) if strategy == self.discretization.strategy else {}
-        )
-        options.update({k: v for k, v in overrides.items() if v is not None})
-        return DiscretizationConfig(strategy, options).build().discretize(self.string)
+        return self.discretization.overridden(**overrides).build().discretize(self.string)
 
     @property
     def bit_radius(self) -> float:

@@ -48,7 +48,7 @@ from torsio.config.axial import (
     chain_axial,
     needs_axial,
 )
-from torsio.config.axial_string import string_axial
+from torsio.config.axial_string import ELEMENT_COUNT_KEYS, string_axial
 from torsio.config.axial_well import with_well
 from torsio.config.chain import parse_chain
 from torsio.config.configuration import (
@@ -80,6 +80,7 @@ __all__ = [
     "load_config",
     "parse_config",
     "parse_config_text",
+    "rediscretized",
 ]
 
 TOP_LEVEL_KEYS = {
@@ -163,7 +164,40 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
     well = well_table(table, config.string, source)
     if config.axial is not None:
         config = attrs.evolve(config, axial=with_well(config.axial, table, well))
-    return attrs.evolve(config, top_drive=top_drive, well=well)
+    return attrs.evolve(config, top_drive=top_drive, well=well, table=table)
+
+
+def rediscretized(config: Config, **overrides: Any) -> Config:
+    """``config`` read again with ``overrides`` of its ``[discretization]`` (None: not
+    given; :meth:`~torsio.config.configuration.DiscretizationConfig.overridden`): its
+    torsional model and its axial chain, with the chain's ``[well]`` contacts, alike. An
+    element count given here replaces ``[axial] element_length``. A ``[chain]`` is not
+    discretized: an override is refused by its name.
+
+    >>> from torsio.examples import rgd_wave_pipe_config
+    >>> chain = rediscretized(rgd_wave_pipe_config(), strategy="B", dp_elements=4)
+    >>> chain.discretization.strategy, chain.axial.assembly.node_depths.tolist()  # m
+    ('B', [300.0, 600.0, 900.0, 1000.0, 1150.0])
+    """
+    given = {k: v for k, v in overrides.items() if v is not None}
+    if not given:
+        return config
+    if config.chain is not None:
+        name = sorted(given)[0]
+        raise ConfigError(
+            name,
+            f"{given[name]!r}: the model is a [chain] given directly (its nodes are the "
+            "file's); it is not discretized: remove it",
+        )
+    discretization = config.discretization.overridden(**given)
+    data = {**config.table, "discretization": {"strategy": discretization.strategy}}
+    data["discretization"].update(discretization.options)
+    axial = data.get("axial", {})
+    if set(given) & set(ELEMENT_COUNT_KEYS) and "element_length" in axial:
+        data["axial"] = {k: v for k, v in axial.items() if k != "element_length"}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UndampedWarning)  # said when the file was read
+        return parse_config(data, config.source)
 
 
 def _axial_top_drive(axial: Any, top_drive: Any) -> Any:
