@@ -274,6 +274,24 @@ def test_tolerances_and_integrators_are_refused_on_the_wave_model(tmp_path, caps
         simulate_batch(_system(), [1e5], [60.0], duration=5.0, engine="numpy")
 
 
+def test_the_python_run_of_a_wave_file_refuses_and_notes_integrator_options(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    # as the command line: an option given is refused by key, the file's is noted on the run
+    from torsio.analysis.transient import simulate_config
+    from torsio.config.reading import load_config
+
+    config = load_config(_wave_config(tmp_path))
+    with pytest.raises(ConfigError) as caught:
+        simulate_config(config, duration=5.0, atol=1e-3)
+    assert caught.value.key == "simulation.atol" and "has no effect" in caught.value.message
+    text = (
+        Path(_wave_config(tmp_path)).read_text(encoding="utf-8") + "\n[simulation]\nrtol = 1e-6\n"
+    )
+    path = tmp_path / "with_rtol.toml"
+    path.write_text(text, encoding="utf-8")
+    run = simulate_config(load_config(path), duration=5.0, progress=False)
+    assert [w for w in run.warnings if w.startswith("[simulation] rtol not used: the wave")]
+
+
 def test_a_wave_map_point_past_the_step_limit_is_refused_up_front(tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
     # 3000 s: 2.09 million steps of 1.4386 ms, beyond the 2,000,000 of docs/cli.md
     err = _refused(capsys, *MAP, _wave_config(tmp_path), "--duration", "3000")

@@ -217,12 +217,11 @@ def config_map(
     system = config.system(**discretization)
     simulation = dict(config.simulation.options)
     if system.model.time_step is not None:  # fixed steps, no integrator: --rtol is an error
-        from torsio.analysis.wave import integrator_note, refuse_integrator_options
+        from torsio.analysis.wave import fixed_step_note
 
-        refuse_integrator_options({"--rtol (simulation.rtol)": rtol})
-        unused = sorted(set(simulation) & {"rtol", "atol"})
-        if unused:
-            note(integrator_note(unused))
+        unused = fixed_step_note(set(simulation) - {"method"}, {"--rtol (simulation.rtol)": rtol})
+        if unused is not None:
+            note(unused)
     single_run_only = sorted(set(simulation) & {"method", "output_step", "stick_threshold"})
     if single_run_only:
         note(f"[simulation] {', '.join(single_run_only)} {SINGLE_RUNS_ONLY}")

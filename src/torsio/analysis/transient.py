@@ -411,8 +411,16 @@ def simulate_config(
     point = config.operating_point(wob, rpm)
     given = {k: v for k, v in (discretization or {}).items() if v is not None}
     system = config.system(**given).at(**point)
-    results = simulate(system, initial_state=initial_state, progress=progress, **options.kwargs())
     step = system.model.time_step
+    unused = None
+    if step is not None:  # its own fixed step: integrator options refused, the file's noted
+        from torsio.analysis.wave import INTEGRATOR_OPTIONS, fixed_step_note
+
+        given_options = {f"simulation.{k}": overrides.get(k) for k in INTEGRATOR_OPTIONS}
+        unused = fixed_step_note(config.simulation.options, given_options)
+    results = simulate(system, initial_state=initial_state, progress=progress, **options.kwargs())
+    if unused is not None:
+        results = attrs.evolve(results, warnings=(*results.warnings, unused))
     if step is None or not _checks_its_grid(results, initial_state):
         return results
     coarse = {

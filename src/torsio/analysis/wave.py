@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Iterable
 from typing import Any
 
 import attrs
@@ -83,6 +84,20 @@ def refuse_integrator_options(given: dict[str, Any]) -> None:
 def integrator_note(keys: list[str]) -> str:
     """The note for ``[simulation]`` keys of a file that a wave run does not use."""
     return f"[simulation] {', '.join(keys)} not used: the wave model {_NO_INTEGRATOR}"
+
+
+def fixed_step_note(file_keys: Iterable[str], given: dict[str, Any]) -> str | None:
+    """On a model that steps at its own fixed step: a ConfigError on the first of the
+    integrator options ``given`` (name -> value, None: not given;
+    :func:`refuse_integrator_options`), and the note for those of the file's
+    ``[simulation]`` keys ``file_keys`` (None: it gives none).
+
+    >>> fixed_step_note(["duration", "rtol"], {"rtol": None})
+    '[simulation] rtol not used: the wave model ...'
+    """
+    refuse_integrator_options(given)
+    unused = sorted(set(file_keys) & set(INTEGRATOR_OPTIONS))
+    return integrator_note(unused) if unused else None
 
 
 _NO_INTEGRATOR = (
@@ -177,7 +192,8 @@ def simulate_wave(
     Takes the System, the validated options and the ``initial_state`` and ``progress`` of
     :func:`torsio.analysis.transient.simulate`, and returns the transient results of
     :func:`wave_response`; ``method``, ``rtol`` and ``atol`` have no meaning on the fixed
-    grid and are not used (the command line refuses them, :func:`refuse_integrator_options`).
+    grid and are not used (:func:`~torsio.analysis.transient.simulate_config` refuses them,
+    :func:`fixed_step_note`).
     """
     response = wave_response(
         system, options.duration, options.steady_window, options.output_step,
@@ -220,8 +236,8 @@ def wave_response(
         False: none.
     **ignored
         Options of the lumped integrator (``method``, ``rtol``, ``atol``) that have no
-        meaning on a fixed characteristic grid: not used (the command line refuses them,
-        :func:`refuse_integrator_options`).
+        meaning on a fixed characteristic grid: not used (``simulate_config`` and the
+        command line refuse them, :func:`fixed_step_note`).
     """
     grid = system.model
     if getattr(grid, "engines", None) != WAVE_ENGINES:  # a model this stepping runs

@@ -96,7 +96,6 @@ def run(args: argparse.Namespace) -> int:
         "rtol": args.rtol,
         "atol": args.atol,
     }
-    _refuse_integrator_options(config, args, overrides)
     common.require_plotting(args)
     common.warn_small_bare_wob(args.wob)
     if args.growth_rate is not None:
@@ -128,23 +127,6 @@ def run(args: argparse.Namespace) -> int:
     return common.write_and_print(
         args, results, outputs, summary, writers, lambda: results.to_dict(series=True)
     )
-
-
-def _refuse_integrator_options(config: Any, args: argparse.Namespace, given: dict) -> None:
-    """The wave model has no integrator: --method/--rtol/--atol are errors, the file's a note."""
-    import sys
-
-    if config.discretization.strategy != "wave" or config.chain is not None:
-        return
-    # only now: importing the wave model's stepping compiles it (seconds, on a first run)
-    from torsio.analysis.wave import INTEGRATOR_OPTIONS, integrator_note, refuse_integrator_options
-
-    refuse_integrator_options(
-        {_option_name(f"simulation.{k}"): given[k] for k in INTEGRATOR_OPTIONS}
-    )
-    unused = sorted(set(config.simulation.options) & set(INTEGRATOR_OPTIONS))
-    if unused:
-        print(f"torsio simulate: {integrator_note(unused)}", file=sys.stderr)
 
 
 _ENGINE_FLAGS = ("method", "rtol", "atol", "output_step")
