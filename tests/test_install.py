@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import io
+import json
 import sys
 import time
 import types
+from importlib import resources
 from pathlib import Path
 from typing import Any
 
@@ -287,6 +289,32 @@ def test_init_writes_a_template_that_runs(tmp_path: Path, capsys) -> None:
     assert main(["init", str(path)]) == 2
     assert "--force" in capsys.readouterr().err
     assert main(["init", str(path), "--force"]) == 0
+
+
+def test_init_writes_a_builtin_example_that_runs_as_its_comment_says(
+    tmp_path, capsys, monkeypatch
+) -> None:
+    # reference: the package's own data file, byte for byte, and the command its comment names
+    from torsio.examples import example_names, example_summary
+
+    monkeypatch.chdir(tmp_path)
+    assert main(["init", "--list"]) == 0
+    listed = capsys.readouterr().out.splitlines()
+    assert [line.split()[0] for line in listed] == list(example_names())
+    assert "rgd_2dof" in example_names() and "template" not in example_names()
+    assert main(["init", "--example", "rgd_2dof"]) == 0
+    out = capsys.readouterr().out
+    data = resources.files("torsio").joinpath("data/rgd_2dof.toml").read_text(encoding="utf-8")
+    assert (tmp_path / "rgd_2dof.toml").read_text(encoding="utf-8") == data
+    assert "torsio simulate rgd_2dof.toml --json" in out
+    assert example_summary("rgd_2dof").startswith("The 2-DOF model of Richard, Germay")
+    assert main(["simulate", "rgd_2dof.toml", "--duration", "5", "--window", "2", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["law"] == "rgd"
+    assert main(["init", "--example", "rgd_2dof"]) == 2  # kept without --force
+    assert main(["init", "--example", "nope"]) == 2
+    err = capsys.readouterr().err
+    assert "--example: no built-in example 'nope'" in err and "rgd_wave_pipe" in err
+    assert main(["init", "--list", "--example", "rgd_2dof"]) == 2
 
 
 def test_missing_damping_is_a_warning_and_the_report_says_undamped(tmp_path) -> None:

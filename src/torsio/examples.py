@@ -14,6 +14,11 @@
 [900.0, 100.0]
 >>> rgd_deviated_well_config().axial.contacts.count
 20
+>>> example_names()  # doctest: +NORMALIZE_WHITESPACE
+('deviated_well', 'navarro_lopez_cortes_2007', 'rgd_2dof', 'rgd_deviated_well',
+ 'rgd_wave_pipe', 'ritto2017')
+>>> example_summary("rgd_2dof")
+'The 2-DOF model of Richard, Germay and Detournay (2007) with the RGD bit'
 """
 
 from __future__ import annotations
@@ -22,11 +27,15 @@ from importlib import resources
 
 from torsio.config.configuration import Config
 from torsio.config.reading import parse_config_text
+from torsio.errors import ConfigError
 from torsio.model.drillstring import DrillString
 
 __all__ = [
     "builtin_config",
     "deviated_well_config",
+    "example_names",
+    "example_summary",
+    "example_text",
     "rgd_deviated_well_config",
     "rgd_two_dof_config",
     "rgd_wave_pipe_config",
@@ -34,9 +43,39 @@ __all__ = [
 ]
 
 
+TEMPLATE = "template"
+"""The data file ``torsio init`` writes by default (not an example: it describes itself)."""
+
+
+def example_names() -> tuple[str, ...]:
+    """The built-in configuration files by name (``data/NAME.toml``), the template aside."""
+    files = resources.files("torsio").joinpath("data").iterdir()
+    stems = (f.name.removesuffix(".toml") for f in files if f.name.endswith(".toml"))
+    return tuple(sorted(stem for stem in stems if stem != TEMPLATE))
+
+
+def example_text(name: str) -> str:
+    """The text of the built-in file ``name`` (:func:`example_names`, or ``"template"``);
+    a ConfigError on ``--example`` naming the others."""
+    if name != TEMPLATE and name not in example_names():
+        raise ConfigError(
+            "--example", f"no built-in example {name!r}; they are {', '.join(example_names())}"
+        )
+    path = resources.files("torsio").joinpath(f"data/{name}.toml")
+    return path.read_text(encoding="utf-8")
+
+
+def example_summary(name: str) -> str:
+    """What the built-in file ``name`` is: its first comment line up to a colon (or an
+    unclosed parenthesis)."""
+    first = example_text(name).splitlines()[0].lstrip("# ").partition(": ")[0]
+    if first.count("(") > first.count(")"):
+        first = first[: first.rindex("(")]
+    return first.strip().rstrip(",.")
+
+
 def _data(name: str) -> Config:
-    text = resources.files("torsio").joinpath(f"data/{name}").read_text(encoding="utf-8")
-    return parse_config_text(text, source=f"built-in {name}")
+    return parse_config_text(example_text(name.removesuffix(".toml")), source=f"built-in {name}")
 
 
 def builtin_config() -> Config:

@@ -1,4 +1,5 @@
-"""``torsio init``: write a commented template configuration that runs as it is."""
+"""``torsio init``: write a commented template configuration that runs as it is, or one of
+the built-in examples (:func:`torsio.examples.example_names`)."""
 
 from __future__ import annotations
 
@@ -12,9 +13,9 @@ DEFAULT_PATH = "torsio.toml"
 
 def template_text() -> str:
     """The template (``src/torsio/data/template.toml``): every table and key, commented."""
-    from importlib import resources
+    from torsio.examples import TEMPLATE, example_text
 
-    return resources.files("torsio").joinpath("data/template.toml").read_text(encoding="utf-8")
+    return example_text(TEMPLATE)
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -23,30 +24,53 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         subparsers,
         "init",
         run,
-        "write a commented template configuration (default: torsio.toml)",
+        "write a commented template configuration (default: torsio.toml), or a built-in example",
         "Write a template configuration file with every table and key "
-        "explained; it runs as it is (torsio report PATH, torsio simulate PATH ...).",
+        "explained; it runs as it is (torsio report PATH, torsio simulate PATH ...). "
+        "--example NAME writes a built-in example instead (--list names them).",
     )
     parser.add_argument(
-        "path", nargs="?", default=DEFAULT_PATH, metavar="PATH", help=f"default {DEFAULT_PATH}"
+        "path",
+        nargs="?",
+        metavar="PATH",
+        help=f"default {DEFAULT_PATH}, or NAME.toml with --example",
     )
     parser.add_argument("--force", action="store_true", help="overwrite PATH if it exists")
+    parser.add_argument(
+        "--example", metavar="NAME", help="a built-in example (rgd_2dof, ritto2017, ...)"
+    )
+    parser.add_argument("--list", action="store_true", help="list the built-in examples")
 
 
 def run(args: argparse.Namespace) -> int:
-    """Write the template; an existing file is kept unless ``--force``."""
+    """Write the template or the example; an existing file is kept unless ``--force``."""
     from torsio.errors import ConfigError, OutputError
+    from torsio.examples import example_names, example_summary, example_text
     from torsio.output_files import write_text
 
-    path = Path(args.path)
+    if args.list:
+        if args.example is not None or args.path is not None:
+            raise ConfigError("--list", "lists the examples; it takes no PATH or --example")
+        for name in example_names():
+            print(f"{name:<28} {example_summary(name)}")
+        return 0
+    text = template_text() if args.example is None else example_text(args.example)
+    default = DEFAULT_PATH if args.example is None else f"{args.example}.toml"
+    path = Path(args.path if args.path is not None else default)
     if path.exists() and not args.force:
-        raise ConfigError("PATH", f"{args.path!r} exists; give another path or --force")
+        raise ConfigError("PATH", f"{str(path)!r} exists; give another path or --force")
     try:
-        write_text(path, template_text())
+        write_text(path, text)
     except OutputError as exc:
         raise ConfigError("PATH", str(exc)) from None
-    print(
-        f"wrote {path}; try: torsio report {path}   or   "
-        f'torsio simulate {path} --wob "100 kN" --rpm 60'
-    )
+    print(f"wrote {path}; try: {'   or   '.join(_commands(text, path, args.example))}")
     return 0
+
+
+def _commands(text: str, path: Path, example: str | None) -> list[str]:
+    """The commands the file's opening comment suggests (``#   torsio ...``), run on
+    ``path``; the template's two where it names none."""
+    given = [line.lstrip("# ") for line in text.splitlines() if line.startswith("#   torsio ")]
+    name = f"{example}.toml" if example is not None else "this.toml"
+    found = [command.split("#")[0].strip().replace(name, str(path)) for command in given]
+    return found[:2] or [f"torsio report {path}", f'torsio simulate {path} --wob "100 kN" --rpm 60']
