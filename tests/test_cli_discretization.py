@@ -13,6 +13,7 @@ import json
 import tomllib
 from importlib import resources
 
+import attrs
 import numpy as np
 import pytest
 
@@ -20,6 +21,7 @@ from torsio.analysis.config_runs import config_map
 from torsio.analysis.map_options import MapOptions
 from torsio.analysis.transient import simulate_config
 from torsio.cli import main
+from torsio.config.configuration import OperationConfig
 from torsio.config.reading import parse_config, rediscretized
 from torsio.errors import ConfigError
 from torsio.examples import rgd_deviated_well_config, rgd_wave_pipe_config
@@ -28,6 +30,7 @@ from torsio.model.discretize import StrategyC
 DATA = resources.files("torsio").joinpath("data")
 WAVE_PIPE = str(DATA.joinpath("rgd_wave_pipe.toml"))
 TWO_DOF = str(DATA.joinpath("rgd_2dof.toml"))
+WELL = str(DATA.joinpath("rgd_deviated_well.toml"))
 TIMES = ["--duration", "20", "--window", "10"]
 
 
@@ -45,9 +48,10 @@ def _json(capsys, *args) -> dict:
 
 
 def test_simulate_lumps_the_axial_chain_as_the_flags_say(capsys):
-    data = _json(capsys, "simulate", WAVE_PIPE, "--strategy", "B", "--dp-elements", "4", *TIMES)
+    flags = ["--strategy", "B", "--dp-elements", "4", "--bha-elements", "1"]
+    data = _json(capsys, "simulate", WAVE_PIPE, *flags, *TIMES)
     written = parse_config(_file_with("rgd_wave_pipe.toml", discretization={
-        "strategy": "B", "dp_elements": 4}))  # fmt: skip
+        "strategy": "B", "dp_elements": 4, "bha_elements": 1}))  # fmt: skip
     assert written.axial.assembly.dofs == 5  # 3 + 1 pipe elements (900 m, 100 m), 1 collar
     run = simulate_config(written, duration=20.0, steady_window=10.0)
     expected = json.loads(json.dumps(run.to_dict()))
@@ -75,10 +79,10 @@ def test_a_count_on_the_command_line_replaces_axial_element_length():
 
 
 def test_the_well_contacts_follow_the_new_chain():
-    config = rediscretized(rgd_deviated_well_config(), strategy="B", dp_elements=6)
-    written = _file_with(
-        "rgd_deviated_well.toml", discretization={"strategy": "B", "dp_elements": 6}
-    )
+    config = rediscretized(rgd_deviated_well_config(), strategy="B", dp_elements=6,
+                           bha_elements=2)  # fmt: skip
+    written = _file_with("rgd_deviated_well.toml", discretization={
+        "strategy": "B", "dp_elements": 6, "bha_elements": 2})  # fmt: skip
     del written["axial"]["element_length"]  # the count replaces it, as on the command line
     written = parse_config(written)
     contacts = config.axial.contacts
@@ -89,14 +93,23 @@ def test_the_well_contacts_follow_the_new_chain():
 
 
 def test_a_torsional_model_is_the_one_of_the_overrides():
-    config = rgd_wave_pipe_config()
-    ritto = _file_with("ritto2017.toml")  # its Tucker-Wang law on the same string
-    tables = {k: v for k, v in config.table.items() if k not in ("axial", "simulation")}
-    torsional = parse_config(tables | {"bit_rock": ritto["bit_rock"], "damping": ritto["damping"]})
-    again = rediscretized(torsional, strategy="B", dp_elements=4, bha_elements=2)
-    given = torsional.model(strategy="B", dp_elements=4, bha_elements=2)
-    np.testing.assert_array_equal(again.model().stiffness, given.stiffness)
-    assert rediscretized(torsional) is torsional  # nothing given: the configuration itself
+    ritto = _file_with("ritto2017.toml")  # strategy C, 5 DP elements
+    config = parse_config(ritto)
+    again = rediscretized(config, strategy="B", dp_elements=4, bha_elements=2)
+    ritto["discretization"] = {"strategy": "B", "dp_elements": 4, "bha_elements": 2}
+    written = parse_config(ritto).model()
+    np.testing.assert_array_equal(again.model().stiffness, written.stiffness)
+    np.testing.assert_array_equal(again.model().inertia, written.inertia)
+    assert rediscretized(config) is config  # nothing given: the configuration itself
+
+
+def test_what_was_changed_in_python_is_kept_and_a_file_is_needed_for_the_chain():
+    changed = attrs.evolve(rgd_wave_pipe_config(), operation=OperationConfig(123e3, 77.0))
+    again = rediscretized(changed, strategy="C", dp_elements=3)
+    assert again.operation == changed.operation and again.axial.assembly.dofs == 3
+    with pytest.raises(ConfigError) as caught:
+        rediscretized(attrs.evolve(changed, table={}), dp_elements=3)
+    assert caught.value.key == "discretization" and "not read from one" in caught.value.message
 
 
 @pytest.mark.parametrize(
@@ -105,6 +118,17 @@ def test_a_torsional_model_is_the_one_of_the_overrides():
         ([TWO_DOF, "--dp-elements", "3"], ["--dp-elements:", "[chain] given directly"]),
         ([WAVE_PIPE, "--strategy", "Q"], ["--strategy (discretization.strategy):", "'Q'"]),
         ([WAVE_PIPE, "--strategy", "A"], ["--strategy (discretization.strategy):", "axial"]),
+        # a single count of a chain [axial] element_length counts: the pipe would be 1 element
+        (
+            [WELL, "--strategy", "B", "--bha-elements", "3"],
+            ["--bha-elements:", "give dp_elements too"],
+        ),
+        (
+            [WELL, "--strategy", "B", "--dp-elements", "20"],
+            ["--dp-elements:", "give bha_elements too"],
+        ),
+        # a key of the file that the flags made wrong names them
+        ([WELL, "--strategy", "wave"], ["axial.element_length (with --strategy wave):"]),
     ],
 )
 def test_a_refused_override_names_its_flag(capsys, args, words):

@@ -294,7 +294,11 @@ def test_init_writes_a_template_that_runs(tmp_path: Path, capsys) -> None:
 def test_init_writes_a_builtin_example_that_runs_as_its_comment_says(
     tmp_path, capsys, monkeypatch
 ) -> None:
-    # reference: the package's own data file, byte for byte, and the command its comment names
+    # reference: the package's own data files, byte for byte, and the commands their
+    # opening comments name
+    import shlex
+
+    from torsio.cli import build_parser
     from torsio.examples import example_names, example_summary
 
     monkeypatch.chdir(tmp_path)
@@ -302,18 +306,24 @@ def test_init_writes_a_builtin_example_that_runs_as_its_comment_says(
     listed = capsys.readouterr().out.splitlines()
     assert [line.split()[0] for line in listed] == list(example_names())
     assert "rgd_2dof" in example_names() and "template" not in example_names()
-    assert main(["init", "--example", "rgd_2dof"]) == 0
-    out = capsys.readouterr().out
-    data = resources.files("torsio").joinpath("data/rgd_2dof.toml").read_text(encoding="utf-8")
-    assert (tmp_path / "rgd_2dof.toml").read_text(encoding="utf-8") == data
-    assert "torsio simulate rgd_2dof.toml --json" in out
     assert example_summary("rgd_2dof").startswith("The 2-DOF model of Richard, Germay")
+    for name in example_names():
+        assert main(["init", "--example", name]) == 0
+        out = capsys.readouterr().out
+        data = resources.files("torsio").joinpath(f"data/{name}.toml").read_text(encoding="utf-8")
+        assert (tmp_path / f"{name}.toml").read_text(encoding="utf-8") == data
+        commands = out.split("try: ")[1].strip().split("   or   ")
+        for command in commands:  # each runs on the file written, as the CLI parses it
+            argv = shlex.split(command)
+            assert argv[0] == "torsio" and f"{name}.toml" in argv, command
+            build_parser().parse_args(argv[1:])
     assert main(["simulate", "rgd_2dof.toml", "--duration", "5", "--window", "2", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["law"] == "rgd"
     assert main(["init", "--example", "rgd_2dof"]) == 2  # kept without --force
-    assert main(["init", "--example", "nope"]) == 2
-    err = capsys.readouterr().err
-    assert "--example: no built-in example 'nope'" in err and "rgd_wave_pipe" in err
+    for wrong in ("nope", "template"):
+        assert main(["init", "--example", wrong]) == 2
+        err = capsys.readouterr().err
+        assert f"--example: no built-in example {wrong!r}" in err and "rgd_wave_pipe" in err
     assert main(["init", "--list", "--example", "rgd_2dof"]) == 2
 
 

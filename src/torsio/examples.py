@@ -32,6 +32,7 @@ from torsio.model.drillstring import DrillString
 
 __all__ = [
     "builtin_config",
+    "data_text",
     "deviated_well_config",
     "example_names",
     "example_summary",
@@ -55,14 +56,18 @@ def example_names() -> tuple[str, ...]:
 
 
 def example_text(name: str) -> str:
-    """The text of the built-in file ``name`` (:func:`example_names`, or ``"template"``);
-    a ConfigError on ``--example`` naming the others."""
-    if name != TEMPLATE and name not in example_names():
+    """The text of the built-in file ``name`` (:func:`example_names`); a ConfigError on
+    ``--example`` naming them."""
+    if name not in example_names():
         raise ConfigError(
             "--example", f"no built-in example {name!r}; they are {', '.join(example_names())}"
         )
-    path = resources.files("torsio").joinpath(f"data/{name}.toml")
-    return path.read_text(encoding="utf-8")
+    return data_text(name)
+
+
+def data_text(name: str) -> str:
+    """The text of ``data/NAME.toml`` (an example, or the template)."""
+    return resources.files("torsio").joinpath(f"data/{name}.toml").read_text(encoding="utf-8")
 
 
 def example_summary(name: str) -> str:
@@ -75,7 +80,7 @@ def example_summary(name: str) -> str:
 
 
 def _data(name: str) -> Config:
-    return parse_config_text(example_text(name.removesuffix(".toml")), source=f"built-in {name}")
+    return parse_config_text(data_text(name.removesuffix(".toml")), source=f"built-in {name}")
 
 
 def builtin_config() -> Config:

@@ -403,10 +403,15 @@ def load(args: argparse.Namespace) -> Config:
         return rediscretized(config, **overrides)
     except ConfigError as exc:
         name = exc.key.removeprefix("discretization.")
-        if overrides.get(name) is None:
-            raise
-        flag = DISCRETIZATION_FLAGS[name]
-        raise ConfigError(flag if name == exc.key else f"{flag} ({exc.key})", exc.message) from None
+        if overrides.get(name) is not None:
+            flag = DISCRETIZATION_FLAGS[name]
+            key = flag if name == exc.key else f"{flag} ({exc.key})"
+        else:  # a key of the file that the flags made wrong
+            given = [
+                f"{DISCRETIZATION_FLAGS[k]} {v}" for k, v in overrides.items() if v is not None
+            ]
+            key = f"{exc.key} (with {', '.join(given)})"
+        raise ConfigError(key, exc.message) from None
 
 
 def _clean(value: Any) -> Any:

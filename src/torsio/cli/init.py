@@ -13,9 +13,9 @@ DEFAULT_PATH = "torsio.toml"
 
 def template_text() -> str:
     """The template (``src/torsio/data/template.toml``): every table and key, commented."""
-    from torsio.examples import TEMPLATE, example_text
+    from torsio.examples import TEMPLATE, data_text
 
-    return example_text(TEMPLATE)
+    return data_text(TEMPLATE)
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -68,9 +68,15 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _commands(text: str, path: Path, example: str | None) -> list[str]:
-    """The commands the file's opening comment suggests (``#   torsio ...``), run on
-    ``path``; the template's two where it names none."""
-    given = [line.lstrip("# ") for line in text.splitlines() if line.startswith("#   torsio ")]
-    name = f"{example}.toml" if example is not None else "this.toml"
-    found = [command.split("#")[0].strip().replace(name, str(path)) for command in given]
-    return found[:2] or [f"torsio report {path}", f'torsio simulate {path} --wob "100 kN" --rpm 60']
+    """The first two commands on the file that its opening comment suggests (``#   torsio
+    ... this.toml``, a remark in parentheses after it left out), run on ``path``."""
+    names = ["this.toml"] + ([f"{example}.toml"] if example is not None else [])
+    found = []
+    for line in text.splitlines():
+        if line.startswith("#   torsio "):
+            command = line.lstrip("# ").partition("  (")[0].strip()
+            if any(name in command for name in names):  # a command on this file
+                for name in names:
+                    command = command.replace(name, str(path))
+                found.append(command)
+    return found[:2]

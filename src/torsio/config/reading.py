@@ -33,6 +33,7 @@ torsio.errors.ConfigError: section: a drill-string needs at least one section an
 
 from __future__ import annotations
 
+import copy
 import tomllib
 import warnings
 from collections.abc import Mapping
@@ -164,18 +165,24 @@ def parse_config(data: Mapping[str, Any], source: str = "<dict>") -> Config:
     well = well_table(table, config.string, source)
     if config.axial is not None:
         config = attrs.evolve(config, axial=with_well(config.axial, table, well))
-    return attrs.evolve(config, top_drive=top_drive, well=well, table=table)
+    return attrs.evolve(config, top_drive=top_drive, well=well, table=copy.deepcopy(table))
 
 
 def rediscretized(config: Config, **overrides: Any) -> Config:
-    """``config`` read again with ``overrides`` of its ``[discretization]`` (None: not
-    given; :meth:`~torsio.config.configuration.DiscretizationConfig.overridden`): its
-    torsional model and its axial chain, with the chain's ``[well]`` contacts, alike. An
-    element count given here replaces ``[axial] element_length``. A ``[chain]`` is not
-    discretized: an override is refused by its name.
+    """``config`` with ``overrides`` of its ``[discretization]`` (None: not given;
+    :meth:`~torsio.config.configuration.DiscretizationConfig.overridden`): its torsional
+    model and, with axial dynamics, its axial chain read again from the file's tables
+    (:attr:`~torsio.config.configuration.Config.table`) with its ``[well]`` contacts and
+    top drive. The rest of ``config`` is kept as it is.
+
+    Element counts given here replace ``[axial] element_length`` on a chain the file
+    counts by it; they must then count every part the strategy lumps (``dp_elements``, and
+    ``bha_elements`` where the BHA is flexible). A ``[chain]`` is not discretized: an
+    override is refused by its name.
 
     >>> from torsio.examples import rgd_wave_pipe_config
-    >>> chain = rediscretized(rgd_wave_pipe_config(), strategy="B", dp_elements=4)
+    >>> chain = rediscretized(rgd_wave_pipe_config(), strategy="B", dp_elements=4,
+    ...                       bha_elements=1)
     >>> chain.discretization.strategy, chain.axial.assembly.node_depths.tolist()  # m
     ('B', [300.0, 600.0, 900.0, 1000.0, 1150.0])
     """
@@ -183,21 +190,67 @@ def rediscretized(config: Config, **overrides: Any) -> Config:
     if not given:
         return config
     if config.chain is not None:
-        name = sorted(given)[0]
-        raise ConfigError(
-            name,
-            f"{given[name]!r}: the model is a [chain] given directly (its nodes are the "
-            "file's); it is not discretized: remove it",
-        )
+        config.model(**given)  # refused there: a [chain] is not discretized
     discretization = config.discretization.overridden(**given)
+    if config.axial is None:
+        checked = _discretization({"strategy": discretization.strategy, **discretization.options})
+        assert config.string is not None  # not a [chain]
+        _check_counts(checked, config.string)
+        return attrs.evolve(config, discretization=checked)
+    if not config.table:
+        raise ConfigError(
+            "discretization",
+            "the axial chain is built from the file's tables, and this configuration was "
+            "not read from one (parse_config, load_config); give the counts there",
+        )
     data = {**config.table, "discretization": {"strategy": discretization.strategy}}
     data["discretization"].update(discretization.options)
-    axial = data.get("axial", {})
-    if set(given) & set(ELEMENT_COUNT_KEYS) and "element_length" in axial:
+    counts = set(given) & set(ELEMENT_COUNT_KEYS)
+    if (
+        counts
+        and discretization.strategy != "wave"
+        and not (set(discretization.options) - counts) & set(ELEMENT_COUNT_KEYS)
+    ):  # the chain was counted by [axial] element_length
+        _refuse_partial_counts(discretization.strategy, given, counts)
+        axial = data.get("axial", {})
         data["axial"] = {k: v for k, v in axial.items() if k != "element_length"}
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", UndampedWarning)  # said when the file was read
-        return parse_config(data, config.source)
+        warnings.simplefilter("ignore")  # what the file's reading says, it said once
+        again = parse_config(data, config.source)
+    return attrs.evolve(
+        config, discretization=again.discretization, axial=again.axial, table=again.table
+    )
+
+
+def _refuse_partial_counts(strategy: str, given: Mapping[str, Any], counts: set[str]) -> None:
+    """A ConfigError when ``counts`` (of ``given``) count only part of the elements of a
+    built-in strategy's chain whose elements ``[axial] element_length`` counts otherwise
+    (a part left uncounted would fall to one element)."""
+    from torsio.plugins import get_discretizer
+
+    rigid = getattr(get_discretizer(strategy), "rigid_bha", None)
+    if rigid is None or counts & {"section_elements", "max_element_length"}:
+        return  # a plugin's own counting, or every section counted at once
+    needed = {"dp_elements"} if rigid else {"dp_elements", "bha_elements"}
+    missing = sorted(needed - counts)
+    if missing:
+        name = sorted(counts)[0]
+        raise ConfigError(
+            name,
+            f"{given[name]!r} counts part of the axial chain of strategy {strategy!r}, whose "
+            "elements [axial] element_length counts otherwise (the part left would fall to "
+            f"one element); give {' and '.join(missing)} too",
+        )
+
+
+def _check_counts(discretization: DiscretizationConfig, string: DrillString) -> None:
+    """The discretizer's element counts checked against the sections of ``string``."""
+    discretizer = discretization.build()
+    if hasattr(discretizer, "element_counts"):
+        try:
+            discretizer.element_counts(string)
+        except ConfigError as exc:
+            raise ConfigError(f"discretization.{exc.key}", exc.message) from None
 
 
 def _axial_top_drive(axial: Any, top_drive: Any) -> Any:
@@ -237,14 +290,8 @@ def _string_config(table: Mapping[str, Any], name: str, source: str) -> Config:
     discretization = _discretization(table.get("discretization", {}))
     bit_rock = _bit_rock(table["bit_rock"]) if "bit_rock" in table else None
     axial = string_axial(table, string, discretization, bit_rock)
-    discretizer = discretization.build()
-    if axial is None and hasattr(discretizer, "element_counts"):
-        # (with axial dynamics the chain is built at once: torsio.config.axial)
-        try:
-            discretizer.element_counts(string)
-        except ConfigError as exc:
-            raise ConfigError(f"discretization.{exc.key}", exc.message) from None
-    if axial is None:
+    if axial is None:  # (with axial dynamics the chain is built at once: string_axial)
+        _check_counts(discretization, string)
         _warn_if_undamped(table, source)
     return Config(
         name=name,
