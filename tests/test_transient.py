@@ -253,6 +253,30 @@ def test_csv_and_plot(config, tmp_path):
     assert (tmp_path / "run.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_the_plot_draws_a_recorded_top_speed_and_a_motor_only_for_a_top_drive_node(tmp_path):
+    # a start-up recorded as a ramp 0 -> 60 rpm over 10 s: the top's speed is the record's,
+    # and a held top's motor torque is the pipe's (Dynamics.motor_torque), so no motor line
+    pytest.importorskip("matplotlib")
+    from torsio.calibration.recording import Recording
+    from torsio.physics.recorded_top import RecordedTopDrive
+    from torsio.physics.top_drives import SoftTorqueTopDrive
+    from torsio.units import RPM_TO_RAD_S
+
+    system = builtin_config().system(strategy="A").at(wob=100e3, rpm=60)
+    ramp = Recording(time=[0.0, 10.0, 60.0], top_speed=[0.0, 2 * math.pi, 2 * math.pi],
+                     surface_torque=[0.0, 0.0, 0.0], name="ramp.csv")  # fmt: skip
+    recorded = simulate(system.with_top(RecordedTopDrive(recording=ramp)), duration=30.0)
+    assert not recorded.has_top_drive_node
+    speed, torque = recorded.plot(tmp_path / "recorded.png").axes[:2]
+    top = [line for line in speed.lines if line.get_label() == "top"]
+    np.testing.assert_array_equal(top[0].get_ydata(), recorded.top_speed * (1.0 / RPM_TO_RAD_S))
+    assert [line.get_label() for line in torque.lines] == ["pipe"]
+    driven = simulate(system.with_top(SoftTorqueTopDrive(inertia=930.0)), duration=30.0)
+    assert driven.has_top_drive_node
+    labels = [line.get_label() for line in driven.plot(tmp_path / "driven.png").axes[1].lines]
+    assert labels == ["pipe", "motor"]
+
+
 # --- errors ------------------------------------------------------------------------------
 class _NaNAboveLaw(BitRockLaw):
     """A broken law: NaN torque above a speed (to provoke non-finite values)."""

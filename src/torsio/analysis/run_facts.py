@@ -41,7 +41,8 @@ class RunFacts:
     top_drive, law : str
         The top drive's and the bit-rock law's names.
     has_top_drive_node : bool
-        Whether the top drive has inertia (its speed and motor torque vary).
+        Whether the top drive is a node with inertia, its motor torque its own; a top held
+        at a constant or a recorded speed is not (its motor torque is the pipe's).
     dimensionless : bool
         Whether the system is a dimensionless one (time is tau = omega_1 t).
     dofs, strategy, bit_radius : int, str, float or None
@@ -64,16 +65,15 @@ class RunFacts:
     def of_system(cls, system: Any) -> RunFacts:
         """The facts of a :class:`~torsio.physics.system.System` at its operating point."""
         top = getattr(system.top, "name", type(system.top).__name__)
-        has_set_speed = top != "recorded" and bool(
-            np.isfinite(system.top.boundary(system).set_speed)
-        )
+        boundary = system.top.boundary(system)
+        has_set_speed = top != "recorded" and bool(np.isfinite(boundary.set_speed))
         return cls(
             wob=float(system.wob),
             rpm=float(system.rpm) if has_set_speed else math.nan,
             has_set_speed=has_set_speed,
             top_drive=top,
             law=getattr(system.law, "name", type(system.law).__name__),
-            has_top_drive_node=top != "constant-speed",
+            has_top_drive_node=not boundary.held,
             dimensionless=bool(getattr(system.law, "dimensionless", False)),
             dofs=int(system.model.dofs),
             strategy=system.model.strategy,

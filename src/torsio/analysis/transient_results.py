@@ -215,7 +215,8 @@ class TransientResults:
 
     @property
     def has_top_drive_node(self) -> bool:
-        """Whether the top drive has inertia (its speed and motor torque vary)."""
+        """Whether the top drive is a node with inertia, its motor torque its own (a top held
+        at a constant or a recorded speed is not)."""
         return self.facts.has_top_drive_node
 
     @property

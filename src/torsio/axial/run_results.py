@@ -144,7 +144,7 @@ class AxialChannels:
             has_set_speed=self.has_set_speed,
             top_drive=self.top_drive,
             law=str(self.bit.get("law")),
-            has_top_drive_node=self.top_drive != "constant-speed",
+            has_top_drive_node=self.top_drive not in ("constant-speed", "recorded"),  # held
         )
 
     def saved(self) -> tuple[dict[str, Any], NDArray[np.float64]]:

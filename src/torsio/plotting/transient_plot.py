@@ -13,6 +13,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from torsio.errors import ConfigError
 from torsio.output_files import save_figure_file
 from torsio.units import RPM_TO_RAD_S
@@ -55,8 +57,10 @@ def plot_transient(results: Any, path: str | Path | None = None, ax: Any = None)
     torque_unit, torque_scale = ("-", 1.0) if plain else ("kN m", 1e-3)
     time = results.time
     axes[0].plot(time, results.bit_speed * scale, lw=0.8, label="bit")
-    if results.has_top_drive_node:
-        axes[0].plot(time, results.top_speed * scale, lw=0.8, color="k", label="top drive")
+    top_speed = np.asarray(results.top_speed, dtype=float)
+    if results.has_top_drive_node or (top_speed.size and np.ptp(top_speed) > 0.0):  # recorded
+        label = "top drive" if results.has_top_drive_node else "top"
+        axes[0].plot(time, top_speed * scale, lw=0.8, color="k", label=label)
         axes[0].set_ylabel(f"speed [{speed_unit}]")
     else:
         axes[0].axhline(results.omega * scale, color="k", lw=0.6, ls="--", label="top")
