@@ -143,3 +143,21 @@ def test_the_python_map_of_an_axial_file_refuses_an_override():
         config_map(rgd_wave_pipe_config(), np.array([1e5]), np.array([60.0]), options,
                    discretization={"strategy": "B"})  # fmt: skip
     assert caught.value.key == "strategy" and "rediscretized" in caught.value.message
+
+
+def test_the_advisor_lumps_the_chain_as_the_flags_say(capsys, tmp_path):
+    # reference: the advice on the same file with the count written in [discretization]
+    # (the file's own 100 m elements, 23 in the pipe, advise the same point at S_SS 0.799
+    # against 0.786 with 12: the flags reach the chain)
+    small = ["--wob", "78kN:110kN:2", "--rpm", "160:180:2", "--duration", "40", "--window",
+             "15", "--no-compare", "--threads", "1"]  # fmt: skip
+    flagged = _json(capsys, "advise", WELL, "--dp-elements", "12", *small)
+    text = DATA.joinpath("rgd_deviated_well.toml").read_text(encoding="utf-8")
+    line = 'element_length = "100 m"       # the lumped chain\'s longest element\n'
+    assert line in text  # the count replaces it, as on the command line
+    text = text.replace(line, "").replace(
+        "[damping]", "[discretization]\ndp_elements = 12\n\n[damping]"
+    )
+    written = tmp_path / "written.toml"
+    written.write_text(text, encoding="utf-8")
+    assert flagged["recommended"] == _json(capsys, "advise", str(written), *small)["recommended"]

@@ -47,6 +47,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "top_drive.max_torque, if given)",
     )
     parser.add_argument("--max-wob", metavar="W", help="largest weight on bit: N or with units")
+    common.add_discretization_arguments(parser)
     parser.add_argument(
         "--objective", default="rop", help="rop (largest mean ROP, default) or mse (least mean MSE)"
     )
@@ -146,7 +147,7 @@ def run(args: argparse.Namespace) -> int:
     )
     outputs = common.check_outputs(args, ("csv", "plot"))
     common.require_plotting(args)
-    config = rgd_deviated_well_config() if args.config is None else common.load(args)
+    config = common.load(args, default=rgd_deviated_well_config)
     if constraints.max_surface_torque is None:  # the rig's limit in the file, if any
         limit = config.top_drive.parameters.get("max_torque")
         if limit is not None and math.isfinite(limit):

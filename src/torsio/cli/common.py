@@ -389,15 +389,19 @@ DISCRETIZATION_FLAGS = {
 """The ``[discretization]`` options a command line may override, by flag."""
 
 
-def load(args: argparse.Namespace) -> Config:
-    """The configuration named on the command line, or the built-in one, discretized as
+def load(args: argparse.Namespace, default: Callable[[], Config] | None = None) -> Config:
+    """The configuration named on the command line, or ``default()`` (the built-in
+    example, ``ritto2017.toml``, where None), discretized as
     --strategy, --dp-elements and --bha-elements say where the command takes them
     (:func:`torsio.config.reading.rediscretized`: the axial chain too); an error in one of
     them names its flag."""
     from torsio.config.reading import load_config, rediscretized
     from torsio.examples import builtin_config
 
-    config = builtin_config() if args.config is None else load_config(args.config)
+    if args.config is not None:
+        config = load_config(args.config)
+    else:
+        config = (default or builtin_config)()
     overrides = {name: getattr(args, name, None) for name in DISCRETIZATION_FLAGS}
     try:
         return rediscretized(config, **overrides)
