@@ -57,6 +57,7 @@ def test_simulate_lumps_the_axial_chain_as_the_flags_say(capsys):
     expected = json.loads(json.dumps(run.to_dict()))
     for key in ("severity", "stick_fraction", "bit_speed_max", "mean_bit_torque"):
         assert data[key] == expected[key], key
+    assert (data["model"]["strategy"], data["model"]["nodes"]) == ("B", 5)  # what ran
 
 
 def test_map_lumps_the_axial_chain_as_the_flags_say(capsys):

@@ -189,12 +189,14 @@ def steady_positions(assembly: LumpedModel, weight: Any) -> NDArray[np.float64]:
 
 def assembly_description(assembly: Any) -> dict[str, Any]:
     """Plain data on a lumped or distributed assembly, for reports and JSON: a chain's
-    kind, nodes, axial DOFs, hook and vectors; a distributed pipe's ``describe()``."""
+    kind, the strategy that lumped it (``"chain"``: a ``[chain]`` given directly), nodes,
+    axial DOFs, hook and vectors; a distributed pipe's ``describe()``."""
     if not assembly.has_matrices:  # the distributed pipe
         return dict(assembly.describe())
     axial = require_axial(assembly)
     return {
         "kind": "lumped",
+        "strategy": assembly.strategy,
         "nodes": assembly.dofs,
         "axial_dofs": axial.dofs,
         "hook": axial.hook,
