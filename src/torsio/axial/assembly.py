@@ -303,7 +303,8 @@ def assembly_summary(model: dict[str, Any]) -> str:
             f"{model['hook']}, total mass {(pipe_mass + model['bha_mass']) / 1e3:.4g} t "
             f"(BHA {model['bha_mass'] / 1e3:.4g} t, rigid)"
         )
+    lumped = "" if model.get("strategy", "chain") == "chain" else f" (strategy {model['strategy']})"
     return (
-        f"{model['nodes']} node(s), {model['axial_dofs']} axial DOF, hook {model['hook']}, "
-        f"total mass {sum(model['masses']) / 1e3:.4g} t"
+        f"{model['nodes']} node(s){lumped}, {model['axial_dofs']} axial DOF, hook "
+        f"{model['hook']}, total mass {sum(model['masses']) / 1e3:.4g} t"
     )
