@@ -26,6 +26,7 @@ from torsio.config.reading import parse_config, rediscretized
 from torsio.errors import ConfigError
 from torsio.examples import rgd_deviated_well_config, rgd_wave_pipe_config
 from torsio.model.discretize import StrategyC
+from torsio.model.modal import modal_analysis
 
 DATA = resources.files("torsio").joinpath("data")
 WAVE_PIPE = str(DATA.joinpath("rgd_wave_pipe.toml"))
@@ -162,3 +163,20 @@ def test_the_advisor_lumps_the_chain_as_the_flags_say(capsys, tmp_path):
     written = tmp_path / "written.toml"
     written.write_text(text, encoding="utf-8")
     assert flagged["recommended"] == _json(capsys, "advise", str(written), *small)["recommended"]
+
+
+def test_the_files_torsional_model_is_its_axial_chains(capsys):
+    # reference: the chain the axial engine runs ([I] and [K] of its torsional rows), which
+    # [axial] element_length lumps when [discretization] counts nothing; torsio modes on the
+    # file failed (strategy C's default of 1 element could not cover the 2 pipe sections)
+    config = rgd_deviated_well_config()
+    model, chain = config.model(), config.axial.assembly
+    np.testing.assert_array_equal(model.stiffness, chain.stiffness)
+    np.testing.assert_array_equal(model.inertia, chain.inertia)
+    data = _json(capsys, "modes", WELL, "--count", "3")
+    assert data["dofs"] == chain.dofs == 24
+    expected = modal_analysis(chain, 3).frequencies_hz
+    np.testing.assert_array_equal(data["frequencies_hz"], expected)
+    # and re-lumped from the command line, the torsional model follows the flags
+    data = _json(capsys, "modes", WELL, "--dp-elements", "10", "--count", "3")
+    assert data["dofs"] == 10

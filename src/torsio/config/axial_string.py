@@ -32,7 +32,7 @@ from torsio.model.drillstring import DrillString
 from torsio.model.lumped import LumpedModel
 from torsio.model.wave import DEFAULT_TRAVEL_TIME_TOLERANCE
 
-__all__ = ["AxialSections", "axial_sections", "string_axial"]
+__all__ = ["AxialSections", "axial_sections", "chain_discretization", "string_axial"]
 
 
 @attrs.frozen
@@ -188,6 +188,28 @@ ELEMENT_COUNT_KEYS = ("dp_elements", "bha_elements", "section_elements", "max_el
 """``[discretization]`` keys that count a discretizer's elements."""
 
 
+def chain_discretization(
+    table: Mapping[str, Any], discretization: DiscretizationConfig
+) -> DiscretizationConfig:
+    """The discretization that lumps a string's axial chain: the file's ``discretization``
+    where it counts the elements, else the same with ``max_element_length`` = ``[axial]
+    element_length`` (both given: refused on ``axial.element_length``). It is the file's
+    torsional model too (:meth:`~torsio.config.configuration.Config.model`)."""
+    counted = [key for key in ELEMENT_COUNT_KEYS if key in discretization.options]
+    if counted and "element_length" in table.get("axial", {}):
+        raise ConfigError(
+            "axial.element_length",
+            f"{table['axial']['element_length']!r} given, and discretization.{counted[0]} "
+            "counts the chain's elements too; give one of them",
+        )
+    if counted:
+        return discretization
+    length = axial_table(table)["element_length"]
+    return DiscretizationConfig(
+        discretization.strategy, {**discretization.options, "max_element_length": length}
+    )
+
+
 def _lumped_chain(
     table: Mapping[str, Any],
     string: DrillString,
@@ -207,18 +229,12 @@ def _lumped_chain(
             "elements); axial dynamics take a discretizer with axial_rows ('B', 'C', the "
             "default, or a plugin's) or 'wave'",
         )
-    counted = [key for key in ELEMENT_COUNT_KEYS if key in discretization.options]
-    if counted and "element_length" in table.get("axial", {}):
-        raise ConfigError(
-            "axial.element_length",
-            f"{table['axial']['element_length']!r} given, and discretization.{counted[0]} "
-            "counts the chain's elements too; give one of them",
-        )
-    counting = {} if counted else {"max_element_length": options["element_length"]}
+    lumping = chain_discretization(table, discretization)
+    counted = lumping is discretization
     try:
-        discretizer = DiscretizationConfig(strategy, {**discretization.options, **counting}).build()
+        discretizer = lumping.build()
     except TypeError as exc:
-        if not counting:
+        if counted:
             raise
         raise ConfigError(
             "discretization.strategy",

@@ -49,7 +49,7 @@ from torsio.config.axial import (
     chain_axial,
     needs_axial,
 )
-from torsio.config.axial_string import ELEMENT_COUNT_KEYS, string_axial
+from torsio.config.axial_string import ELEMENT_COUNT_KEYS, chain_discretization, string_axial
 from torsio.config.axial_well import with_well
 from torsio.config.chain import parse_chain
 from torsio.config.configuration import (
@@ -191,8 +191,8 @@ def rediscretized(config: Config, **overrides: Any) -> Config:
         return config
     if config.chain is not None:
         config.model(**given)  # refused there: a [chain] is not discretized
-    discretization = config.discretization.overridden(**given)
     if config.axial is None:
+        discretization = config.discretization.overridden(**given)
         checked = _discretization({"strategy": discretization.strategy, **discretization.options})
         assert config.string is not None  # not a [chain]
         _check_counts(checked, config.string)
@@ -203,6 +203,8 @@ def rediscretized(config: Config, **overrides: Any) -> Config:
             "the axial chain is built from the file's tables, and this configuration was "
             "not read from one (parse_config, load_config); give the counts there",
         )
+    # the file's own table: the chain's counts by [axial] element_length are not its options
+    discretization = _discretization(config.table.get("discretization", {})).overridden(**given)
     data = {**config.table, "discretization": {"strategy": discretization.strategy}}
     data["discretization"].update(discretization.options)
     counts = set(given) & set(ELEMENT_COUNT_KEYS)
@@ -293,6 +295,8 @@ def _string_config(table: Mapping[str, Any], name: str, source: str) -> Config:
     if axial is None:  # (with axial dynamics the chain is built at once: string_axial)
         _check_counts(discretization, string)
         _warn_if_undamped(table, source)
+    elif axial.assembly.has_matrices:  # the chain's discretization, its torsional model too
+        discretization = chain_discretization(table, discretization)
     return Config(
         name=name,
         string=string,
