@@ -36,18 +36,20 @@ def run(args: argparse.Namespace) -> int:
 
     from torsio.errors import ConfigError
     from torsio.model.modal import modal_analysis
+    from torsio.report.axial import axial_modes
     from torsio.report.model import modes_table
 
     config = common.load(args)
     model = config.model()
     if args.count is not None and args.count < 1:
         raise ConfigError("--count", f"expected a whole number of modes >= 1, got {args.count}")
+    axial = axial_modes(config, args.count)  # empty without axial dynamics
     if not model.has_matrices:  # the distributed model: the exact continuum of its grid
-        return _wave_modes(model, args.count or 10, args.json)
+        return _wave_modes(model, args.count or 10, args.json, axial)
     count = args.count if args.count is not None else min(model.dofs, 10)
     results = modal_analysis(model, count, string=config.string)
     if config.string is None:  # a [chain]: no continuum reference
-        return _print_chain_modes(results, args.json)
+        return _print_chain_modes(results, args.json, axial)
     comparison = results.compare()
     shown = int(results.frequencies_rad.size)
     cut = None
@@ -63,7 +65,7 @@ def run(args: argparse.Namespace) -> int:
         data["count"] = shown
         if args.count is not None:
             data["count_requested"] = args.count
-        common.print_json(data)
+        common.print_json({**data, **axial})
         return 0
     console = Console()
     rigid = comparison.reference.rigid_bha
@@ -78,10 +80,18 @@ def run(args: argparse.Namespace) -> int:
     console.print(modes_table(comparison))
     if cut is not None:
         console.print(escape(f"note: {cut}"))
+    _print_axial(console, axial)
     return 0
 
 
-def _print_chain_modes(results: Any, as_json: bool) -> int:
+def _print_axial(console: Any, axial: dict[str, Any]) -> None:
+    """The axial frequencies of :func:`~torsio.report.axial.axial_modes`, if any."""
+    if axial:
+        values = ", ".join(f"{f:.5g}" for f in axial["axial_frequencies_hz"]) or "none"
+        console.print(f"axial frequencies [Hz] ({axial['axial_boundaries']}): {values}")
+
+
+def _print_chain_modes(results: Any, as_json: bool, axial: dict[str, Any]) -> int:
     from rich.console import Console
     from rich.table import Table
 
@@ -91,7 +101,7 @@ def _print_chain_modes(results: Any, as_json: bool) -> int:
         data = results.to_dict()
         data.update({"continuum_hz": None, "relative_error": None, "continuum": NO_CONTINUUM})
         data["count"] = int(results.frequencies_rad.size)
-        common.print_json(data)
+        common.print_json({**data, **axial})
         return 0
     table = Table(title=f"Modes of the {results.model.dofs}-DOF chain")
     table.add_column("mode", justify="right")
@@ -102,10 +112,11 @@ def _print_chain_modes(results: Any, as_json: bool) -> int:
     console = Console()
     console.print(table)
     console.print(f"exact continuum: {NO_CONTINUUM}")
+    _print_axial(console, axial)
     return 0
 
 
-def _wave_modes(model: Any, count: int, as_json: bool) -> int:
+def _wave_modes(model: Any, count: int, as_json: bool, axial: dict[str, Any]) -> int:
     """The wave model rings at the exact continuum of its grid string (section lengths
     rounded to whole cells); ``continuum_hz`` is the string as given."""
     from rich.console import Console
@@ -125,6 +136,7 @@ def _wave_modes(model: Any, count: int, as_json: bool) -> int:
                 "count": count,
                 "time_step_s": model.time_step,
                 "travel_time_errors": model.travel_time_errors.tolist(),
+                **axial,
             }
         )
         return 0
@@ -133,5 +145,7 @@ def _wave_modes(model: Any, count: int, as_json: bool) -> int:
         table.add_column(name, justify="right")
     for i, (f, e) in enumerate(zip(grid, exact, strict=True), start=1):
         table.add_row(str(i), f"{f:.6g}", f"{e:.6g}", f"{100 * (f - e) / e:+.2e}")
-    Console().print(table)
+    console = Console()
+    console.print(table)
+    _print_axial(console, axial)
     return 0

@@ -43,7 +43,13 @@ from torsio.model.lumped import LumpedModel
 from torsio.model.modal import natural_frequencies
 from torsio.report.context import ReportContext, ReportSection
 
-__all__ = ["CROSSING_RANGE", "axial_frequencies", "axial_section", "torsional_frequencies"]
+__all__ = [
+    "CROSSING_RANGE",
+    "axial_frequencies",
+    "axial_modes",
+    "axial_section",
+    "torsional_frequencies",
+]
 
 CROSSING_RANGE = (20.0, 300.0)
 """The rpm range [rev/min] searched for a change of sign of the growth rate (15 points)."""
@@ -82,6 +88,19 @@ def axial_frequencies(
     if require_axial(assembly).hook == "weight":
         values = values[1:]
     return [math.sqrt(max(v, 0.0)) / (2 * math.pi) for v in values]
+
+
+def axial_modes(config: Any, count: int | None = None) -> dict[str, Any]:
+    """What ``torsio modes`` adds for a configuration with axial dynamics (none without):
+    ``axial_frequencies_hz``, the first ``count`` of :func:`axial_frequencies` (default
+    all of a chain's, :data:`DISTRIBUTED_MODES` of a distributed pipe's) and
+    ``axial_boundaries``, the ends they are of."""
+    if config.axial is None:
+        return {}
+    assembly = config.axial.assembly
+    values = axial_frequencies(assembly, count or DISTRIBUTED_MODES)[:count]
+    top = "top free" if config.axial.hook == "weight" else "top held"
+    return {"axial_frequencies_hz": values, "axial_boundaries": f"bit free, {top}"}
 
 
 def torsional_frequencies(
