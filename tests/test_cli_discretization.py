@@ -190,6 +190,25 @@ def test_the_files_torsional_model_is_its_axial_chains(capsys):
     pipe = WaveDrillingAssembly(parts.pipe, bha_mass=parts.bha_mass, bha_inertia=parts.bha_inertia)
     exact = pipe.axial_frequencies(3, free_top=True) / (2 * np.pi)
     np.testing.assert_allclose(data["axial_frequencies_hz"], exact, rtol=5e-3)
-    # and re-lumped from the command line, the torsional model follows the flags
-    data = _json(capsys, "modes", WELL, "--dp-elements", "10", "--count", "3")
-    assert data["dofs"] == 10
+    # and re-lumped from the command line, the torsional model is the new chain's, and so
+    # is the model of Config.model with the same count
+    flagged = rediscretized(config, strategy="B")
+    data = _json(capsys, "modes", WELL, "--strategy", "B", "--count", "3")
+    assert data["dofs"] == flagged.axial.assembly.dofs == 26  # the 3 collar elements too
+    assert data["axial_frequencies_hz"] == axial_frequencies(flagged.axial.assembly)[:3]
+    counted = rediscretized(config, dp_elements=5).axial.assembly
+    np.testing.assert_array_equal(config.model(dp_elements=5).stiffness, counted.stiffness)
+
+
+def test_modes_of_a_chain_without_axial_springs_and_of_the_distributed_pipe(capsys):
+    # the 2-DOF chain: one axial mass under the weight hook, no axial spring (axially rigid)
+    data = _json(capsys, "modes", TWO_DOF)
+    assert data["axial_frequencies_hz"] == []
+    main(["modes", TWO_DOF])
+    out = capsys.readouterr().out
+    assert "none (axially rigid)" in out and "the model is a [chain] given directly" in out
+    # the distributed pipe: its exact continuum's, 10 by default (the report's count)
+    pipe = rgd_wave_pipe_config().axial.assembly
+    data = _json(capsys, "modes", WAVE_PIPE)
+    expected = pipe.axial_frequencies(10, free_top=True) / (2 * np.pi)
+    np.testing.assert_array_equal(data["axial_frequencies_hz"], expected)

@@ -87,12 +87,14 @@ def run(args: argparse.Namespace) -> int:
 def _print_axial(console: Any, axial: dict[str, Any]) -> None:
     """The axial frequencies of :func:`~torsio.report.axial.axial_modes`, if any."""
     if axial:
-        values = ", ".join(f"{f:.5g}" for f in axial["axial_frequencies_hz"]) or "none"
+        values = ", ".join(f"{f:.5g}" for f in axial["axial_frequencies_hz"])
+        values = values or "none (axially rigid)"
         console.print(f"axial frequencies [Hz] ({axial['axial_boundaries']}): {values}")
 
 
 def _print_chain_modes(results: Any, as_json: bool, axial: dict[str, Any]) -> int:
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
     from torsio.report.model import NO_CONTINUUM
@@ -111,7 +113,7 @@ def _print_chain_modes(results: Any, as_json: bool, axial: dict[str, Any]) -> in
         table.add_row(str(i + 1), f"{f:.5f}", f"{1.0 / f:.4g}")
     console = Console()
     console.print(table)
-    console.print(f"exact continuum: {NO_CONTINUUM}")
+    console.print(escape(f"exact continuum: {NO_CONTINUUM}"), soft_wrap=True)
     _print_axial(console, axial)
     return 0
 

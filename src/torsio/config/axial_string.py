@@ -26,7 +26,7 @@ from torsio.config.axial import (
     needs_axial,
     refuse_axial_tables,
 )
-from torsio.config.configuration import BitRockConfig, DiscretizationConfig
+from torsio.config.configuration import COUNTING_WAYS, BitRockConfig, DiscretizationConfig
 from torsio.errors import ConfigError
 from torsio.model.drillstring import DrillString
 from torsio.model.lumped import LumpedModel
@@ -184,7 +184,7 @@ def string_axial(
     return AxialConfig(chain, bit, string=string, **run)
 
 
-ELEMENT_COUNT_KEYS = ("dp_elements", "bha_elements", "section_elements", "max_element_length")
+ELEMENT_COUNT_KEYS = tuple(sorted(set().union(*COUNTING_WAYS)))
 """``[discretization]`` keys that count a discretizer's elements."""
 
 

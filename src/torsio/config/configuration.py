@@ -91,6 +91,14 @@ class DampingConfig:
     modes: tuple[int, int] = (1, 2)
 
 
+COUNTING_WAYS = (
+    frozenset({"dp_elements", "bha_elements"}),
+    frozenset({"section_elements"}),
+    frozenset({"max_element_length"}),
+)
+"""The ways a discretizer's elements are counted; a file gives one of them."""
+
+
 @attrs.frozen
 class DiscretizationConfig:
     """The ``[discretization]`` table: strategy name and its element options."""
@@ -106,17 +114,23 @@ class DiscretizationConfig:
 
     def overridden(self, **overrides: Any) -> DiscretizationConfig:
         """These options with ``overrides`` (None: not given): ``strategy`` changes the
-        strategy, and the table's options are kept only if it is unchanged.
+        strategy, and the table's options are kept only if it is unchanged; a count of
+        elements given in one way (:data:`COUNTING_WAYS`) replaces those in the others.
 
         >>> given = DiscretizationConfig("B", {"dp_elements": 3})
         >>> given.overridden(bha_elements=2, strategy=None).options
         {'dp_elements': 3, 'bha_elements': 2}
         >>> given.overridden(strategy="A").options
         {}
+        >>> DiscretizationConfig("C", {"max_element_length": 100.0}).overridden(dp_elements=5)
+        DiscretizationConfig(strategy='C', options={'dp_elements': 5})
         """
         given = {k: v for k, v in overrides.items() if v is not None}
         strategy = given.pop("strategy", None) or self.strategy
         kept = dict(self.options) if strategy == self.strategy else {}
+        for way in COUNTING_WAYS:
+            if given.keys() & set().union(*(w for w in COUNTING_WAYS if w is not way)):
+                kept = {k: v for k, v in kept.items() if k not in way}
         return DiscretizationConfig(strategy, {**kept, **given})
 
 
