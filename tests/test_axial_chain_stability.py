@@ -15,10 +15,10 @@ import math
 
 import numpy as np
 import pytest
-from axial_files import PIPE, damped_pipe
+from axial_files import PIPE, damped_pipe, pipe_chain
 from axial_growth import envelope_rate, perturbed_run
 
-from torsio.axial.assembly import axial_chain, pipe_assembly, two_dof_assembly
+from torsio.axial.assembly import axial_chain, two_dof_assembly
 from torsio.axial.linearization import delayed_matrix, drilling_linearization
 from torsio.axial.maps import axial_map
 from torsio.axial.rgd import rgd_example
@@ -56,7 +56,7 @@ def test_a_chain_of_one_node_is_the_two_dof_linearization():
 
 # --- stiff axial springs: the rigid axial body ---------------------------------------------------
 def test_stiff_axial_springs_tend_to_the_rigid_axial_body():
-    chain = pipe_assembly(*PIPE)
+    chain = pipe_chain(*PIPE)
     rigid = axial_chain(chain.node_inertias, chain.springs, chain.axial.masses)
     reference = drilling_stability(rigid, BIT, WOB, 120.0, count=3).roots
     errors = []
@@ -113,7 +113,7 @@ def test_one_node_under_the_hook_speed_solves_the_determinant_by_hand(rpm):
 
 @pytest.mark.parametrize("rpm", [60.0, 150.0])
 def test_roots_of_a_chain_agree_between_collocation_orders_n_and_2n(rpm):
-    for assembly in (SPEED_NODE, pipe_assembly(*PIPE), pipe_assembly(*PIPE, hook="speed")):
+    for assembly in (SPEED_NODE, pipe_chain(*PIPE), pipe_chain(*PIPE, hook="speed")):
         order = drilling_linearization(assembly, BIT, WOB, rpm).default_order()
         coarse = drilling_stability(assembly, BIT, WOB, rpm, order=order)
         fine = drilling_stability(assembly, BIT, WOB, rpm, order=2 * order)
@@ -124,7 +124,7 @@ def test_roots_of_a_chain_agree_between_collocation_orders_n_and_2n(rpm):
 # --- the neutral root ---------------------------------------------------------------------------
 def test_the_hook_speed_has_no_neutral_root():
     # k_a,0 pins the axial position: Λ(0) = K = diag(k_a, k), Δ(0) = k_a k ≠ 0
-    for assembly in (SPEED_NODE, pipe_assembly(*PIPE, hook="speed")):
+    for assembly in (SPEED_NODE, pipe_chain(*PIPE, hook="speed")):
         system = drilling_linearization(assembly, BIT, WOB, 60.0)
         assert system.neutral_roots == ()
         assert np.linalg.matrix_rank(system.stiffness) == system.dofs
@@ -135,7 +135,7 @@ def test_the_hook_speed_has_no_neutral_root():
 
 
 def test_the_hook_weight_has_its_neutral_root_found_and_not_reported():
-    chain = pipe_assembly(*PIPE)
+    chain = pipe_chain(*PIPE)
     system = drilling_linearization(chain, BIT, WOB, 60.0)
     shift = np.r_[np.ones(chain.axial.dofs), np.zeros(chain.dofs)]  # u_i = const
     np.testing.assert_array_equal(system.stiffness @ shift, 0.0)
@@ -152,7 +152,7 @@ def test_the_hook_weight_has_its_neutral_root_found_and_not_reported():
 def test_a_small_perturbation_of_a_chain_grows_at_the_rightmost_root(hook):
     # at 80 rpm the rightmost root (3.55 1/s weight, 3.82 1/s speed) grows 8 times faster
     # than the next one: the envelope is its own (at 100 rpm the two beat)
-    chain = pipe_assembly(*PIPE, hook=hook)
+    chain = pipe_chain(*PIPE, hook=hook)
     rpm = 80.0
     root = drilling_stability(chain, BIT, WOB, rpm).roots[0]
     run = perturbed_run(chain, BIT, WOB, rpm, 4.0, 1e-12)
@@ -177,7 +177,7 @@ def test_each_crossing_names_the_root_that_crosses(hook):
 
 
 def test_the_map_gives_the_growth_rate_of_a_chain_and_refuses_a_prescribed_rotation():
-    chain = pipe_assembly(*PIPE, hook="speed")
+    chain = pipe_chain(*PIPE, hook="speed")
     grid = axial_map(chain, BIT, [90e3, 130e3], [100.0], duration=2.0, window=1.0,
                      growth_rate=True, threads=1)  # fmt: skip
     assert grid.growth_rate is not None

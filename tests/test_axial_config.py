@@ -100,7 +100,7 @@ def test_string_chain_from_youngs_modulus():
     bha_mass = sum(7850 * math.pi * (s.od**2 - s.id**2) / 4 * s.length for s in (collars, bit))
     pipe_mass = 7850 * area * 1000.0
     # under the weight hook the top of the pipe is free: the chain carries the whole mass
-    # (the top element's upper half on node 0, as pipe_assembly); torsionally that half
+    # (the top element's upper half on node 0, as pipe_chain); torsionally that half
     # inertia is at the top drive
     assert a.axial.masses.sum() == pytest.approx(bha_mass + pipe_mass, rel=1e-14)
     assert a.node_inertias.sum() == pytest.approx(

@@ -11,13 +11,13 @@ import time
 
 import numpy as np
 import pytest
+from axial_files import pipe_chain
 
-from torsio.axial.assembly import pipe_assembly, rgd_two_dof_example
+from torsio.axial.assembly import rgd_two_dof_example, tube_section
 from torsio.axial.maps import axial_map
 from torsio.axial.rgd import rgd_example
 from torsio.axial.stability import drilling_stability
 from torsio.axial.transient import simulate_axial
-from torsio.axial.wave_assembly import PipeSection
 from torsio.errors import ConfigError
 
 ASSEMBLY = rgd_two_dof_example()
@@ -53,7 +53,7 @@ def test_the_map_gives_design_keys_as_plain_json():
 
 # --- where the points run: the same map to the bit -----------------------------------------
 FIELDS = ("severity", "axial_severity", "stick_fraction", "off_bottom_fraction", "rop", "mse")
-CHAIN = pipe_assembly(2, PipeSection(900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5), 29981.3, 230.0)
+CHAIN = pipe_chain(2, tube_section(900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5), 29981.3, 230.0)
 
 
 def _same_to_the_bit(first, second):

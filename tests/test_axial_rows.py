@@ -12,14 +12,14 @@ import math
 import numpy as np
 import pytest
 import scipy.linalg
+from axial_files import pipe_chain
 
 from torsio.axial.assembly import (
     assembly_description,
     axial_chain,
-    pipe_assembly,
     rgd_two_dof_example,
+    tube_section,
 )
-from torsio.axial.wave_assembly import PipeSection
 from torsio.errors import ConfigError
 from torsio.examples import rgd_two_dof_config
 from torsio.model.axial_rows import AxialRows
@@ -70,8 +70,8 @@ def test_a_chain_file_gives_one_model_turning_and_moving_axially():
 def test_the_modal_analysis_of_an_axial_chain_is_its_torsional_chains():
     # a LumpedModel with axial rows is a lumped model: its modes are those of [K], [I],
     # here against scipy's dense generalized eigensolver of the same matrices
-    pipe = PipeSection(900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5)
-    chain = pipe_assembly(6, pipe, 29981.3, 230.0)
+    pipe = tube_section(900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5)
+    chain = pipe_chain(6, pipe, 29981.3, 230.0)
     dense = np.sqrt(scipy.linalg.eigh(chain.stiffness, chain.inertia, eigvals_only=True))
     np.testing.assert_allclose(modal_analysis(chain).frequencies_rad, dense, rtol=1e-12)
     hz = np.array(torsional_frequencies(chain))

@@ -14,8 +14,9 @@ import numpy as np
 import pytest
 import scipy.optimize
 import scipy.special
+from axial_files import pipe_chain
 
-from torsio.axial.assembly import pipe_assembly, two_dof_assembly
+from torsio.axial.assembly import tube_section, two_dof_assembly
 from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
 from torsio.axial.linearization import (
     axial_linearization,
@@ -31,7 +32,6 @@ from torsio.axial.stability import (
     mode_crossings,
 )
 from torsio.axial.steady import steady_drilling
-from torsio.axial.wave_assembly import PipeSection
 from torsio.errors import ConfigError
 
 # The string: M from DESIGN.md's [chain] masses; I and k the strategy-A pendulum of the
@@ -246,8 +246,8 @@ def test_invalid_inputs_name_the_key(key, kwargs):
 
 def test_the_determinant_is_written_out_for_the_two_dof_model_only():
     # chains are linearized too (tests/test_axial_chain_stability.py); Δ(λ) by hand is 2-DOF
-    section = PipeSection(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5)
-    chain = pipe_assembly(3, section, 3.0e4, 230.0)
+    section = tube_section(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5)
+    chain = pipe_chain(3, section, 3.0e4, 230.0)
     with pytest.raises(ConfigError) as info:
         characteristic_function(chain, BIT, WOB, 60.0)
     assert info.value.key == "assembly"

@@ -16,16 +16,14 @@ from importlib import resources
 import numpy as np
 import pytest
 import scipy.linalg
-from axial_files import STRING
+from axial_files import STRING, pipe_chain, wave_pipe
 from axial_growth import envelope_rate, perturbed_run
 
 from torsio.axial import (
-    PipeSection,
-    WaveDrillingAssembly,
-    pipe_assembly,
     rgd_example,
     rgd_two_dof_example,
     simulate_axial,
+    tube_section,
 )
 from torsio.axial.maps import axial_map
 from torsio.axial.run_setup import BitRotation
@@ -42,13 +40,13 @@ from torsio.physics.top_drives import (
 
 BIT = rgd_example()
 PI = PITopDrive(inertia=2900.0, kp=5000.0, ki=2067.6)  # ki ≈ ω₁² J, ω₁ = 0.8444 rad/s
-CHAIN = pipe_assembly(4, PipeSection(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5), 3.0e4, 230.0)
+CHAIN = pipe_chain(4, tube_section(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5), 3.0e4, 230.0)
 
 
 def test_held_top_is_the_engine_before_the_top_drive():
     # reference: S_SS, mean ROP [m/s], mean MSE [Pa] of the same runs on the engine before
     # the top drive came in (commit f444b44), equal to the bit; the chain's to 1e-11: its
-    # lumping is now lumped_pipe's, whose masses and inertias equal the old ones to 2e-16
+    # lumping is now strategy C's, whose masses and inertias equal the old ones to 2e-16
     # (measured), which the 10 s stick-slip run carries to 1e-13
     tolerance = {"two_dof": 0.0, "chain": 1e-11}
     first = {}
@@ -157,14 +155,10 @@ def test_soft_torque_lowers_stick_slip_against_the_held_top():
 
 
 def test_refusals_name_their_key():
-    wave = WaveDrillingAssembly(
-        [PipeSection(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5)],
-        bha_mass=3.0e4,
-        bha_inertia=230.0,
-    )
+    wave = wave_pipe([tube_section(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5)], 3.0e4, 230.0)
     with pytest.raises(ConfigError) as info:
         simulate_axial(wave, BIT, 100e3, 60.0, duration=1.0, window=0.5, top_drive=PI)
-    assert info.value.key == "top_drive" and "WaveDrillingAssembly" in info.value.message
+    assert info.value.key == "top_drive" and "distributed pipe" in info.value.message
     with pytest.raises(ConfigError) as info:
         axial_map(wave, BIT, [100e3], [60.0], duration=1.0, window=0.5, top_drive=PI)
     assert info.value.key == "top_drive"

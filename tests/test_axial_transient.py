@@ -15,16 +15,16 @@ import numpy as np
 import pytest
 import scipy.interpolate
 import scipy.optimize
+from axial_files import pipe_chain
 from axial_growth import envelope_rate, perturbed_run
 
-from torsio.axial.assembly import axial_chain, pipe_assembly, rgd_two_dof_example
+from torsio.axial.assembly import axial_chain, rgd_two_dof_example, tube_section
 from torsio.axial.delay_roots import rightmost_roots
 from torsio.axial.linearization import axial_linearization
 from torsio.axial.rgd import rgd_example
 from torsio.axial.run_setup import BitRotation
 from torsio.axial.stability import drilling_stability
 from torsio.axial.transient import simulate_axial
-from torsio.axial.wave_assembly import PipeSection
 from torsio.errors import ConfigError
 
 # The 2-DOF example of docs/axial.md: I = 455.65 kg m², k = 324.857 N m/rad (strategy A of
@@ -33,7 +33,7 @@ ASSEMBLY = rgd_two_dof_example()
 BIT = rgd_example()
 INERTIA, STIFFNESS, MASS, DAMPING = 455.65, 324.857, 29981.3, 19.49
 WOB = 100e3
-PIPE_900 = PipeSection(900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5)
+PIPE_900 = tube_section(900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5)
 
 
 def _every_step(run_time: float, rpm: float, rotation: BitRotation, perturbation: float):
@@ -98,8 +98,8 @@ def test_the_delay_of_a_non_uniform_rotation_matches_brentq_and_the_hermite_spli
     "assembly",
     [
         ASSEMBLY,
-        pipe_assembly(3, PIPE_900, MASS, 230.0),
-        pipe_assembly(3, PIPE_900, MASS, 230.0, hook="speed"),
+        pipe_chain(3, PIPE_900, MASS, 230.0),
+        pipe_chain(3, PIPE_900, MASS, 230.0, hook="speed"),
     ],
     ids=["2-DOF", "chain-weight", "chain-speed"],
 )
@@ -219,8 +219,8 @@ def test_a_bouncing_bit_leaves_the_bottom_and_the_forces_vanish_there():
 def test_a_chain_under_a_hook_moving_at_constant_speed_drills_at_that_speed():
     # the hook moves at V₀; over a long window the bit advances like the hook, up to the
     # change of the springs' compression (10 nodes of 250 m of pipe, stick-slip from rest)
-    pipe = PipeSection(2500.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 3e-5)
-    chain = pipe_assembly(10, pipe, MASS, 230.0, hook="speed")
+    pipe = tube_section(2500.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 3e-5)
+    chain = pipe_chain(10, pipe, MASS, 230.0, hook="speed")
     run = simulate_axial(chain, BIT, WOB, 60.0, samples=0)
     # a chain has its growth rate too (tests/test_axial_chain_stability.py)
     assert run.axial.growth_rate == drilling_stability(chain, BIT, WOB, 60.0, count=1).growth_rate

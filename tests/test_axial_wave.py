@@ -1,10 +1,11 @@
 """The distributed (wave) axial-torsional model with the RGD bit (torsio.axial.wave_*).
 
 Independent references: the exact continuum frequencies of the axial and the torsional bar
-with a lumped end (torsio.model.continuum.bar_frequencies, Wittrick-Williams, checked in
-tests/test_continuum.py; and the closed form sin x + r x cos x = 0 of a free-top bar found
-here by brentq), the eigenfrequencies of the fine lumped chain (pipe_assembly), the steady
-drilling state in closed form (torsio.axial.steady: RGD 2007, Teale 1965) and the
+with a lumped end (torsio.model.continuum.bar_frequencies and continuum_modes with the BHA
+rigid, Wittrick-Williams, checked in tests/test_continuum.py; and the closed form
+sin x + r x cos x = 0 of a free-top bar found here by brentq), the eigenfrequencies of the
+fine lumped chain (pipe_chain of tests/axial_files.py: strategy C of the same pipe), the
+steady drilling state in closed form (torsio.axial.steady: RGD 2007, Teale 1965) and the
 conservation of the power (p² − m²)/(4 Z) at a junction.
 """
 
@@ -17,14 +18,14 @@ import numpy as np
 import pytest
 import scipy.linalg
 import scipy.optimize
+from axial_files import pipe_chain, wave_pipe
 
 from torsio.axial import bit_step, layouts
-from torsio.axial.assembly import pipe_assembly
+from torsio.axial.assembly import lumped_twin, tube_section
 from torsio.axial.layouts import SAMPLE_COLUMNS, STATS
 from torsio.axial.rgd import rgd_example
 from torsio.axial.run_setup import BitRotation, RunOptions
 from torsio.axial.transient import simulate_axial
-from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly, wave_pipe_assembly
 from torsio.axial.wave_pipe import (
     advance,
     close_bottom,
@@ -36,23 +37,39 @@ from torsio.axial.wave_pipe import (
 from torsio.axial.wave_setup import pipe_grid, run_wave, wave_run_setup
 from torsio.axial.wave_stability import distributed_stability
 from torsio.errors import ConfigError
-from torsio.model.continuum import bar_frequencies
+from torsio.model.continuum import bar_frequencies, continuum_modes
 from torsio.model.lumped import chain_matrix
+from torsio.model.wave import WaveModel
 from torsio.report.axial import axial_frequencies
 
 BIT = rgd_example()
 WOB = 100e3
 # the BHA of the 2-DOF example of docs/axial.md (M = 29981.3 kg, I = 455.65 kg m²) and the
-# steel drill pipe of its pipe_assembly example (E = 210 GPa, G = 81 GPa, ρ = 7850 kg/m³)
+# steel drill pipe of torsio.axial.wave_setup's example (E = 210 GPa, G = 81 GPa, ρ = 7850 kg/m³)
 MASS, INERTIA = 29981.3, 455.65
 E, G, RHO = 2.1e11, 8.1e10, 7850.0
-STEPPED = [PipeSection(600.0, E, G, RHO, 3.4e-3, 3.0e-5), PipeSection(400.0, E, G, RHO, 6e-3, 5e-5)]
+STEPPED = [
+    tube_section(600.0, E, G, RHO, 3.4e-3, 3.0e-5),
+    tube_section(400.0, E, G, RHO, 6e-3, 5e-5),
+]
 MODES = 6
-UNIFORM = PipeSection(1000.0, E, G, RHO, 3.4e-3, 3e-5)
+UNIFORM = tube_section(1000.0, E, G, RHO, 3.4e-3, 3e-5)
 
 
-def _stepped(hook: str) -> WaveDrillingAssembly:
-    return WaveDrillingAssembly(STEPPED, bha_mass=MASS, bha_inertia=INERTIA, hook=hook)
+def _stepped(hook: str) -> WaveModel:
+    return wave_pipe(STEPPED, MASS, INERTIA, hook=hook)
+
+
+def _exact(assembly: WaveModel, line: str, count: int) -> np.ndarray:
+    """The first ``count`` exact frequencies [rad/s] of a line of the pipe as given, the
+    BHA free: axially with the top held (bar_frequencies of E A, √(E/ρ) and m_b), torsionally
+    the string's continuum with the BHA rigid (the top drive held)."""
+    rows = assembly.axial
+    if line == "axial":
+        return bar_frequencies(
+            rows.rigidities, assembly.lengths, rows.wave_speeds, rows.bha_mass, count
+        )
+    return continuum_modes(assembly.string, count, rigid_bha=True).frequencies_rad
 
 
 # --- frequencies of the grid --------------------------------------------------------------
@@ -76,8 +93,9 @@ def _free_step(p, m, velocity, line, top_value, held_top=True):
 
 def _line(assembly, grid, name):
     """(offsets, junctions, Z top, Z bottom, end mass or inertia, h) of a line."""
-    z = getattr(assembly, f"{name}_impedances")
-    end = assembly.bha_mass if name == "axial" else assembly.bha_inertia
+    rows = assembly.axial
+    z = rows.impedances if name == "axial" else assembly.impedances
+    end = rows.bha_mass if name == "axial" else assembly.bit_inertia
     offsets, junctions = getattr(grid, f"{name}_offsets"), getattr(grid, f"{name}_junctions")
     return offsets, junctions, z[0], z[-1], end, grid.step
 
@@ -142,18 +160,18 @@ def test_the_grid_frequencies_of_a_stepped_pipe_are_the_exact_continuum(line):
     assembly = _stepped("speed")
     measured, grid = _grid_frequencies(assembly, line)
     row = 0 if line == "axial" else 1
-    speeds = getattr(assembly, f"{line}_wave_speeds")
+    speeds = assembly.axial.wave_speeds if line == "axial" else assembly.wave_speeds
     cells = np.array(getattr(grid, f"{line}_cells"))
-    rigidity = [s.youngs_modulus * s.area for s in STEPPED]
+    rigidity = [s.material.youngs_modulus * s.area for s in STEPPED]
     if line == "torsional":
-        rigidity = [s.shear_modulus * s.polar_moment for s in STEPPED]
+        rigidity = [s.material.shear_modulus * s.polar_moment for s in STEPPED]
     end = MASS if line == "axial" else INERTIA
     rounded = bar_frequencies(rigidity, cells * grid.step * speeds, speeds, end, MODES)
     scheme = (measured * grid.step) ** 2 / 12
     assert np.all(np.abs(measured / rounded - 1) <= scheme)
     # against the pipe as given: the rounding moves each frequency by at most the largest
     # relative travel-time error (Rayleigh's quotient, docs/axial.md)
-    exact = getattr(assembly, f"{line}_frequencies")(MODES)
+    exact = _exact(assembly, line, MODES)
     rounding = grid.travel_time_errors[row].max()
     assert np.all(np.abs(measured / exact - 1) <= rounding + scheme)
 
@@ -163,10 +181,10 @@ def test_the_grid_frequencies_with_the_weight_hook_are_those_of_a_free_top():
     # cos(κx), E A κ sin κL = m_b ω² cos κL, that is sin x + r x cos x = 0, x = κL,
     # r = m_b/(ρ A L): one root in each ((j − ½)π, jπ), found here by brentq
     section = STEPPED[0]
-    assembly = WaveDrillingAssembly([section], bha_mass=MASS, bha_inertia=INERTIA)
+    assembly = wave_pipe([section], MASS, INERTIA)
     measured, grid = _grid_frequencies(assembly, "axial", held_top=False)
     ratio = MASS / (RHO * section.area * section.length)
-    c = float(assembly.axial_wave_speeds[0])
+    c = float(assembly.axial.wave_speeds[0])
     exact = [
         scipy.optimize.brentq(
             lambda x: math.sin(x) + ratio * x * math.cos(x), (j - 0.5) * math.pi, j * math.pi
@@ -182,7 +200,7 @@ def test_the_grid_frequencies_with_the_weight_hook_are_those_of_a_free_top():
     # cells tends to 4 (3.76-3.92 at 50, 100, 200 nodes)
     errors = []
     for nodes in (50, 100, 200):
-        chain = pipe_assembly(nodes, section, MASS, INERTIA)
+        chain = pipe_chain(nodes, section, MASS, INERTIA)
         hz = np.array(axial_frequencies(chain)[:3])
         errors.append(np.abs(2 * math.pi * hz / exact[:3] - 1))
     for coarse, fine in zip(errors, errors[1:], strict=False):
@@ -190,7 +208,7 @@ def test_the_grid_frequencies_with_the_weight_hook_are_those_of_a_free_top():
 
 
 def _lumped_frequencies(nodes: int, line: str) -> np.ndarray:
-    chain = pipe_assembly(nodes, UNIFORM, MASS, INERTIA, hook="speed")
+    chain = pipe_chain(nodes, UNIFORM, MASS, INERTIA, hook="speed")
     springs = chain.axial.stiffnesses if line == "axial" else chain.springs
     masses = chain.axial.masses if line == "axial" else chain.node_inertias
     values = scipy.linalg.eigh(chain_matrix(springs), np.diag(masses), eigvals_only=True)
@@ -199,12 +217,11 @@ def _lumped_frequencies(nodes: int, line: str) -> np.ndarray:
 
 @pytest.mark.parametrize("line", ["axial", "torsional"])
 def test_a_fine_lumped_pipe_converges_to_the_same_continuum_as_the_grid(line):
-    # one uniform section: the wave grid and pipe_assembly of 50, 100, 200 nodes against the
+    # one uniform section: the wave grid and pipe_chain of 50, 100, 200 nodes against the
     # exact continuum; the lumped error falls like 1/nodes² (second-order chain), the grid's
     # is bounded by its travel-time tolerance (here 3e-5: 1.03e-5 reached, h = 1.64 ms)
-    pipe = wave_pipe_assembly(UNIFORM, MASS, INERTIA, hook="speed")
-    assembly = attrs.evolve(pipe, travel_time_tolerance=3e-5)
-    exact = getattr(assembly, f"{line}_frequencies")(3)
+    assembly = wave_pipe([UNIFORM], MASS, INERTIA, hook="speed", travel_time_tolerance=3e-5)
+    exact = _exact(assembly, line, 3)
     errors = [np.abs(_lumped_frequencies(n, line) / exact - 1) for n in (50, 100, 200)]
     for coarse, fine in zip(errors, errors[1:], strict=False):
         np.testing.assert_allclose(coarse / fine, 4.0, rtol=0.02)
@@ -256,7 +273,7 @@ def test_steady_drilling_is_a_fixed_point_of_the_wave_model(hook):
     assert run.severity < 1e-12 and run.axial.axial_severity < 1e-12
     assert run.stick_fraction == 0.0 and run.axial.off_bottom_fraction == 0.0
     # the growth rate of the pipe's own characteristic equation (test_axial_wave_stability)
-    twin = _stepped(hook).lumped_twin()
+    twin = lumped_twin(_stepped(hook))
     exact = distributed_stability(_stepped(hook), BIT, WOB, 180.0, twin=twin)
     assert run.axial.growth_rate == exact.growth_rate
 
@@ -268,8 +285,9 @@ def test_one_section_and_two_equal_sections_give_the_same_run():
     e, g, rho = 2.0e11, 7.8125e10, 8000.0
     runs = []
     for sections in (1, 2):
-        pipe = PipeSection(1000.0, e, g, rho, 3.4e-3, 3e-5)
-        assembly = wave_pipe_assembly(pipe, MASS, INERTIA, sections=sections)
+        pipe = tube_section(1000.0, e, g, rho, 3.4e-3, 3e-5)
+        piece = attrs.evolve(pipe, length=pipe.length / sections)
+        assembly = wave_pipe([piece] * sections, MASS, INERTIA)
         assert pipe_grid(assembly, 1e-3).axial_cells == ((200,) if sections == 1 else (100, 100))
         runs.append(simulate_axial(assembly, BIT, WOB, 60.0, duration=20.0, window=10.0, step=1e-3))
     np.testing.assert_array_equal(runs[0].axial.samples, runs[1].axial.samples)
@@ -302,32 +320,21 @@ def test_the_layout_indices_name_the_kernels_stats():
 @pytest.mark.parametrize(
     ("build", "key"),
     [
-        (lambda: PipeSection(-1.0, E, G, RHO, 3.4e-3, 3e-5), "section.length"),
-        (lambda: PipeSection(1e3, E, G, "steel", 3.4e-3, 3e-5), "section.density"),
-        (lambda: WaveDrillingAssembly([], bha_mass=MASS, bha_inertia=INERTIA), "sections"),
-        (lambda: WaveDrillingAssembly([1.0], bha_mass=MASS, bha_inertia=INERTIA), "sections[0]"),
+        (lambda: tube_section(-1.0, E, G, RHO, 3.4e-3, 3e-5), "length"),
+        (lambda: tube_section(1e3, E, G, "steel", 3.4e-3, 3e-5), "density"),
+        (lambda: tube_section(1e3, E, G, RHO, 3.4e-3, 1e-7), "polar_moment"),  # no tube
+        (lambda: wave_pipe([], MASS, INERTIA), "sections"),
+        (lambda: wave_pipe(STEPPED, 0.0, INERTIA), "bha_mass"),
+        (lambda: wave_pipe(STEPPED, MASS, math.nan), "bha_inertia"),
+        (lambda: wave_pipe([1.0], MASS, INERTIA), "sections[0]"),
+        (lambda: wave_pipe(STEPPED, MASS, INERTIA, hook="up"), "axial.hook"),
         (
-            lambda: WaveDrillingAssembly(STEPPED[0], bha_mass=MASS, bha_inertia=INERTIA),
-            "sections",
-        ),
-        (lambda: WaveDrillingAssembly(STEPPED, bha_mass=0.0, bha_inertia=INERTIA), "bha_mass"),
-        (
-            lambda: WaveDrillingAssembly(STEPPED, bha_mass=MASS, bha_inertia=math.nan),
-            "bha_inertia",
-        ),
-        (
-            lambda: WaveDrillingAssembly(STEPPED, bha_mass=MASS, bha_inertia=INERTIA, hook="up"),
-            "axial.hook",
-        ),
-        (
-            lambda: WaveDrillingAssembly(
-                STEPPED, bha_mass=MASS, bha_inertia=INERTIA, travel_time_tolerance=0.0
-            ),
+            lambda: wave_pipe(STEPPED, MASS, INERTIA, travel_time_tolerance=0.0),
             "discretization.travel_time_tolerance",
         ),
         (
-            lambda: wave_pipe_assembly(UNIFORM, MASS, INERTIA, sections=0),
-            "sections",
+            lambda: wave_pipe(STEPPED, MASS, INERTIA, travel_time_tolerance=0.5),
+            "discretization.travel_time_tolerance",
         ),
         (
             lambda: simulate_axial(_stepped("weight"), BIT, WOB, 60.0, duration=1.0, start="x"),

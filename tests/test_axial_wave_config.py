@@ -6,7 +6,8 @@ Independent references, each computed here from the file's numbers:
 
 - the pipe sections and the BHA by hand: A = π (od² − id²)/4, J = π (od⁴ − id⁴)/32,
   m_b = Σ ρ A L and I_b = Σ ρ J L of the collars and the bit;
-- :func:`torsio.axial.assembly.pipe_assembly` for the lumped chain of one section;
+- the strategy-C chain of one section built from its E, G, ρ, A and J (``pipe_chain`` of
+  tests/axial_files.py: :func:`torsio.axial.assembly.tube_section` above a rigid BHA);
 - the natural frequencies of the stepped bar by its transfer matrix
   (U, N) → (U cos κL + N sin κL/(E A κ), −E A κ U sin κL + N cos κL), κ = ω/c, from the top
   (free: (1, 0); held: (0, 1)) to the BHA, whose balance N(L) = m_b ω² U(L) is solved by
@@ -26,10 +27,10 @@ from importlib import resources
 import numpy as np
 import pytest
 import scipy.optimize
+from axial_files import pipe_chain
 
-from torsio.axial.assembly import pipe_assembly
+from torsio.axial.assembly import lumped_twin, tube_section
 from torsio.axial.run_setup import RunOptions
-from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly
 from torsio.axial.wave_setup import wave_run_setup
 from torsio.axial.wave_stability import distributed_stability
 from torsio.cli import main
@@ -40,6 +41,7 @@ from torsio.examples import rgd_wave_pipe_config
 from torsio.model.continuum import bar_frequencies
 from torsio.model.discretize import StrategyC
 from torsio.model.lumped import LumpedModel
+from torsio.model.wave import WaveModel
 from torsio.report.axial import axial_frequencies, axial_section, torsional_frequencies
 from torsio.report.context import ReportContext
 
@@ -83,15 +85,16 @@ def _config(**replacements: str):
 def test_the_wave_pipe_is_the_files_sections():
     axial = rgd_wave_pipe_config().axial
     pipe = axial.assembly
-    assert isinstance(pipe, WaveDrillingAssembly)
+    assert isinstance(pipe, WaveModel)
     assert pipe.lengths.tolist() == [900.0, 100.0]
     for section, (od, inner, _) in zip(pipe.sections, PIPE, strict=True):
         assert section.area == pytest.approx(_area(od, inner), rel=1e-14)
         assert section.polar_moment == pytest.approx(_polar(od, inner), rel=1e-14)
-        assert (section.youngs_modulus, section.shear_modulus, section.density) == (E, G, RHO)
-    assert pipe.bha_mass == pytest.approx(BHA_MASS, rel=1e-14)
-    assert pipe.bha_inertia == pytest.approx(BHA_INERTIA, rel=1e-14)
-    assert pipe.hook == "weight" and pipe.travel_time_tolerance == 3e-4
+        material = section.material
+        assert (material.youngs_modulus, material.shear_modulus, material.density) == (E, G, RHO)
+    assert pipe.axial.bha_mass == pytest.approx(BHA_MASS, rel=1e-14)
+    assert pipe.bit_inertia == pytest.approx(BHA_INERTIA, rel=1e-14)
+    assert pipe.axial.hook == "weight" and pipe.travel_time_tolerance == 3e-4
     # the stability's lumped twin: the same sections in 100 m elements, no dampers
     twin = axial.lumped_twin
     assert isinstance(twin, LumpedModel) and twin.dofs == 10
@@ -104,14 +107,15 @@ def test_the_wave_pipe_is_the_files_sections():
     # a section's own modulus and the travel-time tolerance are passed on
     own = _config(**{'bha = false': 'bha = false\nmaterial = { youngs_modulus = "200 GPa" }',
                      "travel_time_tolerance = 3e-4": "travel_time_tolerance = 1e-4"})  # fmt: skip
-    assert [s.youngs_modulus for s in own.axial.assembly.sections] == [E, 200e9]
+    assert [s.material.youngs_modulus for s in own.axial.assembly.sections] == [E, 200e9]
     assert own.axial.assembly.travel_time_tolerance == 1e-4
 
 
 @pytest.mark.parametrize("hook", ["weight", "speed"])
-def test_one_section_lumped_chain_is_pipe_assembly(hook):
+def test_one_section_lumped_chain_is_the_pipe_chain(hook):
     # a one-section pipe + BHA through the file (no [discretization]: the lumped chain,
-    # 1000 m in 250 m elements) against pipe_assembly(4, ...) of the same data and against
+    # 1000 m in 250 m elements) against pipe_chain(4, ...) of the same data (the pipe given
+    # by its E, G, ρ, A and J, the BHA by its mass and inertia) and against
     # the lumped-mass rule written out (each element's ρAΔ and ρJΔ halved onto its end
     # nodes, the BHA on the last): under the weight hook the free top's half element rides
     # on node 0; torsionally (and axially under the speed hook) that half is at the top
@@ -122,19 +126,17 @@ def test_one_section_lumped_chain_is_pipe_assembly(hook):
     data["axial"] = {"hook": hook, "element_length": "250 m"}
     chain = parse_config(data).axial.assembly
     od, inner, _ = PIPE[0]
-    section = PipeSection(1000.0, E, G, RHO, _area(od, inner), _polar(od, inner))
-    expected = pipe_assembly(4, section, BHA_MASS, BHA_INERTIA, hook=hook)
+    area, polar = _area(od, inner), _polar(od, inner)
+    section = tube_section(1000.0, E, G, RHO, area, polar)
+    expected = pipe_chain(4, section, BHA_MASS, BHA_INERTIA, hook=hook)
     spacing, bottom = 250.0, np.array([0.0, 0.0, 0.0, 1.0])
     halves = np.array([2.0, 2.0, 2.0, 1.0]) + (hook == "weight") * np.array([1.0, 0, 0, 0])
     by_hand = {
-        lambda a: a.axial.masses: halves / 2 * RHO * section.area * spacing + bottom * BHA_MASS,
-        lambda a: a.node_inertias: np.array([1.0, 1.0, 1.0, 0.5])
-        * RHO
-        * section.polar_moment
-        * spacing
+        lambda a: a.axial.masses: halves / 2 * RHO * area * spacing + bottom * BHA_MASS,
+        lambda a: a.node_inertias: np.array([1.0, 1.0, 1.0, 0.5]) * RHO * polar * spacing
         + bottom * BHA_INERTIA,
-        lambda a: a.springs: np.full(4, G * section.polar_moment / spacing),
-        lambda a: a.axial.stiffnesses: np.full(4, E * section.area / spacing),
+        lambda a: a.springs: np.full(4, G * polar / spacing),
+        lambda a: a.axial.stiffnesses: np.full(4, E * area / spacing),
     }
     for rows, values in by_hand.items():
         np.testing.assert_allclose(rows(chain), values, rtol=1e-14)
@@ -147,9 +149,9 @@ def test_the_pipes_lumped_twin_is_the_files_strategy_c_chain(element_length):
     # two routes to the lumped-mass chain of the file's stepped string (900 m of drill pipe
     # and 100 m of HWDP in the pipe, the collars and the bit rigid): the file without
     # strategy = "wave" (the paper's strategy C, Eqs. 6-7, with axial rows) and the
-    # distributed pipe's lumped twin (lumped_pipe of its PipeSections); the same element
-    # counts, node depths, springs and inertias to round-off (G J / L × n against
-    # G J / (L/n)), the same masses and axial springs
+    # distributed pipe's lumped twin (torsio.axial.assembly.lumped_twin, built from the
+    # wave model); the same element counts, node depths, springs and inertias to
+    # round-off, the same masses and axial springs
     data = tomllib.loads(TEXT)
     del data["discretization"]
     data["axial"] = {"element_length": element_length}
@@ -157,7 +159,7 @@ def test_the_pipes_lumped_twin_is_the_files_strategy_c_chain(element_length):
     chain = axial.assembly
     model = StrategyC(max_element_length=element_length).discretize(axial.string)
     np.testing.assert_array_equal(chain.stiffness, model.stiffness)
-    twin = rgd_wave_pipe_config().axial.assembly.lumped_twin(element_length)
+    twin = lumped_twin(rgd_wave_pipe_config().axial.assembly, element_length)
     assert twin.dofs == chain.dofs
     for rows in ("inertia", "stiffness", "node_depths"):
         np.testing.assert_allclose(getattr(twin, rows), getattr(chain, rows), rtol=1e-14)
@@ -189,10 +191,13 @@ def _transfer_roots(rigidities, lengths, speeds, tip, count, free_top):
 
 
 def _lines(pipe):
-    axial = ([s.youngs_modulus * s.area for s in pipe.sections], pipe.axial_wave_speeds)
-    torsional = ([s.shear_modulus * s.polar_moment for s in pipe.sections],
-                 pipe.torsional_wave_speeds)  # fmt: skip
-    return {"axial": (*axial, pipe.bha_mass), "torsional": (*torsional, pipe.bha_inertia)}
+    rows, sections = pipe.axial, pipe.sections
+    axial = [s.material.youngs_modulus * s.area for s in sections]
+    torsional = [s.material.shear_modulus * s.polar_moment for s in sections]
+    return {
+        "axial": (axial, rows.wave_speeds, rows.bha_mass),
+        "torsional": (torsional, pipe.wave_speeds, pipe.bit_inertia),
+    }
 
 
 def test_the_reports_frequencies_are_the_stepped_bars_continuum():

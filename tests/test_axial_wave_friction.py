@@ -40,7 +40,8 @@ def config():
 def _steady_run(config, hook: str):
     axial = config.axial
     options = {**axial.run_options(), "start": "steady", "perturbation": 0.0}
-    assembly = attrs.evolve(axial.assembly, hook=hook)
+    pipe = axial.assembly
+    assembly = pipe.with_axial(attrs.evolve(pipe.axial, hook=hook))
     return simulate_axial(assembly, axial.bit, 100e3, 60.0, duration=2.0, window=1.0,
                           samples=200, growth_rate=False, **options)  # fmt: skip
 

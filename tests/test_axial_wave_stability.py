@@ -3,9 +3,11 @@
 Independent references: the end stiffness of a uniform line in closed form (R γ coth γL with
 the top held, R γ tanh γL free) and its static limits (E A / L; ρ A L λ², the pipe moving
 as a body); the exact bar frequencies of :func:`torsio.model.continuum.bar_frequencies`
-(found by bisection of the frequency equation), which are the roots λ = iω when the bit
-exerts nothing (D = 0); the lumped twins of the same sections, whose roots approach the
-continuum's like Δx² as the elements shrink."""
+(axially) and :func:`~torsio.model.continuum.continuum_modes` (torsionally, the BHA rigid),
+found by bisection of the frequency equation, which are the roots λ = iω when the bit
+exerts nothing (D = 0); the lumped twins of the same sections
+(:func:`torsio.axial.assembly.lumped_twin`), whose roots approach the continuum's like Δx²
+as the elements shrink."""
 
 from __future__ import annotations
 
@@ -13,12 +15,12 @@ import math
 
 import numpy as np
 import pytest
+from axial_files import wave_pipe
 
-from torsio.axial.assembly import lumped_pipe
+from torsio.axial.assembly import lumped_twin, tube_section
 from torsio.axial.rgd import rgd_example
 from torsio.axial.stability import drilling_stability
 from torsio.axial.transient import simulate_axial
-from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly
 from torsio.axial.wave_stability import (
     WaveCharacteristic,
     distributed_stability,
@@ -26,12 +28,13 @@ from torsio.axial.wave_stability import (
     wave_characteristic,
 )
 from torsio.examples import rgd_wave_pipe_config
+from torsio.model.continuum import bar_frequencies, continuum_modes
 
 BIT = rgd_example()
 WOB = 100e3
-PIPE = PipeSection(1000.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 3.0e-5)
-EA = PIPE.youngs_modulus * PIPE.area
-C_AXIAL = math.sqrt(PIPE.youngs_modulus / PIPE.density)
+PIPE = tube_section(1000.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 3.0e-5)
+EA = PIPE.material.youngs_modulus * PIPE.area
+C_AXIAL = math.sqrt(PIPE.material.youngs_modulus / PIPE.material.density)
 
 
 @pytest.mark.parametrize("root", [0.3 + 2.0j, -0.1 + 17.0j, 1.5 + 0.2j])
@@ -52,19 +55,20 @@ def test_the_static_limits_are_the_spring_and_the_moving_body():
     held = end_stiffness(lam, [EA], [PIPE.length], [C_AXIAL], free_top=False)
     free = end_stiffness(lam, [EA], [PIPE.length], [C_AXIAL], free_top=True)
     assert held.real == pytest.approx(EA / PIPE.length, rel=1e-9)
-    body = PIPE.density * PIPE.area * PIPE.length * lam**2
+    body = PIPE.material.density * PIPE.area * PIPE.length * lam**2
     assert free == pytest.approx(body, rel=1e-9)
 
 
 @pytest.mark.parametrize("hook", ["weight", "speed"])
 def test_without_the_bit_the_roots_are_the_exact_bar_frequencies(hook):
-    assembly = WaveDrillingAssembly(
-        [PIPE, PipeSection(200.0, 2.1e11, 8.1e10, 7850.0, 2.0e-2, 4.0e-5)],
-        bha_mass=3.0e4, bha_inertia=455.65, hook=hook,
-    )  # fmt: skip
+    # 1000 m of drill pipe above 200 m of a collar (od 169.5 mm, id 57.2 mm) and the BHA
+    collar = tube_section(200.0, 2.1e11, 8.1e10, 7850.0, 2.0e-2, 8.0e-5)
+    assembly = wave_pipe([PIPE, collar], 3.0e4, 455.65, hook=hook)
+    rows = assembly.axial
     off_bottom = WaveCharacteristic(assembly, np.zeros((2, 2)), delay=0.25)
-    axial = assembly.axial_frequencies(4, free_top=hook == "weight")
-    torsional = assembly.torsional_frequencies(4)
+    axial = bar_frequencies(rows.rigidities, assembly.lengths, rows.wave_speeds, rows.bha_mass,
+                            4, free_top=hook == "weight")  # fmt: skip
+    torsional = continuum_modes(assembly.string, 4, rigid_bha=True).frequencies_rad
     for omega in [*axial, *torsional]:
         assert off_bottom.relative_residual(1j * omega) < 1e-11, omega
     assert off_bottom.relative_residual(1j * 0.9 * axial[0]) > 1e-3  # not a root between
@@ -84,12 +88,11 @@ def test_the_weight_hook_has_its_neutral_root_deflated():
 def _twin_errors(hook, rpm, lengths):
     axial = rgd_wave_pipe_config().axial
     pipe = axial.assembly
-    assembly = WaveDrillingAssembly(pipe.sections, bha_mass=pipe.bha_mass,
-                                    bha_inertia=pipe.bha_inertia, hook=hook)  # fmt: skip
-    exact = distributed_stability(assembly, axial.bit, WOB, rpm, twin=assembly.lumped_twin(25.0))
+    assembly = wave_pipe(pipe.sections, pipe.axial.bha_mass, pipe.bit_inertia, hook=hook)
+    exact = distributed_stability(assembly, axial.bit, WOB, rpm, twin=lumped_twin(assembly, 25.0))
     errors = []
     for length in lengths:
-        twin = lumped_pipe(pipe.sections, pipe.bha_mass, pipe.bha_inertia, length, hook)
+        twin = lumped_twin(assembly, length)
         roots = drilling_stability(twin, axial.bit, WOB, rpm, count=8).roots
         errors.append([float(np.min(np.abs(roots - r))) for r in exact.roots[:2]])
     return exact, np.array(errors)

@@ -13,7 +13,8 @@ from torsio.examples import builtin_config, ritto2017_string
 from torsio.model.components import Bit, DrillPipe
 from torsio.model.continuum import continuum_modes
 from torsio.model.drillstring import DrillString
-from torsio.model.wave import WaveStrategy, drag_lumping
+from torsio.model.wave import WaveStrategy
+from torsio.model.wave_grid import drag_lumping
 from torsio.physics.damping import RayleighDamping
 from torsio.physics.laws import ConstantTorque
 from torsio.solvers.batch import simulate_batch

@@ -4,9 +4,9 @@ The bit law with its depth of cut per revolution (:mod:`torsio.axial.rgd`), the 
 drilling state in closed form (:mod:`torsio.axial.steady`), the linearization of any lumped
 assembly about it with the state-dependent delay (:mod:`torsio.axial.linearization`), the
 roots of a linear delay system (:mod:`torsio.axial.delay_roots`), the stability of steady
-drilling over rpm (:mod:`torsio.axial.stability`), lumped assemblies that move axially and
-torsionally (:mod:`torsio.axial.assembly`) and distributed ones, a stepped pipe of axial and
-torsional wave lines above a lumped BHA (:mod:`torsio.axial.wave_assembly`), their transients
+drilling over rpm (:mod:`torsio.axial.stability`), the assemblies that move axially and
+torsionally, lumped chains and the distributed pipe of axial and torsional wave lines above
+a rigid BHA (:mod:`torsio.axial.assembly`: models with axial rows), their transients
 on compiled fixed-step engines with the bit's own history (:mod:`torsio.axial.transient`) and
 maps over (weight, rpm) (:mod:`torsio.axial.maps`), with Coulomb friction along a lumped
 chain's string (:mod:`torsio.axial.string_contacts`, :mod:`torsio.axial.steady_friction`).
@@ -20,8 +20,12 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     from torsio.axial.assembly import (
         axial_chain,
-        pipe_assembly,
+        axial_model,
+        lumped_twin,
+        pipe_string,
         rgd_two_dof_example,
+        rigid_bit,
+        tube_section,
         two_dof_assembly,
     )
     from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
@@ -45,14 +49,17 @@ if TYPE_CHECKING:
     from torsio.axial.steady_friction import SteadyFriction, steady_with_friction
     from torsio.axial.string_contacts import AxialContacts, axial_contacts
     from torsio.axial.transient import simulate_axial
-    from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly, wave_pipe_assembly
 
 # Every name is imported on first use (PEP 562): the stability analysis loads scipy.linalg,
 # the transient and the maps numba, so that reading an RGD bit (``torsio laws``, a
 # configuration) stays cheap.
 _LAZY = {
     "axial_chain": "torsio.axial.assembly",
-    "pipe_assembly": "torsio.axial.assembly",
+    "axial_model": "torsio.axial.assembly",
+    "lumped_twin": "torsio.axial.assembly",
+    "pipe_string": "torsio.axial.assembly",
+    "rigid_bit": "torsio.axial.assembly",
+    "tube_section": "torsio.axial.assembly",
     "rgd_two_dof_example": "torsio.axial.assembly",
     "two_dof_assembly": "torsio.axial.assembly",
     "LinearDelaySystem": "torsio.axial.delay_roots",
@@ -81,9 +88,6 @@ _LAZY = {
     "EnergyBalance": "torsio.axial.energy_balance",
     "AxialChannels": "torsio.axial.run_results",
     "simulate_axial": "torsio.axial.transient",
-    "PipeSection": "torsio.axial.wave_assembly",
-    "WaveDrillingAssembly": "torsio.axial.wave_assembly",
-    "wave_pipe_assembly": "torsio.axial.wave_assembly",
 }
 
 __all__ = [
@@ -96,21 +100,23 @@ __all__ = [
     "LinearDelaySystem",
     "ModeCrossing",
     "ModeCrossings",
-    "PipeSection",
     "RGDBit",
     "SteadyDrilling",
     "SteadyFriction",
-    "WaveDrillingAssembly",
     "axial_chain",
     "axial_contacts",
+    "axial_model",
     "axial_linearization",
     "axial_map",
     "drilling_linearization",
     "drilling_stability",
     "each_mode_crossing",
     "follow_roots",
+    "lumped_twin",
     "mode_crossings",
-    "pipe_assembly",
+    "pipe_string",
+    "rigid_bit",
+    "tube_section",
     "rgd_example",
     "rgd_from_table",
     "rgd_two_dof_example",
@@ -119,7 +125,6 @@ __all__ = [
     "steady_drilling",
     "steady_with_friction",
     "two_dof_assembly",
-    "wave_pipe_assembly",
 ]
 
 

@@ -1,34 +1,40 @@
-"""Lumped drilling assemblies: chains whose nodes turn and move axially, the bit on the last.
+"""Drilling assemblies: models whose nodes (or pipe) turn and move axially, the bit below.
 
 A lumped drilling assembly is a :class:`~torsio.model.lumped.LumpedModel` with axial rows
 (:class:`~torsio.model.axial_rows.AxialRows`): node i has a torsional inertia I_i and an
 axial mass m_i; torsionally, spring k_i and damper c_i join node i − 1 to node i, node −1
 being the top drive turning at Ω₀; axially, spring k_a,i and damper c_a,i join node i − 1
-to node i, node −1 being the hook (its boundaries: :mod:`torsio.model.axial_rows`).
-:func:`axial_chain` builds one from its vectors; the functions below read what the axial
-engine needs from it (its kernel rows, its fastest rates, its steady angles and positions).
+to node i, node −1 being the hook (its boundaries: :mod:`torsio.model.axial_rows`). A
+distributed one is a :class:`~torsio.model.wave.WaveModel` with axial rows
+(:class:`~torsio.model.axial_rows.PipeAxialRows`): the drill pipes' axial and torsional
+wave lines above the rigid BHA. :func:`axial_model` builds either from a string with its
+discretizer; :func:`axial_chain` a chain from its vectors; the functions below read what
+the axial engine needs from a chain (its kernel rows, its fastest rates, its steady angles
+and positions).
 
 The 2-DOF model of Richard, Germay and Detournay (2007) is one node, no axial spring:
-:func:`two_dof_assembly`. :func:`pipe_assembly` splits a uniform pipe section
-(:class:`~torsio.axial.wave_assembly.PipeSection`) into nodes with springs E A / L and
-G J / L (L the node spacing) and the BHA on the last node.
+:func:`two_dof_assembly`. A pipe given by its E, G, ρ, A and J above a BHA given by its
+mass and inertia, as the papers give them, is a string of :func:`tube_section` and
+:func:`rigid_bit` (:func:`pipe_string`).
 
 Examples
 --------
 >>> assembly = rgd_two_dof_example()
 >>> assembly.dofs, assembly.axial.dofs, assembly.axial.hook
 (1, 1, 'weight')
->>> from torsio.axial.wave_assembly import PipeSection
->>> pipe = PipeSection(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5)
->>> chain = pipe_assembly(4, pipe, 3.0e4, 230.0)
+>>> from torsio.model.discretize import StrategyC
+>>> string = pipe_string([tube_section(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5)],
+...                      3.0e4, 230.0)
+>>> chain = axial_model(string, StrategyC(dp_elements=4))
 >>> round(float(chain.axial.stiffnesses[1]) / 1e6, 3)  # E A / (L / n), MN/m
 2.72
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -36,11 +42,15 @@ from numpy.typing import NDArray
 from torsio.errors import ConfigError
 from torsio.model.arrays import check_count, read_only_vector
 from torsio.model.axial_rows import AxialRows
-from torsio.model.discretize import element_axial_rows, element_count, lumped_halves
+from torsio.model.components import Bit, DrillPipe, Material, Section
+from torsio.model.discretize import StrategyC
+from torsio.model.drillstring import DrillString
 from torsio.model.lumped import LumpedModel
+from torsio.model.wave import WaveModel
 
-if TYPE_CHECKING:
-    from torsio.axial.wave_assembly import PipeSection
+DEFAULT_ELEMENT_LENGTH = 100.0
+"""Largest element [m] of a lumped chain of pipe sections by default: ``[axial]
+element_length``, and a distributed pipe's lumped twin (:func:`lumped_twin`)."""
 
 __all__ = [
     "assembly_description",
@@ -49,14 +59,18 @@ __all__ = [
     "axial_kernel_rows",
     "fastest_damping_rate",
     "fastest_frequency",
+    "axial_model",
+    "check_axial_discretizer",
     "is_two_dof",
-    "lumped_pipe",
-    "pipe_assembly",
+    "lumped_twin",
+    "pipe_string",
     "require_axial",
+    "rigid_bit",
     "rgd_two_dof_example",
     "steady_angles",
     "steady_positions",
     "torsional_kernel_rows",
+    "tube_section",
     "two_dof_assembly",
 ]
 
@@ -190,9 +204,28 @@ def steady_positions(assembly: LumpedModel, weight: Any) -> NDArray[np.float64]:
 def assembly_description(assembly: Any) -> dict[str, Any]:
     """Plain data on a lumped or distributed assembly, for reports and JSON: a chain's
     kind, the strategy that lumped it (``"chain"``: a ``[chain]`` given directly), nodes,
-    axial DOFs, hook and vectors; a distributed pipe's ``describe()``."""
+    axial DOFs, hook and vectors; a distributed pipe's sections (L, E, G, ρ, A, J), BHA
+    and travel-time tolerance."""
     if not assembly.has_matrices:  # the distributed pipe
-        return dict(assembly.describe())
+        sections = [
+            {
+                "length": s.length,
+                "youngs_modulus": s.material.youngs_modulus,
+                "shear_modulus": s.material.shear_modulus,
+                "density": s.material.density,
+                "area": s.area,
+                "polar_moment": s.polar_moment,
+            }
+            for s in assembly.sections
+        ]
+        return {
+            "kind": "distributed",
+            "sections": sections,
+            "bha_mass": assembly.axial.bha_mass,
+            "bha_inertia": assembly.bit_inertia,
+            "hook": assembly.axial.hook,
+            "travel_time_tolerance": assembly.travel_time_tolerance,
+        }
     axial = require_axial(assembly)
     return {
         "kind": "lumped",
@@ -222,73 +255,94 @@ def rgd_two_dof_example() -> LumpedModel:
     return two_dof_assembly(455.65, 324.857, 29981.3, damping=19.49)
 
 
-def pipe_assembly(
-    nodes: int, pipe: PipeSection, bha_mass: float, bha_inertia: float, *, hook: str = "weight"
-) -> LumpedModel:
-    """A uniform ``pipe`` section (length [m], E, G [Pa], ρ [kg/m³], A [m²], J [m⁴]:
-    :class:`~torsio.axial.wave_assembly.PipeSection`) in ``nodes`` lumps above a rigid BHA
-    on the last one: the one-section chain of the lumping of every pipe
-    (:func:`lumped_pipe`, elements of length / ``nodes``).
+def axial_model(
+    string: DrillString, discretizer: Any, hook: str = "weight"
+) -> LumpedModel | WaveModel:
+    """The drilling assembly of ``string`` by ``discretizer``: its model with the axial
+    rows it builds on the same elements (``discretizer.axial_rows(string, hook)``), a
+    lumped chain (strategies B, C, a plugin's) or the distributed pipe
+    (``WaveStrategy(rigid_bha=True)``). Undamped; a chain takes dampers with
+    :meth:`~torsio.model.lumped.LumpedModel.with_dampers` and ``attrs.evolve(rows,
+    dampings=...)``."""
+    check_axial_discretizer(discretizer)
+    model: LumpedModel | WaveModel = discretizer.discretize(string)
+    return model.with_axial(discretizer.axial_rows(string, hook))
 
-    Springs E A / Δ [N/m] and G J / Δ [N m/rad] with Δ = length / nodes join the top to
-    node 0 and each node to the next, so node i is (i + 1) Δ below the top and the last one
-    at the bottom. Each cell's mass ρ A Δ [kg] and inertia ρ J Δ [kg m²] is shared by the
-    nodes at its ends: every node carries one cell, the last one half a cell (and the BHA's
-    ``bha_mass`` [kg] and ``bha_inertia`` [kg m²]). The top cell's upper half is at the top
-    drive (torsionally) and at the hook moving at its set speed (``hook = "speed"``); under
-    the weight hook the top of the pipe is free, so node 0 carries it as well (1.5 cells):
-    the frequencies converge to the continuum's like 1/nodes² (tests/test_axial_wave.py).
+
+def check_axial_discretizer(discretizer: Any) -> None:
+    """A ConfigError on ``discretization.strategy`` unless ``discretizer`` builds axial
+    rows (``axial_rows(string, hook)``)."""
+    if not callable(getattr(discretizer, "axial_rows", None)):
+        raise ConfigError(
+            "discretization.strategy",
+            f"{getattr(discretizer, 'name', discretizer)!r} builds no axial rows (springs "
+            "E A / L and masses on its elements); axial dynamics take a discretizer with "
+            "axial_rows ('B', 'C', the default, a plugin's, or 'wave')",
+        )
+
+
+def lumped_twin(pipe: WaveModel, element_length: float = DEFAULT_ELEMENT_LENGTH) -> LumpedModel:
+    """The lumped chain of a distributed pipe's string (strategy C, elements of at most
+    ``element_length`` [m]) under its hook, undamped like the pipe: what its stability's
+    roots start from and where its contacts along the string are read."""
+    assert pipe.axial is not None, "a distributed pipe has axial rows"
+    strategy = StrategyC(max_element_length=element_length)
+    return cast(LumpedModel, axial_model(pipe.string, strategy, pipe.axial.hook))
+
+
+def tube_section(
+    length: float,
+    youngs_modulus: float,
+    shear_modulus: float,
+    density: float,
+    area: float,
+    polar_moment: float,
+) -> Section:
+    """A drill pipe of ``length`` [m] whose body has the cross-section ``area`` A [m²] and
+    polar moment ``polar_moment`` J [m⁴] (E, G [Pa], ρ [kg/m³]): the tube with
+    od² + id² = 8 J / A and od² − id² = 4 A / π.
+
+    >>> pipe = tube_section(1000.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 3.0e-5)
+    >>> round(pipe.od, 4), round(pipe.id, 4), round(pipe.area / 3.4e-3, 12)
+    (0.1935, 0.182, 1.0)
     """
-    if not (isinstance(nodes, int) and nodes >= 1):
-        raise ConfigError("nodes", f"{nodes!r} must be a whole number >= 1")
-    return lumped_pipe([pipe], bha_mass, bha_inertia, pipe.length / nodes, hook)
+    total, difference = 8.0 * polar_moment / area, 4.0 * area / math.pi
+    if not (math.isfinite(total) and total > difference > 0):
+        raise ConfigError(
+            "polar_moment",
+            f"{polar_moment!r} m⁴ with area {area!r} m² is no tube (expected J > A²/(2π) > 0)",
+        )
+    material = Material(shear_modulus, density, youngs_modulus=youngs_modulus)
+    od, inner = math.sqrt((total + difference) / 2), math.sqrt((total - difference) / 2)
+    return DrillPipe(od=od, id=inner, length=length, material=material)
 
 
-def lumped_pipe(
-    sections: Sequence[PipeSection],
-    bha_mass: float,
-    bha_inertia: float,
-    element_length: float,
-    hook: str,
-    beta: float = 0.0,
-) -> LumpedModel:
-    """The lumped chain of the pipe ``sections`` above a rigid BHA (``bha_mass`` [kg],
-    ``bha_inertia`` [kg m²]): each section split into elements of at most
-    ``element_length`` [m], with springs E A / Δ [N/m] and G J / Δ [N m/rad] and dampers
-    β k (``beta`` [s]); each element's mass ρ A Δ and inertia ρ J Δ shared by its two end
-    nodes, the BHA rigid on the last node; its nodes' depths [m below the pipe's top] the
-    bottoms of the elements. The top element's upper half of inertia is at the top drive;
-    its upper half of mass at the hook under the speed hook, on node 0 under the weight
-    hook (the top of the pipe is free there). The one lumping of an axial pipe
-    (:func:`torsio.axial.assembly.pipe_assembly` is its uniform case), by the rules of
-    the torsional discretizers (:func:`torsio.model.discretize.element_count`,
-    :func:`~torsio.model.discretize.lumped_halves`): its torsional rows are strategy C's
-    with ``max_element_length`` (tests/test_axial_wave_config.py).
+def rigid_bit(mass: float, inertia: float, material: Material) -> Bit:
+    """A solid bit of ``material`` with the axial ``mass`` [kg] and the ``inertia``
+    [kg m²] of a whole rigid BHA: od = √(8 I / m), its length m / (ρ A).
+
+    >>> bit = rigid_bit(3.0e4, 230.0, Material(8.1e10, 7850.0, youngs_modulus=2.1e11))
+    >>> round(bit.inertia, 9), round(bit.material.density * bit.area * bit.length, 6)
+    (230.0, 30000.0)
     """
-    elements: list[tuple[PipeSection, float]] = []  # each element's section and length Δ
-    depths: list[float] = []  # each node's, at the bottom of its element [m below the top]
-    top = 0.0
-    for section in sections:
-        count = element_count(section.length, element_length)
-        elements += [(section, section.length / count)] * count
-        depths.extend(top + section.length * np.arange(1, count + 1) / count)
-        top += section.length
-    torsional = np.array([s.shear_modulus * s.polar_moment / d for s, d in elements])
-    axial = np.array([s.youngs_modulus * s.area / d for s, d in elements])
-    element_masses = [s.density * s.area * d for s, d in elements]
-    inertias = lumped_halves(np.array([s.density * s.polar_moment * d for s, d in elements]))
-    inertias[-1] += bha_inertia
-    rows = element_axial_rows(axial, element_masses, bha_mass, hook)
-    return axial_chain(
-        inertias=inertias,
-        stiffnesses=torsional,
-        masses=rows.masses,
-        axial_stiffnesses=axial,
-        dampings=beta * torsional if beta else None,
-        axial_dampings=beta * axial,
-        hook=hook,
-        node_depths=depths,
-    )
+    for key, value, unit in (("bha_mass", mass, "kg"), ("bha_inertia", inertia, "kg m²")):
+        if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
+            raise ConfigError(key, f"expected a positive finite value [{unit}], got {value!r}")
+    od = math.sqrt(8.0 * inertia / mass)
+    length = mass / (material.density * math.pi * od**2 / 4.0)
+    return Bit(od=od, id=0.0, length=length, material=material)
+
+
+def pipe_string(pipes: Sequence[Section], bha_mass: float, bha_inertia: float) -> DrillString:
+    """The string of ``pipes`` from the top down above a rigid BHA of ``bha_mass`` [kg] and
+    ``bha_inertia`` [kg m²] (:func:`rigid_bit`, of the last pipe's material)."""
+    pipes = list(pipes)
+    if not pipes:
+        raise ConfigError("sections", "is empty; expected at least one pipe section")
+    for i, pipe in enumerate(pipes):
+        if not isinstance(pipe, Section):
+            raise ConfigError(f"sections[{i}]", f"expected a Section (tube_section), got {pipe!r}")
+    return DrillString([*pipes, rigid_bit(bha_mass, bha_inertia, pipes[-1].material)])
 
 
 def assembly_summary(model: dict[str, Any]) -> str:

@@ -57,16 +57,16 @@ distributed drill-string", J. Sound Vib. 444 (2019) 127-151.
 
 Examples
 --------
->>> from torsio.axial.assembly import pipe_assembly, rgd_two_dof_example
->>> from torsio.axial.wave_assembly import PipeSection
+>>> from torsio.axial.assembly import axial_model, pipe_string, rgd_two_dof_example, tube_section
 >>> from torsio.axial.rgd import rgd_example
+>>> from torsio.model.discretize import StrategyC
 >>> system = drilling_linearization(rgd_two_dof_example(), rgd_example(), 100e3, 60.0)
 >>> round(system.delay, 6)  # t_n0 = 2π/(n Ω₀), s
 0.25
 >>> abs(system.characteristic(0.0)), system.neutral_roots  # the neutral root
 (0.0, (0j,))
->>> pipe = PipeSection(900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5)
->>> chain = pipe_assembly(3, pipe, 3e4, 230.0, hook="speed")
+>>> string = pipe_string([tube_section(900.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 1.5e-5)], 3e4, 230.0)
+>>> chain = axial_model(string, StrategyC(dp_elements=3), hook="speed")
 >>> system = drilling_linearization(chain, rgd_example(), 100e3, 60.0)
 >>> system.dofs, system.neutral_roots  # 3 axial and 3 torsional DOFs, the hook pins u
 (6, ())

@@ -36,7 +36,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import attrs
 import numpy as np
@@ -47,13 +47,13 @@ from torsio.analysis.map_options import MapOptions
 from torsio.analysis.map_results import STICK_SLIP_THRESHOLD, SeverityMap
 from torsio.analysis.map_runs import MapWork, drive_map
 from torsio.analysis.severity import SEVERE_THRESHOLD, run_times
-from torsio.axial.assembly import assembly_description, assembly_summary
+from torsio.axial.assembly import assembly_description, assembly_summary, lumped_twin
 from torsio.axial.run_results import SCHEME, channels_of
 from torsio.axial.torque_law import AxialBit
 from torsio.axial.transient import run_top_boundary, simulate_axial
-from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.errors import ConfigError
 from torsio.model.lumped import LumpedModel
+from torsio.model.wave import WaveModel
 from torsio.solvers.batch_options import batch_threads
 from torsio.solvers.batch_results import refuse_speed_table
 
@@ -72,7 +72,7 @@ class PointRun:
     Module-level and frozen, so it pickles to the workers with the points.
     """
 
-    assembly: LumpedModel | WaveDrillingAssembly
+    assembly: LumpedModel | WaveModel
     bit: AxialBit
     options: dict[str, Any]
     growth_rate: bool
@@ -115,7 +115,7 @@ def _check_threads(threads: Any, executor: Any) -> int | None:
 
 
 def axial_map(
-    assembly: LumpedModel | WaveDrillingAssembly,
+    assembly: LumpedModel | WaveModel,
     bit: AxialBit,
     wobs: ArrayLike,
     rpms: ArrayLike,
@@ -193,7 +193,7 @@ def axial_map(
         from torsio.analysis.sweep import worker_count
 
         size = chunk_size or max(1, math.ceil(points / (4 * worker_count(executor))))
-    chain = assembly.lumped_twin() if isinstance(assembly, WaveDrillingAssembly) else assembly
+    chain = assembly if assembly.has_matrices else lumped_twin(cast(WaveModel, assembly))
     scales = {"wob": wob_grid, "rpm": rpm_grid, "threshold": choices.threshold,
               "stick_slip_threshold": STICK_SLIP_THRESHOLD,
               "k_eq": chain.equivalent_stiffness,

@@ -32,7 +32,7 @@ Examples
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -40,7 +40,7 @@ from numpy.typing import NDArray
 from torsio.analysis.limits import past_the_record, saturated_motor, warning_list
 from torsio.analysis.severity import DEFAULT_STICK_THRESHOLD, run_times
 from torsio.axial import layouts as slot
-from torsio.axial.assembly import assembly_description
+from torsio.axial.assembly import assembly_description, lumped_twin
 from torsio.axial.energy_balance import energy_balance, stored_energy
 from torsio.axial.kernel import march
 from torsio.axial.run_results import SCHEME, AxialChannels, axial_results
@@ -50,11 +50,11 @@ from torsio.axial.stability import NO_PIPE_FRICTION_RATE, growth_rate_skipped
 from torsio.axial.steady import SteadyDrilling
 from torsio.axial.step_rule import DEFAULT_STEPS_PER_PERIOD
 from torsio.axial.torque_law import AxialBit, TorqueLawBit
-from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_setup import WaveRunSetup, wave_chunk, wave_run_setup
 from torsio.axial.window_summary import summarize
 from torsio.errors import ConfigError, SolverError
 from torsio.model.lumped import LumpedModel
+from torsio.model.wave import WaveModel
 from torsio.solvers.run_chunks import run_in_chunks
 from torsio.solvers.set_speed import table_at
 from torsio.units import RPM_TO_RAD_S, as_rpm, as_si
@@ -163,7 +163,7 @@ def _steady_friction(setup: RunSetup | WaveRunSetup) -> dict[str, Any] | None:
 
 
 def simulate_axial(
-    assembly: LumpedModel | WaveDrillingAssembly,
+    assembly: LumpedModel | WaveModel,
     bit: AxialBit,
     wob: float,
     rpm: float,
@@ -189,7 +189,7 @@ def simulate_axial(
 
     Parameters
     ----------
-    assembly : LumpedModel or WaveDrillingAssembly
+    assembly : LumpedModel or WaveModel
         A lumped chain (:mod:`torsio.axial.kernel`) or a distributed pipe above a lumped
         BHA (:mod:`torsio.axial.wave_kernel`).
     duration, window : float, optional
@@ -252,18 +252,21 @@ def simulate_axial(
     torque_law = isinstance(bit, TorqueLawBit)
     if torque_law and growth_rate:
         raise ConfigError("growth_rate", f"{bit.name!r}: {TorqueLawBit.NO_GROWTH_RATE}")
-    if isinstance(assembly, WaveDrillingAssembly):
+    if not assembly.has_matrices:  # the distributed pipe
         if bit_rotation is not None:
             raise ConfigError(
                 "bit_rotation",
                 f"{bit_rotation!r} given; a prescribed rotation applies to lumped assemblies "
-                "only (expected None with a WaveDrillingAssembly)",
+                "only (expected None with the distributed pipe)",
             )
         if contacts is not None and growth_rate:
             raise ConfigError("growth_rate", f"True given: {NO_PIPE_FRICTION_RATE}")
-        setup = wave_run_setup(assembly, bit, wob, rpm, options, contacts, boundary)
+        setup = wave_run_setup(cast(WaveModel, assembly), bit, wob, rpm, options, contacts,
+                               boundary)  # fmt: skip
     else:
-        setup = run_setup(assembly, bit, wob, rpm, options, bit_rotation, boundary, contacts)
+        setup = run_setup(
+            cast(LumpedModel, assembly), bit, wob, rpm, options, bit_rotation, boundary, contacts
+        )
     every = max(1, setup.steps // samples) if samples > 0 else 0
     rows = (setup.steps - 1) // every + 1 if every else 0
     table = np.zeros((rows, len(slot.SAMPLE_COLUMNS)))
@@ -330,12 +333,12 @@ def run_top_boundary(top_drive: Any, assembly: Any, rpm: float, string: Any = No
 
     refusal = ConfigError(
         "top_drive",
-        f"{getattr(top_drive, 'name', top_drive)!r} given with a WaveDrillingAssembly: the "
-        "distributed pipe's top is held, at Ω₀ or at a recorded speed (expected "
+        f"{getattr(top_drive, 'name', top_drive)!r} given with the distributed pipe: its "
+        "top is held, at Ω₀ or at a recorded speed (expected "
         "top_drive=None, 'constant-speed' or 'recorded', or a lumped assembly for a "
         "top drive with inertia)",
     )
-    wave = isinstance(assembly, WaveDrillingAssembly)
+    wave = not assembly.has_matrices
     try:
         boundary = top_boundary(top_drive, assembly, rpm, string)
     except ConfigError:
@@ -384,5 +387,5 @@ def _growth_rate(
         ).growth_rate
     from torsio.axial.wave_stability import distributed_stability
 
-    twin = assembly.lumped_twin()
+    twin = lumped_twin(assembly)
     return distributed_stability(assembly, bit, wob, rpm, twin=twin).growth_rate

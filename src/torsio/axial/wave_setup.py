@@ -22,9 +22,11 @@ the top drive turning at Ω₀ (and the speed hook moving at V₀) from t = 0.
 
 Examples
 --------
->>> from torsio.axial.wave_assembly import PipeSection, wave_pipe_assembly
->>> pipe = PipeSection(1000.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 3e-5)
->>> assembly = wave_pipe_assembly(pipe, 3e4, 455.65)
+>>> from torsio.axial.assembly import axial_model, pipe_string, tube_section
+>>> from torsio.model.wave import WaveStrategy
+>>> string = pipe_string([tube_section(1000.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 3e-5)],
+...                      3e4, 455.65)
+>>> assembly = axial_model(string, WaveStrategy(rigid_bha=True))
 >>> grid = pipe_grid(assembly, 2e-3)
 >>> grid.axial_cells, grid.torsional_cells, round(grid.step * 1e3, 6)  # ms
 ((100,), (161,), 1.933599)
@@ -62,14 +64,16 @@ from torsio.axial.steady_friction import SteadyFriction, steady_with_friction
 from torsio.axial.string_contacts import AxialContacts
 from torsio.axial.top_drive import TopDriveArrays
 from torsio.axial.torque_law import AxialBit, TorqueLawBit
-from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.axial.wave_pipe import junction_rows
 from torsio.errors import ConfigError
+from torsio.model.axial_rows import PipeAxialRows
+from torsio.model.wave import WaveModel
 from torsio.model.wave_grid import choose_time_step
 from torsio.physics.top_drive_boundary import TopDriveBoundary
 
 __all__ = [
     "PipeGrid",
+    "fastest_rate",
     "WaveRunSetup",
     "contact_nodes",
     "pipe_grid",
@@ -111,11 +115,25 @@ class PipeGrid:
     travel_time_errors: NDArray[np.float64]
 
 
-def pipe_grid(assembly: WaveDrillingAssembly, max_step: float) -> PipeGrid:
+def _axial_rows(pipe: WaveModel) -> PipeAxialRows:
+    """The pipe's axial rows (a ConfigError on ``axial`` without)."""
+    if pipe.axial is None:
+        raise ConfigError("axial", "missing: the wave model has no axial rows (with_axial)")
+    return pipe.axial
+
+
+def fastest_rate(pipe: WaveModel) -> float:
+    """The largest of Z_a/m_b and Z_t/I_b [1/s], the rates at which the pipe's bottom
+    section takes the BHA's motion away: what the step must resolve beside the bit."""
+    rows = _axial_rows(pipe)
+    return float(max(rows.impedances[-1] / rows.bha_mass, pipe.impedances[-1] / pipe.bit_inertia))
+
+
+def pipe_grid(assembly: WaveModel, max_step: float) -> PipeGrid:
     """The grid with the largest step ≤ ``max_step`` [s] within the assembly's travel-time
     tolerance (ConfigError on ``discretization.travel_time_tolerance`` when there is none)."""
-    axial = assembly.lengths / assembly.axial_wave_speeds
-    torsional = assembly.lengths / assembly.torsional_wave_speeds
+    axial = assembly.lengths / _axial_rows(assembly).wave_speeds
+    torsional = assembly.lengths / assembly.wave_speeds
     taus = np.concatenate([axial, torsional])
     h, cells = choose_time_step(taus, max_step, assembly.travel_time_tolerance)
     sections = axial.size
@@ -127,8 +145,8 @@ def pipe_grid(assembly: WaveDrillingAssembly, max_step: float) -> PipeGrid:
         torsional_cells=tuple(int(n) for n in torsional_cells),
         axial_offsets=_offsets(axial_cells),
         torsional_offsets=_offsets(torsional_cells),
-        axial_junctions=junction_rows(assembly.axial_impedances),
-        torsional_junctions=junction_rows(assembly.torsional_impedances),
+        axial_junctions=junction_rows(_axial_rows(assembly).impedances),
+        torsional_junctions=junction_rows(assembly.impedances),
         travel_time_errors=errors,
     )
 
@@ -203,7 +221,7 @@ class WaveRunSetup(KernelSetup):
 
 
 def wave_run_setup(
-    assembly: WaveDrillingAssembly,
+    assembly: WaveModel,
     bit: AxialBit,
     wob: float,
     rpm: float,
@@ -226,22 +244,23 @@ def wave_run_setup(
             f"{bit.name!r} is a law of the torque alone: it runs on a lumped chain only "
             "(expected a lumped chain (axial_chain), or law = 'rgd' on the distributed pipe)",
         )
+    rows = _axial_rows(assembly)
     friction = None
     if contacts is None:
         steady = steady_drilling(bit, wob, rpm)
     else:
         contacts = contacts.at_wob(wob)
-        steady, friction = steady_with_friction(bit, wob, rpm, contacts, assembly.hook)
+        steady, friction = steady_with_friction(bit, wob, rpm, contacts, rows.hook)
     options.check()
     check_set_speed(top_drive, options)
-    fastest = assembly.fastest_rate()
-    grid = pipe_grid(assembly, options.largest_step(bit, assembly.bha_mass, fastest))
+    fastest = fastest_rate(assembly)
+    grid = pipe_grid(assembly, options.largest_step(bit, rows.bha_mass, fastest))
     h = grid.step
     nodes = int(grid.axial_offsets[-1] + grid.torsional_offsets[-1])
-    check_run_work(options, h, steady.delay, nodes, bit, assembly.bha_mass, fastest, "section")
+    check_run_work(options, h, steady.delay, nodes, bit, rows.bha_mass, fastest, "section")
     omega0, v0 = steady.bit_speed, steady.rop
     on_steady = options.start == "steady"
-    axial_z, torsional_z = assembly.axial_impedances, assembly.torsional_impedances
+    axial_z, torsional_z = rows.impedances, assembly.impedances
     speed, velocity = (omega0, v0) if on_steady else (0.0, 0.0)
     torque = steady.bit_torque if on_steady else 0.0
     hook_force = friction.hook_force if friction is not None else float(wob)
@@ -268,12 +287,9 @@ def wave_run_setup(
     angle, position = bha[slot.BHA_ANGLE], bha[slot.BHA_POSITION]
     bit_start = BitStart(angle, position, bha[slot.BHA_SPEED], bha[slot.BHA_VELOCITY])
     size = len(slot.WAVE_SETTINGS)
-    kernel = kernel_setup(steady, bit, h, options, size, assembly.hook, bit_start)
+    kernel = kernel_setup(steady, bit, h, options, size, rows.hook, bit_start)
     settings = kernel.settings
-    settings[slot.BHA_MASS], settings[slot.BHA_INERTIA] = (
-        assembly.bha_mass,
-        assembly.bha_inertia,
-    )
+    settings[slot.BHA_MASS], settings[slot.BHA_INERTIA] = rows.bha_mass, assembly.bit_inertia
     settings[slot.AXIAL_TOP_IMPEDANCE] = axial_z[0]
     settings[slot.AXIAL_BOTTOM_IMPEDANCE] = axial_z[-1]
     settings[slot.TORSIONAL_TOP_IMPEDANCE] = torsional_z[0]
@@ -298,7 +314,7 @@ def _contact_table(
     contacts: AxialContacts,
     axial_nodes: NDArray[np.int64],
     torsional_nodes: NDArray[np.int64],
-    assembly: WaveDrillingAssembly,
+    assembly: WaveModel,
     grid: PipeGrid,
 ) -> NDArray[np.float64]:
     """The kernel's ``contacts`` (:data:`torsio.axial.layouts.WAVE_CONTACT_ROW`), at rest."""
@@ -309,8 +325,8 @@ def _contact_table(
     table[slot.AXIAL_NODE], table[slot.TORSIONAL_NODE] = axial_nodes, torsional_nodes
     sections_a = np.searchsorted(grid.axial_offsets, axial_nodes, side="right") - 1
     sections_t = np.searchsorted(grid.torsional_offsets, torsional_nodes, side="right") - 1
-    table[slot.AXIAL_IMPEDANCE] = assembly.axial_impedances[sections_a]
-    table[slot.TORSIONAL_IMPEDANCE] = assembly.torsional_impedances[sections_t]
+    table[slot.AXIAL_IMPEDANCE] = _axial_rows(assembly).impedances[sections_a]
+    table[slot.TORSIONAL_IMPEDANCE] = assembly.impedances[sections_t]
     return table
 
 

@@ -57,9 +57,10 @@ from torsio.axial.linearization import delayed_matrix
 from torsio.axial.rgd import RGDBit
 from torsio.axial.stability import drilling_stability
 from torsio.axial.steady import SteadyDrilling, steady_drilling
-from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.errors import SolverError
+from torsio.model.axial_rows import PipeAxialRows
 from torsio.model.lumped import LumpedModel
+from torsio.model.wave import WaveModel
 
 __all__ = ["DistributedStability", "distributed_stability", "end_stiffness", "WaveCharacteristic"]
 
@@ -100,34 +101,37 @@ def end_stiffness(
 class WaveCharacteristic:
     """Δ(λ) of steady drilling with a distributed pipe (the module docstring)."""
 
-    assembly: WaveDrillingAssembly
+    assembly: WaveModel
     delayed: NDArray[np.float64]
     delay: float
 
     @property
+    def rows(self) -> PipeAxialRows:
+        """The pipe's axial rows."""
+        assert self.assembly.axial is not None, "a distributed pipe with axial rows"
+        return self.assembly.axial
+
+    @property
     def neutral_roots(self) -> tuple[complex, ...]:
         """(0,) under the weight hook, else none."""
-        return (0j,) if self.assembly.hook == "weight" else ()
+        return (0j,) if self.rows.hook == "weight" else ()
 
     def end_stiffnesses(self, root: complex) -> tuple[complex, complex]:
-        """(Z_a(λ) [N/m], Z_t(λ) [N m/rad]) of the pipe at the BHA."""
-        a = self.assembly
-        axial = end_stiffness(
-            root, [s.youngs_modulus * s.area for s in a.sections], a.lengths,
-            a.axial_wave_speeds, free_top=a.hook == "weight",
-        )  # fmt: skip
-        torsional = end_stiffness(
-            root, [s.shear_modulus * s.polar_moment for s in a.sections], a.lengths,
-            a.torsional_wave_speeds, free_top=False,
-        )  # fmt: skip
+        """(Z_a(λ) [N/m], Z_t(λ) [N m/rad]) of the pipe at the BHA: E A = Z c and
+        G J = Z c of each section."""
+        a, rows = self.assembly, self.rows
+        axial = end_stiffness(root, rows.rigidities, a.lengths, rows.wave_speeds,
+                              free_top=rows.hook == "weight")  # fmt: skip
+        torsional = end_stiffness(root, a.impedances * a.wave_speeds, a.lengths, a.wave_speeds,
+                                  free_top=False)  # fmt: skip
         return axial, torsional
 
     def matrix(self, root: complex) -> NDArray[np.complex128]:
         """The 2 × 2 matrix whose determinant is Δ(λ), rows (weight, torque)."""
         lam = complex(root)
         axial, torsional = self.end_stiffnesses(lam)
-        a = self.assembly
-        body = np.diag([a.bha_mass * lam**2 + axial, a.bha_inertia * lam**2 + torsional])
+        mass, inertia = self.rows.bha_mass, self.assembly.bit_inertia
+        body = np.diag([mass * lam**2 + axial, inertia * lam**2 + torsional])
         return body + (1 - np.exp(-lam * self.delay)) * self.delayed
 
     def value(self, root: complex) -> complex:
@@ -140,9 +144,9 @@ class WaveCharacteristic:
         root, at most 1."""
         lam = complex(root)
         axial, torsional = self.end_stiffnesses(lam)
-        a = self.assembly
-        terms = np.diag([a.bha_mass * abs(lam) ** 2 + abs(axial),
-                         a.bha_inertia * abs(lam) ** 2 + abs(torsional)])  # fmt: skip
+        mass, inertia = self.rows.bha_mass, self.assembly.bit_inertia
+        size = abs(lam) ** 2
+        terms = np.diag([mass * size + abs(axial), inertia * size + abs(torsional)])
         terms = terms + abs(1 - np.exp(-lam * self.delay)) * np.abs(self.delayed)
         return float(abs(self.value(lam)) / np.prod(np.linalg.norm(terms, axis=1)))
 
@@ -167,7 +171,7 @@ class WaveCharacteristic:
 
 
 def wave_characteristic(
-    assembly: WaveDrillingAssembly, bit: RGDBit, wob: float, rpm: float
+    assembly: WaveModel, bit: RGDBit, wob: float, rpm: float
 ) -> WaveCharacteristic:
     """Δ(λ) of ``assembly`` drilling steadily at ``wob`` [N] and ``rpm`` [rev/min]."""
     steady = steady_drilling(bit, wob, rpm)
@@ -214,7 +218,7 @@ class DistributedStability:
 
 
 def distributed_stability(
-    assembly: WaveDrillingAssembly,
+    assembly: WaveModel,
     bit: RGDBit,
     wob: float,
     rpm: float,

@@ -12,7 +12,7 @@ plugin's), whose axial motion rests on the rock under the weight on bit
 a lumped chain (the file's discretizer with axial rows, elements of at most
 ``[axial] element_length``), or
 with ``[discretization] strategy = "wave"`` the distributed pipe
-(:class:`~torsio.axial.wave_assembly.WaveDrillingAssembly`), which takes no element
+(a :class:`~torsio.model.wave.WaveModel` with axial rows), which takes no element
 length and no damping (both refused by key).
 
 Examples
@@ -29,16 +29,15 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any
+from typing import Any, cast
 
 import attrs
 import numpy as np
 
 from torsio.analysis.severity import DEFAULT_STICK_THRESHOLD
-from torsio.axial.assembly import is_two_dof, require_axial
+from torsio.axial.assembly import DEFAULT_ELEMENT_LENGTH, is_two_dof
 from torsio.axial.rgd import RGDBit, rgd_from_table
 from torsio.axial.torque_law import AxialBit, TorqueLawBit
-from torsio.axial.wave_assembly import DEFAULT_ELEMENT_LENGTH, WaveDrillingAssembly
 from torsio.config.chain import ChainConfig, _values
 from torsio.config.configuration import BitRockConfig, bit_radius
 from torsio.config.tables import _positive_number, _string, _table
@@ -46,6 +45,7 @@ from torsio.errors import ConfigError
 from torsio.model.axial_rows import AxialRows
 from torsio.model.drillstring import DrillString
 from torsio.model.lumped import LumpedModel
+from torsio.model.wave import WaveModel
 
 __all__ = [
     "AXIAL_SIMULATION_KEYS",
@@ -68,7 +68,7 @@ class AxialConfig:
 
     Attributes
     ----------
-    assembly : LumpedModel or WaveDrillingAssembly
+    assembly : LumpedModel or WaveModel
         The lumped nodes that turn and move axially, the bit on the last one (a chain with
         axial rows); or the distributed pipe above the rigid BHA (``[discretization]
         strategy = "wave"``).
@@ -97,7 +97,7 @@ class AxialConfig:
         The string's contacts with the ``[well]`` (:mod:`torsio.config.axial_well`).
     """
 
-    assembly: LumpedModel | WaveDrillingAssembly
+    assembly: LumpedModel | WaveModel
     bit: AxialBit
     start: str = "rest"
     perturbation: float = 1e-3
@@ -125,16 +125,15 @@ class AxialConfig:
     @property
     def hook(self) -> str:
         """The hook's boundary, ``"weight"`` or ``"speed"`` (:mod:`torsio.model.axial_rows`)."""
-        if isinstance(self.assembly, WaveDrillingAssembly):
-            return self.assembly.hook
-        return require_axial(self.assembly).hook
+        assert self.assembly.axial is not None, "an axial assembly has axial rows"
+        return self.assembly.axial.hook
 
     @property
     def stability_assembly(self) -> LumpedModel:
         """The lumped chain whose linearization gives the growth rate and crossings: the
         assembly itself, or the distributed pipe's :attr:`lumped_twin`."""
-        if not isinstance(self.assembly, WaveDrillingAssembly):
-            return self.assembly
+        if self.assembly.has_matrices:
+            return cast(LumpedModel, self.assembly)
         assert self.lumped_twin is not None
         return self.lumped_twin
 
@@ -142,7 +141,7 @@ class AxialConfig:
     def stability_model(self) -> str:
         """What :attr:`stability_assembly` is, for reports: ``"the assembly"`` or
         ``"lumped twin, N nodes (elements of at most 100 m)"``."""
-        if not isinstance(self.assembly, WaveDrillingAssembly):
+        if self.assembly.has_matrices:
             return "the assembly"
         return (
             f"lumped twin, {self.stability_assembly.dofs} nodes (elements of at most "

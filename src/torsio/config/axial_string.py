@@ -11,12 +11,12 @@ distributed pipe (:func:`_wave_pipe`, the RGD bit only).
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any
+from typing import Any, cast
 
 import attrs
 
+from torsio.axial.assembly import axial_model, check_axial_discretizer, lumped_twin
 from torsio.axial.torque_law import TorqueLawBit
-from torsio.axial.wave_assembly import PipeSection, WaveDrillingAssembly
 from torsio.config.axial import (
     AxialConfig,
     axial_bit,
@@ -30,61 +30,9 @@ from torsio.config.configuration import COUNTING_WAYS, BitRockConfig, Discretiza
 from torsio.errors import ConfigError
 from torsio.model.drillstring import DrillString
 from torsio.model.lumped import LumpedModel
-from torsio.model.wave import DEFAULT_TRAVEL_TIME_TOLERANCE
+from torsio.model.wave import WaveModel, WaveStrategy
 
-__all__ = ["AxialSections", "axial_sections", "chain_discretization", "string_axial"]
-
-
-@attrs.frozen
-class AxialSections:
-    """A ``[[section]]`` string read for the distributed axial pipe (:func:`axial_sections`).
-
-    Attributes
-    ----------
-    pipe : tuple of PipeSection
-        The sections above the BHA, from the top down: L [m], E, G [Pa], ρ [kg/m³],
-        A = π (od² − id²)/4 [m²], J [m⁴].
-    bha_mass : float
-        Σ ρ A L of the BHA's sections and the bit [kg].
-    bha_inertia : float
-        Σ ρ J L of the same [kg m²].
-    """
-
-    pipe: tuple[PipeSection, ...]
-    bha_mass: float
-    bha_inertia: float
-
-
-def axial_sections(string: DrillString) -> AxialSections:
-    """The pipe sections (with E of their material, ``[material]`` or the section's own)
-    and the rigid BHA's sums: what the distributed pipe is built from (the lumped chain is
-    its discretizer's, :func:`_lumped_chain`)."""
-    pipe: list[PipeSection] = []
-    bha_mass = bha_inertia = 0.0
-    for i, section in enumerate(string.sections):
-        e = section.material.youngs_modulus
-        area = section.area
-        if section.in_bha:
-            bha_mass += section.material.density * area * section.length
-            bha_inertia += section.inertia
-            continue
-        if e is None:
-            raise ConfigError(
-                "material.youngs_modulus",
-                f"missing: the rgd law needs axial dynamics, whose springs E A / L need "
-                f"Young's modulus E of section[{i}] ({section.describe()}) "
-                "(e.g. youngs_modulus = '207 GPa')",
-            )
-        material = section.material
-        pipe.append(
-            PipeSection(
-                section.length, e, material.shear_modulus, material.density, area,
-                section.polar_moment,
-            )
-        )  # fmt: skip
-    if not pipe:
-        raise ConfigError("section", "axial dynamics need a flexible pipe above the BHA")
-    return AxialSections(tuple(pipe), bha_mass, bha_inertia)
+__all__ = ["chain_discretization", "string_axial"]
 
 
 WAVE_REFUSED_DISCRETIZATION = {
@@ -99,10 +47,11 @@ refuses, and why."""
 
 
 def _wave_pipe(
-    table: Mapping[str, Any], sections: AxialSections, hook: str
-) -> WaveDrillingAssembly:
-    """The distributed pipe of ``[discretization] strategy = "wave"``: one
-    :class:`~torsio.axial.wave_assembly.PipeSection` per section above the BHA."""
+    table: Mapping[str, Any], string: DrillString, discretization: DiscretizationConfig, hook: str
+) -> WaveModel:
+    """The distributed pipe of ``[discretization] strategy = "wave"``: the wave model of
+    the string's drill pipes with their axial lines, the BHA rigid
+    (:func:`~torsio.axial.assembly.axial_model`)."""
     if "element_length" in table.get("axial", {}):
         raise ConfigError(
             "axial.element_length",
@@ -111,16 +60,10 @@ def _wave_pipe(
             "wave speeds within discretization.travel_time_tolerance); remove it, or choose "
             "the lumped chain (another strategy)",
         )
-    discretization = table.get("discretization", {})
+    options = discretization.options
     for key, why in WAVE_REFUSED_DISCRETIZATION.items():
-        if key in discretization:
-            raise ConfigError(f"discretization.{key}", f"{discretization[key]!r}: {why}")
-    if discretization.get("rigid_bha", True) is not True:
-        raise ConfigError(
-            "discretization.rigid_bha",
-            f"{discretization['rigid_bha']!r}: the distributed axial pipe's BHA is one rigid "
-            "body with the bit (expected true, or leave it out)",
-        )
+        if key in options:
+            raise ConfigError(f"discretization.{key}", f"{options[key]!r}: {why}")
     damping = table.get("damping", {})
     damping = damping if isinstance(damping, Mapping) else {}
     for key in ("alpha", "beta", "ratios"):
@@ -131,14 +74,8 @@ def _wave_pipe(
                 "carry no dampers); remove it, or choose the lumped chain (a [discretization] "
                 "strategy other than 'wave') for stiffness-proportional dampers",
             )
-    tolerance = discretization.get("travel_time_tolerance", DEFAULT_TRAVEL_TIME_TOLERANCE)
-    return WaveDrillingAssembly(
-        sections.pipe,
-        bha_mass=sections.bha_mass,
-        bha_inertia=sections.bha_inertia,
-        hook=hook,
-        travel_time_tolerance=tolerance,
-    )
+    strategy = WaveStrategy(**{**options, "rigid_bha": options.get("rigid_bha", True)})
+    return cast(WaveModel, axial_model(string, strategy, hook))
 
 
 def string_axial(
@@ -152,9 +89,8 @@ def string_axial(
     torque alone, ``bit_rock``, runs on the axial chain, its bit resting on the rock).
 
     With ``[discretization] strategy = "wave"`` the distributed pipe
-    (:class:`~torsio.axial.wave_assembly.WaveDrillingAssembly`, one section per pipe
-    section, the BHA rigid; its lumped twin in elements of at most
-    :data:`~torsio.axial.wave_assembly.DEFAULT_ELEMENT_LENGTH` for the linear stability);
+    (a :class:`~torsio.model.wave.WaveModel` with axial rows, the BHA rigid; its lumped
+    twin, :func:`~torsio.axial.assembly.lumped_twin`, for the linear stability);
     otherwise the lumped chain of the file's discretizer with axial rows
     (:func:`_lumped_chain`).
     """
@@ -178,8 +114,8 @@ def string_axial(
                 f"{bit.name!r} is a law of the torque alone: choose 'B' or 'C' (the lumped "
                 "chain), or remove [axial] for the torsional wave model",
             )
-        pipe = _wave_pipe(table, axial_sections(string), options["hook"])
-        return AxialConfig(pipe, bit, lumped_twin=pipe.lumped_twin(), string=string, **run)
+        pipe = _wave_pipe(table, string, discretization, options["hook"])
+        return AxialConfig(pipe, bit, lumped_twin=lumped_twin(pipe), string=string, **run)
     chain = _lumped_chain(table, string, discretization, options)
     return AxialConfig(chain, bit, string=string, **run)
 
@@ -222,13 +158,7 @@ def _lumped_chain(
     element_length`` unless ``[discretization]`` counts them; dampers β k on every spring
     (``[damping] beta``)."""
     strategy = discretization.strategy
-    if not callable(getattr(discretization.build(), "axial_rows", None)):
-        raise ConfigError(
-            "discretization.strategy",
-            f"{strategy!r} builds no axial rows (springs E A / L and masses on its "
-            "elements); axial dynamics take a discretizer with axial_rows ('B', 'C', the "
-            "default, or a plugin's) or 'wave'",
-        )
+    check_axial_discretizer(discretization.build())
     lumping = chain_discretization(table, discretization)
     counted = lumping is discretization
     try:
@@ -243,8 +173,7 @@ def _lumped_chain(
             "the strategy's own element counts in [discretization]",
         ) from None
     try:
-        chain = discretizer.discretize(string)
-        rows = discretizer.axial_rows(string, options["hook"])
+        chain = axial_model(string, discretizer, options["hook"])
     except ConfigError as exc:
         if exc.key == "discretization" and not counted:  # too many elements of [axial]'s
             length = table.get("axial", {}).get("element_length", options["element_length"])
@@ -252,6 +181,9 @@ def _lumped_chain(
         if exc.key.split("[")[0] not in ELEMENT_COUNT_KEYS:
             raise
         raise ConfigError(f"discretization.{exc.key}", exc.message) from None
+    chain = cast(LumpedModel, chain)
+    rows = chain.axial
+    assert rows is not None
     beta = damping_beta(table)
     if beta:
         chain = chain.with_dampers(beta * chain.springs)

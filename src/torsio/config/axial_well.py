@@ -6,7 +6,7 @@ gets the
 Coulomb contact of its share of the string (:func:`torsio.axial.string_contacts.axial_contacts`,
 the normal force of the well's model at the run's weight on bit). The distributed axial pipe
 (``[discretization] strategy = "wave"``) gets the contacts of its lumped twin's nodes
-(elements of at most :data:`~torsio.axial.wave_assembly.DEFAULT_ELEMENT_LENGTH`), each
+(elements of at most :data:`~torsio.axial.assembly.DEFAULT_ELEMENT_LENGTH`), each
 with the share of the string down to half-way to the next (the last one's, at the pipe's
 bottom, down to the bit: the rigid BHA's too); a ``[chain]`` has no diameters to press on
 the borehole with (refused by :func:`torsio.config.well.well_table`).

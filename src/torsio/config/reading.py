@@ -42,7 +42,6 @@ from typing import Any
 
 import attrs
 
-from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.config.axial import (
     AXIAL_SIMULATION_KEYS,
     axial_law_from_table,
@@ -268,7 +267,7 @@ def _axial_top_drive(axial: Any, top_drive: Any) -> Any:
         )
     if top_drive.kind == "constant-speed":
         return axial  # the held top, as without the table
-    if isinstance(axial.assembly, WaveDrillingAssembly) and top_drive.kind != "recorded":
+    if not axial.assembly.has_matrices and top_drive.kind != "recorded":
         raise ConfigError(
             "top_drive",
             f"kind = {top_drive.kind!r} with [discretization] strategy = 'wave': the "

@@ -1,5 +1,8 @@
-"""The axial degrees of freedom of a lumped chain: what a :class:`~torsio.model.lumped.LumpedModel`
-carries when its nodes also move along the hole (:meth:`LumpedModel.with_axial`).
+"""The axial degrees of freedom of a model: what a :class:`~torsio.model.lumped.LumpedModel`
+carries when its nodes also move along the hole (:class:`AxialRows`,
+:meth:`LumpedModel.with_axial`), and a :class:`~torsio.model.wave.WaveModel` when its pipe
+carries axial waves too (:class:`PipeAxialRows`, :meth:`WaveModel.with_axial`). A
+discretizer builds them from the string's sections (``axial_rows(string, hook)``).
 
 Node i has an axial mass m_i; spring k_a,i and damper c_a,i join node i − 1 to node i,
 node −1 being the hook:
@@ -31,7 +34,7 @@ from numpy.typing import NDArray
 from torsio.errors import ConfigError
 from torsio.model.arrays import check_count, check_values, read_only_vector
 
-__all__ = ["HOOKS", "AxialRows", "check_hook"]
+__all__ = ["HOOKS", "AxialRows", "PipeAxialRows", "check_hook", "youngs_modulus"]
 
 HOOKS = ("weight", "speed")
 """The boundaries at the hook: a constant weight on the top node, or a constant speed."""
@@ -42,6 +45,19 @@ def check_hook(hook: str) -> None:
     lumped chain's and the distributed pipe's one check)."""
     if hook not in HOOKS:
         raise ConfigError("axial.hook", f"{hook!r} is not one of {', '.join(HOOKS)}")
+
+
+def youngs_modulus(section: Any) -> float:
+    """E [Pa] of a section's material; a ConfigError on ``material.youngs_modulus``
+    without (axial springs and waves need it)."""
+    value = section.material.youngs_modulus
+    if value is None:
+        raise ConfigError(
+            "material.youngs_modulus",
+            f"missing: axial dynamics need Young's modulus E of {section.describe()} "
+            "for its springs E A / L (e.g. youngs_modulus = '207 GPa')",
+        )
+    return float(value)
 
 
 @attrs.frozen(eq=False)
@@ -106,4 +122,62 @@ class AxialRows:
             "axial_dofs": self.dofs,
             "hook": self.hook,
             "total_mass_kg": float(self.masses.sum()),
+        }
+
+
+@attrs.frozen(eq=False)
+class PipeAxialRows:
+    """The axial lines of a distributed pipe's sections, and the rigid BHA below them.
+
+    Built by :meth:`torsio.model.wave.WaveStrategy.axial_rows` from the string's drill
+    pipes (E, ρ, A of each) and its BHA and bit; the torsional lines are the
+    :class:`~torsio.model.wave.WaveModel`'s own.
+
+    Parameters
+    ----------
+    wave_speeds : array (sections,)
+        c = √(E/ρ) of each section [m/s].
+    impedances : array (sections,)
+        Z = A √(E ρ) [N s/m]; the section's E A is Z c.
+    bha_mass : float
+        m_b, Σ ρ A L of the BHA's sections and the bit [kg].
+    hook : str
+        ``"weight"`` or ``"speed"`` (the module docstring).
+
+    >>> rows = PipeAxialRows([5172.2], [138046.0], 3.0e4, hook="speed")
+    >>> round(float(rows.rigidities[0]) / 1e6)  # E A [MN]
+    714
+    """
+
+    wave_speeds: NDArray[np.float64] = attrs.field(converter=read_only_vector)
+    impedances: NDArray[np.float64] = attrs.field(converter=read_only_vector)
+    bha_mass: float = attrs.field(converter=float)
+    hook: str = "weight"
+
+    def __attrs_post_init__(self) -> None:
+        check_count("axial.impedances", self.impedances, self.wave_speeds.size)
+        check_values("axial.wave_speeds", self.wave_speeds, False)
+        check_values("axial.impedances", self.impedances, False)
+        if not (np.isfinite(self.bha_mass) and self.bha_mass > 0):
+            raise ConfigError("bha_mass", f"expected a positive mass [kg], got {self.bha_mass!r}")
+        check_hook(self.hook)
+
+    @property
+    def rigidities(self) -> NDArray[np.float64]:
+        """E A = Z c of each section [N]."""
+        return self.impedances * self.wave_speeds
+
+    @property
+    def bit_mass(self) -> float:
+        """The axial mass [kg] of the body that carries the bit: the BHA's."""
+        return self.bha_mass
+
+    def describe(self) -> dict[str, Any]:
+        """Plain data for reports and JSON: the hook, the BHA's mass [kg], each section's
+        axial wave speed [m/s] and impedance [N s/m]."""
+        return {
+            "hook": self.hook,
+            "bha_mass_kg": self.bha_mass,
+            "axial_wave_speeds_m_s": self.wave_speeds.tolist(),
+            "axial_impedances_N_s_m": self.impedances.tolist(),
         }

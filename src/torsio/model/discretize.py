@@ -43,7 +43,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from torsio.errors import ConfigError
-from torsio.model.axial_rows import AxialRows
+from torsio.model.axial_rows import AxialRows, youngs_modulus
 from torsio.model.components import Section
 from torsio.model.drillstring import DrillString
 from torsio.model.lumped import LumpedModel, chain_matrix
@@ -317,15 +317,8 @@ class _ElementDiscretizer(Discretizer):
         sections, counts = self._split(string)
         springs, element_masses = [], []
         for section, count in zip(sections, counts, strict=True):
-            youngs_modulus = section.material.youngs_modulus
-            if youngs_modulus is None:
-                raise ConfigError(
-                    "material.youngs_modulus",
-                    f"missing: axial dynamics need Young's modulus E of {section.describe()} "
-                    "for its springs E A / L (e.g. youngs_modulus = '207 GPa')",
-                )
             length = section.length / count
-            springs += [youngs_modulus * section.area / length] * count
+            springs += [youngs_modulus(section) * section.area / length] * count
             element_masses += [section.material.density * section.area * length] * count
         rigid = string.sections[len(sections) :]  # below the chain: on its last node
         below = sum(s.material.density * s.area * s.length for s in rigid)

@@ -25,7 +25,7 @@ reflected with (Z1 - Z2) / (Z1 + Z2); in torque the factors are 2 Z2 / (Z1 + Z2)
 Damping: the mass-proportional part alpha [I] of Rayleigh damping is the lumped form of
 a distributed viscous drag d = alpha rho J per unit length (and alpha J_bit on the bit),
 which the wave model carries, lumped in its turn into point dampers at every
-``drag_spacing``-th node (:func:`drag_lumping`; 1: at every node). The
+``drag_spacing``-th node (:func:`~torsio.model.wave_grid.drag_lumping`; 1: at every node). The
 stiffness-proportional part beta [K] is a Kelvin-Voigt material damping,
 T = -G J (theta_x + beta theta_xt); it turns the wave equation into a wave-diffusion
 equation with no characteristics, and the wave model refuses it
@@ -51,6 +51,8 @@ import attrs
 import numpy as np
 
 from torsio.errors import ConfigError
+from torsio.model.arrays import check_count
+from torsio.model.axial_rows import PipeAxialRows, youngs_modulus
 from torsio.model.continuum import continuum_modes
 from torsio.model.drillstring import DrillString
 from torsio.model.protocol import ModelEngines
@@ -112,10 +114,17 @@ class WaveModel:
         The grid covers the drill pipes only, the BHA a rigid body with the bit:
         strategy C's string, the limit its discretization converges to.
     drag_spacing : int
-        Cells between the nodes that carry the distributed drag (:func:`drag_lumping`).
+        Cells between the nodes that carry the distributed drag
+        (:func:`~torsio.model.wave_grid.drag_lumping`).
     contacts : StringContacts or None
         Coulomb friction of the drag nodes with the borehole
         (:class:`torsio.model.contacts.StringContacts`; None: no contact).
+    travel_time_tolerance : float
+        The largest relative change of a section's travel time the grid allows.
+    axial : PipeAxialRows or None
+        The pipe's axial lines and the BHA's mass (:meth:`with_axial`; None: torsion
+        only). A pipe with axial rows runs on the axial engine, which steps both lines on
+        a grid of its own step (:func:`torsio.axial.wave_setup.pipe_grid`).
     """
 
     linearizable: ClassVar[bool] = False
@@ -138,6 +147,8 @@ class WaveModel:
     rigid_bha: bool = False
     drag_spacing: int = DEFAULT_DRAG_SPACING
     contacts: Any = attrs.field(default=None, eq=False)
+    travel_time_tolerance: float = DEFAULT_TRAVEL_TIME_TOLERANCE
+    axial: PipeAxialRows | None = attrs.field(default=None, eq=False)
 
     @property
     def sections(self) -> tuple[Any, ...]:
@@ -146,10 +157,14 @@ class WaveModel:
         return string.drill_pipe_sections if self.rigid_bha else string.flexible_sections
 
     @property
+    def lengths(self) -> np.ndarray:
+        """Length L_i of each section on the grid, as given [m]."""
+        return np.array([s.length for s in self.sections])
+
+    @property
     def travel_times(self) -> np.ndarray:
         """Travel time L_i / c_i of each section of the string as given [s]."""
-        lengths = np.array([s.length for s in self.sections])
-        return lengths / self.wave_speeds
+        return self.lengths / self.wave_speeds
 
     @property
     def grid_travel_times(self) -> np.ndarray:
@@ -191,6 +206,18 @@ class WaveModel:
         :class:`torsio.model.contacts.StringContacts` of its nodes; None: none)."""
         return attrs.evolve(self, contacts=contacts)
 
+    def with_axial(self, axial: PipeAxialRows) -> WaveModel:
+        """The same pipe carrying axial waves too (:class:`PipeAxialRows` of its sections,
+        from :meth:`WaveStrategy.axial_rows`), the BHA one rigid body with the bit."""
+        if not self.rigid_bha:
+            raise ConfigError(
+                "discretization.rigid_bha",
+                "false: the distributed axial pipe's BHA is one rigid body with the bit "
+                "(expected true, or leave it out)",
+            )
+        check_count("axial.wave_speeds", axial.wave_speeds, len(self.cells))
+        return attrs.evolve(self, axial=axial)
+
     def grid_string(self) -> DrillString:
         """The string the grid represents exactly: each section's length rounded to whole cells.
 
@@ -230,6 +257,7 @@ class WaveModel:
             "rigid_bha": self.rigid_bha,
             "drag_spacing": self.drag_spacing,
             **({} if self.contacts is None else {"contacts": self.contacts.describe()}),
+            **({} if self.axial is None else {"axial": self.axial.describe()}),
         }
 
 
@@ -247,30 +275,6 @@ def interface_factors(upper: float, lower: float) -> dict[str, float]:
         "torque_transmitted": 2.0 * lower / total,
         "torque_reflected": (lower - upper) / total,
     }
-
-
-def drag_lumping(cells: int, spacing: int) -> tuple[np.ndarray, np.ndarray]:
-    """Nodes of a section of ``cells`` cells that carry its drag, and their shares [cells].
-
-    The drag of the section (alpha rho J per unit length, cells c dt long) is lumped into
-    point dampers at nodes 0, k, 2k, ... and the last node (k = ``spacing``), each taking
-    half of the cells on either side (the trapezoidal rule on that partition): the
-    shares add up to ``cells``. A share s gives the damper c = alpha Z s dt [N m s/rad].
-
-    >>> nodes, shares = drag_lumping(10, 4)
-    >>> nodes.tolist(), shares.tolist()
-    ([0, 4, 8, 10], [2.0, 4.0, 3.0, 1.0])
-    >>> drag_lumping(3, 1)[1].tolist()  # spacing 1: every node, half shares at the ends
-    [0.5, 1.0, 1.0, 0.5]
-    """
-    nodes = np.arange(0, cells + 1, spacing)
-    if nodes[-1] != cells:
-        nodes = np.append(nodes, cells)
-    gaps = np.diff(nodes).astype(float)
-    shares = np.zeros(nodes.size)
-    shares[:-1] += 0.5 * gaps
-    shares[1:] += 0.5 * gaps
-    return nodes, shares
 
 
 class WaveStrategy:
@@ -316,6 +320,11 @@ class WaveStrategy:
         self.travel_time_tolerance = _positive(
             "travel_time_tolerance", travel_time_tolerance, DEFAULT_TRAVEL_TIME_TOLERANCE
         )
+        if self.travel_time_tolerance >= 0.5:  # rounding to whole cells is always within 1/2
+            raise ConfigError(
+                "discretization.travel_time_tolerance",
+                f"expected a relative tolerance in (0, 0.5), got {travel_time_tolerance!r}",
+            )
         if rigid_bha is not None and not isinstance(rigid_bha, bool):
             raise ConfigError(
                 "discretization.rigid_bha", f"expected true or false, got {rigid_bha!r}"
@@ -378,6 +387,24 @@ class WaveStrategy:
             },
             rigid_bha=self.rigid_bha,
             drag_spacing=self.drag_spacing,
+            travel_time_tolerance=self.travel_time_tolerance,
+        )
+
+    def axial_rows(self, string: DrillString, hook: str) -> PipeAxialRows:
+        """The axial lines of :meth:`discretize`'s pipe (:meth:`WaveModel.with_axial`):
+        each drill pipe's √(E/ρ) and A √(E ρ) (A the body's cross-section), the BHA's and
+        the bit's Σ ρ A L below them (a ConfigError on ``material.youngs_modulus``
+        without E)."""
+        pipes = string.drill_pipe_sections
+        moduli = np.array([youngs_modulus(s) for s in pipes])
+        density = np.array([s.material.density for s in pipes])
+        area = np.array([s.area for s in pipes])
+        bha = [s for s in string.sections if s.in_bha]
+        return PipeAxialRows(
+            np.sqrt(moduli / density),
+            area * np.sqrt(moduli * density),
+            sum(s.material.density * s.area * s.length for s in bha),
+            hook,
         )
 
 

@@ -3,7 +3,8 @@
 Each section's travel time L/c is rounded to a whole number of steps; :func:`choose_time_step`
 takes the largest step at most the one asked for whose rounding stays within the
 travel-time tolerance, within the :data:`MAX_CELLS` limit, and says so when no such grid
-exists (:mod:`torsio.model.wave` builds the grid from it).
+exists (:mod:`torsio.model.wave` builds the grid from it); :func:`drag_lumping` places the
+distributed drag on its nodes.
 """
 
 from __future__ import annotations
@@ -98,3 +99,27 @@ def _candidate_blocks(taus: np.ndarray, below: float, finest: float, size: int =
         for start in range(0, steps.size, size):
             yield steps[start : start + size]
         top = bottom
+
+
+def drag_lumping(cells: int, spacing: int) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes of a section of ``cells`` cells that carry its drag, and their shares [cells].
+
+    The drag of the section (alpha rho J per unit length, cells c dt long) is lumped into
+    point dampers at nodes 0, k, 2k, ... and the last node (k = ``spacing``), each taking
+    half of the cells on either side (the trapezoidal rule on that partition): the
+    shares add up to ``cells``. A share s gives the damper c = alpha Z s dt [N m s/rad].
+
+    >>> nodes, shares = drag_lumping(10, 4)
+    >>> nodes.tolist(), shares.tolist()
+    ([0, 4, 8, 10], [2.0, 4.0, 3.0, 1.0])
+    >>> drag_lumping(3, 1)[1].tolist()  # spacing 1: every node, half shares at the ends
+    [0.5, 1.0, 1.0, 0.5]
+    """
+    nodes = np.arange(0, cells + 1, spacing)
+    if nodes[-1] != cells:
+        nodes = np.append(nodes, cells)
+    gaps = np.diff(nodes).astype(float)
+    shares = np.zeros(nodes.size)
+    shares[:-1] += 0.5 * gaps
+    shares[1:] += 0.5 * gaps
+    return nodes, shares

@@ -7,7 +7,7 @@ growth rate and the rpm where it crosses zero, each with the frequency and the k
 or torsional) of the mode that crosses there (:func:`torsio.axial.stability.mode_crossings`
 over :data:`CROSSING_RANGE`).
 
-A distributed pipe (:class:`~torsio.axial.wave_assembly.WaveDrillingAssembly`) has the
+A distributed pipe (a :class:`~torsio.model.wave.WaveModel` with axial rows) has the
 exact continuum frequencies of its stepped bar with the same boundaries; its stability is
 that of its lumped twin (:attr:`torsio.config.axial.AxialConfig.lumped_twin`), and the
 data's ``stability.stability_model`` says so.
@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import functools
 import math
-from typing import Any
+from typing import Any, cast
 
 import scipy.linalg
 from rich.table import Table
@@ -37,10 +37,12 @@ from rich.table import Table
 from torsio.axial.assembly import assembly_description, assembly_summary, require_axial
 from torsio.axial.linearization import axial_matrices
 from torsio.axial.torque_law import TorqueLawBit
-from torsio.axial.wave_assembly import WaveDrillingAssembly
 from torsio.display_units import DisplayUnits
+from torsio.model.axial_rows import PipeAxialRows
+from torsio.model.continuum import bar_frequencies, continuum_modes
 from torsio.model.lumped import LumpedModel
 from torsio.model.modal import natural_frequencies
+from torsio.model.wave import WaveModel
 from torsio.report.context import ReportContext, ReportSection
 
 __all__ = [
@@ -61,31 +63,38 @@ DISTRIBUTED_MODES = 10
 
 
 def axial_frequencies(
-    assembly: LumpedModel | WaveDrillingAssembly, count: int = DISTRIBUTED_MODES
+    assembly: LumpedModel | WaveModel, count: int = DISTRIBUTED_MODES
 ) -> list[float]:
     """The axial natural frequencies [Hz] of the assembly with the bit free, undamped:
     the top free under the weight hook (its rigid-body zero left out) or held by k_a,0
     (the distributed pipe: held) under the speed hook; none for an axially rigid
-    assembly. A chain gives all of its own; a distributed pipe the first ``count``.
+    assembly. A chain gives all of its own; a distributed pipe the first ``count`` of its
+    exact continuum (:func:`torsio.model.continuum.bar_frequencies`: E A, √(E/ρ), m_b).
 
-    >>> from torsio.axial.assembly import pipe_assembly
-    >>> from torsio.axial.wave_assembly import PipeSection, wave_pipe_assembly
-    >>> section = PipeSection(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5)
-    >>> chain = pipe_assembly(4, section, 3.0e4, 230.0)
+    >>> from torsio.axial.assembly import axial_model, pipe_string, tube_section
+    >>> from torsio.model.discretize import StrategyC
+    >>> from torsio.model.wave import WaveStrategy
+    >>> string = pipe_string([tube_section(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5)],
+    ...                      3.0e4, 230.0)
+    >>> chain = axial_model(string, StrategyC(dp_elements=4))
     >>> [round(f, 3) for f in axial_frequencies(chain)][:2]
     [1.596, 3.867]
-    >>> pipe = wave_pipe_assembly(section, 3.0e4, 230.0)
+    >>> pipe = axial_model(string, WaveStrategy(rigid_bha=True))
     >>> [round(f, 3) for f in axial_frequencies(pipe, 2)]  # the continuum of the same pipe
     [1.599, 3.93]
     """
-    if isinstance(assembly, WaveDrillingAssembly):
-        omega = assembly.axial_frequencies(count, free_top=assembly.hook == "weight")
+    if not assembly.has_matrices:  # the distributed pipe: its continuum
+        pipe = cast(WaveModel, assembly)
+        rows = cast(PipeAxialRows, pipe.axial)
+        omega = bar_frequencies(rows.rigidities, pipe.lengths, rows.wave_speeds, rows.bha_mass,
+                                count, free_top=rows.hook == "weight")  # fmt: skip
         return [float(w) / (2 * math.pi) for w in omega]
-    if not require_axial(assembly).stiffnesses.size:
+    chain = cast(LumpedModel, assembly)
+    if not require_axial(chain).stiffnesses.size:
         return []
-    mass, _, stiffness = axial_matrices(assembly)
+    mass, _, stiffness = axial_matrices(chain)
     values = scipy.linalg.eigh(stiffness, mass, eigvals_only=True)
-    if require_axial(assembly).hook == "weight":
+    if require_axial(chain).hook == "weight":
         values = values[1:]
     return [math.sqrt(max(v, 0.0)) / (2 * math.pi) for v in values]
 
@@ -104,14 +113,15 @@ def axial_modes(config: Any, count: int | None = None) -> dict[str, Any]:
 
 
 def torsional_frequencies(
-    assembly: LumpedModel | WaveDrillingAssembly, count: int = DISTRIBUTED_MODES
+    assembly: LumpedModel | WaveModel, count: int = DISTRIBUTED_MODES
 ) -> list[float]:
     """The torsional natural frequencies [Hz], the top drive held and the bit free,
     undamped (a chain: all of its own; a distributed pipe: the first ``count`` of its
-    exact continuum)."""
-    if isinstance(assembly, WaveDrillingAssembly):
-        return [float(w) / (2 * math.pi) for w in assembly.torsional_frequencies(count)]
-    return [float(w) / (2 * math.pi) for w in natural_frequencies(assembly)]
+    string's exact continuum, the BHA rigid)."""
+    if not assembly.has_matrices:
+        modes = continuum_modes(cast(WaveModel, assembly).string, count, rigid_bha=True)
+        return [float(w) / (2 * math.pi) for w in modes.frequencies_rad]
+    return [float(w) / (2 * math.pi) for w in natural_frequencies(cast(LumpedModel, assembly))]
 
 
 def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
@@ -142,7 +152,7 @@ def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
     held = held and speed_loop(top, steady.bit_torque, steady.bit_speed) is None
     growth = {"growth_rate": result.growth_rate, "stable": result.stable, "twin_growth_rate": None}
     model = axial.stability_model
-    if isinstance(axial.assembly, WaveDrillingAssembly) and contacts is None:  # its own equation
+    if not axial.assembly.has_matrices and contacts is None:  # its own equation
         from torsio.axial.wave_stability import distributed_stability
 
         exact = distributed_stability(axial.assembly, axial.bit, wob, rpm, twin=chain)

@@ -8,7 +8,7 @@ m = T - Z w travels up. One step of length dt:
    per section, so a step moves the buffers' read positions, not the values;
 2. **drag**: the distributed drag alpha rho J of each section is lumped into point
    dampers c = alpha Z s dt at every ``drag_spacing``-th node, s the node's share of the
-   section in cells (:func:`torsio.model.wave.drag_lumping`). A damper at an inner node
+   section in cells (:func:`torsio.model.wave_grid.drag_lumping`). A damper at an inner node
    is a junction with a dashpot to the borehole, solved exactly: with the arriving p
    and m, ``v = (p - m) / (2 Z + c)``, then ``p <- m + 2 Z v``, ``m <- p - 2 Z v``; it
    dissipates c v^2. The shares of the end nodes join the junction, the top drive and

@@ -36,7 +36,7 @@ from typing import Any
 
 import numpy as np
 
-from torsio.model.wave import drag_lumping
+from torsio.model.wave_grid import drag_lumping
 from torsio.solvers.compiled import njit
 from torsio.solvers.contact_law import excess, static_branch
 from torsio.solvers.layouts import (

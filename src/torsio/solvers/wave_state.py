@@ -5,7 +5,7 @@ m = T - Z w (travelling up) at every node of the characteristic grid, section by
 with the top drive's and the bit's states. :func:`kernel_layout` lays the grid out for
 :mod:`torsio.solvers.characteristics`: the buffers that make transport free, and the
 point dampers into which the distributed drag is lumped
-(:func:`torsio.model.wave.drag_lumping`).
+(:func:`torsio.model.wave_grid.drag_lumping`).
 
 Examples
 --------
@@ -27,7 +27,8 @@ from __future__ import annotations
 import attrs
 import numpy as np
 
-from torsio.model.wave import WaveModel, drag_lumping
+from torsio.model.wave import WaveModel
+from torsio.model.wave_grid import drag_lumping
 from torsio.solvers.layouts import (
     BIT_SPEED,
     BIT_SPEED_BEFORE,

@@ -1,6 +1,6 @@
 """The contacts of a wave grid's string with its well: friction capacities per drag node.
 
-Each drag node of the wave grid (:func:`torsio.model.wave.drag_lumping`: nodes 0, k, 2k,
+Each drag node of the wave grid (:func:`torsio.model.wave_grid.drag_lumping`: nodes 0, k, 2k,
 ... and the last of every section) stands for its share of the string's length, half-way
 to its neighbours. Its static capacity is the static friction torque of that share,
 
@@ -35,7 +35,7 @@ import numpy as np
 
 from torsio.errors import ConfigError
 from torsio.model.contacts import StringContacts
-from torsio.model.wave import drag_lumping
+from torsio.model.wave_grid import drag_lumping
 from torsio.well.break_off import break_off
 from torsio.well.rotating_column import RotatingColumn
 from torsio.well.wellbore import Wellbore
