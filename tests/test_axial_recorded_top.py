@@ -124,8 +124,9 @@ def test_the_distributed_pipe_follows_a_recording_too():
     # d'Alembert: until the first reflection returns from the junction 900 m down (2 L / c),
     # the top of the drill pipe sends a torque wave Z_t Ω_top(t) down the pipe
     first = pipe.sections[0]
-    impedance = first.polar_moment * math.sqrt(first.shear_modulus * first.density)
-    echo = 2 * first.length / math.sqrt(first.shear_modulus / first.density)
+    g, rho = first.material.shear_modulus, first.material.density
+    impedance = first.polar_moment * math.sqrt(g * rho)
+    echo = 2 * first.length / math.sqrt(g / rho)
     early = (run.time > 0.0) & (run.time < 0.9 * echo)
     assert early.sum() > 50
     np.testing.assert_allclose(
@@ -137,7 +138,9 @@ def test_the_distributed_pipe_refuses_a_controller_and_a_map_of_a_recording_by_k
     pipe = rgd_wave_pipe_config().axial.assembly
     pi = PITopDrive(inertia=2900.0, kp=5000.0, ki=2067.6)
     for top in (pi, SoftTorqueTopDrive(inertia=930.0)):  # whatever its tuning would read
-        with pytest.raises(ConfigError, match=f"'{top.name}' given with a Wave") as info:
+        with pytest.raises(
+            ConfigError, match=f"'{top.name}' given with the distributed pipe"
+        ) as info:
             simulate_axial(pipe, rgd_example(), WOB, RPM, top_drive=top)
         assert info.value.key == "top_drive"
     with pytest.raises(ConfigError, match="follows a table of speeds") as info:

@@ -37,9 +37,10 @@ from torsio.axial.wave_pipe import (
 from torsio.axial.wave_setup import pipe_grid, run_wave, wave_run_setup
 from torsio.axial.wave_stability import distributed_stability
 from torsio.errors import ConfigError
+from torsio.model.components import DrillCollar
 from torsio.model.continuum import bar_frequencies, continuum_modes
 from torsio.model.lumped import chain_matrix
-from torsio.model.wave import WaveModel
+from torsio.model.wave import WaveModel, WaveStrategy
 from torsio.report.axial import axial_frequencies
 
 BIT = rgd_example()
@@ -353,3 +354,63 @@ def test_bad_input_names_the_key(build, key):
     with pytest.raises(ConfigError) as error:
         build()
     assert error.value.key == key
+
+
+# --- the pipe as a wave model --------------------------------------------------------------
+def test_the_pipe_takes_the_numbers_of_its_sections_and_its_exact_first_frequency():
+    # by hand from the sections' data (c = √(E/ρ), Z = A √(E ρ), E A = Z c; the BHA's mass
+    # and inertia as given) and ω₁ the string's exact continuum (Wittrick-Williams,
+    # tests/test_continuum.py), not the continuum of a grid's rounded lengths
+    pipe = _stepped("weight")
+    rows = pipe.axial
+    areas, polar = np.array([3.4e-3, 6e-3]), np.array([3.0e-5, 5e-5])
+    np.testing.assert_allclose(rows.wave_speeds, math.sqrt(E / RHO), rtol=1e-15)
+    np.testing.assert_allclose(rows.impedances, areas * math.sqrt(E * RHO), rtol=1e-12)
+    np.testing.assert_allclose(rows.rigidities, E * areas, rtol=1e-12)
+    np.testing.assert_allclose(pipe.impedances, polar * math.sqrt(G * RHO), rtol=1e-12)
+    assert rows.bha_mass == pytest.approx(MASS, rel=1e-14)
+    assert pipe.bit_inertia == pytest.approx(INERTIA, rel=1e-14)
+    exact = continuum_modes(pipe.string, 1, rigid_bha=True).frequencies_rad[0]
+    assert pipe.first_frequency() == exact
+
+
+def test_a_short_pipe_is_a_pipe():
+    # a 20 m pipe has fewer cells on the torsional grid than the default drag spacing (4):
+    # the spacing falls to them (the pipe carries no drag), and its grid steps both lines
+    pipe = wave_pipe([tube_section(20.0, E, G, RHO, 3.4e-3, 3e-5)], MASS, INERTIA)
+    assert pipe.drag_spacing <= max(pipe.cells)
+    grid = pipe_grid(pipe, 2e-4)
+    assert grid.axial_cells[0] >= 1 and grid.torsional_cells[0] > grid.axial_cells[0]
+
+
+@pytest.mark.parametrize(
+    ("build", "key"),
+    [
+        (lambda: tube_section(1e3, E, G, RHO, 0.0, 3e-5), "area"),
+        (lambda: tube_section(1e3, E, G, RHO, "3e-3", 3e-5), "area"),
+        (lambda: tube_section(1e3, E, G, RHO, -3.4e-3, 3e-5), "area"),
+        (lambda: tube_section(1e3, True, G, RHO, 3.4e-3, 3e-5), "youngs_modulus"),
+        (lambda: wave_pipe(STEPPED[0], MASS, INERTIA), "pipes"),
+        (
+            lambda: wave_pipe(
+                [*STEPPED, DrillCollar(od=0.2, id=0.07, length=10.0, material=STEPPED[0].material)],
+                MASS,
+                INERTIA,
+            ),
+            "pipes[2]",
+        ),  # fmt: skip
+        (lambda: wave_pipe(STEPPED, True, INERTIA), "bha_mass"),
+    ],
+)
+def test_a_pipe_given_by_its_numbers_refuses_bad_ones_by_key(build, key):
+    with pytest.raises(ConfigError) as info:
+        build()
+    assert info.value.key == key
+
+
+def test_a_torsional_wave_model_is_no_axial_pipe():
+    # the axial engine asks a wave model without axial rows for them by key
+    torsional = WaveStrategy(rigid_bha=True).discretize(_stepped("weight").string)
+    with pytest.raises(ConfigError) as info:
+        simulate_axial(torsional, BIT, WOB, 60.0, duration=1.0)
+    assert info.value.key == "axial"

@@ -33,6 +33,7 @@ Examples
 from __future__ import annotations
 
 import math
+import numbers
 from collections.abc import Sequence
 from typing import Any, cast
 
@@ -41,7 +42,7 @@ from numpy.typing import NDArray
 
 from torsio.errors import ConfigError
 from torsio.model.arrays import check_count, read_only_vector
-from torsio.model.axial_rows import AxialRows
+from torsio.model.axial_rows import AxialRows, PipeAxialRows
 from torsio.model.components import Bit, DrillPipe, Material, Section
 from torsio.model.discretize import StrategyC
 from torsio.model.drillstring import DrillString
@@ -57,16 +58,18 @@ __all__ = [
     "assembly_summary",
     "axial_chain",
     "axial_kernel_rows",
-    "fastest_damping_rate",
-    "fastest_frequency",
     "axial_model",
     "check_axial_discretizer",
+    "fastest_damping_rate",
+    "fastest_frequency",
+    "hook_of",
     "is_two_dof",
     "lumped_twin",
+    "pipe_rows",
     "pipe_string",
     "require_axial",
-    "rigid_bit",
     "rgd_two_dof_example",
+    "rigid_bit",
     "steady_angles",
     "steady_positions",
     "torsional_kernel_rows",
@@ -126,6 +129,25 @@ def require_axial(assembly: LumpedModel) -> AxialRows:
             "chain.masses", "missing: the chain has no axial rows (LumpedModel.with_axial)"
         )
     return assembly.axial
+
+
+def pipe_rows(pipe: WaveModel) -> PipeAxialRows:
+    """The axial rows of a distributed pipe (a ConfigError on ``axial`` without)."""
+    if pipe.axial is None:
+        raise ConfigError(
+            "axial",
+            "missing: the wave model has no axial rows (expected axial_model(string, "
+            "WaveStrategy(rigid_bha=True)), or WaveModel.with_axial)",
+        )
+    return pipe.axial
+
+
+def hook_of(assembly: LumpedModel | WaveModel) -> str:
+    """The hook of a chain's or a pipe's axial rows (:func:`require_axial`,
+    :func:`pipe_rows`)."""
+    if assembly.has_matrices:
+        return require_axial(cast(LumpedModel, assembly)).hook
+    return pipe_rows(cast(WaveModel, assembly)).hook
 
 
 def is_two_dof(assembly: Any) -> bool:
@@ -221,9 +243,9 @@ def assembly_description(assembly: Any) -> dict[str, Any]:
         return {
             "kind": "distributed",
             "sections": sections,
-            "bha_mass": assembly.axial.bha_mass,
+            "bha_mass": pipe_rows(assembly).bha_mass,
             "bha_inertia": assembly.bit_inertia,
-            "hook": assembly.axial.hook,
+            "hook": pipe_rows(assembly).hook,
             "travel_time_tolerance": assembly.travel_time_tolerance,
         }
     axial = require_axial(assembly)
@@ -285,9 +307,16 @@ def lumped_twin(pipe: WaveModel, element_length: float = DEFAULT_ELEMENT_LENGTH)
     """The lumped chain of a distributed pipe's string (strategy C, elements of at most
     ``element_length`` [m]) under its hook, undamped like the pipe: what its stability's
     roots start from and where its contacts along the string are read."""
-    assert pipe.axial is not None, "a distributed pipe has axial rows"
     strategy = StrategyC(max_element_length=element_length)
-    return cast(LumpedModel, axial_model(pipe.string, strategy, pipe.axial.hook))
+    return cast(LumpedModel, axial_model(pipe.string, strategy, pipe_rows(pipe).hook))
+
+
+def _check_positive(key: str, value: Any) -> None:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ConfigError(key, f"expected a number, got {value!r}")
+    number = float(value)
+    if not (math.isfinite(number) and number > 0):
+        raise ConfigError(key, f"expected a positive finite value, got {value!r}")
 
 
 def tube_section(
@@ -306,11 +335,16 @@ def tube_section(
     >>> round(pipe.od, 4), round(pipe.id, 4), round(pipe.area / 3.4e-3, 12)
     (0.1935, 0.182, 1.0)
     """
+    given = {"length": length, "youngs_modulus": youngs_modulus, "shear_modulus": shear_modulus,
+             "density": density, "area": area, "polar_moment": polar_moment}  # fmt: skip
+    for key, value in given.items():
+        _check_positive(key, value)
     total, difference = 8.0 * polar_moment / area, 4.0 * area / math.pi
-    if not (math.isfinite(total) and total > difference > 0):
+    if not total > difference:
         raise ConfigError(
             "polar_moment",
-            f"{polar_moment!r} m⁴ with area {area!r} m² is no tube (expected J > A²/(2π) > 0)",
+            f"{polar_moment!r} m⁴ with area {area!r} m² is no tube: expected J > A²/(2π) = "
+            f"{area**2 / (2 * math.pi):.4g} m⁴",
         )
     material = Material(shear_modulus, density, youngs_modulus=youngs_modulus)
     od, inner = math.sqrt((total + difference) / 2), math.sqrt((total - difference) / 2)
@@ -319,35 +353,43 @@ def tube_section(
 
 def rigid_bit(mass: float, inertia: float, material: Material) -> Bit:
     """A solid bit of ``material`` with the axial ``mass`` [kg] and the ``inertia``
-    [kg m²] of a whole rigid BHA: od = √(8 I / m), its length m / (ρ A).
+    [kg m²] of a whole rigid BHA: od = √(8 I / m), its length m / (ρ A). A body for the
+    models only: its od and length are no bit's (a radius for a bit law, contacts with a
+    well and depths below it are the user's to give).
 
     >>> bit = rigid_bit(3.0e4, 230.0, Material(8.1e10, 7850.0, youngs_modulus=2.1e11))
     >>> round(bit.inertia, 9), round(bit.material.density * bit.area * bit.length, 6)
     (230.0, 30000.0)
     """
-    for key, value, unit in (("bha_mass", mass, "kg"), ("bha_inertia", inertia, "kg m²")):
-        if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
-            raise ConfigError(key, f"expected a positive finite value [{unit}], got {value!r}")
+    _check_positive("bha_mass", mass)
+    _check_positive("bha_inertia", inertia)
+    if not isinstance(material, Material):
+        raise ConfigError("material", f"expected a Material, got {material!r}")
     od = math.sqrt(8.0 * inertia / mass)
     length = mass / (material.density * math.pi * od**2 / 4.0)
     return Bit(od=od, id=0.0, length=length, material=material)
 
 
 def pipe_string(pipes: Sequence[Section], bha_mass: float, bha_inertia: float) -> DrillString:
-    """The string of ``pipes`` from the top down above a rigid BHA of ``bha_mass`` [kg] and
-    ``bha_inertia`` [kg m²] (:func:`rigid_bit`, of the last pipe's material)."""
-    pipes = list(pipes)
+    """The string of drill ``pipes`` from the top down above a rigid BHA of ``bha_mass``
+    [kg] and ``bha_inertia`` [kg m²] (:func:`rigid_bit`, of the last pipe's material)."""
+    if isinstance(pipes, Section) or not isinstance(pipes, Sequence):
+        raise ConfigError("pipes", f"expected a list of drill pipes, got {pipes!r}")
     if not pipes:
-        raise ConfigError("sections", "is empty; expected at least one pipe section")
+        raise ConfigError("pipes", "is empty; expected at least one drill pipe")
     for i, pipe in enumerate(pipes):
-        if not isinstance(pipe, Section):
-            raise ConfigError(f"sections[{i}]", f"expected a Section (tube_section), got {pipe!r}")
+        if not isinstance(pipe, Section) or pipe.in_bha:
+            raise ConfigError(
+                f"pipes[{i}]",
+                f"expected a drill pipe (tube_section; the BHA is bha_mass and bha_inertia), "
+                f"got {pipe!r}",
+            )
     return DrillString([*pipes, rigid_bit(bha_mass, bha_inertia, pipes[-1].material)])
 
 
 def assembly_summary(model: dict[str, Any]) -> str:
-    """One line on an assembly from its ``describe()``: a chain's nodes, or a distributed
-    pipe's sections, with the hook and the total mass."""
+    """One line on an assembly from :func:`assembly_description`'s data: a chain's nodes,
+    or a distributed pipe's sections, with the hook and the total mass."""
     if model.get("kind") == "distributed":
         sections = model["sections"]
         length = sum(s["length"] for s in sections)

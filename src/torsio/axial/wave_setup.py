@@ -51,6 +51,7 @@ from numpy.typing import NDArray
 
 from torsio.axial import layouts as slot
 from torsio.axial import wave_kernel
+from torsio.axial.assembly import pipe_rows
 from torsio.axial.run_budget import check_run_work
 from torsio.axial.run_setup import (
     BitStart,
@@ -66,16 +67,15 @@ from torsio.axial.top_drive import TopDriveArrays
 from torsio.axial.torque_law import AxialBit, TorqueLawBit
 from torsio.axial.wave_pipe import junction_rows
 from torsio.errors import ConfigError
-from torsio.model.axial_rows import PipeAxialRows
 from torsio.model.wave import WaveModel
 from torsio.model.wave_grid import choose_time_step
 from torsio.physics.top_drive_boundary import TopDriveBoundary
 
 __all__ = [
     "PipeGrid",
-    "fastest_rate",
     "WaveRunSetup",
     "contact_nodes",
+    "fastest_rate",
     "pipe_grid",
     "run_wave",
     "wave_chunk",
@@ -115,24 +115,17 @@ class PipeGrid:
     travel_time_errors: NDArray[np.float64]
 
 
-def _axial_rows(pipe: WaveModel) -> PipeAxialRows:
-    """The pipe's axial rows (a ConfigError on ``axial`` without)."""
-    if pipe.axial is None:
-        raise ConfigError("axial", "missing: the wave model has no axial rows (with_axial)")
-    return pipe.axial
-
-
 def fastest_rate(pipe: WaveModel) -> float:
     """The largest of Z_a/m_b and Z_t/I_b [1/s], the rates at which the pipe's bottom
     section takes the BHA's motion away: what the step must resolve beside the bit."""
-    rows = _axial_rows(pipe)
+    rows = pipe_rows(pipe)
     return float(max(rows.impedances[-1] / rows.bha_mass, pipe.impedances[-1] / pipe.bit_inertia))
 
 
 def pipe_grid(assembly: WaveModel, max_step: float) -> PipeGrid:
     """The grid with the largest step ≤ ``max_step`` [s] within the assembly's travel-time
     tolerance (ConfigError on ``discretization.travel_time_tolerance`` when there is none)."""
-    axial = assembly.lengths / _axial_rows(assembly).wave_speeds
+    axial = assembly.lengths / pipe_rows(assembly).wave_speeds
     torsional = assembly.lengths / assembly.wave_speeds
     taus = np.concatenate([axial, torsional])
     h, cells = choose_time_step(taus, max_step, assembly.travel_time_tolerance)
@@ -145,7 +138,7 @@ def pipe_grid(assembly: WaveModel, max_step: float) -> PipeGrid:
         torsional_cells=tuple(int(n) for n in torsional_cells),
         axial_offsets=_offsets(axial_cells),
         torsional_offsets=_offsets(torsional_cells),
-        axial_junctions=junction_rows(_axial_rows(assembly).impedances),
+        axial_junctions=junction_rows(pipe_rows(assembly).impedances),
         torsional_junctions=junction_rows(assembly.impedances),
         travel_time_errors=errors,
     )
@@ -244,7 +237,7 @@ def wave_run_setup(
             f"{bit.name!r} is a law of the torque alone: it runs on a lumped chain only "
             "(expected a lumped chain (axial_chain), or law = 'rgd' on the distributed pipe)",
         )
-    rows = _axial_rows(assembly)
+    rows = pipe_rows(assembly)
     friction = None
     if contacts is None:
         steady = steady_drilling(bit, wob, rpm)
@@ -325,7 +318,7 @@ def _contact_table(
     table[slot.AXIAL_NODE], table[slot.TORSIONAL_NODE] = axial_nodes, torsional_nodes
     sections_a = np.searchsorted(grid.axial_offsets, axial_nodes, side="right") - 1
     sections_t = np.searchsorted(grid.torsional_offsets, torsional_nodes, side="right") - 1
-    table[slot.AXIAL_IMPEDANCE] = _axial_rows(assembly).impedances[sections_a]
+    table[slot.AXIAL_IMPEDANCE] = pipe_rows(assembly).impedances[sections_a]
     table[slot.TORSIONAL_IMPEDANCE] = assembly.impedances[sections_t]
     return table
 

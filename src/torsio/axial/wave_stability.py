@@ -52,6 +52,7 @@ import attrs
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from torsio.axial.assembly import pipe_rows
 from torsio.axial.delay_roots import newton_root
 from torsio.axial.linearization import delayed_matrix
 from torsio.axial.rgd import RGDBit
@@ -108,8 +109,7 @@ class WaveCharacteristic:
     @property
     def rows(self) -> PipeAxialRows:
         """The pipe's axial rows."""
-        assert self.assembly.axial is not None, "a distributed pipe with axial rows"
-        return self.assembly.axial
+        return pipe_rows(self.assembly)
 
     @property
     def neutral_roots(self) -> tuple[complex, ...]:

@@ -35,7 +35,7 @@ import attrs
 import numpy as np
 
 from torsio.analysis.severity import DEFAULT_STICK_THRESHOLD
-from torsio.axial.assembly import DEFAULT_ELEMENT_LENGTH, is_two_dof
+from torsio.axial.assembly import DEFAULT_ELEMENT_LENGTH, hook_of, is_two_dof
 from torsio.axial.rgd import RGDBit, rgd_from_table
 from torsio.axial.torque_law import AxialBit, TorqueLawBit
 from torsio.config.chain import ChainConfig, _values
@@ -125,8 +125,7 @@ class AxialConfig:
     @property
     def hook(self) -> str:
         """The hook's boundary, ``"weight"`` or ``"speed"`` (:mod:`torsio.model.axial_rows`)."""
-        assert self.assembly.axial is not None, "an axial assembly has axial rows"
-        return self.assembly.axial.hook
+        return hook_of(self.assembly)
 
     @property
     def stability_assembly(self) -> LumpedModel:

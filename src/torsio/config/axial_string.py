@@ -74,6 +74,10 @@ def _wave_pipe(
                 "carry no dampers); remove it, or choose the lumped chain (a [discretization] "
                 "strategy other than 'wave') for stiffness-proportional dampers",
             )
+    if not string.drill_pipe_sections:
+        raise ConfigError(
+            "section", "the distributed axial pipe needs a drill pipe above the BHA; none given"
+        )
     strategy = WaveStrategy(**{**options, "rigid_bha": options.get("rigid_bha", True)})
     return cast(WaveModel, axial_model(string, strategy, hook))
 

@@ -25,6 +25,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import attrs
@@ -142,7 +143,9 @@ class PipeAxialRows:
     bha_mass : float
         m_b, Σ ρ A L of the BHA's sections and the bit [kg].
     hook : str
-        ``"weight"`` or ``"speed"`` (the module docstring).
+        ``"weight"``: the constant force W₀ on the top of the pipe (its top free, the
+        whole pipe carrying W₀ in steady drilling), or ``"speed"``: the top of the pipe
+        moving down at the steady rate of penetration V₀ of the run's (W₀, Ω₀).
 
     >>> rows = PipeAxialRows([5172.2], [138046.0], 3.0e4, hook="speed")
     >>> round(float(rows.rigidities[0]) / 1e6)  # E A [MN]
@@ -151,26 +154,31 @@ class PipeAxialRows:
 
     wave_speeds: NDArray[np.float64] = attrs.field(converter=read_only_vector)
     impedances: NDArray[np.float64] = attrs.field(converter=read_only_vector)
-    bha_mass: float = attrs.field(converter=float)
+    bha_mass: float
     hook: str = "weight"
 
     def __attrs_post_init__(self) -> None:
-        check_count("axial.impedances", self.impedances, self.wave_speeds.size)
+        sections = self.wave_speeds.size
+        if not sections or self.impedances.size != sections:
+            raise ConfigError(
+                "axial.impedances",
+                f"{self.impedances.size} impedances and {sections} wave speeds: expected one "
+                "of each per pipe section, at least one",
+            )
         check_values("axial.wave_speeds", self.wave_speeds, False)
         check_values("axial.impedances", self.impedances, False)
-        if not (np.isfinite(self.bha_mass) and self.bha_mass > 0):
-            raise ConfigError("bha_mass", f"expected a positive mass [kg], got {self.bha_mass!r}")
+        mass = self.bha_mass
+        if isinstance(mass, bool) or not isinstance(mass, int | float | np.floating):
+            raise ConfigError("bha_mass", f"expected a mass [kg], got {mass!r}")
+        if not (math.isfinite(mass) and mass > 0):
+            raise ConfigError("bha_mass", f"expected a positive finite mass [kg], got {mass!r}")
+        object.__setattr__(self, "bha_mass", float(mass))
         check_hook(self.hook)
 
     @property
     def rigidities(self) -> NDArray[np.float64]:
         """E A = Z c of each section [N]."""
         return self.impedances * self.wave_speeds
-
-    @property
-    def bit_mass(self) -> float:
-        """The axial mass [kg] of the body that carries the bit: the BHA's."""
-        return self.bha_mass
 
     def describe(self) -> dict[str, Any]:
         """Plain data for reports and JSON: the hook, the BHA's mass [kg], each section's

@@ -213,7 +213,8 @@ class WaveModel:
             raise ConfigError(
                 "discretization.rigid_bha",
                 "false: the distributed axial pipe's BHA is one rigid body with the bit "
-                "(expected true, or leave it out)",
+                "(expected WaveStrategy(rigid_bha=True); in a file, rigid_bha = true or "
+                "leave it out)",
             )
         check_count("axial.wave_speeds", axial.wave_speeds, len(self.cells))
         return attrs.evolve(self, axial=axial)
@@ -241,8 +242,11 @@ class WaveModel:
 
     def first_frequency(self) -> float:
         """First natural frequency [rad/s] of the string on the grid (top held, exact
-        continuum; the rigid-BHA continuum with ``rigid_bha``)."""
-        modes = continuum_modes(self.grid_string(), count=1, rigid_bha=self.rigid_bha)
+        continuum; the rigid-BHA continuum with ``rigid_bha``). With axial rows the axial
+        engine steps a grid of its own, within the same tolerance: the string's own
+        continuum, unrounded."""
+        string = self.string if self.axial is not None else self.grid_string()
+        modes = continuum_modes(string, count=1, rigid_bha=self.rigid_bha)
         return float(modes.frequencies_rad[0])
 
     def describe(self) -> dict[str, Any]:
@@ -294,7 +298,8 @@ class WaveStrategy:
         string; default False: every section flexible).
     drag_spacing : int, optional
         Cells between the nodes that carry the distributed drag (default
-        :data:`DEFAULT_DRAG_SPACING`; 1: every node).
+        :data:`DEFAULT_DRAG_SPACING`, or the most cells of any section on a grid with
+        fewer; 1: every node).
     """
 
     name: ClassVar[str] = "wave"
@@ -320,7 +325,7 @@ class WaveStrategy:
         self.travel_time_tolerance = _positive(
             "travel_time_tolerance", travel_time_tolerance, DEFAULT_TRAVEL_TIME_TOLERANCE
         )
-        if self.travel_time_tolerance >= 0.5:  # rounding to whole cells is always within 1/2
+        if self.travel_time_tolerance >= 0.5:  # a travel time off by half or more: no grid
             raise ConfigError(
                 "discretization.travel_time_tolerance",
                 f"expected a relative tolerance in (0, 0.5), got {travel_time_tolerance!r}",
@@ -330,6 +335,7 @@ class WaveStrategy:
                 "discretization.rigid_bha", f"expected true or false, got {rigid_bha!r}"
             )
         self.rigid_bha = bool(rigid_bha)
+        self.drag_spacing_given = drag_spacing is not None
         if drag_spacing is None:
             drag_spacing = DEFAULT_DRAG_SPACING
         if isinstance(drag_spacing, bool) or not isinstance(drag_spacing, int) or drag_spacing < 1:
@@ -357,13 +363,14 @@ class WaveStrategy:
             )
         dt, cells = choose_time_step(taus, self.time_step, self.travel_time_tolerance)
         most = int(cells.max())
-        if self.drag_spacing > most:
+        spacing = self.drag_spacing if self.drag_spacing_given else min(self.drag_spacing, most)
+        if spacing > most:
             longest = sections[int(np.argmax(cells))]
             raise ConfigError(
                 "discretization.drag_spacing",
                 f"expected 1 to {most} cells between the drag nodes (the most cells of any "
                 f"section on this grid: {longest.name or longest.kind}, {most} cells of "
-                f"{float(longest.material.wave_speed) * dt:.3g} m), got {self.drag_spacing}; "
+                f"{float(longest.material.wave_speed) * dt:.3g} m), got {spacing}; "
                 f"a spacing of {most} or more leaves every section its end dampers only",
             )
         polar = np.array([s.polar_moment for s in sections])
@@ -383,10 +390,10 @@ class WaveStrategy:
                 "max_time_step_s": self.time_step,
                 "travel_time_tolerance": self.travel_time_tolerance,
                 "cells": {s.name or s.kind: int(n) for s, n in zip(sections, cells, strict=True)},
-                "drag_spacing": self.drag_spacing,
+                "drag_spacing": spacing,
             },
             rigid_bha=self.rigid_bha,
-            drag_spacing=self.drag_spacing,
+            drag_spacing=spacing,
             travel_time_tolerance=self.travel_time_tolerance,
         )
 

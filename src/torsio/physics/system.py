@@ -66,7 +66,7 @@ def _check_model(instance: Any, attribute: Any, value: Any) -> None:
     if getattr(value, "axial", None) is not None:
         raise ConfigError(
             "model",
-            "a chain with axial rows moves axially too, which the torsional engines do not "
+            "a model with axial rows moves axially too, which the torsional engines do not "
             "step: run it with torsio.axial.transient.simulate_axial (or give the chain "
             "without them)",
         )

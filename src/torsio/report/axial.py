@@ -34,11 +34,15 @@ from typing import Any, cast
 import scipy.linalg
 from rich.table import Table
 
-from torsio.axial.assembly import assembly_description, assembly_summary, require_axial
+from torsio.axial.assembly import (
+    assembly_description,
+    assembly_summary,
+    pipe_rows,
+    require_axial,
+)
 from torsio.axial.linearization import axial_matrices
 from torsio.axial.torque_law import TorqueLawBit
 from torsio.display_units import DisplayUnits
-from torsio.model.axial_rows import PipeAxialRows
 from torsio.model.continuum import bar_frequencies, continuum_modes
 from torsio.model.lumped import LumpedModel
 from torsio.model.modal import natural_frequencies
@@ -85,7 +89,7 @@ def axial_frequencies(
     """
     if not assembly.has_matrices:  # the distributed pipe: its continuum
         pipe = cast(WaveModel, assembly)
-        rows = cast(PipeAxialRows, pipe.axial)
+        rows = pipe_rows(pipe)
         omega = bar_frequencies(rows.rigidities, pipe.lengths, rows.wave_speeds, rows.bha_mass,
                                 count, free_top=rows.hook == "weight")  # fmt: skip
         return [float(w) / (2 * math.pi) for w in omega]
