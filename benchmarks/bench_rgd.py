@@ -2,13 +2,13 @@
 
 1. A 300 s run of the 2-DOF RGD model (docs/axial.md's example: I = 455.65 kg m²,
    k = 324.857 N m/rad, c = 19.49 N m s/rad, M = 29981.3 kg; the reference bit; 100 kN,
-   60 rpm, from rest) on ``torsio.axial.transient.simulate_axial`` (no signals kept)
+   60 rpm, from rest) on ``torsio.analysis.axial_transient.simulate_axial`` (no signals kept)
    against the loop below: the same scheme and step written out for this one model with
    the state in scalars and its own history search (cubic Hermite, as the engine). Both
    give the same S_SS and ROP (printed); the ratio engine / loop is the engine's price for
    being general (chains, hooks, prescribed rotation, signals). Target: within 3x.
 2. A 21 x 21 map, WOB 80..200 kN x 30..200 rpm, default run length (40 periods of the
-   torsional mode, 298 s) on ``torsio.axial.maps.axial_map``, serial. Target: under 60 s.
+   torsional mode, 298 s) on ``torsio.analysis.axial_maps.axial_map``, serial. Target: under 60 s.
 
 Run: ``python benchmarks/bench_rgd.py [--repeat 5] [--skip-map]``. Times are the median
 of the repeats (compiled functions warm).
@@ -23,11 +23,11 @@ import time
 
 import numpy as np
 
-from torsio.axial.assembly import rgd_two_dof_example
-from torsio.axial.maps import axial_map
+from torsio.analysis.axial_maps import axial_map
+from torsio.analysis.axial_transient import simulate_axial
 from torsio.axial.rgd import rgd_example
-from torsio.axial.run_setup import RunOptions, run_setup
-from torsio.axial.transient import simulate_axial
+from torsio.model.axial_assembly import rgd_two_dof_example
+from torsio.solvers.axial_run_setup import RunOptions, run_setup
 from torsio.solvers.compiled import njit
 
 WOB, RPM, DURATION, WINDOW = 100e3, 60.0, 300.0, 100.0
@@ -35,7 +35,7 @@ WOB, RPM, DURATION, WINDOW = 100e3, 60.0, 300.0, 100.0
 
 @njit(cache=True)
 def plain_loop(p, h, steps, window_start, past, hist):  # noqa: C901
-    """The 2-DOF model stepped like torsio.axial.kernel; returns (S_SS, ROP, stuck)."""
+    """The 2-DOF model stepped like torsio.solvers.axial_kernel; returns (S_SS, ROP, stuck)."""
     inertia, k, c, mass, wob, top = p[0], p[1], p[2], p[3], p[4], p[5]
     wc1, tc1, wf_max, tf1, blade, n = p[6], p[7], p[8], p[9], p[10], p[11]
     capacity = hist.shape[1]

@@ -9,7 +9,7 @@ from collections.abc import Sequence
 from importlib import resources
 from typing import Any
 
-from torsio.axial.assembly import axial_chain, axial_model, pipe_string, tube_section
+from torsio.model.axial_assembly import axial_chain, axial_model, pipe_string, tube_section
 from torsio.model.components import Section
 from torsio.model.discretize import StrategyC
 from torsio.model.lumped import LumpedModel

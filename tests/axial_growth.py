@@ -10,8 +10,8 @@ from typing import Any
 
 import numpy as np
 
+from torsio.analysis.axial_transient import simulate_axial
 from torsio.analysis.transient_results import TransientResults
-from torsio.axial.transient import simulate_axial
 
 
 def perturbed_run(

@@ -5,9 +5,10 @@ Monte Carlo, Ctrl-C, and bad inputs.
 Where the expected values come from:
 
 * the reference optimum is a fine brute-force map of the same region with the same model,
-  run by another path (:func:`torsio.axial.maps.axial_map`, the engine of ``torsio map``);
+  run by another path (:func:`torsio.analysis.axial_maps.axial_map`, the engine of ``torsio map``);
 * "not severe" and the surface torque of the recommended point are read from a run of the
-  point on its own (:func:`torsio.axial.transient.simulate_axial`), S_SS against the paper's
+  point on its own (:func:`torsio.analysis.axial_transient.simulate_axial`), S_SS against the
+  paper's
   0.8 (Eq. 12 and §4);
 * the independent Monte Carlo draws its own friction factors (numpy's normal with another
   seed, truncated at two sigma), writes them into the configuration file's ``[well]`` and
@@ -30,8 +31,8 @@ import pytest
 
 from torsio.advice import AdviceInterrupted, Constraints, Region, Uncertainty, advise
 from torsio.advice.margin import upper_bound
-from torsio.axial.maps import axial_map
-from torsio.axial.transient import simulate_axial
+from torsio.analysis.axial_maps import axial_map
+from torsio.analysis.axial_transient import simulate_axial
 from torsio.cli import main
 from torsio.config.reading import load_config
 from torsio.examples import rgd_deviated_well_config

@@ -2,7 +2,7 @@
 the default runs (40 periods, the last 15 the window) against a fine brute-force map.
 
 The reference is a 33 x 15 map (495 runs, WOB every 2 kN, rpm every 10) of the same region
-with the same model, run by :func:`torsio.axial.maps.axial_map` (the engine of
+with the same model, run by :func:`torsio.analysis.axial_maps.axial_map` (the engine of
 ``torsio map``); "not severe" is S_SS <= 0.8 (the paper's severe stick-slip, Eq. 12), read
 from a run of the recommended point on its own.
 """
@@ -14,8 +14,8 @@ import pytest
 
 from torsio.advice import advise
 from torsio.advice.region import default_region
-from torsio.axial.maps import axial_map
-from torsio.axial.transient import simulate_axial
+from torsio.analysis.axial_maps import axial_map
+from torsio.analysis.axial_transient import simulate_axial
 from torsio.examples import rgd_deviated_well_config
 
 THRESHOLD = 0.8

@@ -10,11 +10,11 @@ from __future__ import annotations
 
 import pytest
 
-from torsio.axial.assembly import rgd_two_dof_example
+from torsio.analysis.axial_transient import simulate_axial
 from torsio.axial.rgd import rgd_example
-from torsio.axial.transient import simulate_axial
 from torsio.errors import ConfigError
 from torsio.examples import deviated_well_config
+from torsio.model.axial_assembly import rgd_two_dof_example
 from torsio.well.break_off import break_off
 from torsio.well.torque_drag import torque_drag
 from torsio.well.wellbore import HoleSection, Wellbore

@@ -7,7 +7,8 @@ C = diag(0, c), K = diag(0, k), D of the bit); the rigid axial body (no axial sp
 the hook speed written out by hand,
 Δ(λ) = (P_a + w E)(I λ² + c λ + k) − t (V₀/Ω₀) E P_a with P_a = M λ² + c_a λ + k_a,
 w = n ζ ε a, t = n ε a²/2, E = 1 − e^{−λ t_n0}; and the growth of a small perturbation in
-the nonlinear transient of torsio.axial.transient (its own engine, the bit's own history)."""
+the nonlinear transient of torsio.analysis.axial_transient (its own engine, the bit's own
+history)."""
 
 from __future__ import annotations
 
@@ -18,15 +19,15 @@ import pytest
 from axial_files import PIPE, damped_pipe, pipe_chain
 from axial_growth import envelope_rate, perturbed_run
 
-from torsio.axial.assembly import axial_chain, two_dof_assembly
+from torsio.analysis.axial_maps import axial_map
+from torsio.analysis.axial_transient import simulate_axial
 from torsio.axial.linearization import delayed_matrix, drilling_linearization
-from torsio.axial.maps import axial_map
 from torsio.axial.rgd import rgd_example
-from torsio.axial.run_setup import BitRotation
 from torsio.axial.stability import DrillingCase, drilling_stability, mode_crossings
 from torsio.axial.steady import steady_drilling
-from torsio.axial.transient import simulate_axial
 from torsio.errors import ConfigError
+from torsio.model.axial_assembly import axial_chain, two_dof_assembly
+from torsio.solvers.axial_run_setup import BitRotation
 
 # The 2-DOF example of docs/axial.md (I, k of strategy A of the built-in Ritto 2017 string,
 # M of DESIGN.md, c = β k with β = 0.06 s) and the 3-node pipe of tests/test_axial_transient.py

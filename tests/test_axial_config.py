@@ -17,10 +17,10 @@ import pytest
 from axial_files import BASE, STRING, TEXT
 
 from torsio.axial import rgd_example, rgd_two_dof_example
-from torsio.axial.assembly import assembly_description
 from torsio.config.reading import parse_config
 from torsio.errors import ConfigError
 from torsio.examples import builtin_config, rgd_two_dof_config
+from torsio.model.axial_assembly import assembly_description
 
 
 def _with(data, path, value):

@@ -19,11 +19,11 @@ from importlib import resources
 import numpy as np
 import pytest
 
-from torsio.axial.assembly import axial_chain, fastest_damping_rate
 from torsio.axial.stability import MAX_AUTO_DOFS
-from torsio.axial.step_rule import DAMPER_STEP
 from torsio.cli import main
 from torsio.config.reading import load_config
+from torsio.model.axial_assembly import axial_chain, fastest_damping_rate
+from torsio.solvers.axial_step_rule import DAMPER_STEP
 
 SKIPPED = "growth rate not computed"
 

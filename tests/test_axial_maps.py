@@ -1,6 +1,6 @@
-"""Maps over (weight on bit, rpm) of axial-torsional runs (torsio.axial.maps).
+"""Maps over (weight on bit, rpm) of axial-torsional runs (torsio.analysis.axial_maps).
 
-Reference: every point of a map is the single run of torsio.axial.transient.simulate_axial
+Reference: every point of a map is the single run of torsio.analysis.axial_transient.simulate_axial
 with the same options (the same engine, so equal to round-off), and its growth rate the
 rightmost root of torsio.axial.stability."""
 
@@ -13,12 +13,12 @@ import numpy as np
 import pytest
 from axial_files import pipe_chain
 
-from torsio.axial.assembly import rgd_two_dof_example, tube_section
-from torsio.axial.maps import axial_map
+from torsio.analysis.axial_maps import axial_map
+from torsio.analysis.axial_transient import simulate_axial
 from torsio.axial.rgd import rgd_example
 from torsio.axial.stability import drilling_stability
-from torsio.axial.transient import simulate_axial
 from torsio.errors import ConfigError
+from torsio.model.axial_assembly import rgd_two_dof_example, tube_section
 
 ASSEMBLY = rgd_two_dof_example()
 BIT = rgd_example()

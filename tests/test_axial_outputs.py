@@ -4,7 +4,7 @@ built-in ``rgd_2dof.toml``, the map's critical weight on bit, its files and its 
 map on Ctrl-C.
 
 References: every file is read back against the same run in memory
-(:func:`torsio.axial.transient.simulate_axial`, the same deterministic engine, so equal to
+(:func:`torsio.analysis.axial_transient.simulate_axial`, the same deterministic engine, so equal to
 the digits the file keeps); the critical weight on bit against its definition (the lowest
 weight on bit above which every point of the row is severe, the paper's Fig. 6, as the
 torsional maps read it from the grid) applied to the single runs of each point; the
@@ -19,19 +19,19 @@ from importlib import resources
 import numpy as np
 import pytest
 
+from torsio.analysis.axial_maps import _sign_change, axial_map
+from torsio.analysis.axial_transient import simulate_axial
 from torsio.analysis.map_results import MapInterrupted, load_map
 from torsio.analysis.transient import simulate
 from torsio.analysis.transient_results import TransientResults
-from torsio.axial.assembly import rgd_two_dof_example
-from torsio.axial.layouts import SAMPLE_COLUMNS, SAMPLE_UNITS
-from torsio.axial.maps import _sign_change, axial_map
 from torsio.axial.rgd import rgd_example
 from torsio.axial.stability import drilling_stability
-from torsio.axial.transient import simulate_axial
 from torsio.calibration.recording import read_recording
 from torsio.cli import main
 from torsio.examples import builtin_config
+from torsio.model.axial_assembly import rgd_two_dof_example
 from torsio.physics.top_drives import TorqueTopDrive
+from torsio.solvers.axial_layouts import SAMPLE_COLUMNS, SAMPLE_UNITS
 
 EXAMPLE = str(resources.files("torsio").joinpath("data/rgd_2dof.toml"))
 TIMES = ["--duration", "20", "--window", "10"]

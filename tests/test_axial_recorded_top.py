@@ -19,17 +19,17 @@ import numpy as np
 import pytest
 from test_axial_torque_law import TUCKER_WANG, _table
 
+from torsio.analysis.axial_maps import axial_map
 from torsio.analysis.transient import simulate
 from torsio.axial import rgd_two_dof_example, simulate_axial
-from torsio.axial.maps import axial_map
 from torsio.axial.rgd import rgd_example
-from torsio.axial.run_setup import BitRotation
 from torsio.calibration.recording import Recording
 from torsio.config.reading import parse_config
 from torsio.errors import ConfigError
 from torsio.examples import rgd_wave_pipe_config
 from torsio.physics.recorded_top import RecordedTopDrive
 from torsio.physics.top_drives import PITopDrive, SoftTorqueTopDrive
+from torsio.solvers.axial_run_setup import BitRotation
 from torsio.solvers.set_speed import table_speed
 from torsio.units import RPM_TO_RAD_S
 

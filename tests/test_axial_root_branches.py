@@ -17,13 +17,13 @@ import numpy as np
 import pytest
 from axial_files import damped_pipe
 
-from torsio.axial.assembly import rgd_two_dof_example
 from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
 from torsio.axial.linearization import axial_linearization, drilling_linearization
 from torsio.axial.rgd import rgd_example
 from torsio.axial.root_branches import branch_crossings, follow_roots, unstable_roots
 from torsio.axial.stability import DrillingCase, each_mode_crossing, mode_crossings
 from torsio.errors import ConfigError
+from torsio.model.axial_assembly import rgd_two_dof_example
 
 BIT = rgd_example()
 WOB = 100e3
@@ -158,10 +158,10 @@ def test_with_contacts_the_crossings_and_their_directions_are_those_of_one_linea
     # crossing (mode_crossings, its direction from the root just above) is one of every
     # mode's crossings with the same direction, and the report's unstable modes are the
     # linearization's with the contacts (the built-in deviated well at 60 rpm)
-    from torsio.axial.string_contacts import AxialContacts
     from torsio.examples import rgd_deviated_well_config
     from torsio.report.axial import axial_section
     from torsio.report.context import ReportContext
+    from torsio.well.axial_contacts import AxialContacts
 
     chain = damped_pipe("weight")
     contacts = AxialContacts(

@@ -14,14 +14,14 @@ import pytest
 import scipy.linalg
 from axial_files import pipe_chain
 
-from torsio.axial.assembly import (
+from torsio.errors import ConfigError
+from torsio.examples import rgd_two_dof_config
+from torsio.model.axial_assembly import (
     assembly_description,
     axial_chain,
     rgd_two_dof_example,
     tube_section,
 )
-from torsio.errors import ConfigError
-from torsio.examples import rgd_two_dof_config
 from torsio.model.axial_rows import AxialRows
 from torsio.model.lumped import LumpedModel, chain_matrix
 from torsio.model.modal import modal_analysis
@@ -124,8 +124,8 @@ def test_bad_axial_rows_name_the_key(build, key):
 
 
 def test_each_engine_refuses_the_chain_it_cannot_move():
+    from torsio.analysis.axial_transient import simulate_axial
     from torsio.axial.rgd import rgd_example
-    from torsio.axial.transient import simulate_axial
     from torsio.physics.laws import ConstantTorque
     from torsio.physics.system import System
 
@@ -155,9 +155,9 @@ def test_a_discretizers_chain_drills_as_the_two_dof_model():
     # drilling is the 2-DOF model's to that rounding (1.1e-5 relative at most in I): the
     # growth rate within 1e-5 (measured 3e-9: the unstable root is the axial mode's)
     from torsio import StrategyA, ritto2017_string
-    from torsio.axial.assembly import two_dof_assembly
     from torsio.axial.rgd import rgd_example
     from torsio.axial.stability import drilling_stability
+    from torsio.model.axial_assembly import two_dof_assembly
 
     chain = StrategyA().discretize(ritto2017_string()).with_axial(AxialRows([29981.3]))
     np.testing.assert_allclose(chain.node_inertias, [455.65], rtol=0, atol=0.005)

@@ -16,9 +16,9 @@ import pytest
 
 from torsio.analysis.budget import most_fixed_steps
 from torsio.axial import rgd_example, rgd_two_dof_example, simulate_axial
-from torsio.axial import run_setup as run_setup_module
 from torsio.cli import main
 from torsio.errors import ConfigError
+from torsio.solvers import axial_run_setup as run_setup_module
 
 EXAMPLE = resources.files("torsio").joinpath("data/rgd_2dof.toml").read_text(encoding="utf-8")
 

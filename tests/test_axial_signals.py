@@ -16,10 +16,10 @@ from importlib import resources
 import numpy as np
 import pytest
 
-from torsio.axial import layouts as slot
+from torsio.analysis.axial_transient import _chain_chunk, run_kernel
 from torsio.axial import rgd_example, rgd_two_dof_example
-from torsio.axial.run_setup import RunOptions, run_setup
-from torsio.axial.transient import _chain_chunk, run_kernel
+from torsio.solvers import axial_layouts as slot
+from torsio.solvers.axial_run_setup import RunOptions, run_setup
 
 DEVIATED = resources.files("torsio").joinpath("data/rgd_deviated_well.toml")
 

@@ -16,7 +16,6 @@ import scipy.optimize
 import scipy.special
 from axial_files import pipe_chain
 
-from torsio.axial.assembly import tube_section, two_dof_assembly
 from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
 from torsio.axial.linearization import (
     axial_linearization,
@@ -33,6 +32,7 @@ from torsio.axial.stability import (
 )
 from torsio.axial.steady import steady_drilling
 from torsio.errors import ConfigError
+from torsio.model.axial_assembly import tube_section, two_dof_assembly
 
 # The string: M from DESIGN.md's [chain] masses; I and k the strategy-A pendulum of the
 # built-in Ritto (2017) string (I = I_DP/3 + I_BHA = 455.65 kg m², k = G J_DP / L_DP =

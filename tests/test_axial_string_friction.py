@@ -1,7 +1,7 @@
 """Coulomb friction along the string on the lumped axial-torsional chain (docs/axial.md,
 "Friction along the string"): one contact's set-valued step against its closed forms
 (torsio.solvers.contact_law.cone_step), steady drilling with friction
-(torsio.axial.steady_friction), the energy balance (torsio.axial.energy_balance), the
+(torsio.axial.steady_friction), the energy balance (torsio.analysis.axial_energy), the
 break-off of torsio.well.break_off, and the built-in rgd_deviated_well.toml through the
 command line.
 
@@ -19,13 +19,13 @@ import numpy as np
 import pytest
 import scipy.optimize
 
-from torsio.axial.run_setup import BitRotation
+from torsio.analysis.axial_transient import simulate_axial
 from torsio.axial.steady_friction import friction_damping, friction_split, steady_with_friction
-from torsio.axial.transient import simulate_axial
 from torsio.cli import main
 from torsio.config.reading import parse_config_text
 from torsio.errors import ConfigError
 from torsio.examples import rgd_deviated_well_config
+from torsio.solvers.axial_run_setup import BitRotation
 from torsio.solvers.contact_law import cone_step, sliding_speed
 
 TEXT = resources.files("torsio").joinpath("data/rgd_deviated_well.toml").read_text(encoding="utf-8")

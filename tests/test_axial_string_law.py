@@ -25,9 +25,9 @@ import pytest
 from torsio.analysis.transient import simulate
 from torsio.axial import simulate_axial
 from torsio.axial.rgd import RGDBit
-from torsio.axial.torque_law import TorqueLawBit
 from torsio.config.reading import parse_config
 from torsio.errors import ConfigError
+from torsio.physics.torque_law_bit import TorqueLawBit
 
 TEXT = resources.files("torsio").joinpath("data/rgd_wave_pipe.toml").read_text(encoding="utf-8")
 TUCKER_WANG = {  # the paper's Eq. 2 values (Ritto et al. 2017), rpm reading; the file's radius

@@ -19,24 +19,24 @@ import scipy.linalg
 from axial_files import STRING, pipe_chain, wave_pipe
 from axial_growth import envelope_rate, perturbed_run
 
+from torsio.analysis.axial_maps import axial_map
 from torsio.axial import (
     rgd_example,
     rgd_two_dof_example,
     simulate_axial,
     tube_section,
 )
-from torsio.axial.maps import axial_map
-from torsio.axial.run_setup import BitRotation
 from torsio.axial.stability import drilling_stability
-from torsio.axial.top_drive import top_boundary, top_drive_matrix
 from torsio.cli import main
 from torsio.errors import ConfigError
+from torsio.physics.axial_top_drive import top_boundary, top_drive_matrix
 from torsio.physics.top_drives import (
     ConstantSpeedTop,
     PITopDrive,
     SoftTorqueTopDrive,
     ZTorqueTopDrive,
 )
+from torsio.solvers.axial_run_setup import BitRotation
 
 BIT = rgd_example()
 PI = PITopDrive(inertia=2900.0, kp=5000.0, ki=2067.6)  # ki ≈ ω₁² J, ω₁ = 0.8444 rad/s
@@ -99,7 +99,8 @@ def test_pi_top_drive_stays_on_the_steady_state(assembly):
 def test_stuck_bit_against_the_matrix_exponential():
     # reference: with the bit stuck (from rest, 100 kN, 60 rpm: the string's torque stays
     # below T_c + T_f for 0.5 s) the top drive, its PI and the string's spring to the bit
-    # are the linear system x' = A x + f of torsio.axial.top_drive.top_drive_matrix, solved by
+    # are the linear system x' = A x + f of torsio.physics.axial_top_drive.top_drive_matrix, solved
+    # by
     # scipy.linalg.expm. The scheme is first order: the error halves with the step
     # (measured 2.0007, 2.0003, 2.0002 for 256 .. 2048 steps per delay).
     assembly = rgd_two_dof_example()

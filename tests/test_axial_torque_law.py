@@ -27,11 +27,11 @@ import pytest
 from torsio.analysis.transient import simulate
 from torsio.axial import rgd_two_dof_example, simulate_axial
 from torsio.axial.rgd import RGDBit
-from torsio.axial.torque_law import TorqueLawBit
 from torsio.cli import main
 from torsio.config.reading import load_config, parse_config
 from torsio.errors import ConfigError
 from torsio.physics.laws import TuckerWang, law_capabilities
+from torsio.physics.torque_law_bit import TorqueLawBit
 from torsio.plugins import axial_need, bit_law_origin, bit_laws, build_bit_law
 
 EXAMPLE = resources.files("torsio").joinpath("data/rgd_2dof.toml").read_text(encoding="utf-8")

@@ -1,4 +1,4 @@
-"""Axial-torsional transients with the RGD bit (torsio.axial.transient, kernel, history).
+"""Axial-torsional transients with the RGD bit (torsio.analysis.axial_transient, kernel, history).
 
 Independent references: the delay t_n solved by brentq from the prescribed rotation,
 Φ(t) − Φ(t − t_n) = 2π/n, and U there from scipy's cubic Hermite spline of the run's own
@@ -18,14 +18,14 @@ import scipy.optimize
 from axial_files import pipe_chain
 from axial_growth import envelope_rate, perturbed_run
 
-from torsio.axial.assembly import axial_chain, rgd_two_dof_example, tube_section
+from torsio.analysis.axial_transient import simulate_axial
 from torsio.axial.delay_roots import rightmost_roots
 from torsio.axial.linearization import axial_linearization
 from torsio.axial.rgd import rgd_example
-from torsio.axial.run_setup import BitRotation
 from torsio.axial.stability import drilling_stability
-from torsio.axial.transient import simulate_axial
 from torsio.errors import ConfigError
+from torsio.model.axial_assembly import axial_chain, rgd_two_dof_example, tube_section
+from torsio.solvers.axial_run_setup import BitRotation
 
 # The 2-DOF example of docs/axial.md: I = 455.65 kg m², k = 324.857 N m/rad (strategy A of
 # the built-in Ritto 2017 string), M = 29981.3 kg (DESIGN.md), c = β k = 19.49 N m s/rad.

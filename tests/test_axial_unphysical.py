@@ -14,9 +14,9 @@ from importlib import resources
 
 import pytest
 
+from torsio.analysis.axial_energy import RESIDUAL_TOLERANCE, EnergyBalance
+from torsio.analysis.axial_warnings import depth_beyond_geometry
 from torsio.axial import rgd_example, rgd_two_dof_example, simulate_axial
-from torsio.axial.energy_balance import RESIDUAL_TOLERANCE, EnergyBalance
-from torsio.axial.run_warnings import depth_beyond_geometry
 from torsio.axial.steady import steady_drilling
 from torsio.cli import main
 from torsio.errors import ConfigError

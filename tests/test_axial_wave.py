@@ -20,13 +20,21 @@ import scipy.linalg
 import scipy.optimize
 from axial_files import pipe_chain, wave_pipe
 
-from torsio.axial import bit_step, layouts
-from torsio.axial.assembly import lumped_twin, tube_section
-from torsio.axial.layouts import SAMPLE_COLUMNS, STATS
+from torsio.analysis.axial_transient import simulate_axial
+from torsio.axial import bit_step
 from torsio.axial.rgd import rgd_example
-from torsio.axial.run_setup import BitRotation, RunOptions
-from torsio.axial.transient import simulate_axial
-from torsio.axial.wave_pipe import (
+from torsio.axial.wave_stability import distributed_stability
+from torsio.errors import ConfigError
+from torsio.model.axial_assembly import lumped_twin, tube_section
+from torsio.model.components import DrillCollar
+from torsio.model.continuum import bar_frequencies, continuum_modes
+from torsio.model.lumped import chain_matrix
+from torsio.model.wave import WaveModel, WaveStrategy
+from torsio.report.axial import axial_frequencies
+from torsio.solvers import axial_layouts as layouts
+from torsio.solvers.axial_layouts import SAMPLE_COLUMNS, STATS
+from torsio.solvers.axial_run_setup import BitRotation, RunOptions
+from torsio.solvers.axial_wave_lines import (
     advance,
     close_bottom,
     junction_rows,
@@ -34,19 +42,13 @@ from torsio.axial.wave_pipe import (
     set_top_velocity,
     smooth_end_terms,
 )
-from torsio.axial.wave_setup import pipe_grid, run_wave, wave_run_setup
-from torsio.axial.wave_stability import distributed_stability
-from torsio.errors import ConfigError
-from torsio.model.components import DrillCollar
-from torsio.model.continuum import bar_frequencies, continuum_modes
-from torsio.model.lumped import chain_matrix
-from torsio.model.wave import WaveModel, WaveStrategy
-from torsio.report.axial import axial_frequencies
+from torsio.solvers.axial_wave_setup import pipe_grid, run_wave, wave_run_setup
 
 BIT = rgd_example()
 WOB = 100e3
 # the BHA of the 2-DOF example of docs/axial.md (M = 29981.3 kg, I = 455.65 kg m²) and the
-# steel drill pipe of torsio.axial.wave_setup's example (E = 210 GPa, G = 81 GPa, ρ = 7850 kg/m³)
+# steel drill pipe of torsio.solvers.axial_wave_setup's example (E = 210 GPa, G = 81 GPa, ρ = 7850
+# kg/m³)
 MASS, INERTIA = 29981.3, 455.65
 E, G, RHO = 2.1e11, 8.1e10, 7850.0
 STEPPED = [
@@ -76,7 +78,8 @@ def _exact(assembly: WaveModel, line: str, count: int) -> np.ndarray:
 # --- frequencies of the grid --------------------------------------------------------------
 def _free_step(p, m, velocity, line, top_value, held_top=True):
     """One step of a line with the BHA free at its bottom (the bit off bottom: no bit
-    force), in place on p, m; the BHA's new velocity. The calls of torsio.axial.wave_kernel's
+    force), in place on p, m; the BHA's new velocity. The calls of
+    torsio.solvers.axial_wave_kernel's
     step 2 (3 torsionally), in its order: advance, the top, the BHA, the end."""
     offsets, junctions, z_top, z_bottom, end_mass, step = line
     arrived = p[-1]

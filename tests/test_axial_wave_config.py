@@ -7,7 +7,7 @@ Independent references, each computed here from the file's numbers:
 - the pipe sections and the BHA by hand: A = π (od² − id²)/4, J = π (od⁴ − id⁴)/32,
   m_b = Σ ρ A L and I_b = Σ ρ J L of the collars and the bit;
 - the strategy-C chain of one section built from its E, G, ρ, A and J (``pipe_chain`` of
-  tests/axial_files.py: :func:`torsio.axial.assembly.tube_section` above a rigid BHA);
+  tests/axial_files.py: :func:`torsio.model.axial_assembly.tube_section` above a rigid BHA);
 - the natural frequencies of the stepped bar by its transfer matrix
   (U, N) → (U cos κL + N sin κL/(E A κ), −E A κ U sin κL + N cos κL), κ = ω/c, from the top
   (free: (1, 0); held: (0, 1)) to the BHA, whose balance N(L) = m_b ω² U(L) is solved by
@@ -29,21 +29,21 @@ import pytest
 import scipy.optimize
 from axial_files import pipe_chain
 
-from torsio.axial.assembly import lumped_twin, tube_section
-from torsio.axial.run_setup import RunOptions
-from torsio.axial.wave_setup import wave_run_setup
 from torsio.axial.wave_stability import distributed_stability
 from torsio.cli import main
 from torsio.config.axial import DEFAULT_ELEMENT_LENGTH
 from torsio.config.reading import parse_config, parse_config_text
 from torsio.errors import ConfigError
 from torsio.examples import rgd_wave_pipe_config
+from torsio.model.axial_assembly import lumped_twin, tube_section
 from torsio.model.continuum import bar_frequencies
 from torsio.model.discretize import StrategyC
 from torsio.model.lumped import LumpedModel
 from torsio.model.wave import WaveModel
 from torsio.report.axial import axial_frequencies, axial_section, torsional_frequencies
 from torsio.report.context import ReportContext
+from torsio.solvers.axial_run_setup import RunOptions
+from torsio.solvers.axial_wave_setup import wave_run_setup
 
 TEXT = resources.files("torsio").joinpath("data/rgd_wave_pipe.toml").read_text(encoding="utf-8")
 DATA = tomllib.loads(TEXT)
@@ -149,7 +149,7 @@ def test_the_pipes_lumped_twin_is_the_files_strategy_c_chain(element_length):
     # two routes to the lumped-mass chain of the file's stepped string (900 m of drill pipe
     # and 100 m of HWDP in the pipe, the collars and the bit rigid): the file without
     # strategy = "wave" (the paper's strategy C, Eqs. 6-7, with axial rows) and the
-    # distributed pipe's lumped twin (torsio.axial.assembly.lumped_twin, built from the
+    # distributed pipe's lumped twin (torsio.model.axial_assembly.lumped_twin, built from the
     # wave model); the same element counts, node depths, springs and inertias to
     # round-off, the same masses and axial springs
     data = tomllib.loads(TEXT)

@@ -1,4 +1,4 @@
-"""Coulomb friction along the distributed axial pipe (torsio.axial.wave_pipe.pipe_contacts,
+"""Coulomb friction along the distributed axial pipe (torsio.solvers.axial_wave_lines.pipe_contacts,
 the cone of torsio.solvers.contact_law): the built-in rgd_wave_pipe.toml with the [well] of
 rgd_deviated_well.toml, against the steady torque and drag of torsio.well.torque_drag and
 the closed form of torsio.axial.steady_friction, and through the command line."""
@@ -12,12 +12,12 @@ import attrs
 import numpy as np
 import pytest
 
-from torsio.axial import layouts as slot
-from torsio.axial.transient import simulate_axial
-from torsio.axial.wave_setup import contact_nodes
+from torsio.analysis.axial_transient import simulate_axial
 from torsio.cli import main
 from torsio.config.reading import parse_config_text
 from torsio.errors import ConfigError
+from torsio.solvers import axial_layouts as slot
+from torsio.solvers.axial_wave_setup import contact_nodes
 from torsio.well.torque_drag import torque_drag
 
 
@@ -48,7 +48,7 @@ def _steady_run(config, hook: str):
 
 def test_the_pipe_takes_the_contacts_of_its_lumped_twin(config):
     # every node of the twin's 100 m elements, the capacities of the soft-string state
-    # (torsio.axial.string_contacts.axial_contacts): 10 depths, the 6 below the vertical
+    # (torsio.well.axial_contacts.axial_contacts): 10 depths, the 6 below the vertical
     # top (500 m) press on the borehole; the last, at the pipe's bottom, takes the BHA's
     # and the bit's share, on the last inner node of the pipe's grid
     contacts = config.axial.contacts
@@ -119,7 +119,7 @@ def test_cli_simulate_gives_the_pipe_friction(config, tmp_path, capsys):
 
 def test_from_rest_against_the_lumped_chain_of_the_same_well():
     # An independent engine: the lumped axial-torsional chain of the same sections in 100 m
-    # elements (torsio.axial.kernel) with the same contacts (the config without its
+    # elements (torsio.solvers.axial_kernel) with the same contacts (the config without its
     # [discretization]), both from rest with the file's defaults (about 95 s). Measured:
     # friction work 1.44555e6 J against 1.44569e6 J (1e-4), mean surface torque 7512
     # against 7476 N m (0.5 %), S_SS 1.299 against 1.310, ROP 8.21e-3 against 8.18e-3

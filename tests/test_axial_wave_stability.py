@@ -6,7 +6,7 @@ as a body); the exact bar frequencies of :func:`torsio.model.continuum.bar_frequ
 (axially) and :func:`~torsio.model.continuum.continuum_modes` (torsionally, the BHA rigid),
 found by bisection of the frequency equation, which are the roots λ = iω when the bit
 exerts nothing (D = 0); the lumped twins of the same sections
-(:func:`torsio.axial.assembly.lumped_twin`), whose roots approach the continuum's like Δx²
+(:func:`torsio.model.axial_assembly.lumped_twin`), whose roots approach the continuum's like Δx²
 as the elements shrink."""
 
 from __future__ import annotations
@@ -17,10 +17,9 @@ import numpy as np
 import pytest
 from axial_files import wave_pipe
 
-from torsio.axial.assembly import lumped_twin, tube_section
+from torsio.analysis.axial_transient import simulate_axial
 from torsio.axial.rgd import rgd_example
 from torsio.axial.stability import drilling_stability
-from torsio.axial.transient import simulate_axial
 from torsio.axial.wave_stability import (
     WaveCharacteristic,
     distributed_stability,
@@ -28,6 +27,7 @@ from torsio.axial.wave_stability import (
     wave_characteristic,
 )
 from torsio.examples import rgd_wave_pipe_config
+from torsio.model.axial_assembly import lumped_twin, tube_section
 from torsio.model.continuum import bar_frequencies, continuum_modes
 
 BIT = rgd_example()

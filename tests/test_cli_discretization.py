@@ -20,12 +20,12 @@ import pytest
 from torsio.analysis.config_runs import config_map
 from torsio.analysis.map_options import MapOptions
 from torsio.analysis.transient import simulate_config
-from torsio.axial.assembly import axial_model
 from torsio.cli import main
 from torsio.config.configuration import OperationConfig
 from torsio.config.reading import parse_config, rediscretized
 from torsio.errors import ConfigError
 from torsio.examples import rgd_deviated_well_config, rgd_wave_pipe_config
+from torsio.model.axial_assembly import axial_model
 from torsio.model.continuum import bar_frequencies
 from torsio.model.discretize import StrategyC
 from torsio.model.modal import modal_analysis

@@ -117,8 +117,8 @@ def test_steady_rotation_drag(config):
 def test_an_axial_run_is_refused_for_its_own_balance():
     # an axial run keeps no states: energy_balance names the engine's balance instead, which
     # closes to the first-order scheme's residual (conservation of energy, docs/axial.md)
+    from torsio.analysis.axial_energy import RESIDUAL_TOLERANCE
     from torsio.axial import rgd_example, rgd_two_dof_example, simulate_axial
-    from torsio.axial.energy_balance import RESIDUAL_TOLERANCE
 
     run = simulate_axial(rgd_two_dof_example(), rgd_example(), 100e3, 60.0, duration=2.0,
                          window=1.0, growth_rate=False)  # fmt: skip

@@ -14,16 +14,16 @@ import math
 import numpy as np
 import pytest
 
+from torsio.analysis.axial_transient import simulate_axial
 from torsio.analysis.severity import (
     DEFAULT_DURATION_PERIODS,
     DEFAULT_WINDOW_PERIODS,
     run_times,
     severity_of_extremes,
 )
-from torsio.axial.assembly import rgd_two_dof_example
 from torsio.axial.rgd import rgd_example
-from torsio.axial.transient import simulate_axial
 from torsio.errors import ConfigError
+from torsio.model.axial_assembly import rgd_two_dof_example
 from torsio.physics.top_drive_boundary import TopDriveBoundary, controller_rates, motor_torque
 from torsio.solvers import layouts as slot
 from torsio.solvers.chain_kernel import compiled_controller_rates, compiled_motor_torque

@@ -16,15 +16,15 @@ import numpy as np
 import pytest
 
 from torsio import SoftTorqueTopDrive, TorqueTopDrive, energy_balance, load_run, simulate
+from torsio.analysis.axial_transient import simulate_axial
 from torsio.analysis.transient_results import RUN_ARRAYS
-from torsio.axial.assembly import rgd_two_dof_example
 from torsio.axial.rgd import rgd_example
-from torsio.axial.transient import simulate_axial
 from torsio.calibration.recording import Recording
 from torsio.cli import main
 from torsio.display_units import DisplayUnits
 from torsio.errors import ConfigError
 from torsio.examples import builtin_config, deviated_well_config, rgd_wave_pipe_config
+from torsio.model.axial_assembly import rgd_two_dof_example
 from torsio.physics.dimensionless import dimensionless_system
 from torsio.physics.recorded_top import RecordedTopDrive
 

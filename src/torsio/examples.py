@@ -104,7 +104,7 @@ def deviated_well_config() -> Config:
 
 def rgd_two_dof_config() -> Config:
     """The 2-DOF model of RGD (2007) with the RGD bit (``data/rgd_2dof.toml``): the
-    parameters of :func:`torsio.axial.assembly.rgd_two_dof_example` and
+    parameters of :func:`torsio.model.axial_assembly.rgd_two_dof_example` and
     :func:`torsio.axial.rgd.rgd_example`, 100 kN at 60 rpm; the built-in axial example."""
     return _data("rgd_2dof.toml")
 

@@ -68,8 +68,8 @@ COMPILE_ESTIMATES: dict[str, tuple[str, float]] = {
     "torsio.solvers.rodas.advance": ("the lumped engine's step loop", 15.0),
     "torsio.solvers.rodas_kernels._serial": ("the lumped engine's batch loop", 4.0),
     "torsio.solvers.characteristics._march": ("the wave model's stepping", 6.0),
-    "torsio.axial.kernel.march": ("the axial-torsional chain's stepping", 4.0),
-    "torsio.axial.wave_kernel.march": ("the axial-torsional wave model's stepping", 3.0),
+    "torsio.solvers.axial_kernel.march": ("the axial-torsional chain's stepping", 4.0),
+    "torsio.solvers.axial_wave_kernel.march": ("the axial-torsional wave model's stepping", 3.0),
 }
 
 #: The estimate of any other compile (a law's functions, a plugin's).

@@ -4,13 +4,14 @@ Everything else in :mod:`torsio.advice` sees the model only through :func:`evalu
 the named arrays it returns (:class:`Evaluation`): S_SS, mean ROP [m/s], mean MSE [Pa] and
 the mean surface (top-drive) torque [N m] over each run's steady window.
 
-Each point is one :func:`torsio.axial.transient.simulate_axial` run of the case
+Each point is one :func:`torsio.analysis.axial_transient.simulate_axial` run of the case
 (:class:`AxialCase`: the assembly, the RGD bit and the run options of the configuration,
-its top drive and friction possibly changed), the same run :func:`torsio.axial.maps.axial_map`
+its top drive and friction possibly changed), the same run
+:func:`torsio.analysis.axial_maps.axial_map`
 makes at a grid point. The axial map keeps no signals, and the surface torque is a signal:
 here each run keeps :data:`SURFACE_SAMPLES` rows of signals and the surface torque is the
 mean of the ``surface_torque`` column over the window's rows
-(:meth:`~torsio.axial.run_results.AxialChannels.top_drive_summary`).
+(:meth:`~torsio.analysis.axial_results.AxialChannels.top_drive_summary`).
 
 Ctrl-C raises :class:`PointsInterrupted` with the rows of the points that finished.
 
@@ -32,9 +33,9 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
+from torsio.analysis.axial_results import channels_of
+from torsio.analysis.axial_transient import simulate_axial
 from torsio.analysis.severity import run_times
-from torsio.axial.run_results import channels_of
-from torsio.axial.transient import simulate_axial
 from torsio.errors import ConfigError
 
 __all__ = [
@@ -59,7 +60,7 @@ the bit did not advance), the mean and the largest surface torque over the windo
 @attrs.frozen(eq=False)
 class AxialCase:
     """One model to advise on: an axial assembly, its bit and the run options of
-    :func:`~torsio.axial.transient.simulate_axial` (top drive, contacts, start, step,
+    :func:`~torsio.analysis.axial_transient.simulate_axial` (top drive, contacts, start, step,
     ``duration`` and ``window`` resolved). Module-level and frozen: it pickles to workers.
 
     ``label`` names the case in tables (e.g. the top drive)."""

@@ -9,7 +9,7 @@ uniform. Names: the ``[well]`` factors ``friction_static``, ``friction_dynamic``
 ``threshold_speed``, a hole section's ``hole[i].friction_static``/``friction_dynamic``, and
 the bit law's parameters (``contact_friction``, ``intrinsic_specific_energy``, ... of
 ``[bit_rock]``). Each draw rebuilds the string's contacts
-(:func:`torsio.axial.string_contacts.axial_contacts`) or the bit.
+(:func:`torsio.well.axial_contacts.axial_contacts`) or the bit.
 
 **The probability.** ``samples`` draws (seeded) run at the point; p = severe / samples. A
 point is accepted when the one-sided 95 % Clopper-Pearson upper bound of p is below
@@ -196,7 +196,7 @@ def case_with_values(config: Any, case: Any, values: Mapping[str, float], flag: 
             )
     contacts = None
     if well_values or holes:
-        from torsio.axial.string_contacts import axial_contacts
+        from torsio.well.axial_contacts import axial_contacts
 
         sections = list(config.well.hole)
         for index in {i for i, _ in holes}:

@@ -34,7 +34,7 @@ Simulator4nDOF's default is 4 (docs/top_drives.md, "Tuning rules")."""
 
 
 def _inertia_and_impedance(config: Any) -> tuple[float, float]:
-    from torsio.axial.top_drive import AxialTopSystem
+    from torsio.physics.axial_top_drive import AxialTopSystem
     from torsio.physics.top_drive_boundary import top_pipe_impedance
     from torsio.physics.top_drives import TYPICAL_INERTIA
 

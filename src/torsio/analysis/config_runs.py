@@ -3,7 +3,8 @@ that engine takes, its transient and its map.
 
 A file whose bit law declares ``needs_axial`` (:func:`torsio.physics.laws.law_capabilities`,
 the RGD bit) or whose chain has masses runs on the axial engine
-(:mod:`torsio.axial.transient`, :mod:`torsio.axial.maps`); every other on the torsional
+(:mod:`torsio.analysis.axial_transient`, :mod:`torsio.analysis.axial_maps`); every other on the
+torsional
 engines (:mod:`torsio.analysis.transient`, :mod:`torsio.analysis.maps`). Both give the
 same kinds of results: a transient with its signals by name, CSV, plot and rig recording,
 and a :class:`~torsio.analysis.map_results.SeverityMap` with its critical curve, files
@@ -69,7 +70,7 @@ SINGLE_RUNS_ONLY = (
 """What a map says of the ``[simulation]`` keys it does not use."""
 
 _AXIAL_MAP_OPTIONS = ("duration", "threshold", "refine", "timeout", "chunk_size")
-"""The map options :func:`torsio.axial.maps.axial_map` takes by the same name."""
+"""The map options :func:`torsio.analysis.axial_maps.axial_map` takes by the same name."""
 
 
 @attrs.frozen
@@ -151,7 +152,7 @@ def simulate_axial_config(
     ``rpm`` override ``[operation]``), its ``[simulation]`` times and stick threshold
     unless given; progress on stderr after 2 s as every long run (``progress=False``:
     none)."""
-    from torsio.axial.transient import simulate_axial
+    from torsio.analysis.axial_transient import simulate_axial
     from torsio.solvers.run_chunks import run_progress
 
     axial, times, point = config.axial, config.simulation.options, config.operating_point(wob, rpm)
@@ -190,7 +191,7 @@ def config_map(
     read: :func:`torsio.config.reading.rediscretized`)."""
     discretization = {k: v for k, v in (discretization or {}).items() if v is not None}
     if config.axial is not None:
-        from torsio.axial.maps import axial_map
+        from torsio.analysis.axial_maps import axial_map
 
         run_capabilities(config).refuse(
             {key: (key, value) for key, value in discretization.items()}

@@ -194,7 +194,7 @@ def energy_balance(results: Any) -> EnergyBalance:
 
     Uses only the sampled response (no re-integration of the equations of motion). An axial
     run keeps no states: its balance is the kernel's, step by step (``results.axial.energy``,
-    :mod:`torsio.axial.energy_balance`).
+    :mod:`torsio.analysis.axial_energy`).
     """
     if getattr(results, "axial", None) is not None:
         raise TypeError(

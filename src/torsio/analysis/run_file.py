@@ -56,7 +56,7 @@ def load_run(path: str | Path) -> TransientResults:
 def _results(metadata: dict[str, Any], arrays: dict[str, Any]) -> TransientResults:
     warnings = tuple(metadata["warnings"])
     if metadata.get("axial") is not None:
-        from torsio.axial.run_results import AxialChannels, axial_results
+        from torsio.analysis.axial_results import AxialChannels, axial_results
 
         channels = AxialChannels.from_saved(metadata["axial"], arrays["axial_samples"])
         return axial_results(channels, warnings)

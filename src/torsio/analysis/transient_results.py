@@ -1,7 +1,7 @@
 """Results of a transient run: the sampled response, S_SS, JSON, CSV and the plot.
 
 Returned by :func:`torsio.analysis.transient.simulate` and, with its axial channels, by
-:func:`torsio.axial.transient.simulate_axial`; a results object never recomputes the
+:func:`torsio.analysis.axial_transient.simulate_axial`; a results object never recomputes the
 analysis.
 """
 
@@ -23,7 +23,7 @@ from torsio.physics.system import System
 from torsio.units import RPM_TO_RAD_S
 
 if TYPE_CHECKING:
-    from torsio.axial.run_results import AxialChannels
+    from torsio.analysis.axial_results import AxialChannels
 
 __all__ = [
     "RUN_ARRAYS",
@@ -51,7 +51,7 @@ class TransientResults:
     """The sampled transient response of a run, whatever model and engine made it.
 
     A torsional run (:func:`simulate`) has its System; an axial-torsional run
-    (:func:`torsio.axial.transient.simulate_axial`) has its axial channels instead
+    (:func:`torsio.analysis.axial_transient.simulate_axial`) has its axial channels instead
     (:attr:`axial`): the rate of penetration, the weight on bit, the depth of cut, the MSE,
     the steady drilling state. Every signal is also read by name (:meth:`signal`).
 
@@ -122,7 +122,7 @@ class TransientResults:
         merged into :meth:`to_dict`. None without a well.
     axial : AxialChannels or None
         An axial run's channels and outputs
-        (:class:`~torsio.axial.run_results.AxialChannels`: ``steady``, ``summary`` with
+        (:class:`~torsio.analysis.axial_results.AxialChannels`: ``steady``, ``summary`` with
         ``rop_mean`` and ``mse_mean``, ``growth_rate``, ``energy``, the signals
         ``bit_weight``, ``depth_of_cut`` ...); None for a torsional run. Its JSON, CSV
         and terminal table are the run's.
@@ -187,7 +187,7 @@ class TransientResults:
     def signal(self, name: str) -> np.ndarray:
         """A signal by name: ``time``, ``bit_speed``, ``bit_angle``, ``bit_torque``,
         ``surface_torque``, ``top_speed``, ``motor_torque`` of every run, and an axial
-        run's :data:`torsio.axial.layouts.SAMPLE_COLUMNS` (``bit_weight``,
+        run's :data:`torsio.solvers.axial_layouts.SAMPLE_COLUMNS` (``bit_weight``,
         ``depth_of_cut``, ``bit_velocity`` ...)."""
         if self.axial is not None:
             return self.axial.signal(name)
@@ -313,7 +313,7 @@ class TransientResults:
         model (``dofs``, ``strategy``, ``bit_radius``) and, with a well, the well summary;
         for a dimensionless system ``wob`` and ``rpm`` are those of its System (Pi_2 and
         Pi_1 in rpm form) and ``pi1``, ``pi2`` are added. An axial run adds the keys of
-        :meth:`torsio.axial.run_results.AxialChannels.to_dict` (DESIGN.md).
+        :meth:`torsio.analysis.axial_results.AxialChannels.to_dict` (DESIGN.md).
         ``series=True`` adds the time series.
         """
         if self.axial is not None:
@@ -400,7 +400,7 @@ class TransientResults:
         Columns: ``time_s, bit_speed_rad_s, bit_angle_rad, bit_torque_Nm,
         surface_torque_Nm, top_speed_rad_s, motor_torque_Nm, node_speed_1_rad_s, ...``.
         Returns the path written. An axial run's columns are its
-        :data:`torsio.axial.layouts.SAMPLE_COLUMNS` (:meth:`AxialChannels.to_csv`).
+        :data:`torsio.solvers.axial_layouts.SAMPLE_COLUMNS` (:meth:`AxialChannels.to_csv`).
         """
         if self.axial is not None:
             return self.axial.to_csv(path)

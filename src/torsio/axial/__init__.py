@@ -1,16 +1,22 @@
 """Axial-torsional drilling with the RGD bit (Richard, Germay and Detournay 2004, 2007).
 
-The bit law with its depth of cut per revolution (:mod:`torsio.axial.rgd`), the steady
-drilling state in closed form (:mod:`torsio.axial.steady`), the linearization of any lumped
-assembly about it with the state-dependent delay (:mod:`torsio.axial.linearization`), the
-roots of a linear delay system (:mod:`torsio.axial.delay_roots`), the stability of steady
-drilling over rpm (:mod:`torsio.axial.stability`), the assemblies that move axially and
-torsionally, lumped chains and the distributed pipe of axial and torsional wave lines above
-a rigid BHA (:mod:`torsio.axial.assembly`: models with axial rows), their transients
-on compiled fixed-step engines with the bit's own history (:mod:`torsio.axial.transient`) and
-maps over (weight, rpm) (:mod:`torsio.axial.maps`), with Coulomb friction along a lumped
-chain's string (:mod:`torsio.axial.string_contacts`, :mod:`torsio.axial.steady_friction`).
-The equations are in docs/axial.md.
+The physics the torsional core does not have: the bit law with its depth of cut per
+revolution (:mod:`torsio.axial.rgd`), its own history (:mod:`torsio.axial.history`) and its
+part of a time step (:mod:`torsio.axial.bit_step`), the steady drilling state in closed form
+(:mod:`torsio.axial.steady`, with friction along the string :mod:`torsio.axial.steady_friction`),
+the linearization of a lumped assembly about it with the state-dependent delay
+(:mod:`torsio.axial.linearization`), the roots of a linear delay system
+(:mod:`torsio.axial.delay_roots`, :mod:`torsio.axial.root_branches`), the stability of steady
+drilling over rpm (:mod:`torsio.axial.stability`) and the distributed pipe's characteristic
+equation (:mod:`torsio.axial.wave_stability`).
+
+The rest sits beside its torsional counterpart: the assemblies, models with axial rows
+(:mod:`torsio.model.axial_assembly`), the axial engines (``torsio.solvers.axial_*``), their
+runs, results and maps (:mod:`torsio.analysis.axial_transient`,
+:mod:`torsio.analysis.axial_maps`), the top drive (:mod:`torsio.physics.axial_top_drive`), a
+law of the torque alone (:mod:`torsio.physics.torque_law_bit`) and the contacts along a
+chain (:mod:`torsio.well.axial_contacts`). This package re-exports the public names of all
+of them. The equations are in docs/axial.md.
 """
 
 from __future__ import annotations
@@ -18,24 +24,14 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from torsio.axial.assembly import (
-        axial_chain,
-        axial_model,
-        lumped_twin,
-        pipe_string,
-        rgd_two_dof_example,
-        rigid_bit,
-        tube_section,
-        two_dof_assembly,
-    )
+    from torsio.analysis.axial_energy import EnergyBalance
+    from torsio.analysis.axial_maps import axial_map
+    from torsio.analysis.axial_results import AxialChannels
+    from torsio.analysis.axial_transient import simulate_axial
     from torsio.axial.delay_roots import LinearDelaySystem, rightmost_roots
-    from torsio.axial.energy_balance import EnergyBalance
     from torsio.axial.linearization import axial_linearization, drilling_linearization
-    from torsio.axial.maps import axial_map
     from torsio.axial.rgd import RGDBit, rgd_example, rgd_from_table
     from torsio.axial.root_branches import follow_roots
-    from torsio.axial.run_results import AxialChannels
-    from torsio.axial.run_setup import BitRotation
     from torsio.axial.stability import (
         DrillingCase,
         DrillingStability,
@@ -47,30 +43,40 @@ if TYPE_CHECKING:
     )
     from torsio.axial.steady import SteadyDrilling, steady_drilling
     from torsio.axial.steady_friction import SteadyFriction, steady_with_friction
-    from torsio.axial.string_contacts import AxialContacts, axial_contacts
-    from torsio.axial.transient import simulate_axial
+    from torsio.model.axial_assembly import (
+        axial_chain,
+        axial_model,
+        lumped_twin,
+        pipe_string,
+        rgd_two_dof_example,
+        rigid_bit,
+        tube_section,
+        two_dof_assembly,
+    )
+    from torsio.solvers.axial_run_setup import BitRotation
+    from torsio.well.axial_contacts import AxialContacts, axial_contacts
 
 # Every name is imported on first use (PEP 562): the stability analysis loads scipy.linalg,
 # the transient and the maps numba, so that reading an RGD bit (``torsio laws``, a
 # configuration) stays cheap.
 _LAZY = {
-    "axial_chain": "torsio.axial.assembly",
-    "axial_model": "torsio.axial.assembly",
-    "lumped_twin": "torsio.axial.assembly",
-    "pipe_string": "torsio.axial.assembly",
-    "rigid_bit": "torsio.axial.assembly",
-    "tube_section": "torsio.axial.assembly",
-    "rgd_two_dof_example": "torsio.axial.assembly",
-    "two_dof_assembly": "torsio.axial.assembly",
+    "axial_chain": "torsio.model.axial_assembly",
+    "axial_model": "torsio.model.axial_assembly",
+    "lumped_twin": "torsio.model.axial_assembly",
+    "pipe_string": "torsio.model.axial_assembly",
+    "rigid_bit": "torsio.model.axial_assembly",
+    "tube_section": "torsio.model.axial_assembly",
+    "rgd_two_dof_example": "torsio.model.axial_assembly",
+    "two_dof_assembly": "torsio.model.axial_assembly",
     "LinearDelaySystem": "torsio.axial.delay_roots",
     "rightmost_roots": "torsio.axial.delay_roots",
     "axial_linearization": "torsio.axial.linearization",
     "drilling_linearization": "torsio.axial.linearization",
-    "axial_map": "torsio.axial.maps",
+    "axial_map": "torsio.analysis.axial_maps",
     "RGDBit": "torsio.axial.rgd",
     "rgd_example": "torsio.axial.rgd",
     "rgd_from_table": "torsio.axial.rgd",
-    "BitRotation": "torsio.axial.run_setup",
+    "BitRotation": "torsio.solvers.axial_run_setup",
     "DrillingStability": "torsio.axial.stability",
     "ModeCrossing": "torsio.axial.stability",
     "ModeCrossings": "torsio.axial.stability",
@@ -83,11 +89,11 @@ _LAZY = {
     "steady_drilling": "torsio.axial.steady",
     "SteadyFriction": "torsio.axial.steady_friction",
     "steady_with_friction": "torsio.axial.steady_friction",
-    "AxialContacts": "torsio.axial.string_contacts",
-    "axial_contacts": "torsio.axial.string_contacts",
-    "EnergyBalance": "torsio.axial.energy_balance",
-    "AxialChannels": "torsio.axial.run_results",
-    "simulate_axial": "torsio.axial.transient",
+    "AxialContacts": "torsio.well.axial_contacts",
+    "axial_contacts": "torsio.well.axial_contacts",
+    "EnergyBalance": "torsio.analysis.axial_energy",
+    "AxialChannels": "torsio.analysis.axial_results",
+    "simulate_axial": "torsio.analysis.axial_transient",
 }
 
 __all__ = [

@@ -1,8 +1,8 @@
 """The RGD bit's part of one time step, shared by the lumped and the distributed kernels.
 
 Each function is the bit's treatment in Moreau's time stepping (docs/axial.md, "The
-scheme"), written once and called from the step loops of :mod:`torsio.axial.kernel`
-(lumped chain) and :mod:`torsio.axial.wave_kernel` (distributed pipe):
+scheme"), written once and called from the step loops of :mod:`torsio.solvers.axial_kernel`
+(lumped chain) and :mod:`torsio.solvers.axial_wave_kernel` (distributed pipe):
 
 - :func:`depth_of_cut`: d = n (U_b − U(t − t_n)) from the run's history
   (:mod:`torsio.axial.history`), the rock surface kept off bottom;
@@ -12,10 +12,10 @@ scheme"), written once and called from the step loops of :mod:`torsio.axial.kern
 - :func:`forward_rotation`: the bit's new speed, never backwards, and the bit torque (the
   reaction while stuck);
 - :func:`law_rotation`: the same for a law of the torque alone
-  (:mod:`torsio.axial.torque_law`), its torque taken linearly implicit;
-- :func:`add_to_window`: the window's statistics (:data:`torsio.axial.layouts.STATS`);
+  (:mod:`torsio.physics.torque_law_bit`), its torque taken linearly implicit;
+- :func:`add_to_window`: the window's statistics (:data:`torsio.solvers.axial_layouts.STATS`);
 - :func:`sample_motion`, :func:`record_step`: a row of the bit's signals
-  (:data:`torsio.axial.layouts.SAMPLE_COLUMNS`), its motion at the step's start, then what
+  (:data:`torsio.solvers.axial_layouts.SAMPLE_COLUMNS`), its motion at the step's start, then what
   acted over the step with the step's part of the window's statistics.
 
 A step's smooth forces enter through ``force`` (or ``torque``) and the inverse mass (or
@@ -24,7 +24,7 @@ distributed one the force of the arriving wave and 1/(m + h Z/2) (docs/axial.md,
 distributed pipe").
 
 ``bit``, the law's row: [ζ ε a (N/m), ε a²/2 (N m/m), σ a l (N), μ γ a/2 (m), 2π/n (rad),
-n] (:data:`torsio.axial.layouts.BIT_ROW`).
+n] (:data:`torsio.solvers.axial_layouts.BIT_ROW`).
 
 Examples
 --------
@@ -44,7 +44,7 @@ import math
 import numpy as np
 
 from torsio.axial.history import delayed_state, keep_surface
-from torsio.axial.layouts import (
+from torsio.solvers.axial_layouts import (
     ANGLE_PER_BLADE,
     BIT_ANGLE,
     BIT_POSITION,

@@ -16,7 +16,7 @@ it met) (:func:`keep_surface`), so the next blade meets the rock, not the path o
 that bounced (while the bit cuts the two are the same: d = n (U(t) − U(t − t_n))).
 
 These functions are compiled and called from the step loop of
-:mod:`torsio.axial.kernel`; the buffer is the 5 × capacity array ``history`` (rows t, Φ,
+:mod:`torsio.solvers.axial_kernel`; the buffer is the 5 × capacity array ``history`` (rows t, Φ,
 Ω, U, V) and ``cursor`` holds [segment start j (absolute), entries written].
 
 Examples

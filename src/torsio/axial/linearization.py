@@ -28,7 +28,7 @@ and the characteristic equation, with E(λ) = 1 − e^{−λ t_n0}, is
 
     Δ(λ) = (M λ² + n ζ ε a E)(I λ² + c λ + k) − n (ε a² / 2)(V₀/Ω₀) M λ² E = 0.
 
-**A chain** (:func:`~torsio.axial.assembly.axial_chain`, n nodes, m axial DOFs) is
+**A chain** (:func:`~torsio.model.axial_assembly.axial_chain`, n nodes, m axial DOFs) is
 linearized the same way about its steady state (every node at Ω₀ and V₀, every spring
 carrying T₀ and W₀): x = (u_0 .. u_m−1, φ_0 .. φ_n−1), M = diag(m_i, I_i), C and K block
 diagonal with the chain's tridiagonal matrices (:func:`chain_matrices`), and D the 2 × 2
@@ -57,7 +57,8 @@ distributed drill-string", J. Sound Vib. 444 (2019) 127-151.
 
 Examples
 --------
->>> from torsio.axial.assembly import axial_model, pipe_string, rgd_two_dof_example, tube_section
+>>> from torsio.model.axial_assembly import axial_model, pipe_string, tube_section
+>>> from torsio.model.axial_assembly import rgd_two_dof_example
 >>> from torsio.axial.rgd import rgd_example
 >>> from torsio.model.discretize import StrategyC
 >>> system = drilling_linearization(rgd_two_dof_example(), rgd_example(), 100e3, 60.0)
@@ -80,12 +81,12 @@ from typing import Any
 
 import numpy as np
 
-from torsio.axial.assembly import is_two_dof, require_axial
 from torsio.axial.delay_roots import LinearDelaySystem
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 from torsio.axial.steady_friction import drilling_state, friction_damping
 from torsio.errors import ConfigError
+from torsio.model.axial_assembly import is_two_dof, require_axial
 from torsio.model.lumped import LumpedModel, chain_matrix
 
 
@@ -109,7 +110,7 @@ def delayed_matrix(bit: RGDBit, steady: SteadyDrilling) -> np.ndarray:
 
 def two_dof_parameters(assembly: LumpedModel) -> tuple[float, float, float, float]:
     """(I [kg m²], k [N m/rad], M [kg], c [N m s/rad]) of a 2-DOF assembly
-    (:func:`~torsio.axial.assembly.two_dof_assembly`: one node under the weight hook), for
+    (:func:`~torsio.model.axial_assembly.two_dof_assembly`: one node under the weight hook), for
     the characteristic equation written out (:func:`characteristic_function`).
 
     Raises
@@ -136,7 +137,7 @@ def two_dof_parameters(assembly: LumpedModel) -> tuple[float, float, float, floa
 def axial_matrices(assembly: LumpedModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(M [kg], C [N s/m], K [N/m]) of the axial DOFs u_0 .. u_m−1 about steady drilling.
 
-    Spring and damper i join node i − 1 to node i (:mod:`torsio.axial.assembly`): under
+    Spring and damper i join node i − 1 to node i (:mod:`torsio.model.axial_assembly`): under
     the hook speed k_a,0 and c_a,0 join node 0 to the hook (the ground of the
     perturbation); under the hook weight node 0 has none (the weight is constant); with no
     axial springs the string is one rigid body of mass Σ m_i (K = C = 0).
@@ -158,7 +159,7 @@ def chain_matrices(assembly: LumpedModel) -> tuple[np.ndarray, np.ndarray, np.nd
 
     Examples
     --------
-    >>> from torsio.axial.assembly import two_dof_assembly
+    >>> from torsio.model.axial_assembly import two_dof_assembly
     >>> mass, damping, stiffness = chain_matrices(two_dof_assembly(455.65, 324.857, 3e4, 19.49))
     >>> np.diag(mass).tolist(), np.diag(damping).tolist(), np.diag(stiffness).tolist()
     ([30000.0, 455.65], [0.0, 19.49], [0.0, 324.857])
@@ -232,7 +233,7 @@ def drilling_linearization(
     Parameters
     ----------
     assembly : LumpedModel
-        Any lumped chain with axial rows, both hooks (:mod:`torsio.axial.assembly`).
+        Any lumped chain with axial rows, both hooks (:mod:`torsio.model.axial_assembly`).
     bit : RGDBit
         The bit law.
     wob : float
@@ -241,7 +242,7 @@ def drilling_linearization(
     rpm : float
         Ω₀ [rev/min], the speed of the top drive and, steadily, of every node.
     top_drive : TopDriveBoundary, optional
-        The top's boundary (:func:`torsio.axial.top_drive.top_boundary`): a PI speed loop
+        The top's boundary (:func:`torsio.physics.axial_top_drive.top_boundary`): a PI speed loop
         (:func:`speed_loop`) adds the top node φ_top first among the angles, x = (u ..,
         φ_top, φ_0 ..); any other (or None) holds the top at Ω₀.
 
@@ -290,7 +291,7 @@ def characteristic_function(
 
     Examples
     --------
-    >>> from torsio.axial.assembly import rgd_two_dof_example
+    >>> from torsio.model.axial_assembly import rgd_two_dof_example
     >>> from torsio.axial.rgd import rgd_example
     >>> delta = characteristic_function(rgd_two_dof_example(), rgd_example(), 100e3, 60.0)
     >>> delta(0.0)

@@ -13,7 +13,7 @@ frequency Im λ and axial share tell the axial from a torsional mode. A
 
 Examples
 --------
->>> from torsio.axial.assembly import rgd_two_dof_example
+>>> from torsio.model.axial_assembly import rgd_two_dof_example
 >>> from torsio.axial.rgd import rgd_example
 >>> result = drilling_stability(rgd_two_dof_example(), rgd_example(), 100e3, 60.0)
 >>> result.stable
@@ -31,13 +31,13 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.axial.assembly import require_axial
 from torsio.axial.delay_roots import DelayRoots, LinearDelaySystem, rightmost_roots
 from torsio.axial.linearization import drilling_linearization
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling
 from torsio.axial.steady_friction import drilling_state
 from torsio.errors import ConfigError
+from torsio.model.axial_assembly import require_axial
 from torsio.model.lumped import LumpedModel
 
 AXIAL_MODE_SHARE = 0.5
@@ -66,7 +66,7 @@ def growth_rate_skipped(assembly: Any, contacts: Any = None) -> str | None:
 
     Examples
     --------
-    >>> from torsio.axial.assembly import rgd_two_dof_example
+    >>> from torsio.model.axial_assembly import rgd_two_dof_example
     >>> growth_rate_skipped(rgd_two_dof_example()) is None
     True
     """
@@ -92,7 +92,7 @@ class DrillingCase:
 
     Examples
     --------
-    >>> from torsio.axial.assembly import rgd_two_dof_example
+    >>> from torsio.model.axial_assembly import rgd_two_dof_example
     >>> from torsio.axial.rgd import rgd_example
     >>> case = DrillingCase(rgd_two_dof_example(), rgd_example(), 100e3)
     >>> case.stability(60.0).stable
@@ -315,11 +315,11 @@ def mode_crossings(
 
     Examples
     --------
-    With the damper of :func:`~torsio.axial.assembly.rgd_two_dof_example` steady drilling
+    With the damper of :func:`~torsio.model.axial_assembly.rgd_two_dof_example` steady drilling
     turns stable above about 153 rpm, where the axial mode crosses at 32.1 rad/s (the
     axial equation alone crosses at √(2 n ζ ε a / M) = 32.2 rad/s, docs/axial.md):
 
-    >>> from torsio.axial.assembly import rgd_two_dof_example
+    >>> from torsio.model.axial_assembly import rgd_two_dof_example
     >>> from torsio.axial.rgd import rgd_example
     >>> case = DrillingCase(rgd_two_dof_example(), rgd_example(), 100e3)
     >>> [crossing] = mode_crossings(case, (140.0, 170.0), points=7)
@@ -407,7 +407,7 @@ def each_mode_crossing(
     The 2-DOF example's axial modes cross where the axial equation's do
     (ω t_n0 = (2j + 1) π, docs/axial.md), the lowest-rpm crossing a mode above the first:
 
-    >>> from torsio.axial.assembly import rgd_two_dof_example
+    >>> from torsio.model.axial_assembly import rgd_two_dof_example
     >>> from torsio.axial.rgd import rgd_example
     >>> case = DrillingCase(rgd_two_dof_example(), rgd_example(), 100e3)
     >>> found = each_mode_crossing(case, (40.0, 170.0), points=14)

@@ -24,7 +24,7 @@ Examples
 --------
 >>> import numpy as np
 >>> from torsio.axial.rgd import rgd_example
->>> from torsio.axial.string_contacts import AxialContacts
+>>> from torsio.well.axial_contacts import AxialContacts
 >>> contacts = AxialContacts(np.array([2e3, 3e3]), np.array([1.5e3, 2.5e3]),
 ...                          np.array([0.0635, 0.0635]))
 >>> state, friction = steady_with_friction(rgd_example(), 100e3, 60.0, contacts, "speed")
@@ -46,8 +46,8 @@ from numpy.typing import NDArray
 
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
-from torsio.axial.string_contacts import AxialContacts
 from torsio.units import RPM_TO_RAD_S
+from torsio.well.axial_contacts import AxialContacts
 
 __all__ = [
     "SteadyFriction",

@@ -52,13 +52,13 @@ import attrs
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from torsio.axial.assembly import pipe_rows
 from torsio.axial.delay_roots import newton_root
 from torsio.axial.linearization import delayed_matrix
 from torsio.axial.rgd import RGDBit
 from torsio.axial.stability import drilling_stability
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 from torsio.errors import SolverError
+from torsio.model.axial_assembly import pipe_rows
 from torsio.model.axial_rows import PipeAxialRows
 from torsio.model.lumped import LumpedModel
 from torsio.model.wave import WaveModel

@@ -5,10 +5,11 @@ axially) or a ``[[section]]`` string has a law that declares ``needs_axial``, ``
 law = "rgd"``, or an ``[axial]`` table (its axial data from E, ρ and the sections). Any
 registered law runs on a chain: the RGD bit, or a law of the torque alone (Tucker-Wang, a
 plugin's), whose axial motion rests on the rock under the weight on bit
-(:class:`~torsio.axial.torque_law.TorqueLawBit`).
+(:class:`~torsio.physics.torque_law_bit.TorqueLawBit`).
 :func:`chain_axial` and :func:`torsio.config.axial_string.string_axial` build an
 :class:`AxialConfig` that
-:func:`torsio.axial.transient.simulate_axial` and :func:`torsio.axial.maps.axial_map` run:
+:func:`torsio.analysis.axial_transient.simulate_axial` and
+:func:`torsio.analysis.axial_maps.axial_map` run:
 a lumped chain (the file's discretizer with axial rows, elements of at most
 ``[axial] element_length``), or
 with ``[discretization] strategy = "wave"`` the distributed pipe
@@ -35,17 +36,17 @@ import attrs
 import numpy as np
 
 from torsio.analysis.severity import DEFAULT_STICK_THRESHOLD
-from torsio.axial.assembly import DEFAULT_ELEMENT_LENGTH, hook_of, is_two_dof
 from torsio.axial.rgd import RGDBit, rgd_from_table
-from torsio.axial.torque_law import AxialBit, TorqueLawBit
 from torsio.config.chain import ChainConfig, _values
 from torsio.config.configuration import BitRockConfig, bit_radius
 from torsio.config.tables import _positive_number, _string, _table
 from torsio.errors import ConfigError
+from torsio.model.axial_assembly import DEFAULT_ELEMENT_LENGTH, hook_of, is_two_dof
 from torsio.model.axial_rows import AxialRows
 from torsio.model.drillstring import DrillString
 from torsio.model.lumped import LumpedModel
 from torsio.model.wave import WaveModel
+from torsio.physics.torque_law_bit import AxialBit, TorqueLawBit
 
 __all__ = [
     "AXIAL_SIMULATION_KEYS",
@@ -110,7 +111,7 @@ class AxialConfig:
     contacts: Any = None
 
     def run_options(self) -> dict[str, Any]:
-        """Keywords of :func:`~torsio.axial.transient.simulate_axial` from the file."""
+        """Keywords of :func:`~torsio.analysis.axial_transient.simulate_axial` from the file."""
         return {
             "start": self.start,
             "perturbation": self.perturbation,
@@ -150,7 +151,7 @@ class AxialConfig:
     @property
     def is_two_dof(self) -> bool:
         """One node under the weight hook: RGD (2007)'s model
-        (:func:`torsio.axial.assembly.is_two_dof`)."""
+        (:func:`torsio.model.axial_assembly.is_two_dof`)."""
         return is_two_dof(self.assembly)
 
 

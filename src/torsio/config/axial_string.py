@@ -15,8 +15,6 @@ from typing import Any, cast
 
 import attrs
 
-from torsio.axial.assembly import axial_model, check_axial_discretizer, lumped_twin
-from torsio.axial.torque_law import TorqueLawBit
 from torsio.config.axial import (
     AxialConfig,
     axial_bit,
@@ -28,9 +26,11 @@ from torsio.config.axial import (
 )
 from torsio.config.configuration import COUNTING_WAYS, BitRockConfig, DiscretizationConfig
 from torsio.errors import ConfigError
+from torsio.model.axial_assembly import axial_model, check_axial_discretizer, lumped_twin
 from torsio.model.drillstring import DrillString
 from torsio.model.lumped import LumpedModel
 from torsio.model.wave import WaveModel, WaveStrategy
+from torsio.physics.torque_law_bit import TorqueLawBit
 
 __all__ = ["chain_discretization", "string_axial"]
 
@@ -51,7 +51,7 @@ def _wave_pipe(
 ) -> WaveModel:
     """The distributed pipe of ``[discretization] strategy = "wave"``: the wave model of
     the string's drill pipes with their axial lines, the BHA rigid
-    (:func:`~torsio.axial.assembly.axial_model`)."""
+    (:func:`~torsio.model.axial_assembly.axial_model`)."""
     if "element_length" in table.get("axial", {}):
         raise ConfigError(
             "axial.element_length",
@@ -94,7 +94,7 @@ def string_axial(
 
     With ``[discretization] strategy = "wave"`` the distributed pipe
     (a :class:`~torsio.model.wave.WaveModel` with axial rows, the BHA rigid; its lumped
-    twin, :func:`~torsio.axial.assembly.lumped_twin`, for the linear stability);
+    twin, :func:`~torsio.model.axial_assembly.lumped_twin`, for the linear stability);
     otherwise the lumped chain of the file's discretizer with axial rows
     (:func:`_lumped_chain`).
     """

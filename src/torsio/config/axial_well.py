@@ -3,10 +3,10 @@
 A ``[[section]]`` string with axial dynamics is a lumped axial-torsional chain (its
 discretizer's, :func:`torsio.config.axial_string.string_axial`); with ``[well]`` each of its nodes
 gets the
-Coulomb contact of its share of the string (:func:`torsio.axial.string_contacts.axial_contacts`,
+Coulomb contact of its share of the string (:func:`torsio.well.axial_contacts.axial_contacts`,
 the normal force of the well's model at the run's weight on bit). The distributed axial pipe
 (``[discretization] strategy = "wave"``) gets the contacts of its lumped twin's nodes
-(elements of at most :data:`~torsio.axial.assembly.DEFAULT_ELEMENT_LENGTH`), each
+(elements of at most :data:`~torsio.model.axial_assembly.DEFAULT_ELEMENT_LENGTH`), each
 with the share of the string down to half-way to the next (the last one's, at the pipe's
 bottom, down to the bit: the rigid BHA's too); a ``[chain]`` has no diameters to press on
 the borehole with (refused by :func:`torsio.config.well.well_table`).
@@ -26,10 +26,10 @@ from typing import Any
 
 import attrs
 
-from torsio.axial.string_contacts import axial_contacts
-from torsio.axial.torque_law import TorqueLawBit
 from torsio.config.axial import AxialConfig
 from torsio.errors import ConfigError
+from torsio.physics.torque_law_bit import TorqueLawBit
+from torsio.well.axial_contacts import axial_contacts
 from torsio.well.wellbore import Wellbore
 
 __all__ = ["with_well"]

@@ -102,7 +102,7 @@ class LumpedModel:
         The nodes' axial masses, springs and dampers and the hook
         (:class:`torsio.model.axial_rows.AxialRows`, :meth:`with_axial`; None: the chain
         turns only). A chain with axial rows runs on the axial engine
-        (:func:`torsio.axial.transient.simulate_axial`); a System refuses it.
+        (:func:`torsio.analysis.axial_transient.simulate_axial`); a System refuses it.
     top_spring : float or None
         The spring k_1 [N m/rad] that ties node 1 to the top, as given (:meth:`from_chain`;
         None: read from [K], :attr:`springs`). [K] holds k_1 only inside k_1 + k_2, which

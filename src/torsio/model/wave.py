@@ -124,7 +124,7 @@ class WaveModel:
     axial : PipeAxialRows or None
         The pipe's axial lines and the BHA's mass (:meth:`with_axial`; None: torsion
         only). A pipe with axial rows runs on the axial engine, which steps both lines on
-        a grid of its own step (:func:`torsio.axial.wave_setup.pipe_grid`).
+        a grid of its own step (:func:`torsio.solvers.axial_wave_setup.pipe_grid`).
     """
 
     linearizable: ClassVar[bool] = False

@@ -67,7 +67,7 @@ def _check_model(instance: Any, attribute: Any, value: Any) -> None:
         raise ConfigError(
             "model",
             "a model with axial rows moves axially too, which the torsional engines do not "
-            "step: run it with torsio.axial.transient.simulate_axial (or give the chain "
+            "step: run it with torsio.analysis.axial_transient.simulate_axial (or give the chain "
             "without them)",
         )
 

@@ -34,19 +34,19 @@ from typing import Any, cast
 import scipy.linalg
 from rich.table import Table
 
-from torsio.axial.assembly import (
+from torsio.axial.linearization import axial_matrices
+from torsio.display_units import DisplayUnits
+from torsio.model.axial_assembly import (
     assembly_description,
     assembly_summary,
     pipe_rows,
     require_axial,
 )
-from torsio.axial.linearization import axial_matrices
-from torsio.axial.torque_law import TorqueLawBit
-from torsio.display_units import DisplayUnits
 from torsio.model.continuum import bar_frequencies, continuum_modes
 from torsio.model.lumped import LumpedModel
 from torsio.model.modal import natural_frequencies
 from torsio.model.wave import WaveModel
+from torsio.physics.torque_law_bit import TorqueLawBit
 from torsio.report.context import ReportContext, ReportSection
 
 __all__ = [
@@ -75,7 +75,7 @@ def axial_frequencies(
     assembly. A chain gives all of its own; a distributed pipe the first ``count`` of its
     exact continuum (:func:`torsio.model.continuum.bar_frequencies`: E A, √(E/ρ), m_b).
 
-    >>> from torsio.axial.assembly import axial_model, pipe_string, tube_section
+    >>> from torsio.model.axial_assembly import axial_model, pipe_string, tube_section
     >>> from torsio.model.discretize import StrategyC
     >>> from torsio.model.wave import WaveStrategy
     >>> string = pipe_string([tube_section(1000.0, 2.0e11, 8.0e10, 7850.0, 3.4e-3, 1.5e-5)],
@@ -138,7 +138,7 @@ def _stability(axial: Any, wob: float, rpm: float) -> dict[str, Any]:
         mode_crossings,
     )
     from torsio.axial.steady import steady_drilling
-    from torsio.axial.top_drive import top_boundary
+    from torsio.physics.axial_top_drive import top_boundary
 
     chain = axial.stability_assembly  # a distributed pipe's lumped twin
     top = None

@@ -22,8 +22,8 @@ slow and fast swap at w_th. :func:`frictions`, :func:`start_codes`, :func:`margi
 numpy and scipy engines).
 
 **Step form** (the torsional wave march :mod:`torsio.solvers.wave_contacts`, the lumped
-axial chain :mod:`torsio.axial.kernel`, the distributed axial pipe
-:mod:`torsio.axial.wave_kernel`): over one step the law is solved at the velocity level
+axial chain :mod:`torsio.solvers.axial_kernel`, the distributed axial pipe
+:mod:`torsio.solvers.axial_wave_kernel`): over one step the law is solved at the velocity level
 (Moreau) from the node's free motion. In one dimension, a free load d that the
 capacity C cannot hold leaves :func:`excess` = max(|d| - C, 0) to move the node (stuck
 when it is 0); the static branch is kept while its solution stays below w_th and taken

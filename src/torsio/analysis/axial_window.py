@@ -1,5 +1,5 @@
 """What a run of either axial kernel gives over its window: :class:`WindowSummary`, read
-from the kernel's ``stats`` (:data:`torsio.axial.layouts.STATS`) by :func:`summarize`."""
+from the kernel's ``stats`` (:data:`torsio.solvers.axial_layouts.STATS`) by :func:`summarize`."""
 
 from __future__ import annotations
 
@@ -9,9 +9,9 @@ import attrs
 from numpy.typing import NDArray
 
 from torsio.analysis.severity import severity_of_extremes
-from torsio.axial import layouts as slot
-from torsio.axial.run_setup import KernelSetup
-from torsio.axial.torque_law import AxialBit
+from torsio.physics.torque_law_bit import AxialBit
+from torsio.solvers import axial_layouts as slot
+from torsio.solvers.axial_run_setup import KernelSetup
 
 __all__ = ["WindowSummary", "summarize"]
 
@@ -42,7 +42,7 @@ class WindowSummary:
 
 
 def summarize(stats: NDArray, setup: KernelSetup, bit: AxialBit) -> WindowSummary:
-    """The window summary of a kernel's ``stats`` (:data:`torsio.axial.layouts.STATS`), the
+    """The window summary of a kernel's ``stats`` (:data:`torsio.solvers.axial_layouts.STATS`), the
     lumped or the distributed one (``setup.step`` and ``setup.steady`` are read)."""
     s = dict(zip(slot.STATS, stats, strict=True))
     count = s["window_steps"]

@@ -1,5 +1,6 @@
-"""The constants and frequencies of the axial engine's step rule (:mod:`torsio.axial.run_setup`
-applies it, :mod:`torsio.axial.run_budget` checks the work it makes).
+"""The constants and frequencies of the axial engine's step rule
+(:mod:`torsio.solvers.axial_run_setup`
+applies it, :mod:`torsio.solvers.axial_run_budget` checks the work it makes).
 
 Examples
 --------
@@ -14,7 +15,7 @@ import math
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from torsio.axial.torque_law import AxialBit
+    from torsio.physics.torque_law_bit import AxialBit
 
 __all__ = ["DAMPER_STEP", "DEFAULT_STEPS_PER_PERIOD", "contact_frequency"]
 
@@ -23,7 +24,7 @@ DEFAULT_STEPS_PER_PERIOD = 100
 
 DAMPER_STEP = 1.0
 """The largest h δ, δ the bound of the dampers' rates (the eigenvalues of M⁻¹C,
-:func:`~torsio.axial.assembly.fastest_damping_rate`): half the bound
+:func:`~torsio.model.axial_assembly.fastest_damping_rate`): half the bound
 h δ < 2 − (h ω)²/2 within which semi-implicit Euler keeps a damped mode x'' + δ x' + ω² x
 = 0 stable (its step matrix has determinant 1 − h δ and trace 2 − h δ − (h ω)²). The 4 m
 chain of ``rgd_deviated_well.toml`` with β = 0.01 s diverged at h δ = 2 and closes its

@@ -6,14 +6,14 @@ top and a linear controller z' = a z + b y + w (u − u_free), u_free = u0 + c·
 y = [Ω_set − Ω_top, T_pipe]. :func:`top_boundary` asks the top drive for it on what its
 tunings read of a system (:class:`AxialTopSystem`: the set speed, the first torsional
 frequency with the top held, the string when there is one); :class:`TopDriveArrays` is what
-the compiled loop (:mod:`torsio.axial.kernel`) takes; :func:`top_drive_rates` gives the
+the compiled loop (:mod:`torsio.solvers.axial_kernel`) takes; :func:`top_drive_rates` gives the
 eigenvalues of the top node and its controller against the string's top spring (the
 fastest rate the explicit step must resolve); the controller state of steady drilling is the
 boundary's :meth:`~torsio.physics.top_drive_boundary.TopDriveBoundary.steady_states`.
 
 Examples
 --------
->>> from torsio.axial.assembly import rgd_two_dof_example
+>>> from torsio.model.axial_assembly import rgd_two_dof_example
 >>> from torsio.physics.top_drives import PITopDrive
 >>> boundary = top_boundary(PITopDrive(inertia=2900.0, kp=5000.0, ki=2900.0 * 0.8**2),
 ...                         rgd_two_dof_example(), 60.0)
@@ -31,9 +31,9 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.axial.layouts import TOP_DRIVE as TOP_SLOTS
 from torsio.errors import ConfigError
 from torsio.physics.top_drive_boundary import TopDriveBoundary
+from torsio.solvers.axial_layouts import TOP_DRIVE as TOP_SLOTS
 from torsio.solvers.set_speed import twist_table
 from torsio.units import RPM_TO_RAD_S
 
@@ -77,7 +77,8 @@ def top_boundary(top_drive: Any, assembly: Any, rpm: float, string: Any = None) 
 
 @attrs.frozen(eq=False)
 class TopDriveArrays:
-    """The compiled loop's top drive: ``top`` (slots :data:`torsio.axial.layouts.TOP_DRIVE`),
+    """The compiled loop's top drive: ``top`` (slots
+    :data:`torsio.solvers.axial_layouts.TOP_DRIVE`),
     the controller matrices a (m, m) and b (m, 2) row by row, c (m,), d (2,), w (m,), and
     the set speed against time (``speed_table``, :func:`torsio.solvers.set_speed.twist_table`
     for Ω_ref = 0: rows time [s], Ω_set [rad/s], its integral [rad])."""

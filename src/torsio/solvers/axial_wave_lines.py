@@ -57,7 +57,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.axial import layouts as slot
+from torsio.solvers import axial_layouts as slot
 from torsio.solvers.compiled import njit
 from torsio.solvers.contact_law import cone_step
 
@@ -143,7 +143,7 @@ def pipe_contacts(
     axial_p, axial_m, torsional_p, torsional_m, contacts, step, threshold
 ) -> tuple[float, float]:  # pragma: no cover - compiled
     """The contacts along the pipe over one step ``step`` [s] on the arriving waves of both
-    lines, in place (``contacts``: rows :data:`torsio.axial.layouts.WAVE_CONTACT_ROW`; the
+    lines, in place (``contacts``: rows :data:`torsio.solvers.axial_layouts.WAVE_CONTACT_ROW`; the
     static branch while a contact's |s|/r at the step's start is below ``threshold``
     [rad/s]). Returns the friction's work [J] and the stick-slip switches of the step."""
     work = 0.0

@@ -1,34 +1,35 @@
 """The compiled step loop of an axial-torsional run of the distributed pipe with the RGD bit.
 
-Fixed step h, the step of the characteristic grid (:mod:`torsio.axial.wave_setup`). Per
+Fixed step h, the step of the characteristic grid (:mod:`torsio.solvers.axial_wave_setup`). Per
 step, from the state at t to t + h:
 
 1. The depth of cut from the run's own history, as in the lumped loop
    (:func:`torsio.axial.bit_step.depth_of_cut`); the cutting forces W_c, T_c.
-2. Axial line (:mod:`torsio.axial.wave_pipe`): the waves move one node, the junctions
+2. Axial line (:mod:`torsio.solvers.axial_wave_lines`): the waves move one node, the junctions
    split them, the top takes the hook's force W₀ or its speed V₀. The BHA meets the
    arriving wave p at the pipe's bottom: m_b V' = p − Z_a V − W. Over the step p and the
    dashpot Z_a V by the trapezoidal rule, the bit's wear flats as in the lumped loop
    (:func:`torsio.axial.bit_step.wear_flat_contact` with the velocity and the inverse
-   mass of :func:`torsio.axial.wave_pipe.smooth_end_terms`); the wave sent back up is
+   mass of :func:`torsio.solvers.axial_wave_lines.smooth_end_terms`); the wave sent back up is
    m = p − 2 Z_a V.
 3. Torsional line likewise: the top held at the set speed of ``speed_table`` (the one
    set-speed table of every engine, :mod:`torsio.solvers.set_speed`: Ω₀, or a recorded
    speed) at the step's end, the BHA's I_b Ω' = p − Z_t Ω − T
    with the bit's no-backward rotation (:func:`torsio.axial.bit_step.forward_rotation`).
    3b. The contacts along the pipe (``contacts``, rows
-   :data:`torsio.axial.layouts.WAVE_CONTACT_ROW`; none: zero columns) on the arriving waves
-   of both lines (:func:`torsio.axial.wave_pipe.pipe_contacts`), their work and switches
+   :data:`torsio.solvers.axial_layouts.WAVE_CONTACT_ROW`; none: zero columns) on the arriving waves
+   of both lines (:func:`torsio.solvers.axial_wave_lines.pipe_contacts`), their work and switches
    added to ``stats``.
 4. The bit's position and angle by the trapezoidal rule; the new bit state to the history.
 
-``settings`` holds the entries named by :data:`torsio.axial.layouts.WAVE_SETTINGS`, at those
+``settings`` holds the entries named by :data:`torsio.solvers.axial_layouts.WAVE_SETTINGS`, at those
 indices. ``bha`` is [U_b (m, down), V_b (m/s), Φ_b (rad), Ω_b (rad/s)]
-(:data:`torsio.axial.layouts.BHA_STATE`). Each line is its ``offsets`` (int, sections + 1),
-``junctions`` (:func:`torsio.axial.wave_pipe.junction_rows`) and state ``p``, ``m``. ``bit``,
+(:data:`torsio.solvers.axial_layouts.BHA_STATE`). Each line is its ``offsets`` (int, sections + 1),
+``junctions`` (:func:`torsio.solvers.axial_wave_lines.junction_rows`) and state ``p``, ``m``.
+``bit``,
 ``history``, ``cursor``, ``stats`` and ``samples`` are those of the lumped loop
-(:mod:`torsio.axial.kernel`; :data:`torsio.axial.layouts.STATS`,
-:data:`torsio.axial.layouts.SAMPLE_COLUMNS`; the top torque is the pipe's at the top drive).
+(:mod:`torsio.solvers.axial_kernel`; :data:`torsio.solvers.axial_layouts.STATS`,
+:data:`torsio.solvers.axial_layouts.SAMPLE_COLUMNS`; the top torque is the pipe's at the top drive).
 """
 
 from __future__ import annotations
@@ -38,9 +39,9 @@ import math
 import numpy as np
 
 from torsio.axial import bit_step
-from torsio.axial import layouts as slot
 from torsio.axial.history import append
-from torsio.axial.wave_pipe import (
+from torsio.solvers import axial_layouts as slot
+from torsio.solvers.axial_wave_lines import (
     advance,
     close_bottom,
     pipe_contacts,

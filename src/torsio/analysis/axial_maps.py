@@ -1,7 +1,7 @@
 """Maps over (weight on bit, rpm) of axial-torsional runs with the RGD bit.
 
-:func:`axial_map` runs :mod:`torsio.axial.kernel` at every point of the grid with the
-options of :func:`torsio.axial.transient.simulate_axial` (no signals kept), and returns
+:func:`axial_map` runs :mod:`torsio.solvers.axial_kernel` at every point of the grid with the
+options of :func:`torsio.analysis.axial_transient.simulate_axial` (no signals kept), and returns
 :class:`~torsio.analysis.map_results.SeverityMap`, the map of every model: S_SS, its
 classification and critical weight on bit, and the layers axial severity, stuck and
 off-bottom fractions, mean ROP [m/s] and mean MSE [Pa] (``severity[i][j]`` at ``rpm[i]``,
@@ -21,7 +21,7 @@ point is the same deterministic run wherever it runs: the map is identical to th
 
 Examples
 --------
->>> from torsio.axial.assembly import rgd_two_dof_example
+>>> from torsio.model.axial_assembly import rgd_two_dof_example
 >>> from torsio.axial.rgd import rgd_example
 >>> grid = axial_map(rgd_two_dof_example(), rgd_example(), [90e3, 110e3], [60.0, 120.0],
 ...                  duration=20.0, window=10.0, threads=2)
@@ -42,18 +42,18 @@ import attrs
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from torsio.analysis.axial_results import SCHEME, channels_of
+from torsio.analysis.axial_transient import run_top_boundary, simulate_axial
 from torsio.analysis.map_checks import LAYERS
 from torsio.analysis.map_options import MapOptions
 from torsio.analysis.map_results import STICK_SLIP_THRESHOLD, SeverityMap
 from torsio.analysis.map_runs import MapWork, drive_map
 from torsio.analysis.severity import SEVERE_THRESHOLD, run_times
-from torsio.axial.assembly import assembly_description, assembly_summary, lumped_twin
-from torsio.axial.run_results import SCHEME, channels_of
-from torsio.axial.torque_law import AxialBit
-from torsio.axial.transient import run_top_boundary, simulate_axial
 from torsio.errors import ConfigError
+from torsio.model.axial_assembly import assembly_description, assembly_summary, lumped_twin
 from torsio.model.lumped import LumpedModel
 from torsio.model.wave import WaveModel
+from torsio.physics.torque_law_bit import AxialBit
 from torsio.solvers.batch_options import batch_threads
 from torsio.solvers.batch_results import refuse_speed_table
 
@@ -130,7 +130,7 @@ def axial_map(
     chunk_size: int | None = None,
     **options: Any,
 ) -> SeverityMap:
-    """Run :func:`~torsio.axial.transient.simulate_axial` at every (rpm, wob) of the grid,
+    """Run :func:`~torsio.analysis.axial_transient.simulate_axial` at every (rpm, wob) of the grid,
     no signals kept.
 
     Parameters

@@ -17,7 +17,7 @@ at the velocity level over each step (Moreau's time stepping):
    while the string's torque is at most T_c + T_f (the bit torque is then the reaction
    T_b + I_b Ω_b/h). With a prescribed rotation Φ_b, Ω_b are set instead.
    3b. A node with a contact along the string (``contacts``, rows
-   :data:`torsio.axial.layouts.CONTACT_ROW`, F_s > 0) takes its Coulomb friction on its free
+   :data:`torsio.solvers.axial_layouts.CONTACT_ROW`, F_s > 0) takes its Coulomb friction on its free
    (V_i, ω_i) (:func:`torsio.solvers.contact_law.cone_step`; static branch while
    |s|/r at the step's start is below ``settings[THRESHOLD_SPEED]``), at the bit after the
    bit's contacts; ``contact_stuck`` keeps each contact's state to count its switches. With
@@ -25,7 +25,7 @@ at the velocity level over each step (Moreau's time stepping):
 4. Positions from the new velocities: U ← U + h V, θ ← θ + h ω; the held top's angle the
    integral of its set speed (Ω₀ t at a constant one), the hook position U_h0 + V_h t.
    The new bit state is appended to the history. The works of the energy balance
-   (:mod:`torsio.axial.energy_balance`) are summed on the new velocities.
+   (:mod:`torsio.analysis.axial_energy`) are summed on the new velocities.
 
 With a top drive that is not held (``top[TOP_HELD]`` 0), the top is a node (J, drag) with
 a linear controller (:class:`torsio.physics.top_drive_boundary.TopDriveBoundary`), advanced
@@ -35,19 +35,19 @@ d·y, u = clip(u_free, ±max_torque), z ← z + h (a z + b y + w (u − u_free))
 evaluation of every engine, :func:`torsio.physics.top_drive_boundary.motor_torque` and
 :func:`~torsio.physics.top_drive_boundary.controller_rates`),
 Ω_top ← Ω_top + h (u − drag Ω_top − T_pipe)/J, θ_top ← θ_top + h Ω_top (the new speed).
-``top`` holds the entries of :data:`torsio.axial.layouts.TOP_DRIVE`; ``top_state`` is
-[θ_top (rad), Ω_top (rad/s)], ``controller_state`` z; ``ctrl_a`` (m, m) and ``ctrl_b`` (m, 2)
-row by row,
-``ctrl_c`` (m,), ``ctrl_d`` (2,), ``ctrl_w`` (m,) the controller's matrices.
+``top`` holds the entries of :data:`torsio.solvers.axial_layouts.TOP_DRIVE`; ``top_state``
+those of :data:`~torsio.solvers.axial_layouts.TOP_NODE`, ``controller_state`` z;
+``ctrl_a`` (m, m) and ``ctrl_b`` (m, 2) row by row, ``ctrl_c`` (m,), ``ctrl_d`` (2,),
+``ctrl_w`` (m,) the controller's matrices.
 ``speed_table`` is the set speed against time, the one table of every engine
 (:func:`torsio.solvers.set_speed.twist_table` for Ω_ref = 0: rows time [s], Ω_set [rad/s]
 and its integral [rad]): what a held top turns at (a recorded speed, or Ω₀) and what a
 controller tracks (a ramp).
 
 The bit's part of steps 1-3 is :mod:`torsio.axial.bit_step`, shared with the distributed
-pipe's loop (:mod:`torsio.axial.wave_kernel`).
+pipe's loop (:mod:`torsio.solvers.axial_wave_kernel`).
 
-A law of the torque alone (``bit[LAW_TORQUE]`` 1, :mod:`torsio.axial.torque_law`) takes no
+A law of the torque alone (``bit[LAW_TORQUE]`` 1, :mod:`torsio.physics.torque_law_bit`) takes no
 depth of cut: the rock is rigid at ``settings[ROCK_SURFACE]`` (the bit on bottom at U_b
 at or below it, down positive), step 2 gives the rock's reaction W (σ a l = inf: any
 weight), and in step 3 the bit turns under ``law_torque(law_parameters, Ω_b, W, a)`` with
@@ -55,13 +55,13 @@ its slope ``law_slope`` (:func:`torsio.axial.bit_step.law_rotation`), numba func
 :data:`torsio.solvers.law_kernels.LAW_SIGNATURE` passed as first-class functions: the loop
 is compiled once (:func:`march_signature`) for every law.
 
-``settings`` holds the entries named by :data:`torsio.axial.layouts.CHAIN_SETTINGS`, at
+``settings`` holds the entries named by :data:`torsio.solvers.axial_layouts.CHAIN_SETTINGS`, at
 those indices. The bit law
-``bit``: [ζ ε a, ε a²/2, σ a l, μ γ a / 2, 2π/n, n] (:data:`torsio.axial.layouts.BIT_ROW`).
+``bit``: [ζ ε a, ε a²/2, σ a l, μ γ a / 2, 2π/n, n] (:data:`torsio.solvers.axial_layouts.BIT_ROW`).
 ``torsional``: rows 1/I, k, c (spring and damper i join node i − 1, the top for i = 0, to
 node i). ``axial``: rows 1/m, k, c likewise (node 0's spring joins the hook; with the
 weight hook it carries W₀ and is not used). ``stats`` on return and ``samples``: see
-:data:`torsio.axial.layouts.STATS` and :data:`torsio.axial.layouts.SAMPLE_COLUMNS`.
+:data:`torsio.solvers.axial_layouts.STATS` and :data:`torsio.solvers.axial_layouts.SAMPLE_COLUMNS`.
 """
 
 from __future__ import annotations
@@ -71,8 +71,8 @@ import math
 import numpy as np
 
 from torsio.axial import bit_step
-from torsio.axial import layouts as slot
 from torsio.axial.history import append
+from torsio.solvers import axial_layouts as slot
 from torsio.solvers.chain_kernel import compiled_controller_rates, compiled_motor_torque
 from torsio.solvers.compiled import HAVE_NUMBA, njit
 from torsio.solvers.contact_law import cone_step
@@ -215,7 +215,7 @@ def march(
         elif held:  # at the set speed of the table, turned through its integral
             top_angle, top_rate = table_twist(speed_table, t, 0.0), table_speed(speed_table, t)
         else:
-            top_angle, top_rate = top_state[0], top_state[1]
+            top_angle, top_rate = top_state[slot.TOP_NODE_ANGLE], top_state[slot.TOP_NODE_SPEED]
         top_torque = torsional[1, 0] * (top_angle - theta[0]) + torsional[2, 0] * (
             top_rate - omega[0]
         )
@@ -276,12 +276,12 @@ def march(
             )  # fmt: skip
             for j in range(states):
                 controller_state[j] += h * rate[j]
-            top_state[1] += (
+            top_state[slot.TOP_NODE_SPEED] += (
                 h
                 * (motor - top[slot.TOP_DRAG] * top_rate - top_torque)
                 * top[slot.TOP_INVERSE_INERTIA]
             )
-            top_state[0] += h * top_state[1]
+            top_state[slot.TOP_NODE_ANGLE] += h * top_state[slot.TOP_NODE_SPEED]
         # the energy balance's works over the step, on the new velocities
         top_work += h * top_torque * top_rate
         hook_work += h * hook_force * (hook_speed if speed_hook else v[0])

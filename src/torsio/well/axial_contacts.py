@@ -29,9 +29,9 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.axial import layouts as slot
 from torsio.errors import ConfigError
 from torsio.model.arrays import read_only
+from torsio.solvers import axial_layouts as slot
 from torsio.well.break_off import friction_below
 from torsio.well.rotating_column import RotatingColumn
 from torsio.well.string_contacts import CONTACT_CELL_LENGTH, node_shares
@@ -125,7 +125,7 @@ class AxialContacts:
 
 
 def contact_rows(contacts: AxialContacts | None, nodes: int) -> NDArray[np.float64]:
-    """The kernel's ``contacts`` (:data:`torsio.axial.layouts.CONTACT_ROW` by ``nodes``):
+    """The kernel's ``contacts`` (:data:`torsio.solvers.axial_layouts.CONTACT_ROW` by ``nodes``):
     zeros without contacts."""
     rows = np.zeros((len(slot.CONTACT_ROW), nodes))
     if contacts is None:

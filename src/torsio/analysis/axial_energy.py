@@ -1,4 +1,4 @@
-"""The energy balance of a lumped axial-torsional run (:mod:`torsio.axial.kernel`).
+"""The energy balance of a lumped axial-torsional run (:mod:`torsio.solvers.axial_kernel`).
 
 Over the run the work put into the string at the top (surface torque × top speed) and at the
 hook (the weight × the top node's velocity, or the speed hook's force × its speed) goes into
@@ -13,9 +13,9 @@ power), so the residual is the scheme's O(h) (docs/axial.md, "Friction along the
 
 Examples
 --------
->>> from torsio.axial.assembly import rgd_two_dof_example
+>>> from torsio.model.axial_assembly import rgd_two_dof_example
 >>> from torsio.axial.rgd import rgd_example
->>> from torsio.axial.transient import simulate_axial
+>>> from torsio.analysis.axial_transient import simulate_axial
 >>> run = simulate_axial(rgd_two_dof_example(), rgd_example(), 100e3, 60.0, duration=2.0,
 ...                      window=1.0, growth_rate=False)
 >>> abs(run.axial.energy.residual) < 0.01 * run.axial.energy.input_work
@@ -31,7 +31,7 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.axial import layouts as slot
+from torsio.solvers import axial_layouts as slot
 from torsio.solvers.set_speed import table_twist
 
 __all__ = ["RESIDUAL_TOLERANCE", "EnergyBalance", "chain_energy", "energy_balance", "stored_energy"]
@@ -114,7 +114,7 @@ deviated well (measured, 2026-12-05)."""
 
 
 def energy_balance(stats: NDArray, start: float, end: float) -> EnergyBalance:
-    """The balance of a lumped run's ``stats`` (:data:`torsio.axial.layouts.STATS`) with
+    """The balance of a lumped run's ``stats`` (:data:`torsio.solvers.axial_layouts.STATS`) with
     the chain's energy at the ``start`` and the ``end`` [J] (:func:`chain_energy`)."""
     return EnergyBalance(
         top_work=float(stats[slot.TOP_WORK]),
@@ -129,14 +129,16 @@ def energy_balance(stats: NDArray, start: float, end: float) -> EnergyBalance:
 def stored_energy(setup: Any, time: float) -> float | None:
     """The lumped chain's kinetic and spring energy [J] at ``time`` [s] of its state (None:
     the distributed pipe, or a prescribed bit rotation)."""
-    from torsio.axial.run_setup import RunSetup
+    from torsio.solvers.axial_run_setup import RunSetup
 
     if not isinstance(setup, RunSetup) or setup.settings[slot.PRESCRIBED]:
         return None
     settings = setup.settings
     held = setup.top.top[slot.TOP_HELD] != 0.0
     table = setup.top.speed_table
-    top_angle = table_twist(table, time, 0.0) if held else float(setup.top_state[0])
+    top_angle = (
+        table_twist(table, time, 0.0) if held else float(setup.top_state[slot.TOP_NODE_ANGLE])
+    )
     hook = None
     if settings[slot.SPEED_HOOK]:
         hook = settings[slot.HOOK_START] + settings[slot.HOOK_SPEED] * time

@@ -1,15 +1,15 @@
 """Axial-torsional transients with the RGD bit on the compiled engine.
 
-:func:`simulate_axial` runs a lumped assembly (:mod:`torsio.axial.assembly`) drilling
+:func:`simulate_axial` runs a lumped assembly (:mod:`torsio.model.axial_assembly`) drilling
 with an :class:`~torsio.axial.rgd.RGDBit` under the weight W₀ with the top turning at Ω₀,
-from rest or from the steady state (:mod:`torsio.axial.run_setup`), with the fixed-step
-scheme of :mod:`torsio.axial.kernel`, and returns the results every run has
+from rest or from the steady state (:mod:`torsio.solvers.axial_run_setup`), with the fixed-step
+scheme of :mod:`torsio.solvers.axial_kernel`, and returns the results every run has
 (:class:`~torsio.analysis.transient_results.TransientResults`) with its axial channels
-(:class:`~torsio.axial.run_results.AxialChannels`): the window's S_SS, axial severity,
+(:class:`~torsio.analysis.axial_results.AxialChannels`): the window's S_SS, axial severity,
 stuck and off-bottom fractions, mean ROP and MSE, the bit's signals, and the growth rate
 of the linearization of steady drilling (:func:`torsio.axial.stability.drilling_stability`;
 not with a prescribed bit rotation).
-A law of the torque alone (:mod:`torsio.axial.torque_law`: Tucker-Wang, a plugin's) runs on
+A law of the torque alone (:mod:`torsio.physics.torque_law_bit`: Tucker-Wang, a plugin's) runs on
 a lumped chain the same way, resting axially on the rock, and has no growth rate here.
 
 Default run length and window as torsio's other runs
@@ -18,7 +18,7 @@ mode, top held (the assembly's ``first_frequency()``).
 
 Examples
 --------
->>> from torsio.axial.assembly import rgd_two_dof_example
+>>> from torsio.model.axial_assembly import rgd_two_dof_example
 >>> from torsio.axial.rgd import rgd_example
 >>> run = simulate_axial(rgd_two_dof_example(), rgd_example(), 100e3, 60.0, duration=2.0,
 ...                      window=1.0, start="steady", perturbation=0.0)
@@ -37,24 +37,24 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 from numpy.typing import NDArray
 
+from torsio.analysis.axial_energy import energy_balance, stored_energy
+from torsio.analysis.axial_results import SCHEME, AxialChannels, axial_results
+from torsio.analysis.axial_warnings import run_warnings
+from torsio.analysis.axial_window import summarize
 from torsio.analysis.limits import past_the_record, saturated_motor, warning_list
 from torsio.analysis.severity import DEFAULT_STICK_THRESHOLD, run_times
-from torsio.axial import layouts as slot
-from torsio.axial.assembly import assembly_description, lumped_twin
-from torsio.axial.energy_balance import energy_balance, stored_energy
-from torsio.axial.kernel import march
-from torsio.axial.run_results import SCHEME, AxialChannels, axial_results
-from torsio.axial.run_setup import BitRotation, RunOptions, RunSetup, run_setup
-from torsio.axial.run_warnings import run_warnings
 from torsio.axial.stability import NO_PIPE_FRICTION_RATE, growth_rate_skipped
 from torsio.axial.steady import SteadyDrilling
-from torsio.axial.step_rule import DEFAULT_STEPS_PER_PERIOD
-from torsio.axial.torque_law import AxialBit, TorqueLawBit
-from torsio.axial.wave_setup import WaveRunSetup, wave_chunk, wave_run_setup
-from torsio.axial.window_summary import summarize
 from torsio.errors import ConfigError, SolverError
+from torsio.model.axial_assembly import assembly_description, lumped_twin
 from torsio.model.lumped import LumpedModel
 from torsio.model.wave import WaveModel
+from torsio.physics.torque_law_bit import AxialBit, TorqueLawBit
+from torsio.solvers import axial_layouts as slot
+from torsio.solvers.axial_kernel import march
+from torsio.solvers.axial_run_setup import BitRotation, RunOptions, RunSetup, run_setup
+from torsio.solvers.axial_step_rule import DEFAULT_STEPS_PER_PERIOD
+from torsio.solvers.axial_wave_setup import WaveRunSetup, wave_chunk, wave_run_setup
 from torsio.solvers.run_chunks import run_in_chunks
 from torsio.solvers.set_speed import table_at
 from torsio.units import RPM_TO_RAD_S, as_rpm, as_si
@@ -184,22 +184,22 @@ def simulate_axial(
     progress: Any = None,
 ) -> TransientResults:
     """Run the assembly drilling at ``wob`` [N] and ``rpm`` [rev/min]: the run's results
-    with its axial channels (:class:`~torsio.axial.run_results.AxialChannels` in
+    with its axial channels (:class:`~torsio.analysis.axial_results.AxialChannels` in
     ``axial``).
 
     Parameters
     ----------
     assembly : LumpedModel or WaveModel
-        A lumped chain (:mod:`torsio.axial.kernel`) or a distributed pipe above a lumped
-        BHA (:mod:`torsio.axial.wave_kernel`).
+        A lumped chain (:mod:`torsio.solvers.axial_kernel`) or a distributed pipe above a lumped
+        BHA (:mod:`torsio.solvers.axial_wave_kernel`).
     duration, window : float, optional
         Run length and steady window at its end [s]
         (:func:`torsio.analysis.severity.run_times`).
     start : str
         ``"rest"`` (default) or ``"steady"`` with the bit speed raised by ``perturbation``.
     step, steps_per_period : float, int
-        The step rule of :mod:`torsio.axial.run_setup` (lumped) or
-        :mod:`torsio.axial.wave_setup` (distributed).
+        The step rule of :mod:`torsio.solvers.axial_run_setup` (lumped) or
+        :mod:`torsio.solvers.axial_wave_setup` (distributed).
     stick_threshold : float
         The bit counts as stuck while |Ω_b| < ``stick_threshold`` Ω₀, as on the torsional
         engines (:data:`~torsio.analysis.severity.DEFAULT_STICK_THRESHOLD`).
@@ -217,7 +217,7 @@ def simulate_axial(
     top_drive : top drive, optional
         Any registered top drive (:mod:`torsio.physics.top_drives`, plugins; e.g.
         ``PITopDrive(inertia=2900.0, kp=5000.0, ki=1800.0)``) turning the top as a node with
-        its controller (:mod:`torsio.axial.top_drive`); None or ``ConstantSpeedTop()``: held
+        its controller (:mod:`torsio.physics.axial_top_drive`); None or ``ConstantSpeedTop()``: held
         at Ω₀; ``RecordedTopDrive``: held at the recorded speed, linear between its samples
         (the one set-speed table of every engine, :mod:`torsio.solvers.set_speed`), the
         run's Ω₀ (its steady state, S_SS) the last recorded speed, whatever ``rpm`` says.
@@ -228,7 +228,7 @@ def simulate_axial(
         impedance (``soft-torque``, ``z-torque`` defaults).
     contacts : AxialContacts, optional
         Coulomb friction along the string at the chain's nodes, or at the distributed
-        pipe's inner nodes nearest their ``depths`` (:mod:`torsio.axial.string_contacts`),
+        pipe's inner nodes nearest their ``depths`` (:mod:`torsio.well.axial_contacts`),
         its normal force rebuilt at ``wob``. The growth rate is then that of the
         linearization with the contacts' damping (:mod:`torsio.axial.steady_friction`;
         the distributed pipe has none with contacts).
@@ -326,10 +326,10 @@ def simulate_axial(
 
 def run_top_boundary(top_drive: Any, assembly: Any, rpm: float, string: Any = None) -> Any:
     """The boundary of ``top_drive`` on ``assembly`` at ``rpm``
-    (:func:`torsio.axial.top_drive.top_boundary`). The distributed pipe's top is held (at Ω₀
+    (:func:`torsio.physics.axial_top_drive.top_boundary`). The distributed pipe's top is held (at Ω₀
     or a recorded speed): a top drive with inertia there is a ConfigError naming the kind,
     whatever its tuning would need."""
-    from torsio.axial.top_drive import top_boundary
+    from torsio.physics.axial_top_drive import top_boundary
 
     refusal = ConfigError(
         "top_drive",

@@ -1,15 +1,15 @@
-"""What one run of :mod:`torsio.axial.kernel` needs: the step, the initial state, the
+"""What one run of :mod:`torsio.solvers.axial_kernel` needs: the step, the initial state, the
 history before t = 0, and the summary of the window it returns.
 
 **Step rule.** h_max = 2π / (ω_fast × ``steps_per_period``), ω_fast the largest of the
 bit's axial contact frequency √(2 n ζ ε a / m_b) (where the axial roots cross the
 imaginary axis, docs/axial.md) and the chain's node frequencies; a given ``step`` caps it
 further. The bound δ of the dampers' rates caps it at h δ <= :data:`DAMPER_STEP`
-(:mod:`torsio.axial.step_rule`; fine elements with β dampers: δ = β ω² outgrows ω, and the
+(:mod:`torsio.solvers.axial_step_rule`; fine elements with β dampers: δ = β ω² outgrows ω, and the
 explicit dampers would diverge). h = t_n0 / ⌈t_n0 / h_max⌉: a whole number of steps per
 steady delay t_n0 = 2π/(n Ω₀). With a top drive that is not held, ω_fast also counts the largest
 |λ| of the top node and its controller against the string's top spring
-(:func:`torsio.axial.top_drive.top_drive_rates`), and a step with |λ| h above
+(:func:`torsio.physics.axial_top_drive.top_drive_rates`), and a step with |λ| h above
 :data:`TOP_DRIVE_STEP_LIMIT` is refused (``simulation.step``).
 
 **Starts.** ``"steady"``: the steady drilling state (each spring carrying T₀ and W₀, every
@@ -19,16 +19,16 @@ instead). ``"rest"``: every node at rest, the torsional springs untwisted, the a
 springs carrying W₀, the hole's bottom flat (U before t = 0 at U(0)), the top turning at
 Ω₀ from t = 0.
 
-**A law of the torque alone** (:class:`~torsio.axial.torque_law.TorqueLawBit`): the steady
+**A law of the torque alone** (:class:`~torsio.physics.torque_law_bit.TorqueLawBit`): the steady
 state turns at Ω₀ under the law's torque at W₀ and rests axially; the rock's surface is the
 bit's position at t = 0, and no axial contact frequency enters the step rule; the law's
 rate at rest, its slope at zero speed over the bit's inertia
-(:meth:`~torsio.axial.torque_law.TorqueLawBit.rate`), counts in ω_fast like a frequency:
+(:meth:`~torsio.physics.torque_law_bit.TorqueLawBit.rate`), counts in ω_fast like a frequency:
 ``steps_per_period`` steps per 2π over it.
 
 Examples
 --------
->>> from torsio.axial.assembly import rgd_two_dof_example
+>>> from torsio.model.axial_assembly import rgd_two_dof_example
 >>> from torsio.axial.rgd import rgd_example
 >>> setup = run_setup(rgd_two_dof_example(), rgd_example(), 100e3, 60.0, RunOptions(10.0, 5.0))
 >>> round(setup.step * 1e3, 6), setup.steps  # ms; 0.25 s / 129 steps
@@ -45,8 +45,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from torsio.analysis.severity import DEFAULT_STICK_THRESHOLD, check_window
-from torsio.axial import layouts as slot
-from torsio.axial.assembly import (
+from torsio.axial.steady import SteadyDrilling
+from torsio.axial.steady_friction import steady_loads, steady_with_friction
+from torsio.errors import ConfigError
+from torsio.model.axial_assembly import (
     axial_kernel_rows,
     fastest_damping_rate,
     fastest_frequency,
@@ -55,16 +57,14 @@ from torsio.axial.assembly import (
     steady_positions,
     torsional_kernel_rows,
 )
-from torsio.axial.run_budget import check_run_work
-from torsio.axial.steady import SteadyDrilling
-from torsio.axial.steady_friction import steady_loads, steady_with_friction
-from torsio.axial.step_rule import DAMPER_STEP, DEFAULT_STEPS_PER_PERIOD, contact_frequency
-from torsio.axial.string_contacts import AxialContacts, contact_rows
-from torsio.axial.top_drive import TopDriveArrays, top_drive_rates
-from torsio.axial.torque_law import AxialBit, TorqueLawBit, law_functions, steady_state
-from torsio.errors import ConfigError
 from torsio.model.lumped import LumpedModel
+from torsio.physics.axial_top_drive import TopDriveArrays, top_drive_rates
 from torsio.physics.top_drive_boundary import TopDriveBoundary
+from torsio.physics.torque_law_bit import AxialBit, TorqueLawBit, law_functions, steady_state
+from torsio.solvers import axial_layouts as slot
+from torsio.solvers.axial_run_budget import check_run_work
+from torsio.solvers.axial_step_rule import DAMPER_STEP, DEFAULT_STEPS_PER_PERIOD, contact_frequency
+from torsio.well.axial_contacts import AxialContacts, contact_rows
 
 __all__ = [
     "BitRotation",
@@ -85,7 +85,7 @@ __all__ = [
 STARTS = ("rest", "steady")
 
 TOP_DRIVE_STEP_LIMIT = 1.0
-"""Largest |λ| h of the top drive's rates (:func:`torsio.axial.top_drive.top_drive_rates`)
+"""Largest |λ| h of the top drive's rates (:func:`torsio.physics.axial_top_drive.top_drive_rates`)
 the explicit step takes: well inside the stability bound 2 of explicit and symplectic Euler
 (a real rate and an oscillation alike)."""
 
@@ -136,14 +136,15 @@ class BitStart:
 @attrs.frozen
 class RunOptions:
     """How a run is set up, lumped (:func:`run_setup`) or distributed
-    (:func:`torsio.axial.wave_setup.wave_run_setup`): its length ``duration`` and the
+    (:func:`torsio.solvers.axial_wave_setup.wave_run_setup`): its length ``duration`` and the
     ``window`` at its end [s], its ``start`` (:data:`STARTS`; on the steady start the bit's
     speed raised by ``perturbation``, relative), its step rule (``steps_per_period``, a
     given ``step`` [s] capping h; see the module docstring) and the ``stick_threshold``
     (the bit stuck while |Ω_b| < stick_threshold Ω₀, as on every engine:
     :data:`torsio.analysis.severity.DEFAULT_STICK_THRESHOLD`). :meth:`check` validates them.
     ``default_duration`` [s] is the run length torsio would choose for the model (None: not
-    known): :func:`torsio.axial.run_budget.check_run_work` tells by it a long run from a fast
+    known): :func:`torsio.solvers.axial_run_budget.check_run_work` tells by it a long run from a
+    fast
     model.
     """
 
@@ -198,7 +199,7 @@ class RunOptions:
 @attrs.frozen(eq=False)
 class KernelSetup:
     """What a run of either axial kernel starts from (:class:`RunSetup` of the lumped chain,
-    :class:`~torsio.axial.wave_setup.WaveRunSetup` of the distributed pipe): the steady
+    :class:`~torsio.solvers.axial_wave_setup.WaveRunSetup` of the distributed pipe): the steady
     state, the step h [s], the steps of the run and of its window, the bit law's row
     (:func:`bit_law_row`), the ``settings`` and the bit's history with its cursor
     (:func:`start_history`); both setups build it with :func:`kernel_setup`."""
@@ -215,7 +216,7 @@ class KernelSetup:
 
 @attrs.frozen(eq=False)
 class RunSetup(KernelSetup):
-    """The lumped kernel's arrays for one run (:func:`torsio.axial.kernel.march`): those of
+    """The lumped kernel's arrays for one run (:func:`torsio.solvers.axial_kernel.march`): those of
     every run (:class:`KernelSetup`), the chain's rows and its state, the string contacts'
     rows and states, and ``friction`` their steady part
     (:class:`~torsio.axial.steady_friction.SteadyFriction`; None without contacts)."""
@@ -227,13 +228,13 @@ class RunSetup(KernelSetup):
     u: NDArray[np.float64]
     v: NDArray[np.float64]
     top: TopDriveArrays = attrs.field(factory=lambda: TopDriveArrays.from_boundary(None, 0.0))
-    top_state: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(2))
+    top_state: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(len(slot.TOP_NODE)))
     controller_state: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(0))
     contacts: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros((3, 0)))
     contact_stuck: NDArray[np.float64] = attrs.field(factory=lambda: np.zeros(0))
     friction: Any = None
     law: Any = None
-    """The law's compiled torque and slope (:func:`torsio.axial.torque_law.law_functions`)."""
+    """The law's compiled torque and slope (:func:`torsio.physics.torque_law_bit.law_functions`)."""
 
 
 def check_set_speed(
@@ -291,8 +292,8 @@ def start_history(
 
 def bit_law_row(bit: AxialBit) -> NDArray[np.float64]:
     """The kernels' bit row [ζ ε a, ε a²/2, σ a l, μ γ a/2, 2π/n, n, 0, a]
-    (:data:`torsio.axial.layouts.BIT_ROW`; a law of the torque alone's:
-    :meth:`~torsio.axial.torque_law.TorqueLawBit.row`)."""
+    (:data:`torsio.solvers.axial_layouts.BIT_ROW`; a law of the torque alone's:
+    :meth:`~torsio.physics.torque_law_bit.TorqueLawBit.row`)."""
     if isinstance(bit, TorqueLawBit):
         return bit.row()
     row = np.zeros(len(slot.BIT_ROW))
@@ -310,7 +311,7 @@ def run_settings(
     size: int, steady: SteadyDrilling, step: float, steps: int, window_steps: int, hook: str
 ) -> NDArray[np.float64]:
     """A kernel's ``settings`` of ``size`` entries with the head both kernels share filled in
-    (:data:`torsio.axial.layouts.RUN_SETTINGS`: the step h [s], the steps, Ω₀ and W₀ of
+    (:data:`torsio.solvers.axial_layouts.RUN_SETTINGS`: the step h [s], the steps, Ω₀ and W₀ of
     ``steady``, the ``hook`` and its speed V₀ when it is ``"speed"``, the window of the last
     ``window_steps``), the rest 0 (the stick speed: :func:`kernel_setup`)."""
     settings = np.zeros(size)
@@ -383,11 +384,11 @@ def run_setup(
     """The step, the initial state and the history of a run (see the module docstring) at
     ``wob`` [N] and ``rpm`` [rev/min], set up as ``options`` say, the bit turning as
     ``bit_rotation`` prescribes when given; ``top_drive`` the top's boundary
-    (:func:`torsio.axial.top_drive.top_boundary`; None: held at Ω₀). A top drive that is not
+    (:func:`torsio.physics.axial_top_drive.top_boundary`; None: held at Ω₀). A top drive that is not
     held starts with the string: from rest (angle, speed and controller states zero) or on
     the steady state (at Ω₀, the controller state of ``TopDriveBoundary.steady_states``).
     ``contacts``: the string's contacts with the borehole
-    (:mod:`torsio.axial.string_contacts`; their normal force at ``wob``), the steady state
+    (:mod:`torsio.well.axial_contacts`; their normal force at ``wob``), the steady state
     then that of :mod:`torsio.axial.steady_friction` (``wob`` the hook's weight under the
     weight hook).
     """
@@ -463,11 +464,11 @@ def run_setup(
     size = len(slot.CHAIN_SETTINGS)
     kernel = kernel_setup(steady, bit, h, options, size, axial.hook, bit_start)
     rotation = bit_rotation or BitRotation()
-    top_state, controller_state = np.zeros(2), np.zeros(0)
+    top_state, controller_state = np.zeros(len(slot.TOP_NODE)), np.zeros(0)
     if top_drive is not None and driven:
         controller_state = np.zeros(top_drive.states)
         if on_steady:
-            top_state[1] = omega0
+            top_state[slot.TOP_NODE_SPEED] = omega0
             surface = steady.bit_torque if contacts is None else friction.surface_torque
             motor = surface + top_drive.drag * omega0  # u = T₀ + drag Ω₀
             controller_state = top_drive.steady_states(surface, motor)

@@ -1,9 +1,9 @@
 """Where each value sits in the arrays the axial kernels take and return.
 
-The compiled step loops of the lumped chain (:mod:`torsio.axial.kernel`) and of the
-distributed pipe (:mod:`torsio.axial.wave_kernel`) exchange index-packed float arrays with
-the Python side (:mod:`torsio.axial.run_setup`, :mod:`torsio.axial.wave_setup`,
-:mod:`torsio.axial.transient`). Each array's entries are named here, once, in order, and
+The compiled step loops of the lumped chain (:mod:`torsio.solvers.axial_kernel`) and of the
+distributed pipe (:mod:`torsio.solvers.axial_wave_kernel`) exchange index-packed float arrays with
+the Python side (:mod:`torsio.solvers.axial_run_setup`, :mod:`torsio.solvers.axial_wave_setup`,
+:mod:`torsio.analysis.axial_transient`). Each array's entries are named here, once, in order, and
 each index is a module-level int unpacked from the names (numba compiles it as a
 constant): the kernels, their shared bit step (:mod:`torsio.axial.bit_step`) and the
 encoders index with these names only.
@@ -16,7 +16,7 @@ encoders index with these names only.
 - ``bha``, the distributed pipe's lumped BHA: :data:`BHA_STATE`;
 - ``top``, the lumped chain's top drive: :data:`TOP_DRIVE`;
 - ``contacts``, the lumped chain's string contacts: :data:`CONTACT_ROW`;
-- ``bit``, the law's row (:func:`torsio.axial.run_setup.bit_law_row`): :data:`BIT_ROW`.
+- ``bit``, the law's row (:func:`torsio.solvers.axial_run_setup.bit_law_row`): :data:`BIT_ROW`.
 
 Adding an entry: insert its name where it belongs and its index in the unpacking beside
 it; write it in the encoder and read it in the kernel by name.
@@ -148,7 +148,7 @@ TOP_DRIVE = (
     "max_torque",
     "set_speed",
 )
-"""The entries of the lumped kernel's ``top`` (:mod:`torsio.axial.kernel`): 1 when the top
+"""The entries of the lumped kernel's ``top`` (:mod:`torsio.solvers.axial_kernel`): 1 when the top
 is held (no node), 1/J [1/(kg m²)], drag [N m s/rad], u0 [N m], max_torque [N m] (inf:
 none), Ω_set [rad/s] (NaN: none, the speed error is then 0). The set speed in time (a
 ramp, a recorded speed) is the run's set-speed table (:mod:`torsio.solvers.set_speed`)."""
@@ -161,6 +161,12 @@ ramp, a recorded speed) is the run's set-speed table (:mod:`torsio.solvers.set_s
     TOP_MAX_TORQUE,
     TOP_SET_SPEED,
 ) = range(len(TOP_DRIVE))
+
+TOP_NODE = ("angle", "speed")
+"""The entries of the lumped kernel's ``top_state``: the top drive's θ_top [rad] and Ω_top
+[rad/s] when it is a node."""
+
+TOP_NODE_ANGLE, TOP_NODE_SPEED = range(len(TOP_NODE))
 
 RUN_SETTINGS = (
     "step",
@@ -178,7 +184,7 @@ RUN_SETTINGS = (
 """The head of both kernels' ``settings``: h [s], the step a call stops before, Ω₀ [rad/s],
 W₀ [N], the hook (0 weight, 1 speed), V_h [m/s], the window's first step, sample every (0:
 never), t at step 0 [s], the step a call starts at (a run goes in chunks of steps
-``first_step`` .. ``steps`` - 1: :func:`torsio.axial.transient.run_kernel`), the speed
+``first_step`` .. ``steps`` - 1: :func:`torsio.analysis.axial_transient.run_kernel`), the speed
 [rad/s] below which the bit counts as stuck (the stick threshold times Ω₀)."""
 
 (
@@ -204,7 +210,7 @@ CHAIN_SETTINGS = (
     "threshold_speed",
     "rock_surface",
 )
-"""The entries of the lumped chain's ``settings`` (:mod:`torsio.axial.kernel`): those of
+"""The entries of the lumped chain's ``settings`` (:mod:`torsio.solvers.axial_kernel`): those of
 :data:`RUN_SETTINGS`, then U_h0 [m] (the hook's position at step 0), a prescribed bit
 rotation (0/1), its amplitude A and frequency f [rad/s], the string contacts' threshold
 speed [rad/s], the rigid rock's surface [m] under a law of the torque alone (the bit is on
@@ -216,7 +222,7 @@ HOOK_START, PRESCRIBED, AMPLITUDE, FREQUENCY, THRESHOLD_SPEED, ROCK_SURFACE = ra
 
 CONTACT_ROW = ("static_force", "sliding_force", "radius")
 """The rows of the lumped kernel's ``contacts`` (one column per node,
-:mod:`torsio.axial.string_contacts`): F_s, F_d [N] and r [m]; all 0: no contact."""
+:mod:`torsio.well.axial_contacts`): F_s, F_d [N] and r [m]; all 0: no contact."""
 
 STATIC_FORCE, SLIDING_FORCE, CONTACT_RADIUS = range(len(CONTACT_ROW))
 
@@ -230,7 +236,7 @@ WAVE_SETTINGS = (
     "torsional_bottom_impedance",
     "pipe_threshold_speed",
 )
-"""The entries of the distributed pipe's ``settings`` (:mod:`torsio.axial.wave_kernel`):
+"""The entries of the distributed pipe's ``settings`` (:mod:`torsio.solvers.axial_wave_kernel`):
 those of :data:`RUN_SETTINGS`, then m_b [kg], I_b [kg m²], Z of the top and bottom sections
 axially [N s/m] and torsionally [N m s/rad], the string contacts' threshold speed
 [rad/s]."""
@@ -256,7 +262,7 @@ WAVE_CONTACT_ROW = (
     "stuck",
 )
 """The rows of the distributed pipe's ``contacts`` (one column per contact,
-:func:`torsio.axial.wave_pipe.pipe_contacts`): those of :data:`CONTACT_ROW`, the contact's
+:func:`torsio.solvers.axial_wave_lines.pipe_contacts`): those of :data:`CONTACT_ROW`, the contact's
 node in the axial and in the torsional line's state (as floats), Z there axially [N s/m]
 and torsionally [N m s/rad], its last step's V [m/s] and ω [rad/s], 1 while it is stuck."""
 
@@ -288,7 +294,7 @@ BIT_ROW = (
 )
 """The entries of ``bit``: ζ ε a [N/m], ε a²/2 [N m/m], σ a l [N], μ γ a/2 [m], 2π/n [rad],
 n; 1 when the torque on bit is a law's ``torque(speed, wob, radius)`` (a law of the torque
-alone, the rock rigid: :mod:`torsio.axial.torque_law`; the lumped kernel only), 0 for the
+alone, the rock rigid: :mod:`torsio.physics.torque_law_bit`; the lumped kernel only), 0 for the
 RGD bit; the bit radius a [m] that law takes."""
 
 (

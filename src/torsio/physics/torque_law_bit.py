@@ -38,10 +38,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from torsio.analysis.budget import law_slope_at_rest
-from torsio.axial import layouts as slot
 from torsio.axial.rgd import RGDBit
 from torsio.axial.steady import SteadyDrilling, steady_drilling
 from torsio.errors import ConfigError
+from torsio.solvers import axial_layouts as slot
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = ["AxialBit", "TorqueLawBit", "law_functions", "steady_state"]
@@ -68,13 +68,13 @@ class TorqueLawBit:
     """One revolution between two passes over the same rock (the history's span)."""
     cutting_weight_per_depth = 0.0
     """ζ ε a [N/m]: none, the rock does not yield (no axial contact frequency in the step
-    rule, :func:`torsio.axial.step_rule.contact_frequency`)."""
+    rule, :func:`torsio.solvers.axial_step_rule.contact_frequency`)."""
 
     NO_GROWTH_RATE = (
         "a law of the torque alone has no growth rate of drilling (its axial motion rests; "
         "the linear stability is the torsional chain's, torsio report); expected None or False"
     )
-    """Why :func:`~torsio.axial.transient.simulate_axial` refuses ``growth_rate=True``."""
+    """Why :func:`~torsio.analysis.axial_transient.simulate_axial` refuses ``growth_rate=True``."""
 
     def __attrs_post_init__(self) -> None:
         if not (math.isfinite(self.radius) and self.radius > 0):
@@ -122,7 +122,7 @@ class TorqueLawBit:
         )
 
     def row(self) -> NDArray[np.float64]:
-        """The kernels' bit row (:data:`torsio.axial.layouts.BIT_ROW`): no cutting, a rock
+        """The kernels' bit row (:data:`torsio.solvers.axial_layouts.BIT_ROW`): no cutting, a rock
         that carries any weight (σ a l = inf), the law's torque (``LAW_TORQUE`` 1) on the
         radius a, one blade."""
         row = np.zeros(len(slot.BIT_ROW))

@@ -41,8 +41,8 @@ def depth_beyond_geometry(depth: float, blades: int, radius: float) -> str | Non
 
 def run_warnings(summary: Any, bit: Any, energy: Any, stick_threshold: float) -> tuple[str, ...]:
     """The warnings of a run's window ``summary``
-    (:class:`~torsio.axial.window_summary.WindowSummary`) with the RGD ``bit``, its ``energy``
-    balance (:class:`~torsio.axial.energy_balance.EnergyBalance`, None: not known) and the
+    (:class:`~torsio.analysis.axial_window.WindowSummary`) with the RGD ``bit``, its ``energy``
+    balance (:class:`~torsio.analysis.axial_energy.EnergyBalance`, None: not known) and the
     ``stick_threshold`` its stuck fraction was counted with."""
     upward = None
     if summary.rop_mean < 0:

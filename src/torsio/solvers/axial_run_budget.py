@@ -2,7 +2,7 @@
 
 A run of either axial kernel takes ``duration / h`` fixed steps on ``nodes`` nodes and
 keeps the bit's history of every step and of 1.5 steady delays before t = 0
-(:func:`torsio.axial.run_setup.past_times`). :func:`check_run_work` holds it to the
+(:func:`torsio.solvers.axial_run_setup.past_times`). :func:`check_run_work` holds it to the
 budget of the wave model's runs (:func:`torsio.analysis.budget.most_fixed_steps`: at most
 2 000 000 steps and 5e10 node-steps; the default run of the RGD 2-DOF file takes 153 600
 steps, that of the deviated well 201 459 steps of 24 nodes) and names the key that makes
@@ -14,7 +14,7 @@ a law of the torque alone).
 Examples
 --------
 >>> from torsio.axial.rgd import rgd_example
->>> from torsio.axial.run_setup import RunOptions
+>>> from torsio.solvers.axial_run_setup import RunOptions
 >>> options = RunOptions(1e7, 10.0, default_duration=300.0)
 >>> check_run_work(options, 1.9e-3, 0.25, 1, rgd_example(), 3e4, 1.0, "chain")
 Traceback (most recent call last):
@@ -28,8 +28,8 @@ import math
 from typing import Any
 
 from torsio.analysis.budget import MAX_WAVE_STEPS, MAX_WAVE_WORK, most_fixed_steps
-from torsio.axial.step_rule import DEFAULT_STEPS_PER_PERIOD, contact_frequency
 from torsio.errors import ConfigError
+from torsio.solvers.axial_step_rule import DEFAULT_STEPS_PER_PERIOD, contact_frequency
 
 __all__ = ["check_run_work"]
 
@@ -50,7 +50,7 @@ def _model_key(bit: Any, mass: float, fastest: float, model_key: str) -> tuple:
             f"{mass:.3g} kg) sets the step; check bit_rock.intrinsic_specific_energy and the "
             "bit's mass (chain.masses, or the BHA's)"
         )
-    if model_key == "bit_rock":  # a law of the torque alone (torsio.axial.torque_law)
+    if model_key == "bit_rock":  # a law of the torque alone (torsio.physics.torque_law_bit)
         return model_key, (
             f"the bit-rock law's rate at rest (its slope at zero speed over the bit's "
             f"inertia), {fastest:.3g} 1/s, sets the step; check the law's parameters (a "

@@ -1,5 +1,5 @@
 """What one run of the distributed pipe needs: its grid and step, the initial state, the
-history before t = 0 (:mod:`torsio.axial.wave_kernel`).
+history before t = 0 (:mod:`torsio.solvers.axial_wave_kernel`).
 
 **Step rule.** h_max = 2π / (ω_fast × ``steps_per_period``), ω_fast the largest of the
 bit's axial contact frequency √(2 n ζ ε a / m_b) and the rates Z_a/m_b, Z_t/I_b at which the
@@ -22,7 +22,7 @@ the top drive turning at Ω₀ (and the speed hook moving at V₀) from t = 0.
 
 Examples
 --------
->>> from torsio.axial.assembly import axial_model, pipe_string, tube_section
+>>> from torsio.model.axial_assembly import axial_model, pipe_string, tube_section
 >>> from torsio.model.wave import WaveStrategy
 >>> string = pipe_string([tube_section(1000.0, 2.1e11, 8.1e10, 7850.0, 3.4e-3, 3e-5)],
 ...                      3e4, 455.65)
@@ -32,9 +32,9 @@ Examples
 ((100,), (161,), 1.933599)
 >>> bool(grid.travel_time_errors.max() <= assembly.travel_time_tolerance)
 True
->>> from torsio.axial.layouts import STATS
+>>> from torsio.solvers.axial_layouts import STATS
 >>> from torsio.axial.rgd import rgd_example
->>> from torsio.axial.run_setup import RunOptions
+>>> from torsio.solvers.axial_run_setup import RunOptions
 >>> options = RunOptions(1.0, 0.5, start="steady", perturbation=0.0)
 >>> setup = wave_run_setup(assembly, rgd_example(), 100e3, 180.0, options)
 >>> stats = run_wave(setup, np.zeros((0, 10)), 0)
@@ -49,27 +49,27 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
-from torsio.axial import layouts as slot
-from torsio.axial import wave_kernel
-from torsio.axial.assembly import pipe_rows
-from torsio.axial.run_budget import check_run_work
-from torsio.axial.run_setup import (
+from torsio.axial.steady import steady_drilling
+from torsio.axial.steady_friction import SteadyFriction, steady_with_friction
+from torsio.errors import ConfigError
+from torsio.model.axial_assembly import pipe_rows
+from torsio.model.wave import WaveModel
+from torsio.model.wave_grid import choose_time_step
+from torsio.physics.axial_top_drive import TopDriveArrays
+from torsio.physics.top_drive_boundary import TopDriveBoundary
+from torsio.physics.torque_law_bit import AxialBit, TorqueLawBit
+from torsio.solvers import axial_layouts as slot
+from torsio.solvers import axial_wave_kernel as wave_kernel
+from torsio.solvers.axial_run_budget import check_run_work
+from torsio.solvers.axial_run_setup import (
     BitStart,
     KernelSetup,
     RunOptions,
     check_set_speed,
     kernel_setup,
 )
-from torsio.axial.steady import steady_drilling
-from torsio.axial.steady_friction import SteadyFriction, steady_with_friction
-from torsio.axial.string_contacts import AxialContacts
-from torsio.axial.top_drive import TopDriveArrays
-from torsio.axial.torque_law import AxialBit, TorqueLawBit
-from torsio.axial.wave_pipe import junction_rows
-from torsio.errors import ConfigError
-from torsio.model.wave import WaveModel
-from torsio.model.wave_grid import choose_time_step
-from torsio.physics.top_drive_boundary import TopDriveBoundary
+from torsio.solvers.axial_wave_lines import junction_rows
+from torsio.well.axial_contacts import AxialContacts
 
 __all__ = [
     "PipeGrid",
@@ -100,7 +100,7 @@ class PipeGrid:
     axial_offsets, torsional_offsets : ndarray of int
         First node of each section in the line's state, and the line's size.
     axial_junctions, torsional_junctions : ndarray (4, sections − 1)
-        :func:`torsio.axial.wave_pipe.junction_rows`.
+        :func:`torsio.solvers.axial_wave_lines.junction_rows`.
     travel_time_errors : ndarray (2, sections)
         |n h − L/c| / (L/c) of each section, axially (row 0) and torsionally (row 1).
     """
@@ -195,8 +195,8 @@ def contact_nodes(
 
 @attrs.frozen(eq=False)
 class WaveRunSetup(KernelSetup):
-    """The distributed kernel's arrays for one run (:func:`torsio.axial.wave_kernel.march`):
-    those of every run (:class:`~torsio.axial.run_setup.KernelSetup`), the grid and the
+    """The distributed kernel's arrays for one run (:func:`torsio.solvers.axial_wave_kernel.march`):
+    those of every run (:class:`~torsio.solvers.axial_run_setup.KernelSetup`), the grid and the
     state of its lines and of the BHA."""
 
     grid: PipeGrid
@@ -226,7 +226,7 @@ def wave_run_setup(
     ``wob`` [N] and ``rpm`` [rev/min], set up as ``options`` say; the RGD bit only (a law of
     the torque alone runs on a lumped chain, a ConfigError naming ``bit_rock.law``).
     ``contacts``: the pipe's contacts with the borehole at their ``depths``
-    (:mod:`torsio.axial.string_contacts`, the normal force at ``wob``), each on the inner
+    (:mod:`torsio.well.axial_contacts`, the normal force at ``wob``), each on the inner
     node of both lines nearest it (:func:`contact_nodes`); the steady start then carries
     their steady friction (:mod:`torsio.axial.steady_friction`). ``top_drive``: a held
     top's boundary (a recorded speed; None: held at Ω₀); the pipe's top has no node.
@@ -310,7 +310,8 @@ def _contact_table(
     assembly: WaveModel,
     grid: PipeGrid,
 ) -> NDArray[np.float64]:
-    """The kernel's ``contacts`` (:data:`torsio.axial.layouts.WAVE_CONTACT_ROW`), at rest."""
+    """The kernel's ``contacts`` (:data:`torsio.solvers.axial_layouts.WAVE_CONTACT_ROW`), at
+    rest."""
     table = np.zeros((len(slot.WAVE_CONTACT_ROW), axial_nodes.size))
     table[slot.STATIC_FORCE] = contacts.static_force
     table[slot.SLIDING_FORCE] = contacts.sliding_force
@@ -325,8 +326,8 @@ def _contact_table(
 
 def run_wave(setup: WaveRunSetup, samples: NDArray[np.float64], sample_every: int) -> NDArray:
     """Run the compiled loop on ``setup`` in one call (its state arrays change); the stats
-    vector (:data:`torsio.axial.layouts.STATS`). Long runs go in chunks instead:
-    :func:`torsio.axial.transient.run_kernel`."""
+    vector (:data:`torsio.solvers.axial_layouts.STATS`). Long runs go in chunks instead:
+    :func:`torsio.analysis.axial_transient.run_kernel`."""
     settings = setup.settings.copy()
     settings[slot.SAMPLE_EVERY] = sample_every
     stats = np.zeros(len(slot.STATS))

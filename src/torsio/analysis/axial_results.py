@@ -1,10 +1,10 @@
 """The axial channels of a run: :class:`AxialChannels`, and the run's results.
 
-:func:`torsio.axial.transient.simulate_axial` returns the results every run has
+:func:`torsio.analysis.axial_transient.simulate_axial` returns the results every run has
 (:class:`~torsio.analysis.transient_results.TransientResults`, made by
 :func:`axial_results`) with these channels in its ``axial``: the window's outputs
-(:class:`~torsio.axial.window_summary.WindowSummary`), the steady state, the growth rate,
-the signals by name (:data:`torsio.axial.layouts.SAMPLE_COLUMNS`), and the run's JSON
+(:class:`~torsio.analysis.axial_window.WindowSummary`), the steady state, the growth rate,
+the signals by name (:data:`torsio.solvers.axial_layouts.SAMPLE_COLUMNS`), and the run's JSON
 (:meth:`AxialChannels.to_dict`, DESIGN.md's keys beside every run's), CSV and terminal
 table. The plot (:func:`torsio.plotting.transient_plot.plot_transient`) and the rig
 recording (:meth:`torsio.calibration.recording.Recording.from_transient`) read the
@@ -21,14 +21,14 @@ import attrs
 import numpy as np
 from numpy.typing import NDArray
 
+from torsio.analysis.axial_energy import EnergyBalance
+from torsio.analysis.axial_window import WindowSummary
 from torsio.analysis.run_facts import RunFacts
 from torsio.analysis.transient_results import TransientResults
-from torsio.axial import layouts as slot
-from torsio.axial.assembly import assembly_summary
-from torsio.axial.energy_balance import EnergyBalance
 from torsio.axial.steady import SteadyDrilling
-from torsio.axial.window_summary import WindowSummary
+from torsio.model.axial_assembly import assembly_summary
 from torsio.output_files import save_columns
+from torsio.solvers import axial_layouts as slot
 from torsio.units import RPM_TO_RAD_S
 
 __all__ = ["SCHEME", "AxialChannels", "axial_results", "channels_of", "run_rows"]
@@ -36,7 +36,7 @@ __all__ = ["SCHEME", "AxialChannels", "axial_results", "channels_of", "run_rows"
 _SUMMARY_NAMES = frozenset(attrs.fields_dict(WindowSummary))
 
 SCHEME = "semi-implicit Euler, set-valued contacts at the velocity level (Moreau)"
-"""The axial engine's fixed-step scheme (:mod:`torsio.axial.kernel`)."""
+"""The axial engine's fixed-step scheme (:mod:`torsio.solvers.axial_kernel`)."""
 
 
 @attrs.frozen(eq=False)
@@ -63,7 +63,7 @@ class AxialChannels:
         ``"rest"`` or ``"steady"``.
     samples : ndarray (k, 13)
         The bit's and the top drive's signals, columns
-        :data:`torsio.axial.layouts.SAMPLE_COLUMNS`.
+        :data:`torsio.solvers.axial_layouts.SAMPLE_COLUMNS`.
     top_drive : str
         The top drive's kind (``"constant-speed"``: the top held at Ω₀).
     has_set_speed : bool
@@ -75,19 +75,19 @@ class AxialChannels:
         take (:func:`torsio.axial.linearization.speed_loop`).
     energy : EnergyBalance or None
         The lumped chain's energy balance over the run
-        (:mod:`torsio.axial.energy_balance`; None for the distributed pipe and a prescribed
+        (:mod:`torsio.analysis.axial_energy`; None for the distributed pipe and a prescribed
         rotation).
     contact_switches : int
         Stick ↔ slip switches of the string's contacts over the run (0 without them).
     string_friction_work : float
         The work of the friction along the string over the run [J] (0 without it).
     string_contacts, steady_friction : dict or None
-        The contacts' totals (:meth:`~torsio.axial.string_contacts.AxialContacts.describe`)
+        The contacts' totals (:meth:`~torsio.well.axial_contacts.AxialContacts.describe`)
         and what they take in steady drilling
         (:meth:`~torsio.axial.steady_friction.SteadyFriction.to_dict`); None without them.
     solver, model, bit : dict
         The engine (``engine``, ``method``, ``scheme``, ``step``), the assembly
-        (:func:`~torsio.axial.assembly.assembly_description`) and the bit's law.
+        (:func:`~torsio.model.axial_assembly.assembly_description`) and the bit's law.
     stick_threshold : float
         The bit counted stuck while |Ω_b| < stick_threshold Ω₀ (0 in a run saved before
         the threshold: stuck at Ω_b = 0 exactly).
@@ -224,7 +224,7 @@ class AxialChannels:
         return data
 
     def to_csv(self, path: str | Path) -> Path:
-        """Every signal as CSV, a column per :data:`torsio.axial.layouts.SAMPLE_COLUMNS`
+        """Every signal as CSV, a column per :data:`torsio.solvers.axial_layouts.SAMPLE_COLUMNS`
         named with its unit (``time_s``, ``bit_speed_rad_s``, ``surface_torque_Nm`` ...)."""
         units = zip(slot.SAMPLE_COLUMNS, slot.SAMPLE_UNITS, strict=True)
         names = [f"{name}_{unit}" for name, unit in units]
@@ -275,7 +275,7 @@ def axial_results(channels: AxialChannels, warnings: tuple[str, ...]) -> Transie
 
 
 def channels_of(run: TransientResults) -> AxialChannels:
-    """The axial channels of ``run`` (:func:`torsio.axial.transient.simulate_axial`'s);
+    """The axial channels of ``run`` (:func:`torsio.analysis.axial_transient.simulate_axial`'s);
     a torsional run, which has none, is refused."""
     if run.axial is None:
         raise TypeError(f"{run!r} is a torsional run: it has no axial channels")

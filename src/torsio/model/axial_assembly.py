@@ -160,7 +160,7 @@ def is_two_dof(assembly: Any) -> bool:
 
 
 def torsional_kernel_rows(assembly: LumpedModel) -> NDArray[np.float64]:
-    """The axial kernel's torsional rows 1/I, k, c (:mod:`torsio.axial.kernel`)."""
+    """The axial kernel's torsional rows 1/I, k, c (:mod:`torsio.solvers.axial_kernel`)."""
     return np.ascontiguousarray(
         [1.0 / assembly.node_inertias, assembly.springs, assembly.dampers], dtype=float
     )
@@ -168,7 +168,7 @@ def torsional_kernel_rows(assembly: LumpedModel) -> NDArray[np.float64]:
 
 def axial_kernel_rows(assembly: LumpedModel) -> NDArray[np.float64]:
     """The axial kernel's axial rows 1/m, k_a, c_a; one row of the rigid body's Σ m
-    without axial springs (:mod:`torsio.axial.kernel`)."""
+    without axial springs (:mod:`torsio.solvers.axial_kernel`)."""
     axial = require_axial(assembly)
     if axial.stiffnesses.size:
         return np.ascontiguousarray([1.0 / axial.masses, axial.stiffnesses, axial.dampings])
@@ -197,7 +197,7 @@ def fastest_damping_rate(assembly: LumpedModel) -> float:
     """An upper bound [1/s] of the dampers' rates, the eigenvalues of M⁻¹C:
     2 (c_i + c_i+1)/I_i and 2 (c_a,i + c_a,i+1)/m_i (Gershgorin's discs; a uniform chain
     reaches it at its shortest wave). The explicit dampers' step keeps h times it at
-    most :data:`torsio.axial.run_setup.DAMPER_STEP`."""
+    most :data:`torsio.solvers.axial_run_setup.DAMPER_STEP`."""
     axial = require_axial(assembly)
     rates = [2.0 * _node_rates(assembly.dampers, assembly.node_inertias)]
     if axial.stiffnesses.size:
