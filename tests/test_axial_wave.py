@@ -327,10 +327,10 @@ def test_the_layout_indices_name_the_kernels_stats():
         (lambda: tube_section(-1.0, E, G, RHO, 3.4e-3, 3e-5), "length"),
         (lambda: tube_section(1e3, E, G, "steel", 3.4e-3, 3e-5), "density"),
         (lambda: tube_section(1e3, E, G, RHO, 3.4e-3, 1e-7), "polar_moment"),  # no tube
-        (lambda: wave_pipe([], MASS, INERTIA), "sections"),
+        (lambda: wave_pipe([], MASS, INERTIA), "pipes"),
         (lambda: wave_pipe(STEPPED, 0.0, INERTIA), "bha_mass"),
         (lambda: wave_pipe(STEPPED, MASS, math.nan), "bha_inertia"),
-        (lambda: wave_pipe([1.0], MASS, INERTIA), "sections[0]"),
+        (lambda: wave_pipe([1.0], MASS, INERTIA), "pipes[0]"),
         (lambda: wave_pipe(STEPPED, MASS, INERTIA, hook="up"), "axial.hook"),
         (
             lambda: wave_pipe(STEPPED, MASS, INERTIA, travel_time_tolerance=0.0),
