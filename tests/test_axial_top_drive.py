@@ -20,6 +20,7 @@ from axial_files import STRING, pipe_chain, wave_pipe
 from axial_growth import envelope_rate, perturbed_run
 
 from torsio.analysis.axial_maps import axial_map
+from torsio.analysis.axial_results import AxialChannels
 from torsio.axial import (
     rgd_example,
     rgd_two_dof_example,
@@ -30,6 +31,7 @@ from torsio.axial.stability import drilling_stability
 from torsio.cli import main
 from torsio.errors import ConfigError
 from torsio.physics.axial_top_drive import top_boundary, top_drive_matrix
+from torsio.physics.top_drive_boundary import TopDriveBoundary
 from torsio.physics.top_drives import (
     ConstantSpeedTop,
     PITopDrive,
@@ -296,3 +298,28 @@ def test_a_top_drive_short_of_its_torque_says_so():
     assert any("torque limit" in text for text in limited.warnings), limited.warnings
     assert limited.to_dict()["warnings"] == list(limited.warnings)
     assert held.warnings == ()
+
+
+class _HeldAtTheSetSpeed:
+    """A top drive written from the contract alone: a name of its own and a boundary with no
+    inertia (held at the set speed), as ConstantSpeedTop's."""
+
+    name = "held-plugin"
+
+    def boundary(self, system):
+        return TopDriveBoundary(inertia=0.0, set_speed=float(system.omega))
+
+
+def test_a_held_top_has_no_node_whatever_its_name(tmp_path):
+    # the run's facts read the boundary (held: no inertia), as a torsional run's do
+    # (RunFacts.of_system), not the kind's name; a run saved before the channels kept it
+    # reads the built-in kinds
+    options = {"duration": 2.0, "window": 1.0, "samples": 50, "growth_rate": False}
+    held = simulate_axial(rgd_two_dof_example(), BIT, 100e3, 60.0,
+                          top_drive=_HeldAtTheSetSpeed(), **options)  # fmt: skip
+    pi = simulate_axial(rgd_two_dof_example(), BIT, 100e3, 60.0, top_drive=PI, **options)
+    assert held.facts.top_drive == "held-plugin" and not held.has_top_drive_node
+    assert pi.has_top_drive_node
+    data, samples = pi.axial.saved()
+    del data["has_top_drive_node"]
+    assert AxialChannels.from_saved(data, samples).facts().has_top_drive_node

@@ -39,6 +39,10 @@ SCHEME = "semi-implicit Euler, set-valued contacts at the velocity level (Moreau
 """The axial engine's fixed-step scheme (:mod:`torsio.solvers.axial_kernel`)."""
 
 
+HELD_KINDS = ("constant-speed", "recorded")
+"""The built-in top drives without a node, for a run saved before its channels kept
+``has_top_drive_node``."""
+
 @attrs.frozen(eq=False)
 class AxialChannels:
     """The axial channels and outputs of one axial-torsional run
@@ -69,6 +73,9 @@ class AxialChannels:
     has_set_speed : bool
         Whether the top drive has a set speed (False: a torque-driven top; ``rpm`` is then
         the speed of the steady state the run was given, which S_SS is read against).
+    has_top_drive_node : bool
+        Whether the top drive is a node with inertia (its boundary not held), as every
+        run's facts say it (:class:`~torsio.analysis.run_facts.RunFacts`).
     stability_of_held_top : bool
         Whether ``growth_rate`` is that of the top held at Ω₀ while the run's top drive is
         not held: a controller other than a PI speed loop, which the linearization does not
@@ -109,6 +116,7 @@ class AxialChannels:
     samples: NDArray[np.float64]
     top_drive: str = "constant-speed"
     has_set_speed: bool = True
+    has_top_drive_node: bool = False
     stability_of_held_top: bool = False
     energy: EnergyBalance | None = None
     contact_switches: int = 0
@@ -144,7 +152,7 @@ class AxialChannels:
             has_set_speed=self.has_set_speed,
             top_drive=self.top_drive,
             law=str(self.bit.get("law")),
-            has_top_drive_node=self.top_drive not in ("constant-speed", "recorded"),  # held
+            has_top_drive_node=self.has_top_drive_node,
         )
 
     def saved(self) -> tuple[dict[str, Any], NDArray[np.float64]]:
@@ -157,6 +165,8 @@ class AxialChannels:
     def from_saved(cls, data: dict[str, Any], samples: NDArray[np.float64]) -> AxialChannels:
         """The channels of :meth:`saved`'s ``data`` and ``samples``."""
         energy = data["energy"]
+        if "has_top_drive_node" not in data:  # saved before runs kept it: the built-in kinds
+            data = {**data, "has_top_drive_node": data["top_drive"] not in HELD_KINDS}
         return cls(**{
             **data,
             "steady": SteadyDrilling(**data["steady"]),

@@ -296,6 +296,7 @@ def simulate_axial(
         top_drive=kind or "constant-speed",
         has_set_speed=boundary is None
         or (boundary.speed_table is None and bool(np.isfinite(boundary.set_speed))),
+        has_top_drive_node=boundary is not None and not boundary.held,
         stability_of_held_top=rate is not None and _top_held_in_stability(boundary, setup.steady),
         energy=energy,
         contact_switches=int(stats[slot.CONTACT_SWITCHES]),
