@@ -147,6 +147,8 @@ class PipeAxialRows:
         whole pipe carrying W₀ in steady drilling), or ``"speed"``: the top of the pipe
         moving down at the steady rate of penetration V₀ of the run's (W₀, Ω₀).
 
+    Examples
+    --------
     >>> rows = PipeAxialRows([5172.2], [138046.0], 3.0e4, hook="speed")
     >>> round(float(rows.rigidities[0]) / 1e6)  # E A [MN]
     714
