@@ -310,7 +310,7 @@ class _HeldAtTheSetSpeed:
         return TopDriveBoundary(inertia=0.0, set_speed=float(system.omega))
 
 
-def test_a_held_top_has_no_node_whatever_its_name(tmp_path):
+def test_a_held_top_has_no_node_whatever_its_name():
     # the run's facts read the boundary (held: no inertia), as a torsional run's do
     # (RunFacts.of_system), not the kind's name; a run saved before the channels kept it
     # reads the built-in kinds
@@ -320,6 +320,12 @@ def test_a_held_top_has_no_node_whatever_its_name(tmp_path):
     pi = simulate_axial(rgd_two_dof_example(), BIT, 100e3, 60.0, top_drive=PI, **options)
     assert held.facts.top_drive == "held-plugin" and not held.has_top_drive_node
     assert pi.has_top_drive_node
+    for run, node in ((held, False), (pi, True)):
+        data, samples = run.axial.saved()
+        assert AxialChannels.from_saved(data, samples).facts().has_top_drive_node is node
     data, samples = pi.axial.saved()
-    del data["has_top_drive_node"]
+    del data["has_top_drive_node"]  # saved before the channels kept it: PI has a node
     assert AxialChannels.from_saved(data, samples).facts().has_top_drive_node
+    data = {**held.axial.saved()[0], "top_drive": "constant-speed"}
+    del data["has_top_drive_node"]  # the held top's built-in kind: no node
+    assert not AxialChannels.from_saved(data, samples).facts().has_top_drive_node

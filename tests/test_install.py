@@ -67,7 +67,7 @@ def test_user_cache_dir_order() -> None:
 
 def test_numba_cache_is_outside_the_package() -> None:
     numba = pytest.importorskip("numba")
-    import torsio.solvers  # noqa: F401  (sets the folder)
+    import torsio.solvers.compiled  # noqa: F401  (sets the folder before any kernel)
 
     package = Path(torsio.__file__).resolve().parent
     folder = Path(numba.config.CACHE_DIR).resolve()
@@ -371,6 +371,21 @@ def test_the_cache_key_covers_every_compiled_module() -> None:
     compiled = {
         path
         for path in package.rglob("*.py")
-        if "@njit" in path.read_text(encoding="utf-8") or path.name == "layouts.py"
+        if "@njit" in path.read_text(encoding="utf-8") or path.name.endswith("layouts.py")
     }
     assert compiled and compiled <= set(kernel_cache.kernel_sources())
+
+
+def test_reading_a_configuration_loads_no_numba():
+    # modules beside the axial engines import their constants (solvers/axial_layouts.py)
+    # at module level; numba comes with the first kernel (solvers/compiled.py), not before
+    import subprocess
+
+    code = (
+        "import sys; from torsio.examples import builtin_config, rgd_deviated_well_config; "
+        "builtin_config(); rgd_deviated_well_config(); "
+        "import torsio.axial.stability, torsio.report.axial; "
+        "print('numba' in sys.modules)"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"

@@ -45,7 +45,7 @@ def test_the_folder_key_is_the_environments_not_the_interpreters_name(monkeypatc
 def test_torsios_functions_are_filed_by_their_place_in_the_package(tmp_path) -> None:
     from numba.core import caching
 
-    import torsio.solvers  # noqa: F401  (sets the folder and the locator)
+    import torsio.solvers.compiled  # noqa: F401  (sets the folder and the locator)
     from torsio.solvers import rodas
 
     folder = Path(numba.config.CACHE_DIR)
@@ -66,7 +66,7 @@ def test_torsios_functions_are_filed_by_their_place_in_the_package(tmp_path) -> 
 
 
 def test_other_packages_keep_numbas_locators(tmp_path) -> None:
-    import torsio.solvers  # noqa: F401  (sets the locator)
+    import torsio.solvers.compiled  # noqa: F401  (sets the locator)
 
     module = tmp_path / "elsewhere.py"
     module.write_text("def f(x):\n    return x\n", encoding="utf-8")

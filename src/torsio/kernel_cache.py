@@ -121,7 +121,7 @@ def numba_cache_dir() -> Path:
 def use_user_cache_dir() -> None:
     """Point numba's cache to :func:`numba_cache_dir` unless the user chose a folder.
 
-    Called before any kernel module of :mod:`torsio.solvers` is imported, because
+    Called by :mod:`torsio.solvers.compiled` before any kernel is decorated, because
     numba fixes the cache location of a function when it is decorated. Without numba
     this does nothing.
     """

@@ -43,6 +43,7 @@ HELD_KINDS = ("constant-speed", "recorded")
 """The built-in top drives without a node, for a run saved before its channels kept
 ``has_top_drive_node``."""
 
+
 @attrs.frozen(eq=False)
 class AxialChannels:
     """The axial channels and outputs of one axial-torsional run

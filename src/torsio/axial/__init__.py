@@ -15,8 +15,8 @@ The rest sits beside its torsional counterpart: the assemblies, models with axia
 runs, results and maps (:mod:`torsio.analysis.axial_transient`,
 :mod:`torsio.analysis.axial_maps`), the top drive (:mod:`torsio.physics.axial_top_drive`), a
 law of the torque alone (:mod:`torsio.physics.torque_law_bit`) and the contacts along a
-chain (:mod:`torsio.well.axial_contacts`). This package re-exports the public names of all
-of them. The equations are in docs/axial.md.
+chain (:mod:`torsio.well.axial_contacts`); docs/architecture.md says where each goes. This
+package re-exports the names in its ``__all__``. The equations are in docs/axial.md.
 """
 
 from __future__ import annotations

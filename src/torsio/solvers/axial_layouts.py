@@ -14,7 +14,8 @@ encoders index with these names only.
   :data:`WAVE_SETTINGS` (the distributed pipe's), both beginning with the entries of
   :data:`RUN_SETTINGS`;
 - ``bha``, the distributed pipe's lumped BHA: :data:`BHA_STATE`;
-- ``top``, the lumped chain's top drive: :data:`TOP_DRIVE`;
+- ``top``, the lumped chain's top drive: :data:`TOP_DRIVE`, and ``top_state``, its node:
+  :data:`TOP_NODE`;
 - ``contacts``, the lumped chain's string contacts: :data:`CONTACT_ROW`;
 - ``bit``, the law's row (:func:`torsio.solvers.axial_run_setup.bit_law_row`): :data:`BIT_ROW`.
 
@@ -40,6 +41,7 @@ __all__ = [
     "SAMPLE_COLUMNS",
     "STATS",
     "TOP_DRIVE",
+    "TOP_NODE",
     "WAVE_CONTACT_ROW",
     "WAVE_SETTINGS",
 ]

@@ -10,8 +10,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from torsio.kernel_cache import watch_compiles
+from torsio.kernel_cache import use_user_cache_dir, watch_compiles
 
+use_user_cache_dir()  # before any kernel is decorated: numba fixes its cache folder then
 numba: Any
 njit: Any
 try:  # a dependency; without an importable numba the numpy engine is used
