@@ -11,7 +11,7 @@ cache to the user's cache folder, never into the installed package (a cache insi
   state of the kernel sources (``kernels-<key>``, the key a hash of torsio's, Python's and
   numba's versions, of the environment (``sys.prefix``: not the interpreter's name, so
   ``python`` and ``python3`` share it) and of the contents of every kernel source file:
-  ``solvers/``, ``axial/``,
+  ``solvers/``, the RGD bit's step and history (``axial/bit_step.py``, ``axial/history.py``),
   ``physics/laws.py`` and ``physics/top_drive_boundary.py``), and in that a folder per
   subpackage (``solvers``, ``axial``, ``physics``).
 
@@ -155,12 +155,11 @@ def _kernels_folder() -> Path:
 
 def kernel_sources() -> list[Path]:
     """The files numba compiles torsio's kernels from (and the constants they read):
-    ``solvers/``, ``axial/``, ``physics/laws.py`` and ``physics/top_drive_boundary.py``."""
+    ``solvers/``, ``axial/bit_step.py`` and ``axial/history.py`` (the RGD bit's part of a
+    step), ``physics/laws.py`` and ``physics/top_drive_boundary.py``."""
     package = _package()
-    sources = [
-        *sorted((package / "solvers").glob("*.py")),
-        *sorted((package / "axial").glob("*.py")),
-    ]
+    sources = sorted((package / "solvers").glob("*.py"))
+    sources += [package / "axial" / "bit_step.py", package / "axial" / "history.py"]
     sources.append(package / "physics" / "laws.py")
     sources.append(package / "physics" / "top_drive_boundary.py")  # the controller's evaluation
     return sources

@@ -33,7 +33,7 @@ from numpy.typing import NDArray
 
 from torsio.errors import ConfigError
 from torsio.physics.top_drive_boundary import TopDriveBoundary
-from torsio.solvers.axial_layouts import TOP_DRIVE as TOP_SLOTS
+from torsio.solvers import axial_layouts as slot
 from torsio.solvers.set_speed import twist_table
 from torsio.units import RPM_TO_RAD_S
 
@@ -95,24 +95,19 @@ class TopDriveArrays:
     def from_boundary(cls, boundary: TopDriveBoundary | None, top_speed: float) -> TopDriveArrays:
         """The arrays of ``boundary`` (None or a held one: the top held, no controller; at a
         constant set speed, the run's Ω₀ ``top_speed`` [rad/s] from t = 0)."""
-        top = np.zeros(len(TOP_SLOTS))
+        top = np.zeros(len(slot.TOP_DRIVE))
         if boundary is None or (boundary.held and not boundary.varying):
             boundary = TopDriveBoundary(inertia=0.0, set_speed=top_speed)
         table = twist_table(boundary.set_speed_table(), 0.0)
         if boundary.held:
-            top[TOP_SLOTS.index("held")] = 1.0
+            top[slot.TOP_HELD] = 1.0
             none = np.zeros(0)
             return cls(top, none, none, none, np.zeros(2), none, table)
-        values = {
-            "held": 0.0,
-            "inverse_inertia": 1.0 / boundary.inertia,
-            "drag": boundary.drag,
-            "motor_torque_constant": boundary.u0,
-            "max_torque": boundary.max_torque,
-            "set_speed": boundary.set_speed,
-        }
-        for slot, value in values.items():
-            top[TOP_SLOTS.index(slot)] = value
+        top[slot.TOP_INVERSE_INERTIA] = 1.0 / boundary.inertia
+        top[slot.TOP_DRAG] = boundary.drag
+        top[slot.TOP_U0] = boundary.u0
+        top[slot.TOP_MAX_TORQUE] = boundary.max_torque
+        top[slot.TOP_SET_SPEED] = boundary.set_speed
         m = boundary.states
         return cls(
             top,
