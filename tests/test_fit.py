@@ -331,7 +331,13 @@ STARTUP_ROWS = "".join(f"{0.1 * i:.1f},{min(12 * i, 120)},{100 * i}\n" for i in 
             "deviated_well.toml",
             "recording: rig.csv: 2 samples over 0.001 s; a fit needs at least 11 samples",
         ),
-        (STARTUP_ROWS, (), "rgd_deviated_well.toml", "bit_rock.law: a fit runs a torsional model"),
+        # a file with axial dynamics is fitted off bottom (tests/test_fit_axial.py)
+        (
+            STARTUP_ROWS,
+            ("--wob", "10 kN"),
+            "rgd_deviated_well.toml",
+            "--wob: 10000 N on a configuration with axial dynamics",
+        ),
         # 0 means no smoothing (taken); a negative window is not a window
         (
             STARTUP_ROWS,

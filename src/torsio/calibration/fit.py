@@ -154,12 +154,20 @@ MIN_STEPS = 100
 window (a tenth of the run) must hold 10 of them (a chain's integrator steps freely)."""
 
 
-def check_wob(value: Any, key: str) -> float:
-    """The weight on bit [N] of a fit, a finite number >= 0 (else an error on ``key``)."""
+def check_wob(value: Any, key: str, axial: bool = False) -> float:
+    """The weight on bit [N] of a fit, a finite number >= 0, and 0 for a configuration with
+    ``axial`` dynamics (else an error on ``key``)."""
     if isinstance(value, bool) or not isinstance(value, int | float) or not value >= 0.0:
         raise ConfigError(key, f"expected a weight on bit >= 0 (0: off bottom), got {value!r}")
     if not np.isfinite(value):
         raise ConfigError(key, f"expected a finite weight on bit, got {value!r}")
+    if axial and value > 0.0:
+        raise ConfigError(
+            key,
+            f"{value:g} N on a configuration with axial dynamics: a fit runs its torsional "
+            "model off bottom, and on bottom its bit needs the axial engine; fit start-ups "
+            "off bottom (0)",
+        )
     return float(value)
 
 
@@ -263,7 +271,9 @@ def fit_recordings(
     Parameters
     ----------
     config : Config
-        With a ``[[section]]`` string and a ``[well]``; run on the wave model.
+        With a ``[[section]]`` string and a ``[well]``; run on the wave model, or the
+        strategy ``discretization`` names. A file with axial dynamics runs its torsional
+        model off bottom (:meth:`~torsio.config.configuration.Config.off_bottom`).
     recordings : sequence of Recording or path
         Each a start-up from rest (the model starts every run from rest at the record's
         first sample).
@@ -275,7 +285,8 @@ def fit_recordings(
     objective : {"torque", "features"}
         Every sample, or the sliding and break-over torques (:mod:`.objectives`).
     wob : float
-        Weight on bit [N]; 0 (default): off bottom, no bit-rock torque.
+        Weight on bit [N]; 0 (default): off bottom, no bit-rock torque (the only weight a
+        file with axial dynamics takes).
     rpm : sequence of float, optional
         Set speed of the configured top drive per recording [rpm]; default the mean
         recorded speed over the last tenth of each record.
@@ -285,7 +296,7 @@ def fit_recordings(
         Window [s] the recorded speed is smoothed over before it drives the top
         (``top="recorded"``; :class:`~torsio.physics.recorded_top.RecordedTopDrive`).
     **discretization
-        Options of the wave grid.
+        ``strategy`` and the options of its grid (:class:`SystemFamily`).
 
     Returns
     -------
@@ -299,7 +310,8 @@ def fit_recordings(
         raise ConfigError(
             "objective", f"unknown objective {objective!r}; expected one of {', '.join(OBJECTIVES)}"
         )
-    family = SystemFamily(config, **_grid(config, discretization))
+    wob = check_wob(wob, "wob", config.axial is not None)
+    family = SystemFamily(config, axial_off_bottom=True, **_grid(config, discretization))
     names = family.check(names)
     if not (isinstance(speed_smoothing, int | float) and speed_smoothing >= 0.0):
         raise ConfigError(
@@ -307,7 +319,6 @@ def fit_recordings(
         )
     tops = _tops(config, records, top, speed_smoothing)
     _check_records(family, records)
-    wob = check_wob(wob, "wob")
     rpms = list(rpm) if rpm is not None else [_final_rpm(r, top) for r in records]
     if len(rpms) != len(records):
         raise ConfigError("rpm", f"expected one set speed per recording ({len(records)})")
@@ -351,6 +362,7 @@ def fit_recordings(
         recordings=fits,
         objective=objective,
         top=top,
+        model=family.description,
         runs=misfit.runs,
         seconds=clock.perf_counter() - started,
         message=fit.message,

@@ -80,6 +80,9 @@ class FitResults:
     recordings : tuple of RecordingFit
     objective, top : str
         What was compared (``torque``, ``features``) and what drove the top.
+    model : str
+        The model the fit ran, in words
+        (:attr:`~torsio.calibration.parameters.SystemFamily.description`).
     runs : int
         Model runs the fit took; ``seconds`` its wall-clock time [s].
     message : str
@@ -109,6 +112,7 @@ class FitResults:
     correlation: np.ndarray | None = None
     warnings: tuple[str, ...] = ()
     alternatives: tuple[Alternative, ...] = ()
+    model: str = ""
 
     def __repr__(self) -> str:
         fitted = ", ".join(
@@ -169,7 +173,8 @@ class FitResults:
         ``identifiable``, ``uncertainty_method``, ``interval_method`` (how each two-sigma
         interval was found), ``uncertainty_parts`` (the statistical, between-recordings
         and grid parts of each sigma, and each recording's own value), ``alternatives``
-        (other minima: values and chi^2 above the fit), ``objective``, ``top``, ``notes``,
+        (other minima: values and chi^2 above the fit), ``objective``, ``top``, ``model``
+        (what the fit ran, in words), ``notes``,
         ``correlation`` (name to name, from the Jacobian; None if not computed) and
         ``warnings``."""
         spreads = dict(zip(self.names, self.uncertainty, strict=True))
@@ -211,6 +216,7 @@ class FitResults:
             ],
             "objective": self.objective,
             "top": self.top,
+            "model": self.model,
             "runs": self.runs,
             "seconds": self.seconds,
             "notes": self.notes(),

@@ -43,6 +43,7 @@ import numpy as np
 from torsio.analysis.grid_check import TWIN_TRAVEL_TIME_TOLERANCE
 from torsio.errors import ConfigError
 from torsio.model.contacts import StringContacts
+from torsio.model.wave import equivalent_alpha
 from torsio.physics.damping import RayleighDamping
 from torsio.well.string_contacts import model_contacts
 from torsio.well.wellbore import HoleSection
@@ -100,31 +101,48 @@ class SystemFamily:
     Parameters
     ----------
     config : Config
-        A configuration with a ``[[section]]`` string and a ``[well]``; it is run on the
-        wave model (``strategy = "wave"``) whatever its ``[discretization]`` says, unless
-        ``strategy`` names another.
+        A configuration with a ``[[section]]`` string and a ``[well]``; it
+        is run on the wave model (``strategy = "wave"``) whatever its ``[discretization]``
+        says, unless ``strategy`` names another. The wave model carries no Kelvin-Voigt
+        damping: there ``[damping]`` beta is the alpha of the same first-mode damping
+        ratio (:func:`~torsio.model.wave.equivalent_alpha`, added to every alpha tried;
+        :attr:`description` says so), so that the friction of a file whose chain has
+        dampers (an axial chain's take beta only) can be read on the continuum.
+    axial_off_bottom : bool
+        A file with axial dynamics runs its torsional model off bottom
+        (:meth:`~torsio.config.configuration.Config.off_bottom`: a fit's start-ups); False:
+        such a file is refused (its systems at a weight on bit need the axial engine).
     **discretization
         ``strategy`` (default ``"wave"``: the continuum, converged in its grid) and the
         options of its grid (e.g. ``drag_spacing`` of the wave model, ``dp_elements`` of a
         lumped strategy).
     """
 
-    def __init__(self, config: Any, **discretization: Any) -> None:
+    def __init__(self, config: Any, *, axial_off_bottom: bool = False, **discretization: Any):
         if config.well is None:
             raise ConfigError("well", "a fit of friction needs a [well] (survey and friction)")
-        if config.axial is not None:
+        self.off_bottom = axial_off_bottom and config.axial is not None
+        """Whether ``config`` is a file with axial dynamics run off bottom."""
+        if config.axial is not None and not axial_off_bottom:
             raise ConfigError(
                 "bit_rock.law",
-                "a fit runs a torsional model, and this configuration has axial "
-                "dynamics (an axial bit-rock law such as rgd, or [chain] masses), which it "
-                "does not run; fit a copy with a torsional [bit_rock] law (e.g. tucker-wang: "
-                "the fit is off bottom by default, where the law gives no torque)",
+                "these systems are torsional at any weight on bit, and this configuration "
+                "has axial dynamics (an axial bit-rock law such as rgd, or [chain] masses): "
+                "on bottom its bit needs the axial engine; off bottom (a fit: torsio fit) "
+                "its torsional model runs",
             )
+        config = config.off_bottom() if self.off_bottom else config
         self.discretization = dict(discretization)
         strategy = discretization.pop("strategy", "wave")
         self.strategy = str(strategy)
         self.config = config
         self.base = config.system(strategy=strategy, **discretization)
+        self.beta_alpha = 0.0
+        """The alpha [1/s] that stands for ``[damping]`` beta on the wave model (0: none)."""
+        self._beta = beta = float(getattr(self.base.damping, "beta", 0.0) or 0.0)
+        if self.strategy == "wave" and beta:
+            self.beta_alpha = equivalent_alpha(0.0, beta, self.base.model.first_frequency())
+            self.base = attrs.evolve(self.base, damping=attrs.evolve(self.base.damping, beta=0.0))
         well = config.well
         self.zones = len(well.hole) + 1
         self._unit = [
@@ -149,6 +167,24 @@ class SystemFamily:
         )
         """I = int rho J dx of the string [kg m^2]: the distributed damping's torque is
         alpha I Omega when it all turns at Omega."""
+
+    @property
+    def description(self) -> str:
+        """The model the systems run, in words: ``"wave model, time step 0.000688 s"``,
+        ``"strategy C, 24 nodes"``; a file with axial dynamics off bottom says so."""
+        model = self.base.model
+        if self.strategy == "wave":
+            text = f"wave model, time step {float(model.time_step):.3g} s"
+            if self.beta_alpha:
+                text += (
+                    f", [damping] beta {self._beta:g} s as alpha {self.beta_alpha:.3g} 1/s "
+                    "added (the first mode's damping ratio)"
+                )
+        else:
+            text = f"strategy {self.strategy}, {model.dofs} nodes"
+        if self.off_bottom:
+            text += ", the bit off bottom (the torsional model of a file with axial dynamics)"
+        return text
 
     def check(self, names: Iterable[str]) -> tuple[str, ...]:
         """The names, validated: each fittable, none twice (errors name the name)."""
@@ -233,7 +269,8 @@ class SystemFamily:
         merged = {**self.values, **values}
         contacts = self.contacts(merged).at_wob(float(self.base.wob))  # as Config.system
         model = self.base.model.with_contacts(contacts)
-        damping = attrs.evolve(self.base.damping, alpha=float(merged["alpha"]))
+        alpha = float(merged["alpha"]) + self.beta_alpha
+        damping = attrs.evolve(self.base.damping, alpha=alpha)
         if not isinstance(damping, RayleighDamping):  # pragma: no cover - a chain's dampers
             raise ConfigError("damping", "a fit takes Rayleigh damping ([damping] alpha, beta)")
         return attrs.evolve(self.base, model=model, damping=damping)

@@ -18,7 +18,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "Fit parameters of CONFIG (its keys: friction_static, friction_dynamic, "
         "hole[i].friction_static, hole[i].friction_dynamic, threshold_speed, alpha) to "
         "recordings of top-drive speed and surface torque (CSV: time,top_rpm,surface_torque), "
-        "on the wave model (or the lumped strategy --strategy names): a global stage over "
+        "on the wave model (or the lumped strategy --strategy names; a file with axial "
+        "dynamics on its torsional model, the bit off bottom): a global stage over "
         "the admissible range, then least squares (docs/calibration.md).",
     )
     parser.add_argument("config", metavar="CONFIG", help="TOML configuration file with [well]")
@@ -48,7 +49,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="every torque sample (default), or the sliding and break-over torques",
     )
     parser.add_argument(
-        "--wob", metavar="W", help="weight on bit: N or with units (default 0: off bottom)"
+        "--wob",
+        metavar="W",
+        help="weight on bit: N or with units (default 0: off bottom; the only weight a file "
+        "with axial dynamics takes)",
     )
     parser.add_argument(
         "--no-profile",
@@ -85,7 +89,8 @@ def run(args: argparse.Namespace) -> int:
     config = load_config(args.config)
     if config.well is None:
         raise ConfigError("well", f"{args.config} has no [well] table: nothing to fit friction to")
-    wob = 0.0 if args.wob is None else check_wob(to_si(args.wob, "force", key="--wob"), "--wob")
+    given = 0.0 if args.wob is None else to_si(args.wob, "force", key="--wob")
+    wob = check_wob(given, "--wob", config.axial is not None)
     recordings = [read_recording(path) for path in args.recording]
     window = common.parse_time(args.speed_smoothing, "--speed-smoothing", allow_zero=True)
     if window is not None and args.top != "recorded":
@@ -118,10 +123,11 @@ def _print_table(results: Any, written: dict[str, str]) -> None:
     lines = [
         f"residual (RMS surface torque) {results.residual:.4g} N m; "
         + "; ".join(f"{r.name} {r.residual:.4g} N m" for r in results.recordings),
-        f"{results.runs} model runs in {results.seconds:.1f} s (top: {results.top})",
+        f"{results.runs} model runs in {results.seconds:.1f} s (top: {results.top}; "
+        f"model: {results.model})",
         *results.notes(),
     ]
     if "plot" in written:
         lines.append(f"wrote {written['plot']}")
     for line in lines:
-        console.print(line, highlight=False)
+        console.print(line, highlight=False, markup=False)

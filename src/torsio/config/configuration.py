@@ -285,3 +285,29 @@ class Config:
                 "analyses need a bit-rock law (see `torsio laws`)",
             )
         return self.bit_rock.build()
+
+    def off_bottom(self) -> Config:
+        """This configuration, or for a file with axial dynamics its torsional model with the
+        bit off bottom (:data:`OFF_BOTTOM`; the same string, discretization and well).
+
+        A start-up off bottom, as a fit's recordings are: the bit carries no torque whatever
+        its law (the RGD bit's cutting and wear flats need weight on bit), and the string
+        hangs still from the hook. With no axial sliding, each contact's Coulomb cone
+        (:mod:`torsio.well.axial_contacts`) gives its whole capacity to the rotation, as a
+        torsional contact does: the torsional model is then the axial one, and friction
+        read on it is the axial model's.
+
+        Examples
+        --------
+        >>> from torsio.examples import rgd_deviated_well_config
+        >>> config = rgd_deviated_well_config().off_bottom()
+        >>> config.axial, config.bit_rock.law, config.model().dofs
+        (None, 'constant', 24)
+        """
+        if self.axial is None:
+            return self
+        return attrs.evolve(self, axial=None, bit_rock=OFF_BOTTOM)
+
+
+OFF_BOTTOM = BitRockConfig("constant", parameters={"torque_on_bit": 0.0})
+"""The bit off bottom: no torque, whatever its law (:meth:`Config.off_bottom`)."""
