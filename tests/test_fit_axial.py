@@ -71,7 +71,9 @@ def test_off_bottom_the_torsional_model_is_the_axial_chain_with_its_contacts():
 
 
 def test_the_fit_reads_the_truth_of_recordings_made_on_another_grid(recordings):
-    results = fit_recordings(rgd_deviated_well_config(), recordings, NAMES)
+    counted: list[int] = []
+    results = fit_recordings(rgd_deviated_well_config(), recordings, NAMES, progress=counted.append)
+    assert sum(counted) == results.runs  # every run of the fit and its twins counted once
     assert "the bit off bottom" in results.model
     fitted = results.parameters
     # the acceptance of tests/test_fit_independent.py (issue 38): mu_d within 0.01, mu_s

@@ -30,7 +30,7 @@ torsio.errors.ConfigError: recording: no recording to fit; give at least one
 from __future__ import annotations
 
 import time as clock
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -236,7 +236,9 @@ def _twins(
         others.append(("smoothed speed", family, _tops(config, records, top, window)))
     twins: list[tuple[str, Any]] = []
     for name, grid, tops in others:
-        runs = Misfit(grid, records, names, tops, misfit.rpms, misfit.wob, misfit.objective)
+        runs = Misfit(
+            grid, records, names, tops, misfit.rpms, misfit.wob, misfit.objective, misfit.progress
+        )
         torques = runs.models(best)
         misfit.runs += runs.runs
         twin = [
@@ -247,8 +249,9 @@ def _twins(
     continuum = family.continuum()
     if continuum is not None:
         reader = Misfit(
-            continuum, records, names, misfit.tops, misfit.rpms, misfit.wob, misfit.objective
-        )
+            continuum, records, names, misfit.tops, misfit.rpms, misfit.wob, misfit.objective,
+            misfit.progress,
+        )  # fmt: skip
         twins.append((TWIN_GRIDS[2], reader_twin(reader, misfit)))
     return twins
 
@@ -264,6 +267,7 @@ def fit_recordings(
     rpm: Sequence[float] | None = None,
     profile: bool = True,
     speed_smoothing: float = SPEED_SMOOTHING,
+    progress: Callable[[int], None] | None = None,
     **discretization: Any,
 ) -> FitResults:
     """Fit the parameters ``names`` of ``config`` to the surface torque of ``recordings``.
@@ -295,6 +299,9 @@ def fit_recordings(
     speed_smoothing : float
         Window [s] the recorded speed is smoothed over before it drives the top
         (``top="recorded"``; :class:`~torsio.physics.recorded_top.RecordedTopDrive`).
+    progress : callable, optional
+        ``progress(n)`` after every n model runs (the command line's count on stderr,
+        :func:`torsio.solvers.run_chunks.count_progress`).
     **discretization
         ``strategy`` and the options of its grid (:class:`SystemFamily`).
 
@@ -323,7 +330,7 @@ def fit_recordings(
     if len(rpms) != len(records):
         raise ConfigError("rpm", f"expected one set speed per recording ({len(records)})")
     _not_at_rest(family, records, names, said)
-    misfit = Misfit(family, records, names, tops, rpms, wob, objective)
+    misfit = Misfit(family, records, names, tops, rpms, wob, objective, progress)
     start = closed_form_start(family, records, names)
     for _ in range(START_STEPS):
         models = misfit.models(np.array([start[n] for n in names]))

@@ -19,7 +19,7 @@ Examples
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -99,7 +99,8 @@ class Misfit:
 
     ``family`` makes the system of a parameter vector (:class:`~torsio.calibration.
     parameters.SystemFamily`); each recording is run with its top drive ``tops[i]`` at
-    the set speed ``rpms[i]`` [rpm] and weight on bit ``wob`` [N].
+    the set speed ``rpms[i]`` [rpm] and weight on bit ``wob`` [N]; ``progress(n)``, if
+    given, after every n runs.
     """
 
     def __init__(
@@ -111,9 +112,11 @@ class Misfit:
         rpms: Sequence[float],
         wob: float,
         objective: str,
+        progress: Callable[[int], None] | None = None,
     ) -> None:
         self.family, self.recordings, self.names = family, recordings, tuple(names)
         self.tops, self.rpms, self.wob, self.objective = tops, rpms, wob, objective
+        self.progress = progress
         self.runs = 0
 
     def models(self, x: np.ndarray) -> list[np.ndarray]:
@@ -124,6 +127,8 @@ class Misfit:
             torque, _ = model_torque(system.with_top(top).at(wob=self.wob, rpm=rpm), record)
             torques.append(torque)
         self.runs += len(self.recordings)
+        if self.progress is not None:
+            self.progress(len(self.recordings))
         return torques
 
     def split(self, x: np.ndarray) -> list[np.ndarray]:

@@ -135,6 +135,7 @@ def run(args: argparse.Namespace) -> int:
     from torsio.advice.advise import DEFAULT_LEVEL, DEFAULT_SAMPLES
     from torsio.errors import ConfigError
     from torsio.examples import rgd_deviated_well_config
+    from torsio.solvers.run_chunks import count_progress
 
     if args.fit is not None and args.vary:
         raise ConfigError("--vary", "give either --fit or --vary, not both")
@@ -163,7 +164,8 @@ def run(args: argparse.Namespace) -> int:
     threads = args.threads or _cores()
     if threads < 1:
         raise ConfigError("--threads", f"expected a number of threads >= 1, got {threads}")
-    callback, stop = _progress(args)
+    # the runs on stderr (the total is open: the search decides how many), --json or not
+    shown = count_progress("advise")
     try:
         advice = advise(
             config,
@@ -176,17 +178,16 @@ def run(args: argparse.Namespace) -> int:
             compare=not args.no_compare,
             threads=threads,
             executor=executor,
-            progress=callback,
+            progress=shown,
             duration=common.parse_time(args.duration, "--duration"),
             window=common.parse_time(args.window, "--window"),
         )
     except AdviceInterrupted as exc:
-        if stop is not None:
-            stop()
+        shown.close()
         _show(args, exc.advice, {})
         raise KeyboardInterrupt from None
-    if stop is not None:
-        stop()
+    finally:
+        shown.close()
     written = _write(advice, outputs)
     _show(args, advice, written)
     return 0
@@ -196,23 +197,6 @@ def _cores() -> int:
     from torsio.solvers.compiled import numba
 
     return 1 if numba is None else int(numba.get_num_threads())
-
-
-def _progress(args: argparse.Namespace) -> tuple[Any, Any]:
-    """A rich bar of the runs on stderr (:func:`torsio.solvers.run_chunks.progress_bar`, as
-    ``torsio map``'s; the total is open: the search decides how many), unless --json."""
-    if args.json:
-        return None, None
-    from torsio.solvers.run_chunks import progress_bar
-
-    bar = progress_bar("advise", "runs")
-    task = bar.add_task("advise", total=None)
-    bar.start()
-
-    def step(count: int) -> None:
-        bar.advance(task, count)
-
-    return step, bar.stop
 
 
 def _write(advice: Any, outputs: dict[str, str]) -> dict[str, str]:

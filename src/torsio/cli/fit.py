@@ -81,6 +81,7 @@ def run(args: argparse.Namespace) -> int:
     from torsio.calibration.recording import read_recording
     from torsio.config.reading import load_config
     from torsio.errors import ConfigError
+    from torsio.solvers.run_chunks import count_progress
     from torsio.units import to_si
 
     outputs = common.check_outputs(args, ["plot"])
@@ -95,17 +96,22 @@ def run(args: argparse.Namespace) -> int:
     window = common.parse_time(args.speed_smoothing, "--speed-smoothing", allow_zero=True)
     if window is not None and args.top != "recorded":
         raise ConfigError("--speed-smoothing", "smooths the recorded speed: needs --top recorded")
-    results = fit_recordings(
-        config,
-        recordings,
-        names,
-        top=args.top,
-        objective=args.objective,
-        wob=wob,
-        profile=not args.no_profile,
-        speed_smoothing=SPEED_SMOOTHING if window is None else window,
-        **{k: v for k, v in common.discretization_overrides(args).items() if v is not None},
-    )
+    shown = count_progress("fit", "model runs")
+    try:
+        results = fit_recordings(
+            config,
+            recordings,
+            names,
+            top=args.top,
+            objective=args.objective,
+            wob=wob,
+            profile=not args.no_profile,
+            speed_smoothing=SPEED_SMOOTHING if window is None else window,
+            progress=shown,
+            **{k: v for k, v in common.discretization_overrides(args).items() if v is not None},
+        )
+    finally:
+        shown.close()
     return common.write_and_print(args, results, outputs, _print_table)
 
 

@@ -5,7 +5,8 @@ Python's signal handlers (Ctrl-C, SIGTERM turned into KeyboardInterrupt by the c
 line) wait for it. :func:`run_in_chunks` calls a function that advances a loop by ``k``
 steps again and again, ``k`` chosen so that each call lasts about
 :data:`CHUNK_SECONDS`; between calls the interpreter runs (signals are handled there) and
-progress is reported. The function keeps the loop's state between calls, so the result
+progress is reported (:func:`count_progress` reports work of no known total, a fit's or a
+search's runs). The function keeps the loop's state between calls, so the result
 is the one a single call of every step would give.
 
 :func:`stderr_progress` is the progress reporter of a single run: nothing for a run that
@@ -37,6 +38,7 @@ __all__ = [
     "CHUNK_SECONDS",
     "LINE_SECONDS",
     "QUIET_SECONDS",
+    "count_progress",
     "map_progress",
     "progress_bar",
     "run_in_chunks",
@@ -102,10 +104,14 @@ def run_in_chunks(
 
 
 class _StderrProgress:
-    """:func:`stderr_progress`'s reporter (a callable with ``close``)."""
+    """:func:`stderr_progress`'s reporter (a callable with ``close``); ``total`` None: the
+    total is not known (:func:`count_progress`)."""
 
-    def __init__(self, label: str, stream: TextIO | None, quiet: float, every: float) -> None:
+    def __init__(
+        self, label: str, stream: TextIO | None, quiet: float, every: float, unit: str = "steps"
+    ) -> None:
         self.label = label
+        self.unit = unit
         self.stream = stream
         self.quiet = quiet
         self.every = every
@@ -118,12 +124,13 @@ class _StderrProgress:
     def _output(self) -> TextIO:
         return self.stream if self.stream is not None else sys.stderr
 
-    def __call__(self, done: int, total: int) -> None:
+    def __call__(self, done: int, total: int | None) -> None:
         elapsed = time.perf_counter() - self.started
         if self.first is None:
             self.first = (elapsed, done)
-        if elapsed < self.quiet or done >= total:
-            if self.bar is not None and done >= total:
+        ended = total is not None and done >= total
+        if elapsed < self.quiet or ended:
+            if self.bar is not None and ended:
                 self.bar.update(self.task, completed=done, total=total)
             return
         output = self._output()
@@ -133,12 +140,16 @@ class _StderrProgress:
             self.bar.update(self.task, completed=done, total=total)
         elif elapsed - self.last_line >= self.every:
             self.last_line = elapsed
-            print(
-                f"torsio: {self.label}: {done / total:.0%} ({done:,} of {total:,} steps), "
-                f"{elapsed:.0f} s, {self._time_left(elapsed, done, total)}",
-                file=output,
-                flush=True,
-            )
+            line = self._line(elapsed, done, total)
+            print(f"torsio: {self.label}: {line}", file=output, flush=True)
+
+    def _line(self, elapsed: float, done: int, total: int | None) -> str:
+        if total is None:
+            return f"{done:,} {self.unit}, {elapsed:.0f} s"
+        return (
+            f"{done / total:.0%} ({done:,} of {total:,} {self.unit}), {elapsed:.0f} s, "
+            f"{self._time_left(elapsed, done, total)}"
+        )
 
     def _time_left(self, elapsed: float, done: int, total: int) -> str:
         """The rate since the first call (the first steps may hold numba's compile)."""
@@ -148,8 +159,8 @@ class _StderrProgress:
             return "time left not known yet"
         return f"about {(elapsed - since) * (total - done) / (done - done_then):.0f} s left"
 
-    def _start_bar(self, output: TextIO, total: int) -> None:
-        self.bar = progress_bar(self.label, "steps", output)
+    def _start_bar(self, output: TextIO, total: int | None) -> None:
+        self.bar = progress_bar(self.label, self.unit, output)
         self.task = self.bar.add_task(self.label, total=total)
         self.bar.start()
 
@@ -220,6 +231,46 @@ def stderr_progress(
     True
     """
     return _StderrProgress(label, stream, quiet, every)
+
+
+def count_progress(
+    label: str,
+    unit: str = "runs",
+    stream: TextIO | None = None,
+    quiet: float = QUIET_SECONDS,
+    every: float = LINE_SECONDS,
+) -> _Count:
+    """A ``progress(n)`` reporter of work whose total is not known (``n`` more ``unit``
+    done: the runs of a search or a fit), shown as :func:`stderr_progress` shows a run;
+    ``close`` it at the end.
+
+    Examples
+    --------
+    >>> import io
+    >>> stream = io.StringIO()
+    >>> report = count_progress("fit", stream=stream, quiet=0.0, every=0.0)
+    >>> report(2)
+    >>> report(2)
+    >>> report.close()
+    >>> stream.getvalue().splitlines()[-1].startswith("torsio: fit: 4 runs, ")
+    True
+    """
+    return _Count(_StderrProgress(label, stream, quiet, every, unit))
+
+
+class _Count:
+    """:func:`count_progress`'s reporter: the count so far, shown with no total."""
+
+    def __init__(self, shown: _StderrProgress) -> None:
+        self.shown, self.done = shown, 0
+
+    def __call__(self, count: int) -> None:
+        self.done += count
+        self.shown(self.done, None)
+
+    def close(self) -> None:
+        """Remove the bar (if one was shown)."""
+        self.shown.close()
 
 
 @contextlib.contextmanager
