@@ -149,7 +149,13 @@ def test_ctrl_c_writes_only_a_partial_file(tmp_path: Path, capsys, monkeypatch) 
     assert "partial results written" in captured.err and captured.out == ""
 
 
-def test_progress_bar_only_on_a_terminal(monkeypatch, capsys) -> None:
+def test_the_map_counts_its_points_on_stderr_with_or_without_json(monkeypatch, capsys) -> None:
+    # stdout keeps the one JSON object; the points done go to stderr after 2 s, a bar on a
+    # terminal, else a line every 10 s (torsio.solvers.run_chunks.stderr_progress)
+    import io
+
+    from torsio.solvers.run_chunks import stderr_progress
+
     seen = {}
     real = maps.severity_map
 
@@ -159,13 +165,15 @@ def test_progress_bar_only_on_a_terminal(monkeypatch, capsys) -> None:
 
     monkeypatch.setattr(maps, "severity_map", spy)
     run_json(capsys, *ARGS)
-    assert not seen["progress"]  # --json
-    main(["map", *ARGS])  # stdout captured: not a terminal
-    assert not seen["progress"]
-    monkeypatch.setattr("sys.stdout.isatty", lambda: True)
+    assert seen["progress"].unit == "points" and seen["progress"].label == "map"
     main(["map", *ARGS])
-    assert seen["progress"] is True
+    assert seen["progress"].unit == "points"
     capsys.readouterr()
+    stream = io.StringIO()
+    report = stderr_progress("map", stream, quiet=0.0, every=0.0, unit="points")
+    report(16, 36)
+    report.close()
+    assert stream.getvalue().startswith("torsio: map: 44% (16 of 36 points), ")
 
 
 def test_the_files_simulation_tolerances_reach_the_map(capsys, tmp_path: Path) -> None:

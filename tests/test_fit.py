@@ -331,6 +331,14 @@ STARTUP_ROWS = "".join(f"{0.1 * i:.1f},{min(12 * i, 120)},{100 * i}\n" for i in 
             "deviated_well.toml",
             "recording: rig.csv: 2 samples over 0.001 s; a fit needs at least 11 samples",
         ),
+        # the wave model's grid only
+        (
+            STARTUP_ROWS,
+            ("--time-step", "1ms", "--strategy", "C"),
+            "deviated_well.toml",
+            "--time-step: sets the wave model's grid: drop --strategy",
+        ),
+        (STARTUP_ROWS, ("--time-step", "0"), "deviated_well.toml", "--time-step: expected a"),
         # a file with axial dynamics is fitted off bottom (tests/test_fit_axial.py)
         (
             STARTUP_ROWS,

@@ -178,7 +178,7 @@ def config_map(
     discretization: dict[str, Any] | None = None,
     dimensionless: bool = False,
     executor: Any = None,
-    progress: bool | None = None,
+    progress: bool | Callable[[int, int], None] | None = None,
     rtol: float | None = None,
     note: Callable[[str], None] = print,
 ) -> Any:

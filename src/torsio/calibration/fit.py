@@ -318,7 +318,7 @@ def fit_recordings(
             "objective", f"unknown objective {objective!r}; expected one of {', '.join(OBJECTIVES)}"
         )
     wob = check_wob(wob, "wob", config.axial is not None)
-    family = SystemFamily(config, axial_off_bottom=True, **_grid(config, discretization))
+    family = SystemFamily(config, fit=True, **_grid(config, discretization))
     names = family.check(names)
     if not (isinstance(speed_smoothing, int | float) and speed_smoothing >= 0.0):
         raise ConfigError(

@@ -43,7 +43,6 @@ import numpy as np
 from torsio.analysis.grid_check import TWIN_TRAVEL_TIME_TOLERANCE
 from torsio.errors import ConfigError
 from torsio.model.contacts import StringContacts
-from torsio.model.wave import equivalent_alpha
 from torsio.physics.damping import RayleighDamping
 from torsio.well.string_contacts import model_contacts
 from torsio.well.wellbore import HoleSection
@@ -103,45 +102,48 @@ class SystemFamily:
     config : Config
         A configuration with a ``[[section]]`` string and a ``[well]``; it
         is run on the wave model (``strategy = "wave"``) whatever its ``[discretization]``
-        says, unless ``strategy`` names another. The wave model carries no Kelvin-Voigt
-        damping: there ``[damping]`` beta is the alpha of the same first-mode damping
-        ratio (:func:`~torsio.model.wave.equivalent_alpha`, added to every alpha tried;
-        :attr:`description` says so), so that the friction of a file whose chain has
-        dampers (an axial chain's take beta only) can be read on the continuum.
-    axial_off_bottom : bool
-        A file with axial dynamics runs its torsional model off bottom
-        (:meth:`~torsio.config.configuration.Config.off_bottom`: a fit's start-ups); False:
-        such a file is refused (its systems at a weight on bit need the axial engine).
+        says, unless ``strategy`` names another.
+    fit : bool
+        The systems of a fit (:func:`~torsio.calibration.fit.fit_recordings`): a file with
+        axial dynamics runs its torsional model off bottom
+        (:meth:`~torsio.config.configuration.Config.off_bottom`; its ``alpha`` is not
+        fittable: the axial engine takes ``[damping]`` beta only), and the wave model
+        leaves out ``[damping]`` beta, which it cannot carry (:attr:`description` says
+        so): Kelvin-Voigt damping resists twist only, so it gives no torque while the
+        string turns steadily and does not move the sliding torque a fit reads. False
+        (severity maps of a fit's draws): such a file is refused, and beta on the wave
+        model too (the wave model says how to carry it as alpha).
     **discretization
         ``strategy`` (default ``"wave"``: the continuum, converged in its grid) and the
         options of its grid (e.g. ``drag_spacing`` of the wave model, ``dp_elements`` of a
         lumped strategy).
     """
 
-    def __init__(self, config: Any, *, axial_off_bottom: bool = False, **discretization: Any):
+    def __init__(self, config: Any, *, fit: bool = False, **discretization: Any) -> None:
         if config.well is None:
             raise ConfigError("well", "a fit of friction needs a [well] (survey and friction)")
-        self.off_bottom = axial_off_bottom and config.axial is not None
-        """Whether ``config`` is a file with axial dynamics run off bottom."""
-        if config.axial is not None and not axial_off_bottom:
+        if config.axial is not None and not fit:
             raise ConfigError(
                 "bit_rock.law",
                 "these systems are torsional at any weight on bit, and this configuration "
-                "has axial dynamics (an axial bit-rock law such as rgd, or [chain] masses): "
-                "on bottom its bit needs the axial engine; off bottom (a fit: torsio fit) "
-                "its torsional model runs",
+                "has axial dynamics (the rgd bit): on bottom its bit needs the axial engine "
+                "(torsio advise --fit draws a fit's friction there); a fit (torsio fit) "
+                "runs its torsional model off bottom",
             )
-        config = config.off_bottom() if self.off_bottom else config
+        self.fit = fit
+        self.off_bottom = config.axial is not None
+        """Whether ``config`` is a file with axial dynamics, run off bottom."""
+        config = config.off_bottom()
         self.discretization = dict(discretization)
         strategy = discretization.pop("strategy", "wave")
         self.strategy = str(strategy)
         self.config = config
         self.base = config.system(strategy=strategy, **discretization)
-        self.beta_alpha = 0.0
-        """The alpha [1/s] that stands for ``[damping]`` beta on the wave model (0: none)."""
-        self._beta = beta = float(getattr(self.base.damping, "beta", 0.0) or 0.0)
-        if self.strategy == "wave" and beta:
-            self.beta_alpha = equivalent_alpha(0.0, beta, self.base.model.first_frequency())
+        self.beta_left_out = 0.0
+        """``[damping]`` beta [s] the fit's wave model leaves out (0: none)."""
+        beta = float(getattr(self.base.damping, "beta", 0.0) or 0.0)
+        if fit and self.strategy == "wave" and beta:
+            self.beta_left_out = beta
             self.base = attrs.evolve(self.base, damping=attrs.evolve(self.base.damping, beta=0.0))
         well = config.well
         self.zones = len(well.hole) + 1
@@ -161,7 +163,9 @@ class SystemFamily:
         values["threshold_speed"] = well.threshold_speed
         values["alpha"] = float(getattr(self.base.damping, "alpha", 0.0))
         self.values: dict[str, float] = values
-        self.names: tuple[str, ...] = tuple(values)
+        self.names: tuple[str, ...] = tuple(
+            n for n in values if n != "alpha" or not self.off_bottom
+        )
         self.polar_inertia = float(
             sum(s.material.density * s.polar_moment * s.length for s in config.string.sections)
         )
@@ -175,10 +179,10 @@ class SystemFamily:
         model = self.base.model
         if self.strategy == "wave":
             text = f"wave model, time step {float(model.time_step):.3g} s"
-            if self.beta_alpha:
+            if self.beta_left_out:
                 text += (
-                    f", [damping] beta {self._beta:g} s as alpha {self.beta_alpha:.3g} 1/s "
-                    "added (the first mode's damping ratio)"
+                    f", without [damping] beta {self.beta_left_out:g} s (the wave model "
+                    "carries none; it gives no torque in steady rotation)"
                 )
         else:
             text = f"strategy {self.strategy}, {model.dofs} nodes"
@@ -192,7 +196,13 @@ class SystemFamily:
         if not names:
             raise ConfigError("fit", f"no parameter to fit; the fittable ones are {self._list()}")
         for name in names:
-            if name not in self.values:
+            if name == "alpha" and self.off_bottom:
+                raise ConfigError(
+                    "fit",
+                    "alpha: a file with axial dynamics takes [damping] beta only (the axial "
+                    f"engine's dampers beside its springs); the fittable ones are {self._list()}",
+                )
+            if name not in self.names:
                 hint = ""
                 if name.startswith("hole[") and name.split(".")[-1] in self.values:
                     hint = " (a hole section without factors of its own follows the [well] ones)"
@@ -233,8 +243,8 @@ class SystemFamily:
             "travel_time_tolerance": TWIN_TRAVEL_TIME_TOLERANCE,
         }
         return (
-            (TWIN_GRIDS[0], SystemFamily(self.config, **finer)),
-            (TWIN_GRIDS[1], SystemFamily(self.config, **coarser)),
+            (TWIN_GRIDS[0], SystemFamily(self.config, fit=self.fit, **finer)),
+            (TWIN_GRIDS[1], SystemFamily(self.config, fit=self.fit, **coarser)),
         )
 
     def continuum(self) -> SystemFamily | None:
@@ -243,7 +253,9 @@ class SystemFamily:
         wave model."""
         if self.strategy == "wave":
             return None
-        return SystemFamily(self.config, strategy="wave", drag_spacing=DRAG_SPACING_CONTINUUM)
+        return SystemFamily(
+            self.config, fit=self.fit, strategy="wave", drag_spacing=DRAG_SPACING_CONTINUUM
+        )
 
     def _zone_factors(self, values: Mapping[str, float], kind: str) -> list[float]:
         factors = []
@@ -269,8 +281,7 @@ class SystemFamily:
         merged = {**self.values, **values}
         contacts = self.contacts(merged).at_wob(float(self.base.wob))  # as Config.system
         model = self.base.model.with_contacts(contacts)
-        alpha = float(merged["alpha"]) + self.beta_alpha
-        damping = attrs.evolve(self.base.damping, alpha=alpha)
+        damping = attrs.evolve(self.base.damping, alpha=float(merged["alpha"]))
         if not isinstance(damping, RayleighDamping):  # pragma: no cover - a chain's dampers
             raise ConfigError("damping", "a fit takes Rayleigh damping ([damping] alpha, beta)")
         return attrs.evolve(self.base, model=model, damping=damping)

@@ -67,6 +67,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     common.add_discretization_arguments(parser)
     parser.add_argument(
+        "--time-step",
+        metavar="T",
+        help="the wave model's largest time step (s or with units; default its grid's: 5 ms "
+        "made to fit the sections' travel times); a finer grid reads the break-over closer",
+    )
+    parser.add_argument(
         "--plot",
         metavar="FILE",
         help="record against model with the break-overs, and each parameter's profile "
@@ -94,6 +100,12 @@ def run(args: argparse.Namespace) -> int:
     wob = check_wob(given, "--wob", config.axial is not None)
     recordings = [read_recording(path) for path in args.recording]
     window = common.parse_time(args.speed_smoothing, "--speed-smoothing", allow_zero=True)
+    grid = {k: v for k, v in common.discretization_overrides(args).items() if v is not None}
+    time_step = common.parse_time(args.time_step, "--time-step")
+    if time_step is not None:
+        if grid.get("strategy", "wave") != "wave":
+            raise ConfigError("--time-step", "sets the wave model's grid: drop --strategy")
+        grid["time_step"] = time_step
     if window is not None and args.top != "recorded":
         raise ConfigError("--speed-smoothing", "smooths the recorded speed: needs --top recorded")
     shown = count_progress("fit", "model runs")
@@ -108,7 +120,7 @@ def run(args: argparse.Namespace) -> int:
             profile=not args.no_profile,
             speed_smoothing=SPEED_SMOOTHING if window is None else window,
             progress=shown,
-            **{k: v for k, v in common.discretization_overrides(args).items() if v is not None},
+            **grid,
         )
     finally:
         shown.close()

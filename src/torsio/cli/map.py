@@ -164,6 +164,7 @@ def _run(args: argparse.Namespace) -> int:
     from torsio.analysis.map_results import MapInterrupted
     from torsio.analysis.map_runs import MapFailed, check_grid_size
     from torsio.errors import ConfigError
+    from torsio.solvers.run_chunks import stderr_progress
 
     if args.wob is not None and args.pi2 is not None:
         raise ConfigError("--pi2", "give either --wob or --pi2, not both")
@@ -208,6 +209,7 @@ def _run(args: argparse.Namespace) -> int:
     options = _map_options(args, dict(config.simulation.options))
     x = np.linspace(x_start, x_stop, x_count)
     y = np.linspace(y_start, y_stop, y_count)
+    shown = stderr_progress("map", unit="points")  # --json or not: stdout keeps the JSON
     try:
         result = config_map(
             config,
@@ -216,11 +218,12 @@ def _run(args: argparse.Namespace) -> int:
             options,
             dimensionless=dimensionless,
             executor=executor,
-            progress=(not args.json) and sys.stdout.isatty() or None,
+            progress=shown,
             rtol=args.rtol,
             note=lambda text: print(f"torsio map: {text}", file=sys.stderr),
         )
     except MapInterrupted as exc:
+        shown.close()
         if args.out is not None:
             print(f"torsio map: {exc}; {_save_partial(exc.partial, args.out)}", file=sys.stderr)
         raise KeyboardInterrupt from None
@@ -228,6 +231,8 @@ def _run(args: argparse.Namespace) -> int:
         if args.out is not None:
             exc.args = (f"{exc}; {_save_partial(exc.partial, args.out)}",)
         raise
+    finally:
+        shown.close()
     return common.write_and_print(args, result, outputs, _print_summary)
 
 

@@ -78,7 +78,7 @@ def _wave_pipe(
         raise ConfigError(
             "section", "the distributed axial pipe needs a drill pipe above the BHA; none given"
         )
-    strategy = WaveStrategy(**{**options, "rigid_bha": options.get("rigid_bha", True)})
+    strategy = WaveStrategy(**discretization.of_axial_pipe().options)
     return cast(WaveModel, axial_model(string, strategy, hook))
 
 

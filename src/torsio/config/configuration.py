@@ -112,6 +112,13 @@ class DiscretizationConfig:
 
         return get_discretizer(self.strategy)(**self.options)
 
+    def of_axial_pipe(self) -> DiscretizationConfig:
+        """These options as the distributed axial pipe (``strategy = "wave"`` with axial
+        dynamics) takes them: its BHA rigid unless ``rigid_bha`` is given."""
+        if self.strategy != "wave" or "rigid_bha" in self.options:
+            return self
+        return attrs.evolve(self, options={**self.options, "rigid_bha": True})
+
     def overridden(self, **overrides: Any) -> DiscretizationConfig:
         """These options with ``overrides`` (None: not given): ``strategy`` changes the
         strategy, and the table's options are kept only if it is unchanged; a count of
@@ -288,14 +295,17 @@ class Config:
 
     def off_bottom(self) -> Config:
         """This configuration, or for a file with axial dynamics its torsional model with the
-        bit off bottom (:data:`OFF_BOTTOM`; the same string, discretization and well).
+        bit off bottom (:data:`OFF_BOTTOM`, no weight on bit; the same string, well and
+        discretization: a distributed pipe's BHA rigid, as the axial pipe's).
 
         A start-up off bottom, as a fit's recordings are: the bit carries no torque whatever
         its law (the RGD bit's cutting and wear flats need weight on bit), and the string
         hangs still from the hook. With no axial sliding, each contact's Coulomb cone
         (:mod:`torsio.well.axial_contacts`) gives its whole capacity to the rotation, as a
-        torsional contact does: the torsional model is then the axial one, and friction
-        read on it is the axial model's.
+        torsional contact does: on the file's discretization the torsional chain and its
+        contacts are the axial chain's, so friction read on it (or on the continuum) is
+        the friction of the axial model's well. (The axial engine itself does not run off
+        bottom: its RGD bit needs a weight above the wear flats'.)
 
         Examples
         --------
@@ -306,7 +316,13 @@ class Config:
         """
         if self.axial is None:
             return self
-        return attrs.evolve(self, axial=None, bit_rock=OFF_BOTTOM)
+        return attrs.evolve(
+            self,
+            axial=None,
+            bit_rock=OFF_BOTTOM,
+            operation=attrs.evolve(self.operation, wob=0.0),
+            discretization=self.discretization.of_axial_pipe(),
+        )
 
 
 OFF_BOTTOM = BitRockConfig("constant", parameters={"torque_on_bit": 0.0})

@@ -214,8 +214,10 @@ def stderr_progress(
     stream: TextIO | None = None,
     quiet: float = QUIET_SECONDS,
     every: float = LINE_SECONDS,
+    unit: str = "steps",
 ) -> _StderrProgress:
-    """A ``progress(done, total)`` reporter for one long run; call ``close()`` at the end.
+    """A ``progress(done, total)`` reporter for one long run (or a map's points, ``unit``);
+    call ``close()`` at the end.
 
     Silent for the first ``quiet`` seconds; then a rich bar when ``stream`` (default:
     stderr at the time of the call) is a terminal, else a line every ``every`` seconds.
@@ -230,7 +232,7 @@ def stderr_progress(
     >>> stream.getvalue().startswith("torsio: wave run: 25% (50 of 200 steps)")
     True
     """
-    return _StderrProgress(label, stream, quiet, every)
+    return _StderrProgress(label, stream, quiet, every, unit)
 
 
 def count_progress(
