@@ -151,7 +151,7 @@ def test_ctrl_c_writes_only_a_partial_file(tmp_path: Path, capsys, monkeypatch) 
 
 def test_the_map_counts_its_points_on_stderr_with_or_without_json(monkeypatch, capsys) -> None:
     # stdout keeps the one JSON object; the points done go to stderr after 2 s, a bar on a
-    # terminal, else a line every 10 s (torsio.solvers.run_chunks.stderr_progress)
+    # terminal, else a line every 4 s (torsio.solvers.run_chunks.stderr_progress)
     import io
 
     from torsio.solvers.run_chunks import stderr_progress

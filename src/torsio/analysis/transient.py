@@ -170,7 +170,7 @@ def simulate(
         :data:`DEFAULT_STICK_THRESHOLD`.
     progress : callable or bool, optional
         ``progress(samples_done, samples)`` of the output grid during the run; None
-        (default): a bar on stderr (a line every 10 s when stderr is not a terminal) once
+        (default): a bar on stderr (a line every 4 s when stderr is not a terminal) once
         the run has taken 2 s (:func:`torsio.solvers.run_chunks.stderr_progress`, as for
         the wave model); True: from the start; False: none.
 

@@ -231,7 +231,7 @@ def wave_response(
         Default: start-up from rest.
     progress : callable or bool, optional
         ``progress(steps_done, steps)`` between chunks of steps; None (default): a bar on
-        stderr (a line every 10 s when stderr is not a terminal) once the run has taken
+        stderr (a line every 4 s when stderr is not a terminal) once the run has taken
         2 s (:func:`torsio.solvers.run_chunks.stderr_progress`); True: from the start;
         False: none.
     **ignored

@@ -55,8 +55,9 @@ FIRST_CHUNK = 1000
 QUIET_SECONDS = 2.0
 """A run that ends within this wall time [s] shows no progress."""
 
-LINE_SECONDS = 10.0
-"""Seconds between progress lines when stderr is not a terminal."""
+LINE_SECONDS = 4.0
+"""Seconds between progress lines when stderr is not a terminal (with :data:`QUIET_SECONDS`,
+no command is silent for more than 5 s while its work reports)."""
 
 Progress = Callable[[int, int], None]
 
