@@ -19,16 +19,15 @@ import json
 
 import numpy as np
 import pytest
+from startups import soft_torque_top, wave_startup
 
 from torsio.analysis.transient import simulate
-from torsio.analysis.wave import wave_response
 from torsio.calibration.fit import fit_recordings
 from torsio.calibration.parameters import SystemFamily
 from torsio.calibration.recording import Recording
 from torsio.cli import main
 from torsio.errors import ConfigError
 from torsio.examples import data_text, rgd_deviated_well_config, rgd_wave_pipe_config
-from torsio.physics.top_drives import SoftTorqueTopDrive
 
 pytestmark = pytest.mark.filterwarnings("ignore::UserWarning")
 
@@ -37,31 +36,24 @@ NAMES = ["friction_static", "friction_dynamic"]
 SPEEDS = (120.0, 150.0)  # rpm
 
 
+NOISE = (0.015, 0.01)  # relative, on the torque and on the speed
+
+
 def _record(run, rpm: float) -> Recording:
+    torque_noise, speed_noise = NOISE
     return Recording.from_transient(
-        run, torque_noise=0.015, speed_noise=0.01, seed=2 + int(rpm), name=f"{rpm:g}rpm.csv"
-    )
-
-
-def _top() -> SoftTorqueTopDrive:
-    return SoftTorqueTopDrive(inertia=2900.0, ramp=5.0)
+        run, torque_noise=torque_noise, speed_noise=speed_noise, seed=2 + int(rpm),
+        name=f"{rpm:g}rpm.csv",
+    )  # fmt: skip
 
 
 @pytest.fixture(scope="module")
 def recordings():
     family = SystemFamily(rgd_deviated_well_config(), fit=True, time_step=2.5e-4, drag_spacing=1)
-    system = family.system(TRUTH).with_top(_top())
-    runs = [
-        wave_response(
-            system.at(wob=0.0, rpm=rpm),
-            duration=40.0,
-            steady_window=4.0,
-            output_step=0.01,
-            progress=False,
-        ).transient
-        for rpm in SPEEDS
+    system = family.system(TRUTH)
+    return [
+        wave_startup(system, rpm, 40.0, 2 + int(rpm), f"{rpm:g}rpm.csv", NOISE) for rpm in SPEEDS
     ]
-    return [_record(run, rpm) for run, rpm in zip(runs, SPEEDS, strict=True)]
 
 
 def test_off_bottom_the_torsional_model_is_the_axial_chain_with_its_contacts():
@@ -123,7 +115,7 @@ def test_the_sliding_factor_of_recordings_made_by_the_axial_chain():
     # fitted: the chain's break-over peak is its lumping's (docs/calibration.md)
     config = rgd_deviated_well_config()
     truth = {"friction_dynamic": 0.27}
-    chain = SystemFamily(config, fit=True, strategy="C").system(truth).with_top(_top())
+    chain = SystemFamily(config, fit=True, strategy="C").system(truth).with_top(soft_torque_top())
     assert chain.damping.beta == 0.01  # a lumped strategy keeps the file's dampers
     records = [
         _record(simulate(chain.at(wob=0.0, rpm=rpm), duration=40.0, output_step=0.01), rpm)

@@ -15,13 +15,12 @@ from __future__ import annotations
 import attrs
 import numpy as np
 import pytest
+from startups import wave_startup
 
-from torsio.analysis.wave import wave_response
 from torsio.calibration.fit import fit_recordings
 from torsio.calibration.parameters import SystemFamily
 from torsio.calibration.recording import Recording
 from torsio.examples import deviated_well_config
-from torsio.physics.top_drives import SoftTorqueTopDrive
 
 pytestmark = pytest.mark.filterwarnings("ignore::UserWarning")
 
@@ -32,16 +31,8 @@ STARTS = ((0.2, 0.15), (0.4, 0.3), (0.25, 0.12))  # the issue's three starts (mu
 
 def _startup(rpm: float) -> Recording:
     family = SystemFamily(deviated_well_config(), time_step=2.5e-4, drag_spacing=1)
-    system = family.system(TRUTH).with_top(SoftTorqueTopDrive(inertia=2900.0, ramp=5.0))
-    run = wave_response(
-        system.at(wob=0.0, rpm=rpm),
-        duration=60.0,
-        steady_window=6.0,
-        output_step=0.01,
-        progress=False,
-    ).transient
-    return Recording.from_transient(
-        run, torque_noise=0.015, speed_noise=0.01, seed=2 + int(rpm), name=f"{rpm:g}rpm.csv"
+    return wave_startup(
+        family.system(TRUTH), rpm, 60.0, 2 + int(rpm), f"{rpm:g}rpm.csv", (0.015, 0.01)
     )
 
 
