@@ -289,10 +289,11 @@ def drive_map(
     shape, points = (rpm.size, wob.size), rpm.size * wob.size
     stop: Callable[[], None] | None = None
     callback = progress if callable(progress) else None
-    if progress is True:
-        from torsio.solvers.run_chunks import map_progress
+    if progress is True:  # the command line's reporter, shown at once
+        from torsio.solvers.run_chunks import stderr_progress
 
-        callback, stop = map_progress(label)
+        reporter = stderr_progress(label, quiet=0.0, unit="points")
+        callback, stop = reporter, reporter.close
     severity = np.full(shape, np.nan)
     status = np.zeros(shape, dtype=np.int64)
     steps = np.zeros(shape, dtype=np.int64)

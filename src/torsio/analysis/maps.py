@@ -124,10 +124,10 @@ def severity_map(
         Serial (default), N local processes, a Dask scheduler address, or an
         executor (:mod:`torsio.analysis.sweep`). The result does not depend on it.
     progress : bool or callable, optional
-        ``progress(done_runs, total_runs)`` after each chunk; True shows a
-        rich progress bar on stderr. The total is fixed from the start: the grid
-        points plus ``refine`` bisection runs per rpm (runs a row turns out not
-        to need are counted as done when that is known).
+        ``progress(done_runs, total_runs)`` after each chunk; True shows the
+        points done on stderr (a bar on a terminal, else a line every 4 s). The total
+        is fixed from the start: the grid points plus ``refine`` bisection runs per
+        rpm (runs a row turns out not to need are counted as done when that is known).
     **values
         Fields of :class:`MapOptions` given by name (``refine=2``, ``rtol=1e-6``, ...),
         on top of ``options``.

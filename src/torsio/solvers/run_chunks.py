@@ -39,7 +39,6 @@ __all__ = [
     "LINE_SECONDS",
     "QUIET_SECONDS",
     "count_progress",
-    "map_progress",
     "progress_bar",
     "run_in_chunks",
     "run_progress",
@@ -195,19 +194,6 @@ def progress_bar(label: str, unit: str, output: TextIO | None = None) -> Any:
         transient=True,
         console=Console(stderr=True) if output is None else Console(file=output),
     )
-
-
-def map_progress(label: str) -> tuple[Progress, Callable[[], None]]:
-    """A started :func:`progress_bar` of a map's runs on stderr, as the map's
-    ``progress(done, total)`` callback and the function that stops the bar."""
-    bar = progress_bar(label, "runs")
-    task = bar.add_task("map", total=None)
-    bar.start()
-
-    def update(done: int, total: int) -> None:
-        bar.update(task, completed=done, total=total)
-
-    return update, bar.stop
 
 
 def stderr_progress(
