@@ -142,6 +142,7 @@ def test_every_module_is_under_a_layer_rule_or_above_them():
     edges = {"__main__", "errors", "units", "csv_rows", "hookspecs", "plugins", "kernel_cache"}
     edges |= {"display_units"}  # the units tables and plots are printed in, like units
     edges |= {"output_files"}  # writing a file whole or not at all, like errors
+    edges |= {"stop_signals"}  # Ctrl-C and SIGTERM, installed by cli, checked by run loops
     edges |= {"plotting"}
     assert top <= ruled | edges, sorted(top - ruled - edges)
 

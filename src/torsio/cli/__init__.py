@@ -17,6 +17,7 @@ from collections.abc import Iterator, Sequence
 from typing import Any
 
 from torsio.errors import TorsioError
+from torsio.stop_signals import stop_signals
 
 COMMANDS = ("report", "modes", "simulate", "map", "advise", "drag", "fit", "laws", "init")
 
@@ -70,33 +71,31 @@ def main(argv: Sequence[str] | None = None) -> int:
     words = sys.argv[1:] if argv is None else list(argv)
     parser = build_parser(next((w for w in words if not w.startswith("-")), ""))
     args = parser.parse_args(words)
-    terminated: list[int] = []
-    previous = _handle_sigterm(terminated)
     stdout = sys.stdout
     sys.stdout = _Stdout(stdout)
-    try:
-        with warnings.catch_warnings(), _warning_format(args.command):
-            warnings.simplefilter("default")
-            status = args.run(args)
-        sys.stdout.flush()  # a full stdout fails here, not at the exit
-    except _StdoutFailed as exc:  # stdout on a full disk, /dev/full, an I/O error
-        _discard_stdout(stdout)
-        print(f"torsio {args.command}: error: cannot write to stdout: {exc}", file=sys.stderr)
-        return 2
-    except TorsioError as exc:
-        print(f"torsio {args.command}: error: {exc}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        what = "terminated (SIGTERM)" if terminated else "interrupted"
-        print(f"torsio {args.command}: {what}", file=sys.stderr)
-        return 143 if terminated else 130
-    except BrokenPipeError:  # output piped into a program that stopped reading (| head)
-        _discard_stdout(stdout)
-        return 0
-    finally:
-        sys.stdout = stdout
-        if previous is not None:
-            signal.signal(signal.SIGTERM, previous)
+    with stop_signals() as received:
+        try:
+            with warnings.catch_warnings(), _warning_format(args.command):
+                warnings.simplefilter("default")
+                status = args.run(args)
+            sys.stdout.flush()  # a full stdout fails here, not at the exit
+        except _StdoutFailed as exc:  # stdout on a full disk, /dev/full, an I/O error
+            _discard_stdout(stdout)
+            print(f"torsio {args.command}: error: cannot write to stdout: {exc}", file=sys.stderr)
+            return 2
+        except TorsioError as exc:
+            print(f"torsio {args.command}: error: {exc}", file=sys.stderr)
+            return 2
+        except KeyboardInterrupt:  # SIGINT or SIGTERM (partial results kept, workers stopped)
+            terminated = hasattr(signal, "SIGTERM") and signal.SIGTERM in received
+            what = "terminated (SIGTERM)" if terminated else "interrupted"
+            print(f"torsio {args.command}: {what}", file=sys.stderr)
+            return 143 if terminated else 130
+        except BrokenPipeError:  # output piped into a program that stopped reading (| head)
+            _discard_stdout(stdout)
+            return 0
+        finally:
+            sys.stdout = stdout
     return int(status or 0)
 
 
@@ -154,24 +153,6 @@ def console_main() -> int:
     status = main()
     gc.freeze()
     return status
-
-
-def _handle_sigterm(terminated: list[int]) -> Any:
-    """Make SIGTERM stop a command like Ctrl-C (partial results kept, workers stopped).
-
-    Returns the previous handler, or None where none can be installed (not the main
-    thread, no SIGTERM on the platform).
-    """
-    import threading
-
-    if threading.current_thread() is not threading.main_thread() or not hasattr(signal, "SIGTERM"):
-        return None
-
-    def on_sigterm(signum: int, frame: Any) -> None:
-        terminated.append(signum)
-        raise KeyboardInterrupt
-
-    return signal.signal(signal.SIGTERM, on_sigterm)
 
 
 if __name__ == "__main__":  # pragma: no cover

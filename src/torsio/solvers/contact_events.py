@@ -31,6 +31,7 @@ from torsio.analysis.simulation_options import SimulationOptions
 from torsio.errors import ConfigError, SolverError
 from torsio.physics.dynamics import Dynamics
 from torsio.solvers import contact_law as law
+from torsio.stop_signals import raise_if_stopped
 
 __all__ = ["contact_method", "integrate_with_contacts"]
 
@@ -269,6 +270,7 @@ def integrate_with_contacts(
         taken = samples.shape[1]
         states[:, filled : filled + taken] = samples
         filled += taken
+        raise_if_stopped()  # a stop signal whose KeyboardInterrupt Python lost
         if progress is not None:
             progress(filled, time_grid.size)
         if piece.status == 0:

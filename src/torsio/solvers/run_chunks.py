@@ -4,7 +4,8 @@ A compiled loop (numba, no GIL) does not return to the interpreter until it is d
 Python's signal handlers (Ctrl-C, SIGTERM turned into KeyboardInterrupt by the command
 line) wait for it. :func:`run_in_chunks` calls a function that advances a loop by ``k``
 steps again and again, ``k`` chosen so that each call lasts about
-:data:`CHUNK_SECONDS`; between calls the interpreter runs (signals are handled there) and
+:data:`CHUNK_SECONDS`; between calls the interpreter runs (signals are handled there, and
+a signal whose KeyboardInterrupt Python lost is raised again: :mod:`torsio.stop_signals`) and
 progress is reported (:func:`count_progress` reports work of no known total, a fit's or a
 search's runs). The function keeps the loop's state between calls, so the result
 is the one a single call of every step would give.
@@ -33,6 +34,8 @@ import sys
 import time
 from collections.abc import Callable, Iterator
 from typing import Any, TextIO
+
+from torsio.stop_signals import raise_if_stopped
 
 __all__ = [
     "CHUNK_SECONDS",
@@ -94,6 +97,7 @@ def run_in_chunks(
         stopped = advance(k)
         elapsed = time.perf_counter() - started
         done += k
+        raise_if_stopped()  # a stop signal whose KeyboardInterrupt Python lost
         if progress is not None:
             progress(done, total)
         if stopped:

@@ -19,6 +19,7 @@ from torsio.analysis.budget import BudgetExceeded, EvaluationBudget
 from torsio.analysis.simulation_options import IMPLICIT_METHODS, SimulationOptions
 from torsio.errors import SolverError
 from torsio.physics.dynamics import Dynamics
+from torsio.stop_signals import raise_if_stopped
 
 __all__ = ["integrate_scipy"]
 
@@ -112,13 +113,15 @@ def _reporting(
     samples: int,
     progress: Callable[[int, int], None],
 ) -> Callable[[float, np.ndarray], np.ndarray]:
-    """``rhs`` that reports the output samples reached (by its time) every 0.2 s."""
+    """``rhs`` that reports the output samples reached (by its time) every 0.2 s (and
+    raises a stop signal whose KeyboardInterrupt Python lost: :mod:`torsio.stop_signals`)."""
     last = [time.perf_counter()]
 
     def wrapped(t: float, y: np.ndarray) -> np.ndarray:
         now = time.perf_counter()
         if now - last[0] > 0.2:
             last[0] = now
+            raise_if_stopped()
             progress(min(samples, 1 + int(float(t) / run * (samples - 1))), samples)
         return rhs(t, y)
 
