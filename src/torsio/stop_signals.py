@@ -5,7 +5,8 @@ When that is code whose exceptions Python discards (a weakref callback of the im
 system, a finalizer, Python code called by C code that clears errors), the interrupt is
 lost and the run goes on: 1 of 120 SIGINTs sent during the start of ``torsio simulate``
 on a machine with both cores busy (the run went on to its end). :func:`stop_signals`,
-which the command line installs, records each signal before it raises;
+which the command line installs, records each signal before it raises (and keeps
+Python's "Exception ignored" traceback of a lost one off stderr);
 :func:`raise_if_stopped`, called where a long loop returns to Python between its pieces
 of work, raises it again. Outside :func:`stop_signals` (the Python API) nothing changes.
 
@@ -21,6 +22,7 @@ from __future__ import annotations
 
 import contextlib
 import signal
+import sys
 import threading
 from collections.abc import Iterator
 from typing import Any
@@ -52,10 +54,19 @@ def stop_signals() -> Iterator[list[int]]:
         _RECEIVED.append(signum)
         raise KeyboardInterrupt
 
+    unraisable = sys.unraisablehook
+
+    def quiet_when_lost(info: Any) -> None:
+        """No "Exception ignored" traceback for a lost interrupt: it is raised again."""
+        if not (_RECEIVED and issubclass(info.exc_type, KeyboardInterrupt)):
+            unraisable(info)
+
     previous = {s: signal.signal(s, record) for s in installed}
+    sys.unraisablehook = quiet_when_lost
     try:
         yield _RECEIVED
     finally:
+        sys.unraisablehook = unraisable
         for number, handler in previous.items():
             signal.signal(number, handler)
         _RECEIVED.clear()
