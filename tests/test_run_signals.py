@@ -33,7 +33,7 @@ def _stops_within_two_seconds(
     """Signal ``command`` after ``running`` s and, if given, once its stderr shows ``in_run``
     (its first progress line: the run's loop has started, past the imports and the kernels'
     loading, which take longer on a busy machine)."""
-    process = subprocess.Popen(command, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    process = subprocess.Popen(command, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     lines: list[bytes] = []
     stderr = process.stderr
     assert stderr is not None
@@ -54,7 +54,7 @@ def _stops_within_two_seconds(
         if process.poll() is None:
             process.kill()
             process.wait()
-        reader.join()
+        reader.join(timeout=10.0)
     err = b"".join(lines)
     assert process.returncode == status, err
     assert elapsed < 2.0, f"stopped {elapsed:.2f} s after {name}"

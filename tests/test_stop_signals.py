@@ -7,10 +7,13 @@ from __future__ import annotations
 
 import signal
 import sys
+import time
 import weakref
+from concurrent.futures import ThreadPoolExecutor
 
 import pytest
 
+from torsio.analysis.sweep import EXECUTOR_POLL, SweepInterrupted, run_tasks
 from torsio.solvers.run_chunks import run_in_chunks
 from torsio.stop_signals import raise_if_stopped, stop_signals
 
@@ -27,7 +30,13 @@ def _lose_a_signal(name: str) -> None:
     assert reference() is None
 
 
-@pytest.mark.parametrize("name", ["SIGINT", "SIGTERM"])
+SIGINT_IGNORED = pytest.mark.skipif(
+    signal.getsignal(signal.SIGINT) is signal.SIG_IGN,
+    reason="SIGINT is ignored in this process (a background job), and stays ignored",
+)
+
+
+@pytest.mark.parametrize("name", [pytest.param("SIGINT", marks=SIGINT_IGNORED), "SIGTERM"])
 def test_a_lost_interrupt_stops_the_next_chunk(name: str, monkeypatch) -> None:  # type: ignore[no-untyped-def]
     discarded: list[type[BaseException] | None] = []
     monkeypatch.setattr(sys, "unraisablehook", lambda u: discarded.append(u.exc_type))
@@ -56,6 +65,35 @@ def test_other_discarded_exceptions_are_still_shown(monkeypatch) -> None:  # typ
 def test_the_handlers_are_restored() -> None:
     before = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM), sys.unraisablehook
     with stop_signals():
-        assert signal.getsignal(signal.SIGINT) is not before[0]
+        assert signal.getsignal(signal.SIGTERM) is not before[1]
     after = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM), sys.unraisablehook
     assert after == before
+
+
+def test_an_ignored_sigint_stays_ignored_and_sigterm_is_handled() -> None:
+    # a background job inherits SIGINT ignored (Python leaves it so); SIGTERM stops a
+    # command whatever the parent did, as before stop_signals
+    previous = (
+        signal.signal(signal.SIGINT, signal.SIG_IGN),
+        signal.signal(signal.SIGTERM, signal.SIG_IGN),
+    )
+    try:
+        with stop_signals():
+            assert signal.getsignal(signal.SIGINT) is signal.SIG_IGN
+            assert signal.getsignal(signal.SIGTERM) not in (signal.SIG_IGN, signal.SIG_DFL)
+        assert signal.getsignal(signal.SIGTERM) is signal.SIG_IGN
+    finally:
+        signal.signal(signal.SIGINT, previous[0])
+        signal.signal(signal.SIGTERM, previous[1])
+
+
+def test_a_lost_interrupt_stops_a_sweep_waiting_on_its_workers(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    # the sweep's poll of its executor (every EXECUTOR_POLL s) raises it again: the tasks
+    # left are cancelled and SweepInterrupted keeps what finished
+    monkeypatch.setattr(sys, "unraisablehook", lambda u: None)
+    started = time.monotonic()
+    with stop_signals(), pytest.raises(SweepInterrupted) as interrupted:
+        _lose_a_signal("SIGTERM")
+        run_tasks(time.sleep, [(0.2,)] * 40, executor=ThreadPoolExecutor(max_workers=2))
+    assert interrupted.value.done < 40
+    assert time.monotonic() - started < 2.0 + EXECUTOR_POLL

@@ -40,14 +40,14 @@ def stop_signals() -> Iterator[list[int]]:
     are restored after it.
 
     Nothing is installed outside the main thread; a SIGINT ignored by the parent process
-    (a background job) stays ignored.
+    (a background job) stays ignored, as Python leaves it; SIGTERM is handled always.
     """
     if threading.current_thread() is not threading.main_thread():
         yield []
         return
-    names = ["SIGINT", "SIGTERM"]
-    wanted = [getattr(signal, n) for n in names if hasattr(signal, n)]
-    installed = [s for s in wanted if signal.getsignal(s) is not signal.SIG_IGN]
+    wanted = [getattr(signal, n) for n in ("SIGINT", "SIGTERM") if hasattr(signal, n)]
+    ignored_sigint = signal.getsignal(signal.SIGINT) is signal.SIG_IGN
+    installed = [s for s in wanted if not (s == signal.SIGINT and ignored_sigint)]
     _RECEIVED.clear()
 
     def record(signum: int, frame: Any) -> None:
@@ -66,9 +66,11 @@ def stop_signals() -> Iterator[list[int]]:
     try:
         yield _RECEIVED
     finally:
-        sys.unraisablehook = unraisable
+        if sys.unraisablehook is quiet_when_lost:
+            sys.unraisablehook = unraisable
         for number, handler in previous.items():
-            signal.signal(number, handler)
+            if handler is not None:  # None: a handler installed outside Python, kept
+                signal.signal(number, handler)
         _RECEIVED.clear()
 
 

@@ -53,6 +53,7 @@ from torsio.analysis.dask_client import (
     connect_dask,
 )
 from torsio.errors import ConfigError, TorsioError
+from torsio.stop_signals import raise_if_stopped
 
 __all__ = [
     "CONNECT_TIMEOUT",
@@ -411,6 +412,7 @@ def _run(
             submit(index)
         last_progress = time.monotonic()
         while pending:
+            raise_if_stopped()  # a stop signal whose KeyboardInterrupt Python lost
             completed, _ = cf.wait(
                 list(pending),
                 timeout=min(EXECUTOR_POLL, no_progress_timeout),

@@ -64,9 +64,7 @@ def integrate_scipy(
         solver_kwargs["jac"] = dynamics.jacobian
     run = float(time_grid[-1])
     budget = EvaluationBudget.for_samples(time_grid.size - 1)
-    rhs = budget.wrap(dynamics.rhs)
-    if progress is not None:
-        rhs = _reporting(rhs, run, time_grid.size, progress)
+    rhs = _reporting(budget.wrap(dynamics.rhs), run, time_grid.size, progress)
     start = time.perf_counter()
     with np.errstate(all="ignore"):
         try:
@@ -111,10 +109,10 @@ def _reporting(
     rhs: Callable[[float, np.ndarray], np.ndarray],
     run: float,
     samples: int,
-    progress: Callable[[int, int], None],
+    progress: Callable[[int, int], None] | None,
 ) -> Callable[[float, np.ndarray], np.ndarray]:
-    """``rhs`` that reports the output samples reached (by its time) every 0.2 s (and
-    raises a stop signal whose KeyboardInterrupt Python lost: :mod:`torsio.stop_signals`)."""
+    """``rhs`` that every 0.2 s raises a stop signal whose KeyboardInterrupt Python lost
+    (:mod:`torsio.stop_signals`) and reports the output samples reached (by its time)."""
     last = [time.perf_counter()]
 
     def wrapped(t: float, y: np.ndarray) -> np.ndarray:
@@ -122,7 +120,8 @@ def _reporting(
         if now - last[0] > 0.2:
             last[0] = now
             raise_if_stopped()
-            progress(min(samples, 1 + int(float(t) / run * (samples - 1))), samples)
+            if progress is not None:
+                progress(min(samples, 1 + int(float(t) / run * (samples - 1))), samples)
         return rhs(t, y)
 
     return wrapped
