@@ -93,7 +93,7 @@ def test_the_fit_reads_the_truth_of_recordings_made_on_another_grid(recordings):
     # stated two-sigma interval holding the truth, mu_s within 0.05. On this string's
     # default grid (3.9e-3 s) mu_s reads 0.319 for 0.33 and its stated interval (+-0.003)
     # misses the truth: the grid twins do not see that bias (docs/calibration.md, "A file
-    # with axial dynamics"); on a grid of 1e-3 s it holds (the next test)
+    # with axial dynamics"); on a grid of 2e-3 s it holds (the next test)
     assert abs(fitted["friction_dynamic"] - TRUTH["friction_dynamic"]) < 0.01
     assert abs(fitted["friction_static"] - TRUTH["friction_static"]) < 0.05
     low, high = results.uncertainty[1].interval
@@ -101,7 +101,10 @@ def test_the_fit_reads_the_truth_of_recordings_made_on_another_grid(recordings):
 
 
 def test_on_a_finer_grid_the_intervals_hold_the_truth(recordings):
-    results = fit_recordings(rgd_deviated_well_config(), recordings, NAMES, time_step=1e-3)
+    # half the default step (1.97e-3 s): its coarser twin is the default grid, which reads
+    # mu_s 0.005 lower, and the discretization part widens the interval to hold 0.33
+    results = fit_recordings(rgd_deviated_well_config(), recordings, NAMES, time_step=2e-3)
+    assert results.uncertainty[0].sigma_grid > 0.003
     for name, spread in zip(results.names, results.uncertainty, strict=True):
         low, high = spread.interval
         assert low <= TRUTH[name] <= high, (name, spread)
