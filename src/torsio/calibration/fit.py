@@ -49,6 +49,7 @@ from torsio.calibration.uncertainty import (
     jacobian_correlation,
     parameter_uncertainty,
     residual_scale,
+    rough_misfit,
 )
 from torsio.errors import ConfigError
 from torsio.physics.recorded_top import RecordedTopDrive
@@ -345,6 +346,7 @@ def fit_recordings(
     spread = parameter_uncertainty(
         misfit, best, fit.jacobian, parts, bounds=bounds, profile=profile, twins=twins
     )
+    said += [w for n, v, s in zip(names, best, spread, strict=True) if (w := rough_misfit(n, v, s))]
     models = misfit.models(best)
     scale = residual_scale(parts, len(names))
     fits = tuple(
