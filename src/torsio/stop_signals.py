@@ -45,9 +45,9 @@ def stop_signals() -> Iterator[list[int]]:
     if threading.current_thread() is not threading.main_thread():
         yield []
         return
-    wanted = [getattr(signal, n) for n in ("SIGINT", "SIGTERM") if hasattr(signal, n)]
-    ignored_sigint = signal.getsignal(signal.SIGINT) is signal.SIG_IGN
-    installed = [s for s in wanted if not (s == signal.SIGINT and ignored_sigint)]
+    installed = [signal.SIGTERM]
+    if signal.getsignal(signal.SIGINT) is not signal.SIG_IGN:
+        installed.append(signal.SIGINT)
     _RECEIVED.clear()
 
     def record(signum: int, frame: Any) -> None:

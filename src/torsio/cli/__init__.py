@@ -87,7 +87,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(f"torsio {args.command}: error: {exc}", file=sys.stderr)
             return 2
         except KeyboardInterrupt:  # SIGINT or SIGTERM (partial results kept, workers stopped)
-            terminated = hasattr(signal, "SIGTERM") and signal.SIGTERM in received
+            terminated = signal.SIGTERM in received
             what = "terminated (SIGTERM)" if terminated else "interrupted"
             print(f"torsio {args.command}: {what}", file=sys.stderr)
             return 143 if terminated else 130
